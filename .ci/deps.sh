@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages Twister Station needs. As root: apt-get install
+# (refreshing the package lists first when they are empty or stale). Otherwise:
+# prints the exact command to run and exits 1 if anything is missing.
+set -euo pipefail
+
+packages=(
+  # toolchain and test stack
+  build-essential cmake ninja-build pkg-config git clang libclang-rt-14-dev
+  clang-format clang-tidy googletest libgtest-dev libgmock-dev libbenchmark-dev
+  librapidcheck-dev
+  # core
+  libglm-dev
+  # hal backends and the station
+  libusb-1.0-0-dev libgpiod-dev libhidapi-dev libsystemd-dev libtomlplusplus-dev
+  libcli11-dev umockdev libumockdev-dev
+  # host tools and display
+  libfmt-dev libpng-dev libtinyobjloader-dev libglfw3-dev libepoxy-dev libegl-dev
+  libgl1-mesa-dri xvfb xauth
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+if [ "$(id -u)" -ne 0 ]; then
+  echo "deps: missing packages: ${missing[*]}" >&2
+  echo "deps: run as root:" >&2
+  echo "  sudo apt-get update && sudo apt-get install -y ${missing[*]}" >&2
+  exit 1
+fi
+
+export DEBIAN_FRONTEND=noninteractive
+echo "deps: installing ${missing[*]}"
+lists_age_days=99999  # no package lists at all counts as stale
+newest=$(ls -t /var/lib/apt/lists/*_Packages 2>/dev/null | head -n 1 || true)
+if [ -n "$newest" ]; then
+  lists_age_days=$(( ($(date +%s) - $(stat -c %Y "$newest")) / 86400 ))
+fi
+if [ "$lists_age_days" -gt 1 ]; then
+  apt-get update -q
+fi
+if ! apt-get install -y -q --no-install-recommends "${missing[@]}"; then
+  # A stale list names package versions the mirror no longer has: refresh and retry.
+  apt-get update -q
+  apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
