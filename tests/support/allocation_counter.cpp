@@ -1,5 +1,5 @@
 // Replacement allocation functions that count per thread, then forward to the C
-// library. Under ASan only operator new is replaced: ASan owns malloc itself.
+// library. Under ASan, which owns malloc, the sanitizer's malloc hook counts instead.
 #include "allocation_counter.hpp"
 
 #include <cstdlib>
@@ -42,6 +42,19 @@ void* realloc(void* p, std::size_t n) {
 }
 void free(void* p) { __libc_free(p); }
 }
+#define TWISTER_MALLOC_COUNTS 1
+#endif
+
+#if defined(TWISTER_SANITIZED)
+extern "C" int __sanitizer_install_malloc_and_free_hooks(
+    void (*malloc_hook)(const volatile void*, std::size_t),
+    void (*free_hook)(const volatile void*));
+namespace {
+void count_malloc_hook(const volatile void*, std::size_t) { ++t_allocations; }
+void ignore_free_hook(const volatile void*) {}
+[[maybe_unused]] const int g_hooks_installed =
+    __sanitizer_install_malloc_and_free_hooks(count_malloc_hook, ignore_free_hook);
+}  // namespace
 #define TWISTER_MALLOC_COUNTS 1
 #endif
 
