@@ -46,9 +46,9 @@ void free(void* p) { __libc_free(p); }
 #endif
 
 #if defined(TWISTER_SANITIZED)
-extern "C" int __sanitizer_install_malloc_and_free_hooks(
-    void (*malloc_hook)(const volatile void*, std::size_t),
-    void (*free_hook)(const volatile void*));
+extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*,
+                                                                             std::size_t),
+                                                         void (*free_hook)(const volatile void*));
 namespace {
 void count_malloc_hook(const volatile void*, std::size_t) { ++t_allocations; }
 void ignore_free_hook(const volatile void*) {}
@@ -77,10 +77,18 @@ void* counted_new_aligned(std::size_t n, std::align_val_t al) {
 void* operator new(std::size_t n) { return counted_new(n); }
 void* operator new[](std::size_t n) { return counted_new(n); }
 void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
-  try { return counted_new(n); } catch (...) { return nullptr; }
+  try {
+    return counted_new(n);
+  } catch (...) {
+    return nullptr;
+  }
 }
 void* operator new[](std::size_t n, const std::nothrow_t&) noexcept {
-  try { return counted_new(n); } catch (...) { return nullptr; }
+  try {
+    return counted_new(n);
+  } catch (...) {
+    return nullptr;
+  }
 }
 void* operator new(std::size_t n, std::align_val_t al) { return counted_new_aligned(n, al); }
 void* operator new[](std::size_t n, std::align_val_t al) { return counted_new_aligned(n, al); }
