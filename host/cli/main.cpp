@@ -5,6 +5,7 @@
 #include <exception>
 
 #include "cli_exit.hpp"
+#include "warp_command.hpp"
 
 namespace {
 
@@ -13,6 +14,7 @@ int run(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "twister 0.1.0");
   // Subcommands (one line each):
+  twister::cli::add_warp_command(app);
 
   try {
     app.parse(argc, argv);
