@@ -5,6 +5,7 @@
 #include <exception>
 
 #include "cli_exit.hpp"
+#include "figure8_command.hpp"
 #include "warp_command.hpp"
 
 namespace {
@@ -15,6 +16,7 @@ int run(int argc, char** argv) {
   app.set_version_flag("--version", "twister 0.1.0");
   // Subcommands (one line each):
   twister::cli::add_warp_command(app);
+  twister::cli::add_figure8_command(app);
 
   try {
     app.parse(argc, argv);
