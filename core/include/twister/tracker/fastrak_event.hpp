@@ -14,6 +14,8 @@ struct OrientationItems {
   bool euler = false;       // item 4 / 54
   bool dcm = false;         // all three of items 5, 6, 7 (or 55, 56, 57)
   bool quaternion = false;  // item 11 / 61
+
+  friend bool operator==(const OrientationItems&, const OrientationItems&) = default;
 };
 
 // A framed record whose values passed every plausibility check.
