@@ -123,7 +123,7 @@ class FastrakSession {
   std::array<std::byte, 512> rx_{};
   std::size_t rx_len_ = 0;
   std::size_t rx_pos_ = 0;
-  bool pose_since_stream_ = false;
+  FastrakSessionCounters counters_{};
 };
 
 }  // namespace twister::tracker
