@@ -30,7 +30,9 @@ std::size_t UndoHistory::used_changes() const {
 void UndoHistory::drop_oldest() {
   TWISTER_ASSERT(entry_count_ > 0);
   const std::size_t shift = entries_[0].change_count;
-  const std::size_t used = used_changes();
+  // The open entry's changes sit after the closed ones and move with them.
+  const std::size_t used =
+      open_ ? open_entry_.first_change + open_entry_.change_count : used_changes();
   std::copy(changes_.begin() + static_cast<std::ptrdiff_t>(shift),
             changes_.begin() + static_cast<std::ptrdiff_t>(used), changes_.begin());
   std::copy(entries_.begin() + 1, entries_.begin() + static_cast<std::ptrdiff_t>(entry_count_),
