@@ -177,19 +177,15 @@ Status SculptSession::commit_plan(const journal::JournalRecord& record, bool jou
   return OkStatus();
 }
 
-void SculptSession::commit_segment(std::uint16_t chain_step, SessionEvents& out) {
+void SculptSession::commit_segment(std::uint8_t hand, Reason reason, SessionEvents& out) {
   update_plan().ignore();  // on error the previous update stays in force
   journal::JournalRecord r;
   r.type = journal::RecordType::stroke;
   r.stroke.method = static_cast<std::uint8_t>(plan_.method());
   r.stroke.hand_mask = stroke_mask_;
-  r.stroke.chain_step = chain_step;
+  r.stroke.chain_step = chain_step_;
   r.stroke.radius_m = stroke_radius_m_;
   std::size_t i = 0;
-  std::uint8_t first_hand = 0;
-  for (std::uint8_t h = kHandCount; h-- > 0;) {
-    if ((stroke_mask_ & (1u << h)) != 0) first_hand = h;
-  }
   for (std::uint8_t h = 0; h < kHandCount; ++h) {
     if ((stroke_mask_ & (1u << h)) == 0) continue;
     r.stroke.start[h] = to_journal(stroke_start_[i]);
@@ -198,12 +194,18 @@ void SculptSession::commit_segment(std::uint16_t chain_step, SessionEvents& out)
   }
   const std::uint32_t sequence = next_sequence_;
   const Status s = commit_plan(r, true, &out);
-  out.push({SessionEventKind::committed, first_hand, Reason::released, s, sequence});
+  out.push({SessionEventKind::committed, hand, reason, s, sequence});
+}
+
+void SculptSession::end_hands(std::uint8_t mask, Status status, SessionEvents& out) {
+  for (std::uint8_t h = 0; h < kHandCount; ++h) {
+    if ((mask & (1u << h)) != 0) out.push({SessionEventKind::cancelled, h, Reason::none, status, 0});
+  }
 }
 
 void SculptSession::restart_without(std::uint8_t hand, bool commit, SessionEvents& out) {
   if (commit) {
-    commit_segment(chain_step_, out);
+    commit_segment(hand, Reason::released, out);
   } else {
     out.push({SessionEventKind::cancelled, hand, Reason::tracking_timeout, OkStatus(), 0});
   }
@@ -213,8 +215,7 @@ void SculptSession::restart_without(std::uint8_t hand, bool commit, SessionEvent
   if (remaining == 0) return;
   const Status s = begin_segment(remaining, out);
   if (!s.ok()) {
-    const auto other = static_cast<std::uint8_t>(std::countr_zero(static_cast<unsigned>(remaining)));
-    out.push({SessionEventKind::refused, other, Reason::none, s, 0});
+    end_hands(remaining, s, out);
   }
 }
 
@@ -229,7 +230,7 @@ void SculptSession::apply_action(const Action& a, ports::TimestampUs now_us, Ses
         // continue as one two-hand segment from the current poses. Hands grabbing
         // in the same step simply start together.
         mask = static_cast<std::uint8_t>(mask | stroke_mask_);
-        if (segment_moved_ || chain_step_ != 0) commit_segment(chain_step_, out);
+        if (segment_moved_ || chain_step_ != 0) commit_segment(a.hand, Reason::none, out);
         stroke_mask_ = 0;
         plan_.reset();
       }
@@ -239,24 +240,30 @@ void SculptSession::apply_action(const Action& a, ports::TimestampUs now_us, Ses
       } else {
         out.push({SessionEventKind::refused, a.hand, Reason::none, s, 0});
         const auto previous = static_cast<std::uint8_t>(mask & ~bit);
-        if (previous != 0 && !begin_segment(previous, out).ok()) stroke_mask_ = 0;
+        if (previous != 0) {
+          const Status again = begin_segment(previous, out);
+          if (!again.ok()) end_hands(previous, again, out);
+        }
       }
       segment_moved_ = false;
       return;
     }
     case ActionKind::freeze:
       if ((stroke_mask_ & bit) == 0) return;
-      commit_segment(chain_step_, out);
+      commit_segment(a.hand, Reason::none, out);
       {
         std::array<math::Frame, 2> frames{};
         const std::size_t n = plan_frames(frames);
-        if (plan_.rebase(std::span(frames).first(n)).ok()) {
+        const Status rebased = plan_.rebase(std::span(frames).first(n));
+        if (rebased.ok()) {
           stroke_start_ = frames;
           ++chain_step_;
         } else {
           // Cannot continue with the same weights: end the stroke cleanly.
+          const std::uint8_t mask = stroke_mask_;
           stroke_mask_ = 0;
           plan_.reset();
+          end_hands(mask, rebased, out);
         }
       }
       segment_moved_ = false;

@@ -62,8 +62,12 @@ struct SculptStorage {
 
 enum class SessionEventKind : std::uint8_t {
   grab_begin,        // hand started a stroke
-  committed,         // a stroke segment was applied to the mesh (sequence = its record)
-  cancelled,         // the open segment was dropped; model unchanged (reason)
+  committed,         // a stroke segment was applied to the mesh (sequence = its record);
+                     // reason released: `hand`'s grab ends here; none: freeze or a
+                     // hand joining, the stroke goes on
+  cancelled,         // `hand`'s grab ended without commit: reason tracking_timeout
+                     // (segment dropped, model as at its start) or a warp-plan error
+                     // (status) when the stroke could not go on
   tracking_lost,     // hand lost tracking during a stroke or move; warp holds
   tracking_resumed,
   refused,           // a press was refused (reason; status for a plan error)
@@ -167,7 +171,11 @@ class SculptSession {
 
   void apply_action(const Action& action, ports::TimestampUs now_us, SessionEvents& out);
   Status begin_segment(std::uint8_t hand_mask, SessionEvents& out);
-  void commit_segment(std::uint16_t chain_step, SessionEvents& out);
+  // Commits the open segment; the committed event names `hand` and `reason`
+  // (released: the hand's grab ends; none: the stroke continues).
+  void commit_segment(std::uint8_t hand, Reason reason, SessionEvents& out);
+  // Reports the grabs of `mask` as ended (cancelled with `status`).
+  void end_hands(std::uint8_t mask, Status status, SessionEvents& out);
   void restart_without(std::uint8_t hand, bool commit, SessionEvents& out);
   Status update_plan();
   Status commit_plan(const journal::JournalRecord& record, bool journaled, SessionEvents* out);
