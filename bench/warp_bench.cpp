@@ -61,8 +61,7 @@ std::unique_ptr<Scene> make_scene(std::size_t n, std::size_t hands) {
   s->indices.resize(n);
   s->w1.resize(n);
   s->w2.resize(n);
-  s->plan = std::make_unique<WarpPlan>(
-      twister::math::WarpPlanStorage{s->indices, s->w1, s->w2});
+  s->plan = std::make_unique<WarpPlan>(twister::math::WarpPlanStorage{s->indices, s->w1, s->w2});
   s->start = {twister::math::identity_frame(o), twister::math::identity_frame(q)};
   s->end = {turned(s->start[0], {0.2, 0.1, 1.0}, 1.3, {0.1, 0.6, 0.0}),
             turned(s->start[1], {0.1, 1.0, -0.3}, -1.1, {-0.1, 0.5, 0.2})};

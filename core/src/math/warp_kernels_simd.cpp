@@ -28,10 +28,13 @@ namespace {
 // i.e. at float rounding level, and no range reduction or table lookups.
 TWISTER_ALWAYS_INLINE void sincos_half(float x, float& s, float& c) {
   const float x2 = x * x;
-  s = x * (1.0f + x2 * (-1.6666667e-1f + x2 * (8.3333333e-3f + x2 * (-1.9841270e-4f +
-                                 x2 * (2.7557319e-6f + x2 * -2.5052108e-8f)))));
-  c = 1.0f + x2 * (-0.5f + x2 * (4.1666667e-2f + x2 * (-1.3888889e-3f + x2 * (2.4801587e-5f +
-                                 x2 * (-2.7557319e-7f + x2 * 2.0876757e-9f)))));
+  s = x * (1.0f + x2 * (-1.6666667e-1f +
+                        x2 * (8.3333333e-3f +
+                              x2 * (-1.9841270e-4f + x2 * (2.7557319e-6f + x2 * -2.5052108e-8f)))));
+  c = 1.0f + x2 * (-0.5f +
+                   x2 * (4.1666667e-2f +
+                         x2 * (-1.3888889e-3f +
+                               x2 * (2.4801587e-5f + x2 * (-2.7557319e-7f + x2 * 2.0876757e-9f)))));
 }
 
 // Per-hand constants of the rearranged displacement (v = P - M expanded so that the
