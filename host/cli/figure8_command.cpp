@@ -22,12 +22,14 @@ constexpr math::WarpMethod kMethods[] = {math::WarpMethod::twister, math::WarpMe
                                          math::WarpMethod::scodef};
 
 std::vector<Figure8Curve> run_table(const Figure8Setup& setup) {
-  std::printf("# %zu points from x = -1 to 1, grabs at x = -0.5 and 0.5, r = %g, both hands "
-              "move by (0, %g, 0); hand 1 turns +angle about z, hand 2 -angle\n",
-              setup.points, setup.radius, setup.lift);
+  std::printf(
+      "# %zu points from x = -1 to 1, grabs at x = -0.5 and 0.5, r = %g, both hands "
+      "move by (0, %g, 0); hand 1 turns +angle about z, hand 2 -angle\n",
+      setup.points, setup.radius, setup.lift);
   std::printf("# cell: self-intersections / sharpest turn between segments (degrees)\n");
   std::printf("%6s", "angle");
-  for (const auto m : kMethods) std::printf("  %-16s", std::string(math::warp_method_name(m)).c_str());
+  for (const auto m : kMethods)
+    std::printf("  %-16s", std::string(math::warp_method_name(m)).c_str());
   std::printf("\n");
   std::vector<Figure8Curve> curves;
   for (const int angle : figure8_angles()) {
@@ -55,7 +57,8 @@ void run_figure8(const Figure8Options& opt) {
   std::printf("\n");
   run_table(Figure8Setup{2001, 1.0, 0.3});
   std::string error;
-  const std::string title = "Figure 8 (spec 9): r = 0.5, lift 0.6; cell: self-intersections, sharpest turn";
+  const std::string title =
+      "Figure 8 (spec 9): r = 0.5, lift 0.6; cell: self-intersections, sharpest turn";
   if (!opt.svg.empty() && !write_figure8_svg(opt.svg, curves, title, error)) {
     std::fprintf(stderr, "twister figure8: %s\n", error.c_str());
     throw Exit{kExitFailure};
@@ -69,7 +72,8 @@ void run_figure8(const Figure8Options& opt) {
 }  // namespace
 
 void add_figure8_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("figure8", "Run the Figure 8 comparison of the warp methods (spec §9)");
+  auto* cmd =
+      app.add_subcommand("figure8", "Run the Figure 8 comparison of the warp methods (spec §9)");
   auto opt = std::make_shared<Figure8Options>();
   cmd->add_option("--svg", opt->svg, "write the grid of curves as SVG");
   cmd->add_option("--png", opt->png, "write the grid of curves as PNG");

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -16,8 +16,8 @@ namespace twister::cli {
 
 namespace {
 
-constexpr int kCell = 200;   // pixels per cell
-constexpr int kLabel = 40;   // room for row/column labels
+constexpr int kCell = 200;  // pixels per cell
+constexpr int kLabel = 40;  // room for row/column labels
 constexpr double kPad = 0.06;
 
 struct Grid {
@@ -28,7 +28,8 @@ struct Grid {
   explicit Grid(const std::vector<Figure8Curve>& curves) {
     for (const auto& c : curves) {
       if (std::find(rows.begin(), rows.end(), c.method) == rows.end()) rows.push_back(c.method);
-      if (std::find(cols.begin(), cols.end(), c.angle_deg) == cols.end()) cols.push_back(c.angle_deg);
+      if (std::find(cols.begin(), cols.end(), c.angle_deg) == cols.end())
+        cols.push_back(c.angle_deg);
       for (const auto& p : c.points) {
         lo = glm::min(lo, p);
         hi = glm::max(hi, p);
@@ -38,7 +39,9 @@ struct Grid {
   int row(math::WarpMethod m) const {
     return static_cast<int>(std::find(rows.begin(), rows.end(), m) - rows.begin());
   }
-  int col(int a) const { return static_cast<int>(std::find(cols.begin(), cols.end(), a) - cols.begin()); }
+  int col(int a) const {
+    return static_cast<int>(std::find(cols.begin(), cols.end(), a) - cols.begin());
+  }
   // Cell-local pixel position, y up in the curve, down in the image.
   glm::dvec2 map(glm::dvec2 p, int r, int c) const {
     const double span = std::max(hi.x - lo.x, hi.y - lo.y) * (1.0 + 2.0 * kPad);
@@ -53,9 +56,12 @@ struct Grid {
 
 const char* colour(math::WarpMethod m) {
   switch (m) {
-    case math::WarpMethod::twister: return "#c0392b";
-    case math::WarpMethod::rottran: return "#2471a3";
-    case math::WarpMethod::scodef: return "#1e8449";
+    case math::WarpMethod::twister:
+      return "#c0392b";
+    case math::WarpMethod::rottran:
+      return "#2471a3";
+    case math::WarpMethod::scodef:
+      return "#1e8449";
   }
   return "#000000";
 }
@@ -123,7 +129,8 @@ bool write_figure8_png(const std::string& path, const std::vector<Figure8Curve>&
   const auto plot = [&](int x, int y, std::array<std::uint8_t, 3> c) {
     if (x < 0 || y < 0 || x >= w || y >= h) return;
     std::uint8_t* px = &img[(static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
-                             static_cast<std::size_t>(x)) * 3];
+                             static_cast<std::size_t>(x)) *
+                            3];
     px[0] = c[0];
     px[1] = c[1];
     px[2] = c[2];
