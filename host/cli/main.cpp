@@ -1,7 +1,6 @@
 // `twister`: command-line tools for the station's math, tracker and journal.
 // Each subcommand lives in its own <name>_command.cpp and registers itself here.
 #include <CLI/CLI.hpp>
-
 #include <cstdio>
 
 #include "cli_exit.hpp"

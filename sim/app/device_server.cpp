@@ -24,8 +24,8 @@ DeviceServer::DeviceServer(FastrakDevice& device, ServeOptions options)
 DeviceServer::~DeviceServer() { close_pty(); }
 
 std::int64_t DeviceServer::now_us() const {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::steady_clock::now() - epoch_)
+  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() -
+                                                               epoch_)
       .count();
 }
 
