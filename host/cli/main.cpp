@@ -7,6 +7,7 @@
 #include "cli_exit.hpp"
 #include "figure8_command.hpp"
 #include "warp_command.hpp"
+#include "fastrak_dump_command.hpp"
 
 namespace {
 
@@ -17,6 +18,7 @@ int run(int argc, char** argv) {
   // Subcommands (one line each):
   twister::cli::add_warp_command(app);
   twister::cli::add_figure8_command(app);
+  twister::cli::add_fastrak_dump_command(app);
 
   try {
     app.parse(argc, argv);

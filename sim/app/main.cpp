@@ -1,7 +1,6 @@
 // twister-sim: a simulated Polhemus Fastrak on a PTY (or a real serial port for HIL
 // rigs), driven by a scenario file. Prints the device path on stdout as its first line.
 #include <CLI/CLI.hpp>
-
 #include <csignal>
 #include <cstdio>
 #include <fstream>
@@ -24,9 +23,11 @@ int main(int argc, char** argv) {
   double reset_s = 0.5;
   double duration_s = 0.0;
   bool binary = false;
-  app.add_option("--scenario", scenario_path, "scenario file (docs/fastrak.md); default: resting hands");
+  app.add_option("--scenario", scenario_path,
+                 "scenario file (docs/fastrak.md); default: resting hands");
   app.add_option("--link", serve.link, "PTY mode: keep a symlink to the current slave here");
-  app.add_option("--device", serve.device, "serve on this real serial device (HIL) instead of a PTY");
+  app.add_option("--device", serve.device,
+                 "serve on this real serial device (HIL) instead of a PTY");
   app.add_option("--baud", dev.baud, "modelled line rate (bits/s, 10 bits per byte)")
       ->check(CLI::Range(300, 4000000));
   serve.baud = dev.baud;

@@ -9,12 +9,18 @@ namespace twister::sim {
 
 const char* fault_kind_name(FaultKind k) {
   switch (k) {
-    case FaultKind::noise: return "noise";
-    case FaultKind::drop: return "drop";
-    case FaultKind::truncate: return "truncate";
-    case FaultKind::stall: return "stall";
-    case FaultKind::hangup: return "hangup";
-    case FaultKind::wrong_baud: return "wrongbaud";
+    case FaultKind::noise:
+      return "noise";
+    case FaultKind::drop:
+      return "drop";
+    case FaultKind::truncate:
+      return "truncate";
+    case FaultKind::stall:
+      return "stall";
+    case FaultKind::hangup:
+      return "hangup";
+    case FaultKind::wrong_baud:
+      return "wrongbaud";
   }
   return "unknown";
 }
@@ -117,13 +123,20 @@ bool parse_scenario(std::string_view text, Scenario& out, std::string& error) {
       if (!finite(f.t_s) || f.t_s < 0 || !finite(f.amount) || f.amount < 0) {
         return fail("fault time and amount must be >= 0");
       }
-      if (kind == "noise") f.kind = FaultKind::noise;
-      else if (kind == "drop") f.kind = FaultKind::drop;
-      else if (kind == "truncate") f.kind = FaultKind::truncate;
-      else if (kind == "stall") f.kind = FaultKind::stall;
-      else if (kind == "hangup") f.kind = FaultKind::hangup;
-      else if (kind == "wrongbaud") f.kind = FaultKind::wrong_baud;
-      else return fail("unknown fault kind '" + kind + "'");
+      if (kind == "noise")
+        f.kind = FaultKind::noise;
+      else if (kind == "drop")
+        f.kind = FaultKind::drop;
+      else if (kind == "truncate")
+        f.kind = FaultKind::truncate;
+      else if (kind == "stall")
+        f.kind = FaultKind::stall;
+      else if (kind == "hangup")
+        f.kind = FaultKind::hangup;
+      else if (kind == "wrongbaud")
+        f.kind = FaultKind::wrong_baud;
+      else
+        return fail("unknown fault kind '" + kind + "'");
       sc.faults.push_back(f);
     } else {
       return fail("unknown keyword '" + word + "'");
