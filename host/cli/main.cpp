@@ -5,6 +5,8 @@
 #include <exception>
 
 #include "cli_exit.hpp"
+#include "mesh_command.hpp"
+#include "replay_command.hpp"
 #include "warp_command.hpp"
 
 namespace {
@@ -15,6 +17,8 @@ int run(int argc, char** argv) {
   app.set_version_flag("--version", "twister 0.1.0");
   // Subcommands (one line each):
   twister::cli::add_warp_command(app);
+  twister::cli::add_replay_command(app);
+  twister::cli::add_mesh_command(app);
 
   try {
     app.parse(argc, argv);
