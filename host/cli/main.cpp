@@ -5,9 +5,11 @@
 #include <exception>
 
 #include "cli_exit.hpp"
-#include "figure8_command.hpp"
-#include "warp_command.hpp"
 #include "fastrak_dump_command.hpp"
+#include "figure8_command.hpp"
+#include "mesh_command.hpp"
+#include "replay_command.hpp"
+#include "warp_command.hpp"
 
 namespace {
 
@@ -19,6 +21,8 @@ int run(int argc, char** argv) {
   twister::cli::add_warp_command(app);
   twister::cli::add_figure8_command(app);
   twister::cli::add_fastrak_dump_command(app);
+  twister::cli::add_replay_command(app);
+  twister::cli::add_mesh_command(app);
 
   try {
     app.parse(argc, argv);

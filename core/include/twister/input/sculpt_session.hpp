@@ -42,6 +42,11 @@
 
 namespace twister::input {
 
+// History size the station uses unless configured otherwise. A replay tool must use
+// the same sizes to reproduce undo records exactly once the history has overflowed.
+inline constexpr std::size_t kDefaultUndoChanges = std::size_t{1} << 18;
+inline constexpr std::size_t kDefaultUndoEntries = 64;
+
 struct SculptSessionConfig {
   InteractionConfig interaction{};
   ButtonDebouncerConfig debounce{};
