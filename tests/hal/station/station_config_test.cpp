@@ -175,6 +175,14 @@ buttons = [ { byte = 1, mask = 0 }, 5, { byte = 2, mask = 1, bit = 3 } ]
   EXPECT_EQ(r.errors.size(), 4u) << m;
 }
 
+TEST(StationConfigTest, NonAsciiIsRefusedBeforeToml) {
+  // Minimised from a station_config_fuzz crash: UB inside toml++ 3.3.0 on such input.
+  const auto r = parse("# ok\n# caf\xc3\xa9\n[station]\n");
+  ASSERT_EQ(r.errors.size(), 1u);
+  EXPECT_EQ(r.errors[0].to_string(),
+            "t.toml:2: non-ASCII byte 0xC3; the config must be plain ASCII (also in comments)");
+}
+
 TEST(StationConfigTest, UnreadableFileIsOneErrorAtLineZero) {
   const auto r = load_station_config("/nonexistent/station.toml");
   ASSERT_EQ(r.errors.size(), 1u);

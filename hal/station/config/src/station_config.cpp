@@ -5,6 +5,7 @@
 #include "twister/hal/station_config.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -205,11 +206,27 @@ const char* to_string(ButtonBackend b) {
 
 ConfigParseResult parse_station_config(std::string_view text, std::string_view file_name) {
   ConfigParseResult out;
+  // toml++ 3.3.0 (Debian 12) reaches __builtin_unreachable() on some non-ASCII input
+  // (marzer/tomlplusplus#190, #295; found again by station_config_fuzz). Station configs
+  // are plain ASCII, so non-ASCII bytes are refused before toml++ sees them.
+  std::uint32_t line = 1;
+  for (const char ch : text) {
+    const auto byte = static_cast<unsigned char>(ch);
+    if (byte == '\n') ++line;
+    if (byte >= 0x80) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "0x%02X", byte);
+      out.errors.push_back({std::string(file_name), line, "",
+                            std::string("non-ASCII byte ") + hex +
+                                "; the config must be plain ASCII (also in comments)"});
+      return out;
+    }
+  }
   toml::parse_result parsed = toml::parse(text, file_name);
   if (!parsed) {
     const toml::parse_error& err = parsed.error();
-    const std::uint32_t line = err.source().begin.line == 0 ? 1u : err.source().begin.line;
-    out.errors.push_back({std::string(file_name), line, "",
+    const std::uint32_t err_line = err.source().begin.line == 0 ? 1u : err.source().begin.line;
+    out.errors.push_back({std::string(file_name), err_line, "",
                           "TOML syntax error: " + std::string(err.description())});
     return out;
   }
