@@ -1,0 +1,150 @@
+// WarpPlan: one grab's warp of a vertex set, built once per grab into caller-owned
+// fixed storage (spec §4-§6, §8).
+//
+//   build(rest, start frames, radius, method)  once per grab: selects the influenced
+//                                              vertices and their decay weights
+//   update(end frames)                         per tracker update: screw parameters
+//   apply(rest, out)                           per update: warped positions of the
+//                                              influenced vertices only (hot path)
+//   rebase(new start frames)                   freeze: same vertices and weights,
+//                                              new start poses
+//
+// The influenced vertices of both hands are kept as ONE ascending index list with
+// two weight columns aligned to it (weight 0 = not influenced by that hand), so the
+// two-hand kernel streams through contiguous float columns. Weights are the decay
+// t of §4 with the squash rule of §5 (for scodef they are the same decay, used for
+// display only). World frame, scene units; rest/out are float SoA columns.
+// No heap allocation and no exceptions anywhere in this class.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include <glm/vec3.hpp>
+
+#include "twister/base/status.hpp"
+#include "twister/math/frame.hpp"
+#include "twister/math/scodef.hpp"
+#include "twister/math/screw.hpp"
+#include "twister/math/vertex_columns.hpp"
+#include "twister/math/warp_kernels.hpp"
+#include "twister/math/warp_method.hpp"
+
+namespace twister::math {
+
+inline constexpr std::size_t kMaxHands = 2;
+// Two grab points closer than this fraction of the radius count as the same point.
+inline constexpr double kCoincidentGrabFraction = 1e-9;
+
+// Caller-owned storage of a plan: one entry per influenced vertex in each span
+// (capacity = the smallest span).
+struct WarpPlanStorage {
+  std::span<std::uint32_t> indices;
+  std::span<float> weights1;
+  std::span<float> weights2;
+};
+
+class WarpPlan {
+ public:
+  explicit WarpPlan(WarpPlanStorage storage);
+
+  // Starts a grab. `start` holds 1 or 2 orthonormal frames (hand 1, hand 2).
+  // invalid_argument: 0 or >2 frames, a frame not orthonormal or not finite,
+  //   radius <= 0 or not finite, rest columns of unequal length or more than
+  //   2^32-1 vertices, or the two grab points coincide (|OQ| ~ 0: squash undefined).
+  // resource_exhausted: more influenced vertices than the storage holds.
+  // failed_precondition: scodef constraint system singular.
+  // On error the plan is empty (no hands) and apply() does nothing.
+  Status build(ConstVertexColumns rest, std::span<const Frame> start, double radius,
+               WarpMethod method);
+
+  // New end poses (same count as build). Keeps the previous update's axis sense at
+  // a half turn (§2). invalid_argument: wrong count or frame not orthonormal;
+  // failed_precondition: not built. On error the previous update stays in force.
+  Status update(std::span<const Frame> end);
+
+  // Writes the warped position of every influenced vertex into `out` (same index);
+  // other entries of `out` are not touched. `rest` must be the columns given to
+  // build (same size); `out` must not alias `rest`.
+  // invalid_argument: column sizes differ from build; failed_precondition: not built.
+  Status apply(ConstVertexColumns rest, VertexColumns out) const;
+
+  // Freeze (§8): keeps the selection and weights, restarts from `start` (usually the
+  // current end poses) with an identity update. Errors as update(), plus
+  // failed_precondition for a singular scodef system.
+  Status rebase(std::span<const Frame> start);
+
+  // Forgets the grab (no hands).
+  void reset();
+
+  // The warp of one point in double precision, with its weight computed from p as
+  // a rest position (adaptive refinement, CLI checks). Identity when not built.
+  glm::dvec3 warp_point(glm::dvec3 p) const;
+
+  // Kernel used by apply() (default simd); scalar is the reference.
+  void set_kernel(KernelKind kind) { kernel_ = kind; }
+  KernelKind kernel() const { return kernel_; }
+
+  bool built() const { return hands_ > 0; }
+  std::size_t hand_count() const { return hands_; }
+  std::size_t capacity() const { return capacity_; }
+  double radius() const { return radius_; }
+  WarpMethod method() const { return method_; }
+  // Union of influenced vertex indices, ascending.
+  std::span<const std::uint32_t> indices() const { return {indices_.data(), count_}; }
+  // Weights of `hand` (0 or 1) aligned with indices(); 0 where the hand has none.
+  std::span<const float> weights(std::size_t hand) const;
+  // Number of vertices with a non-zero weight for `hand`.
+  std::size_t influenced_count(std::size_t hand) const;
+  const Frame& start_frame(std::size_t hand) const { return start_[hand]; }
+  const Frame& end_frame(std::size_t hand) const { return end_[hand]; }
+  // The screw of `hand` for the last update (identity right after build).
+  const Screw& screw(std::size_t hand) const { return screws_[hand]; }
+
+ private:
+  Status check_frames(std::span<const Frame> frames) const;
+  void set_kernel_hands();
+  double weight_of(std::size_t hand, glm::dvec3 p) const;
+
+  std::span<std::uint32_t> indices_;
+  std::span<float> weights1_;
+  std::span<float> weights2_;
+  std::size_t capacity_ = 0;
+  std::size_t count_ = 0;
+  std::size_t rest_size_ = 0;
+  std::array<std::size_t, kMaxHands> hand_counts_{};
+  std::size_t hands_ = 0;
+  bool dense_ = false;  // indices are first, first+1, ... (no gather needed)
+  double radius_ = 1.0;
+  WarpMethod method_ = WarpMethod::twister;
+  KernelKind kernel_ = KernelKind::simd;
+  std::array<Frame, kMaxHands> start_{};
+  std::array<Frame, kMaxHands> end_{};
+  std::array<Screw, kMaxHands> screws_{};
+  std::array<KernelHand, kMaxHands> kernel_hands_{};
+  ScodefSystem scodef_{};
+};
+
+namespace internal {
+template <std::size_t N>
+struct WarpPlanArrays {
+  std::array<std::uint32_t, N> indices{};
+  std::array<float, N> weights1{};
+  std::array<float, N> weights2{};
+};
+}  // namespace internal
+
+// A plan owning storage for N influenced vertices (about 12*N bytes: place large
+// ones in static storage or the start-up arena, not on the stack).
+template <std::size_t N>
+class WarpPlanWithStorage : private internal::WarpPlanArrays<N>, public WarpPlan {
+ public:
+  WarpPlanWithStorage()
+      : WarpPlan(WarpPlanStorage{this->indices, this->weights1, this->weights2}) {}
+  WarpPlanWithStorage(const WarpPlanWithStorage&) = delete;
+  WarpPlanWithStorage& operator=(const WarpPlanWithStorage&) = delete;
+};
+
+}  // namespace twister::math

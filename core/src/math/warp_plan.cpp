@@ -1,0 +1,247 @@
+#include "twister/math/warp_plan.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+#include "twister/math/decay.hpp"
+
+namespace twister::math {
+
+namespace {
+// Sparse selections are warped in chunks gathered onto the stack so the dense
+// kernel can run on them unchanged.
+constexpr std::size_t kGatherChunk = 256;
+
+void put(float* f, double* d, glm::dvec3 v) {
+  for (int i = 0; i < 3; ++i) {
+    d[i] = v[i];
+    f[i] = static_cast<float>(v[i]);
+  }
+}
+
+KernelHand kernel_hand(const Screw& s, const Frame& start, const Frame& end, WarpMethod method) {
+  KernelHand h;
+  put(h.axis, h.axis_d, s.axis);
+  if (method == WarpMethod::rottran) {
+    put(h.mid, h.mid_d, start.origin);
+    put(h.shift, h.shift_d, end.origin - start.origin);
+    h.half_angle_d = s.pure_translation ? 0.0 : 0.5 * s.angle;
+  } else if (s.pure_translation) {
+    put(h.shift, h.shift_d, s.chord);
+  } else {
+    put(h.mid, h.mid_d, s.mid);
+    put(h.chord, h.chord_d, s.chord);
+    put(h.axis_x_chord, h.axis_x_chord_d, glm::cross(s.axis, s.chord));
+    put(h.shift, h.shift_d, s.slide * s.axis);
+    h.half_angle_d = 0.5 * s.angle;
+    h.cot_half_d = s.cot_half;
+  }
+  h.half_angle = static_cast<float>(h.half_angle_d);
+  h.cot_half = static_cast<float>(h.cot_half_d);
+  return h;
+}
+}  // namespace
+
+WarpPlan::WarpPlan(WarpPlanStorage storage)
+    : indices_(storage.indices), weights1_(storage.weights1), weights2_(storage.weights2) {
+  capacity_ = std::min({indices_.size(), weights1_.size(), weights2_.size()});
+}
+
+void WarpPlan::reset() {
+  hands_ = 0;
+  count_ = 0;
+  rest_size_ = 0;
+  hand_counts_ = {};
+  dense_ = false;
+}
+
+Status WarpPlan::check_frames(std::span<const Frame> frames) const {
+  if (frames.size() != hands_) return StatusCode::invalid_argument;
+  for (const Frame& f : frames) {
+    if (!is_orthonormal(f)) return StatusCode::invalid_argument;
+  }
+  return OkStatus();
+}
+
+double WarpPlan::weight_of(std::size_t hand, glm::dvec3 p) const {
+  const glm::dvec3* other = hands_ == 2 ? &start_[1 - hand].origin : nullptr;
+  return hand_weight(start_[hand].origin, other, radius_, p);
+}
+
+Status WarpPlan::build(ConstVertexColumns rest, std::span<const Frame> start, double radius,
+                       WarpMethod method) {
+  reset();
+  if (start.empty() || start.size() > kMaxHands || !std::isfinite(radius) || !(radius > 0.0) ||
+      !rest.consistent() || rest.size() > std::numeric_limits<std::uint32_t>::max()) {
+    return StatusCode::invalid_argument;
+  }
+  for (const Frame& f : start) {
+    if (!is_orthonormal(f)) return StatusCode::invalid_argument;
+  }
+  if (start.size() == 2 &&
+      glm::length(start[1].origin - start[0].origin) <= kCoincidentGrabFraction * radius) {
+    return StatusCode::invalid_argument;  // squash undefined (§5)
+  }
+  if (method == WarpMethod::scodef) TWISTER_TRY(scodef_.build(start, radius));
+
+  radius_ = radius;
+  method_ = method;
+  hands_ = start.size();  // weight_of() needs the hands; reset() on failure below
+  std::copy(start.begin(), start.end(), start_.begin());
+  std::copy(start.begin(), start.end(), end_.begin());
+  for (std::size_t i = 0; i < rest.size(); ++i) {
+    const glm::dvec3 p(rest.x[i], rest.y[i], rest.z[i]);
+    const double w1 = weight_of(0, p);
+    const double w2 = hands_ == 2 ? weight_of(1, p) : 0.0;
+    const bool moved = w1 > 0.0 || w2 > 0.0 ||
+                       (method == WarpMethod::scodef && scodef_.influences(p));
+    if (!moved) continue;
+    if (count_ == capacity_) {
+      reset();
+      return StatusCode::resource_exhausted;
+    }
+    indices_[count_] = static_cast<std::uint32_t>(i);
+    weights1_[count_] = static_cast<float>(w1);
+    weights2_[count_] = static_cast<float>(w2);
+    if (w1 > 0.0) ++hand_counts_[0];
+    if (w2 > 0.0) ++hand_counts_[1];
+    ++count_;
+  }
+  rest_size_ = rest.size();
+  dense_ = count_ == 0 || indices_[count_ - 1] - indices_[0] == count_ - 1;
+  for (std::size_t h = 0; h < hands_; ++h) screws_[h] = compute_screw(start_[h], end_[h]);
+  if (method == WarpMethod::scodef) TWISTER_TRY(scodef_.solve(start));
+  set_kernel_hands();
+  return OkStatus();
+}
+
+Status WarpPlan::update(std::span<const Frame> end) {
+  if (!built()) return StatusCode::failed_precondition;
+  TWISTER_TRY(check_frames(end));
+  if (method_ == WarpMethod::scodef) TWISTER_TRY(scodef_.solve(end));
+  for (std::size_t h = 0; h < hands_; ++h) {
+    std::optional<glm::dvec3> previous;
+    if (!screws_[h].pure_translation) previous = screws_[h].axis;
+    screws_[h] = compute_screw(start_[h], end[h], previous);
+    end_[h] = end[h];
+  }
+  set_kernel_hands();
+  return OkStatus();
+}
+
+Status WarpPlan::rebase(std::span<const Frame> start) {
+  if (!built()) return StatusCode::failed_precondition;
+  TWISTER_TRY(check_frames(start));
+  if (start.size() == 2 &&
+      glm::length(start[1].origin - start[0].origin) <= kCoincidentGrabFraction * radius_) {
+    return StatusCode::invalid_argument;
+  }
+  if (method_ == WarpMethod::scodef) {
+    ScodefSystem fresh;
+    TWISTER_TRY(fresh.build(start, radius_));
+    TWISTER_TRY(fresh.solve(start));
+    scodef_ = fresh;
+  }
+  for (std::size_t h = 0; h < hands_; ++h) {
+    start_[h] = start[h];
+    end_[h] = start[h];
+    screws_[h] = compute_screw(start_[h], end_[h]);
+  }
+  set_kernel_hands();
+  return OkStatus();
+}
+
+void WarpPlan::set_kernel_hands() {
+  for (std::size_t h = 0; h < hands_; ++h) {
+    kernel_hands_[h] = kernel_hand(screws_[h], start_[h], end_[h], method_);
+  }
+}
+
+std::span<const float> WarpPlan::weights(std::size_t hand) const {
+  if (hand >= hands_) return {};
+  return {hand == 0 ? weights1_.data() : weights2_.data(), count_};
+}
+
+std::size_t WarpPlan::influenced_count(std::size_t hand) const {
+  return hand < hands_ ? hand_counts_[hand] : 0;
+}
+
+Status WarpPlan::apply(ConstVertexColumns rest, VertexColumns out) const {
+  if (!built()) return StatusCode::failed_precondition;
+  if (!rest.consistent() || !out.consistent() || rest.size() != rest_size_ ||
+      out.size() != rest_size_) {
+    return StatusCode::invalid_argument;
+  }
+  if (count_ == 0) return OkStatus();
+  if (method_ == WarpMethod::scodef) {
+    // Not the hot path (a comparison method): evaluated per point in double.
+    for (std::size_t i = 0; i < count_; ++i) {
+      const std::uint32_t v = indices_[i];
+      const glm::dvec3 p(rest.x[v], rest.y[v], rest.z[v]);
+      const glm::dvec3 q = p + scodef_.displacement(p);
+      out.x[v] = static_cast<float>(q.x);
+      out.y[v] = static_cast<float>(q.y);
+      out.z[v] = static_cast<float>(q.z);
+    }
+    return OkStatus();
+  }
+  const auto run = [this](const KernelSpan& s) {
+    const bool two = hands_ == 2;
+    if (kernel_ == KernelKind::simd) {
+      two ? warp_two_simd(kernel_hands_[0], kernel_hands_[1], s) : warp_one_simd(kernel_hands_[0], s);
+    } else {
+      two ? warp_two_scalar(kernel_hands_[0], kernel_hands_[1], s)
+          : warp_one_scalar(kernel_hands_[0], s);
+    }
+  };
+  if (dense_) {
+    const std::size_t first = indices_[0];
+    run(KernelSpan{rest.x.data() + first, rest.y.data() + first, rest.z.data() + first,
+                   weights1_.data(), weights2_.data(), out.x.data() + first,
+                   out.y.data() + first, out.z.data() + first, count_});
+    return OkStatus();
+  }
+  float gx[kGatherChunk];
+  float gy[kGatherChunk];
+  float gz[kGatherChunk];
+  float rx[kGatherChunk];
+  float ry[kGatherChunk];
+  float rz[kGatherChunk];
+  for (std::size_t base = 0; base < count_; base += kGatherChunk) {
+    const std::size_t n = std::min(kGatherChunk, count_ - base);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint32_t v = indices_[base + i];
+      gx[i] = rest.x[v];
+      gy[i] = rest.y[v];
+      gz[i] = rest.z[v];
+    }
+    run(KernelSpan{gx, gy, gz, weights1_.data() + base, weights2_.data() + base, rx, ry, rz, n});
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint32_t v = indices_[base + i];
+      out.x[v] = rx[i];
+      out.y[v] = ry[i];
+      out.z[v] = rz[i];
+    }
+  }
+  return OkStatus();
+}
+
+glm::dvec3 WarpPlan::warp_point(glm::dvec3 p) const {
+  if (!built()) return p;
+  if (method_ == WarpMethod::scodef) return p + scodef_.displacement(p);
+  glm::dvec3 moved = p;
+  for (std::size_t h = 0; h < hands_; ++h) {
+    const double t = weight_of(h, p);
+    if (t <= 0.0) continue;
+    const glm::dvec3 q = method_ == WarpMethod::rottran
+                             ? rottran_at(screws_[h], start_[h], end_[h], t, p)
+                             : screw_at(screws_[h], t, p);
+    moved += q - p;
+  }
+  return moved;
+}
+
+}  // namespace twister::math
