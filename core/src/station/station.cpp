@@ -68,6 +68,16 @@ void Station::drain_tracker(ports::TimestampUs now_us) {
   for (int i = 0; i < kMaxPosesPerPoll; ++i) {
     auto pose = session_.poll();
     if (!pose.ok()) break;  // unavailable: nothing now; invalid_argument: bad config
+    if (pose->has_button && pose->station >= 1 && pose->station <= tracker::kMaxStations) {
+      const auto idx = static_cast<std::size_t>(pose->station - 1);
+      const std::int8_t line = config_.stylus_line[idx];
+      if (line >= 0 && pose->button != stylus_down_[idx]) {
+        stylus_down_[idx] = pose->button;
+        ++counters_.button_edges;
+        const ports::ButtonEdge edge{static_cast<std::uint8_t>(line), pose->button, now_us};
+        if (!debouncer_.feed(edge).ok()) ++counters_.button_errors;
+      }
+    }
     int hand = -1;
     for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
       if (config_.hand_station[h] == pose->station) hand = h;
@@ -91,8 +101,16 @@ void Station::drain_tracker(ports::TimestampUs now_us) {
   if (streaming != was_streaming_) {
     was_streaming_ = streaming;
     if (!streaming) {
-      // Poses from before the loss must not count as valid after re-initialisation.
+      // Poses from before the loss must not count as valid after re-initialisation;
+      // a stylus held during the loss is released (its state is unknown now).
       for (auto& h : hands_) h.has_pose = false;
+      for (std::size_t i = 0; i < stylus_down_.size(); ++i) {
+        const std::int8_t line = config_.stylus_line[i];
+        if (stylus_down_[i] && line >= 0) {
+          debouncer_.feed({static_cast<std::uint8_t>(line), false, now_us}).ignore();
+        }
+        stylus_down_[i] = false;
+      }
     }
     push_event({streaming ? StationEventKind::tracker_streaming : StationEventKind::tracker_lost,
                 0, 0, session_.counters().streams_started, OkStatus(), now_us});

@@ -43,7 +43,7 @@ class FastrakResponder {
       }
     }
   }
-  void emit(std::uint8_t station, std::array<float, 3> position_in) {
+  void emit(std::uint8_t station, std::array<float, 3> position_in, bool stylus = false) {
     if (!streaming_ || !stream_.connected()) return;
     tracker::FastrakPose p{};
     p.station = station;
@@ -51,6 +51,8 @@ class FastrakResponder {
     p.position = position_in;
     p.has.quaternion = true;
     p.quaternion = {1.0f, 0.0f, 0.0f, 0.0f};
+    p.has_button = station == 1;
+    p.button = stylus;
     std::array<std::byte, 256> buf{};
     auto n = tracker::encode_record(p, config_, buf);
     stream_.push_rx(std::span<const std::byte>(buf.data(), *n));
@@ -98,6 +100,8 @@ StationConfig test_config() {
     p.stations[static_cast<std::size_t>(s)].list =
         tracker::OutputList::of({Item::position, Item::quaternion, Item::crlf});
   }
+  p.stations[0].list =
+      tracker::OutputList::of({Item::position, Item::quaternion, Item::stylus, Item::crlf});
   c.session.ladder_char_pause_us = 1'000;
   c.session.reset_wait_us = 1'000;
   c.session.settle_us = 1'000;
@@ -123,7 +127,7 @@ class StationTest : public ::testing::Test {
   void run_ticks(int n) {
     for (int i = 0; i < n; ++i) {
       responder_.service();
-      responder_.emit(1, left_in_);
+      responder_.emit(1, left_in_, stylus_);
       responder_.emit(2, right_in_);
       ASSERT_TRUE(station_.poll().ok());
       responder_.service();
@@ -166,6 +170,7 @@ class StationTest : public ::testing::Test {
   ScriptedButtons buttons_;
   FastrakResponder responder_;
   Station station_;
+  bool stylus_ = false;
   std::array<float, 3> left_in_{-10.0f, 0.0f, 5.0f};
   std::array<float, 3> right_in_{10.0f, 0.0f, 5.0f};
 };
@@ -237,6 +242,38 @@ TEST_F(StationTest, UnplugMidStrokeCancelsItAndReplugContinues) {
   }
   EXPECT_EQ(lost, 1);
   EXPECT_EQ(streaming, 2);
+}
+
+TEST_F(StationTest, StylusSwitchDrivesItsConfiguredButtonLine) {
+  config_.stylus_line[0] = 0;  // station 1's stylus = line 0 = hand 0 grab (paper map)
+  Station station(stream_, buttons_, clock_, storage_, config_);
+  // Drive this station instead of the fixture's.
+  auto tick = [&](int n) {
+    for (int i = 0; i < n; ++i) {
+      responder_.service();
+      responder_.emit(1, left_in_, stylus_);
+      responder_.emit(2, right_in_);
+      ASSERT_TRUE(station.poll().ok());
+      responder_.service();
+      clock_.advance_us(8'333);
+    }
+  };
+  ASSERT_TRUE(station.start().ok());
+  for (int i = 0; i < 500 && !station.tracker_session().streaming(); ++i) tick(1);
+  ASSERT_TRUE(station.tracker_session().streaming());
+  tick(3);
+  stylus_ = true;
+  tick(3);
+  left_in_ = {-8.0f, 1.0f, 5.0f};
+  tick(3);
+  stylus_ = false;
+  tick(3);
+  EXPECT_EQ(station.counters().strokes_committed, 1u);
+  const auto records = journal_records();
+  ASSERT_EQ(records.size(), 1u);
+  EXPECT_EQ(records[0].stroke.hand_mask, 1);
+  EXPECT_NEAR(records[0].stroke.start[0].origin_m.x, -10.0 * kInch, 1e-6);
+  EXPECT_NEAR(records[0].stroke.end[0].origin_m.x, -8.0 * kInch, 1e-6);
 }
 
 TEST_F(StationTest, RestartContinuesTheJournalAfterATornTail) {

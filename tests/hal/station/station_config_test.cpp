@@ -79,7 +79,7 @@ loop_timeout_ms = "fast"
 [tracker]
 backend = "sim"
 [buttons]
-backend = "sim"
+backend = "stylus"
 )");
   ASSERT_EQ(r.errors.size(), 1u) << messages(r);
   EXPECT_EQ(r.errors[0].to_string(),
@@ -106,7 +106,7 @@ backend = "gpio"
                    "57600 115200, got 12345\n"), std::string::npos) << m;
   EXPECT_NE(m.find("t.toml:9: tracker.serial.flow_control: expected one of \"none\" \"rtscts\" "
                    "\"xonxoff\", got \"hardware\"\n"), std::string::npos) << m;
-  EXPECT_NE(m.find("t.toml:11: buttons.backend: expected one of \"gpiod\" \"hidapi\" \"sim\", "
+  EXPECT_NE(m.find("t.toml:11: buttons.backend: expected one of \"gpiod\" \"hidapi\" \"stylus\", "
                    "got \"gpio\"\n"), std::string::npos) << m;
   EXPECT_EQ(r.errors.size(), 4u) << m;
 }

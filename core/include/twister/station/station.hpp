@@ -38,6 +38,10 @@ struct StationConfig {
   std::array<std::uint8_t, input::kHandCount> hand_station{1, 2};
   // A hand's pose older than this counts as not valid (tracker silent or lost).
   ports::TimestampUs pose_stale_us = 200'000;
+  // Fastrak stylus switch (item 16) as a button: stylus_line[station - 1] is the
+  // button line its state drives (-1 = none). The edge goes through the debouncer
+  // like any ButtonSource edge, stamped with the poll time of the record.
+  std::array<std::int8_t, tracker::kMaxStations> stylus_line{-1, -1, -1, -1};
   input::ButtonDebouncerConfig debounce{};
   input::ButtonMap buttons = input::ButtonMap::paper_default();
   input::InteractionConfig interaction{};
@@ -48,7 +52,7 @@ struct StationCounters {
   std::uint64_t poses = 0;             // converted poses used for a hand
   std::uint64_t pose_errors = 0;       // poses that failed conversion (skipped)
   std::uint64_t foreign_poses = 0;     // poses of receivers bound to no hand
-  std::uint64_t button_edges = 0;
+  std::uint64_t button_edges = 0;     // from the ButtonSource and the stylus
   std::uint64_t button_errors = 0;     // ButtonSource io_error / out-of-range lines
   std::uint64_t strokes_committed = 0;
   std::uint64_t strokes_cancelled = 0;
@@ -109,6 +113,7 @@ class Station {
   journal::JournalWriter writer_;
   std::array<Hand, input::kHandCount> hands_{};
   std::array<input::HandButtons, input::kHandCount> levels_{};
+  std::array<bool, tracker::kMaxStations> stylus_down_{};
   bool started_ = false;
   bool buttons_failed_ = false;
   bool was_streaming_ = false;

@@ -76,7 +76,8 @@ void read_tracker(ConfigReader& root, StationConfig& cfg) {
   u.finish();
 
   ConfigReader m = t.table("sim", false);
-  m.string("scenario", false, tc.sim.scenario, {"stroke", "idle", "two_hands"});
+  m.string("scenario", false, tc.sim.scenario, {"stroke", "idle", "unplug"});
+  m.string("scenario_file", false, tc.sim.scenario_file);
   std::string time;
   if (m.string("time", false, time, {"virtual", "real"})) {
     tc.sim.time = time == "virtual" ? SimTime::virtual_time : SimTime::real_time;
@@ -153,10 +154,10 @@ void read_buttons(ConfigReader& root, StationConfig& cfg) {
   ConfigReader b = root.table("buttons", true);
   ButtonsConfig& bc = cfg.buttons;
   std::string backend;
-  if (b.string("backend", b.present(), backend, {"gpiod", "hidapi", "sim"})) {
+  if (b.string("backend", b.present(), backend, {"gpiod", "hidapi", "stylus"})) {
     bc.backend = backend == "gpiod" ? ButtonBackend::gpiod
                : backend == "hidapi" ? ButtonBackend::hidapi
-                                     : ButtonBackend::sim;
+                                     : ButtonBackend::stylus;
   }
   read_u(b, "debounce_ms", false, 0, 200, bc.debounce_ms);
   read_gpiod(b, bc, b.present() && backend == "gpiod");
@@ -199,7 +200,7 @@ const char* to_string(ButtonBackend b) {
   switch (b) {
     case ButtonBackend::gpiod: return "gpiod";
     case ButtonBackend::hidapi: return "hidapi";
-    case ButtonBackend::sim: return "sim";
+    case ButtonBackend::stylus: return "stylus";
   }
   return "?";
 }

@@ -14,7 +14,7 @@
 namespace twister::hal {
 
 enum class TrackerBackend : std::uint8_t { serial, usb, sim };
-enum class ButtonBackend : std::uint8_t { gpiod, hidapi, sim };
+enum class ButtonBackend : std::uint8_t { gpiod, hidapi, stylus };
 enum class FlowControl : std::uint8_t { none, rtscts, xonxoff };
 enum class GpioBias : std::uint8_t { as_is, disable, pull_up, pull_down };
 enum class RecordFormat : std::uint8_t { binary, ascii };
@@ -37,6 +37,7 @@ struct UsbTrackerConfig {
 
 struct SimTrackerConfig {
   std::string scenario = "stroke";   // built-in scenario name
+  std::string scenario_file;         // scenario text file (sim/ format); wins when set
   SimTime time = SimTime::virtual_time;
   std::uint32_t unplug_at_ms = 0;    // 0 = never; else simulated unplug at this time
   std::uint32_t replug_after_ms = 0; // how long the simulated tracker stays unplugged

@@ -1,0 +1,60 @@
+#include "twister/hal/builtin_scenarios.hpp"
+
+namespace twister::hal {
+namespace {
+
+// Scenario text format: docs/fastrak.md (sim/). Positions in inches, angles in degrees.
+constexpr std::string_view kStroke = R"(seed 1
+receivers 2
+duration 7
+key 0 1 -10 0 5 0 0 0 0
+key 4 1 -10 0 5 0 0 0 1
+key 5 1 -6 2 5 20 0 0 1
+key 5.01 1 -6 2 5 20 0 0 0
+key 7 1 -6 2 5 20 0 0 0
+key 0 2 10 0 5 0 0 0
+key 7 2 10 0 5 0 0 0
+)";
+
+constexpr std::string_view kIdle = R"(seed 1
+receivers 2
+duration 3
+key 0 1 -10 0 5 0 0 0
+key 0 2 10 0 5 0 0 0
+)";
+
+constexpr std::string_view kUnplug = R"(seed 1
+receivers 2
+duration 14
+key 0 1 -10 0 5 0 0 0 0
+key 4 1 -10 0 5 0 0 0 1
+key 5 1 -6 2 5 20 0 0 1
+key 5.01 1 -6 2 5 20 0 0 0
+key 11 1 -6 2 5 20 0 0 1
+key 12 1 -2 4 5 40 0 0 1
+key 12.01 1 -2 4 5 40 0 0 0
+key 14 1 -2 4 5 40 0 0 0
+key 0 2 10 0 5 0 0 0
+key 14 2 10 0 5 0 0 0
+fault 6 hangup 1
+)";
+
+}  // namespace
+
+std::string_view builtin_scenario_text(std::string_view name) {
+  if (name == "stroke") return kStroke;
+  if (name == "idle") return kIdle;
+  if (name == "unplug") return kUnplug;
+  return {};
+}
+
+bool load_builtin_scenario(std::string_view name, sim::Scenario& out, std::string& error) {
+  const std::string_view text = builtin_scenario_text(name);
+  if (text.empty()) {
+    error = "unknown built-in scenario '" + std::string(name) + "'";
+    return false;
+  }
+  return sim::parse_scenario(text, out, error);
+}
+
+}  // namespace twister::hal
