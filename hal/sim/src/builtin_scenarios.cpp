@@ -7,35 +7,35 @@ namespace {
 constexpr std::string_view kStroke = R"(seed 1
 receivers 2
 duration 7
-key 0 1 -10 0 5 0 0 0 0
-key 4 1 -10 0 5 0 0 0 1
-key 5 1 -6 2 5 20 0 0 1
-key 5.01 1 -6 2 5 20 0 0 0
-key 7 1 -6 2 5 20 0 0 0
-key 0 2 10 0 5 0 0 0
-key 7 2 10 0 5 0 0 0
+key 0 1 10 -8 5 0 0 0 0
+key 4 1 10 -8 5 0 0 0 1
+key 5 1 14 -6 5 20 0 0 1
+key 5.01 1 14 -6 5 20 0 0 0
+key 7 1 14 -6 5 20 0 0 0
+key 0 2 10 8 5 0 0 0
+key 7 2 10 8 5 0 0 0
 )";
 
 constexpr std::string_view kIdle = R"(seed 1
 receivers 2
 duration 3
-key 0 1 -10 0 5 0 0 0
-key 0 2 10 0 5 0 0 0
+key 0 1 10 -8 5 0 0 0
+key 0 2 10 8 5 0 0 0
 )";
 
 constexpr std::string_view kUnplug = R"(seed 1
 receivers 2
 duration 14
-key 0 1 -10 0 5 0 0 0 0
-key 4 1 -10 0 5 0 0 0 1
-key 5 1 -6 2 5 20 0 0 1
-key 5.01 1 -6 2 5 20 0 0 0
-key 11 1 -6 2 5 20 0 0 1
-key 12 1 -2 4 5 40 0 0 1
-key 12.01 1 -2 4 5 40 0 0 0
-key 14 1 -2 4 5 40 0 0 0
-key 0 2 10 0 5 0 0 0
-key 14 2 10 0 5 0 0 0
+key 0 1 10 -8 5 0 0 0 0
+key 4 1 10 -8 5 0 0 0 1
+key 5 1 14 -6 5 20 0 0 1
+key 5.01 1 14 -6 5 20 0 0 0
+key 11 1 14 -6 5 20 0 0 1
+key 12 1 18 -4 5 40 0 0 1
+key 12.01 1 18 -4 5 40 0 0 0
+key 14 1 18 -4 5 40 0 0 0
+key 0 2 10 8 5 0 0 0
+key 14 2 10 8 5 0 0 0
 fault 6 hangup 1
 )";
 
