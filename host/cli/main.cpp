@@ -5,12 +5,14 @@
 #include <cstdio>
 
 #include "cli_exit.hpp"
+#include "fastrak_dump_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"twister: tools for the Twister sculpting station"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "twister 0.1.0");
   // Subcommands (one line each):
+  twister::cli::add_fastrak_dump_command(app);
 
   try {
     app.parse(argc, argv);

@@ -52,7 +52,7 @@ TEST(StationConfigTest, MinimalSerialConfigTakesDefaults) {
   EXPECT_EQ(r.config.station.loop_timeout_ms, 10u);
   EXPECT_EQ(r.config.tracker.left_station, 1);
   EXPECT_EQ(r.config.tracker.right_station, 2);
-  EXPECT_EQ(r.config.tracker.serial.flow_control, FlowControl::none);
+  EXPECT_EQ(r.config.tracker.serial.flow_control, SerialFlowControl::none);
   EXPECT_TRUE(r.config.buttons.gpiod.active_low);
 }
 

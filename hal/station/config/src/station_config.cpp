@@ -60,9 +60,9 @@ void read_tracker(ConfigReader& root, StationConfig& cfg) {
   }
   std::string flow;
   if (s.string("flow_control", false, flow, {"none", "rtscts", "xonxoff"})) {
-    tc.serial.flow_control = flow == "none" ? FlowControl::none
-                           : flow == "rtscts" ? FlowControl::rtscts
-                                              : FlowControl::xonxoff;
+    tc.serial.flow_control = flow == "none" ? SerialFlowControl::none
+                           : flow == "rtscts" ? SerialFlowControl::rtscts
+                                              : SerialFlowControl::xonxoff;
   }
   s.finish();
 

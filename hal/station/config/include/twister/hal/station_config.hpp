@@ -15,7 +15,7 @@ namespace twister::hal {
 
 enum class TrackerBackend : std::uint8_t { serial, usb, sim };
 enum class ButtonBackend : std::uint8_t { gpiod, hidapi, stylus };
-enum class FlowControl : std::uint8_t { none, rtscts, xonxoff };
+enum class SerialFlowControl : std::uint8_t { none, rtscts, xonxoff };
 enum class GpioBias : std::uint8_t { as_is, disable, pull_up, pull_down };
 enum class RecordFormat : std::uint8_t { binary, ascii };
 enum class SimTime : std::uint8_t { virtual_time, real_time };
@@ -23,7 +23,7 @@ enum class SimTime : std::uint8_t { virtual_time, real_time };
 struct SerialTrackerConfig {
   std::string device;               // e.g. /dev/twister-fastrak (udev symlink)
   std::uint32_t baud = 115200;      // one of 2400 ... 115200
-  FlowControl flow_control = FlowControl::none;
+  SerialFlowControl flow_control = SerialFlowControl::none;
 };
 
 struct UsbTrackerConfig {
