@@ -101,16 +101,11 @@ void Station::drain_tracker(ports::TimestampUs now_us) {
   if (streaming != was_streaming_) {
     was_streaming_ = streaming;
     if (!streaming) {
-      // Poses from before the loss must not count as valid after re-initialisation;
-      // a stylus held during the loss is released (its state is unknown now).
+      // Poses from before the loss must not count as valid after re-initialisation.
+      // A stylus held at the loss stays "held": no release is invented, so the
+      // interaction machine holds the stroke and cancels it after lost_timeout
+      // instead of committing it; the first record after re-plug brings the truth.
       for (auto& h : hands_) h.has_pose = false;
-      for (std::size_t i = 0; i < stylus_down_.size(); ++i) {
-        const std::int8_t line = config_.stylus_line[i];
-        if (stylus_down_[i] && line >= 0) {
-          debouncer_.feed({static_cast<std::uint8_t>(line), false, now_us}).ignore();
-        }
-        stylus_down_[i] = false;
-      }
     }
     push_event({streaming ? StationEventKind::tracker_streaming : StationEventKind::tracker_lost,
                 0, 0, session_.counters().streams_started, OkStatus(), now_us});

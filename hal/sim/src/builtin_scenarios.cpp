@@ -6,14 +6,15 @@ namespace {
 // Scenario text format: docs/fastrak.md (sim/). Positions in inches, angles in degrees.
 constexpr std::string_view kStroke = R"(seed 1
 receivers 2
-duration 7
+duration 7.5
 key 0 1 10 -8 5 0 0 0 0
 key 4 1 10 -8 5 0 0 0 1
-key 5 1 14 -6 5 20 0 0 1
-key 5.01 1 14 -6 5 20 0 0 0
-key 7 1 14 -6 5 20 0 0 0
+key 4.5 1 10 -8 5 0 0 0 1
+key 5.5 1 14 -6 5 20 0 0 1
+key 6 1 14 -6 5 20 0 0 0
+key 7.5 1 14 -6 5 20 0 0 0
 key 0 2 10 8 5 0 0 0
-key 7 2 10 8 5 0 0 0
+key 7.5 2 10 8 5 0 0 0
 )";
 
 constexpr std::string_view kIdle = R"(seed 1
@@ -25,18 +26,23 @@ key 0 2 10 8 5 0 0 0
 
 constexpr std::string_view kUnplug = R"(seed 1
 receivers 2
-duration 14
+duration 16
 key 0 1 10 -8 5 0 0 0 0
 key 4 1 10 -8 5 0 0 0 1
-key 5 1 14 -6 5 20 0 0 1
-key 5.01 1 14 -6 5 20 0 0 0
-key 11 1 14 -6 5 20 0 0 1
-key 12 1 18 -4 5 40 0 0 1
-key 12.01 1 18 -4 5 40 0 0 0
-key 14 1 18 -4 5 40 0 0 0
+key 4.5 1 10 -8 5 0 0 0 1
+key 5.5 1 14 -6 5 20 0 0 1
+key 6 1 14 -6 5 20 0 0 0
+key 6.8 1 14 -6 5 20 0 0 1
+key 7.5 1 30 30 30 20 0 0 1
+key 7.51 1 14 -6 5 20 0 0 0
+key 12.5 1 14 -6 5 20 0 0 1
+key 13 1 14 -6 5 20 0 0 1
+key 14 1 18 -4 5 40 0 0 1
+key 14.5 1 18 -4 5 40 0 0 0
+key 16 1 18 -4 5 40 0 0 0
 key 0 2 10 8 5 0 0 0
-key 14 2 10 8 5 0 0 0
-fault 6 hangup 1
+key 16 2 10 8 5 0 0 0
+fault 7 hangup 1.5
 )";
 
 }  // namespace

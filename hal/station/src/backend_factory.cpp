@@ -116,8 +116,23 @@ bool make_backends(const StationConfig& config, Backends& out, std::string& erro
       break;
     case TrackerBackend::serial:
 #ifdef TWISTER_HAVE_HAL_TERMIOS
+    {
       out.clock = std::make_unique<MonotonicClock>();
-      TWISTER_HAL_MAKE_TERMIOS(config, out);
+      const SerialTrackerConfig& sc = config.tracker.serial;
+      TermiosConfig tc;
+      tc.path = sc.device;
+      tc.baud = static_cast<int>(sc.baud);
+      tc.flow = sc.flow_control == SerialFlowControl::rtscts    ? FlowControl::rts_cts
+                : sc.flow_control == SerialFlowControl::xonxoff ? FlowControl::xon_xoff
+                                                                : FlowControl::none;
+      // Not opened here: the Fastrak session opens it, and keeps retrying while the
+      // adapter is unplugged, so a station may start before its tracker is plugged.
+      auto stream = std::make_unique<TermiosByteStream>(tc);
+      TermiosByteStream* raw = stream.get();
+      out.tracker_fd = [raw] { return raw->fd(); };
+      out.tracker = std::move(stream);
+      out.tracker_name = "serial " + sc.device + " at " + std::to_string(sc.baud) + " baud";
+    }
 #endif
       break;
     case TrackerBackend::usb:

@@ -100,6 +100,8 @@ TEST(TwisterStationTest, UnplugAndReplugDuringARunReinitialisesAndContinues) {
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("tracker: lost"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("tracker: streaming (start-up #2)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("stroke: hand 0 cancelled (tracking lost too long)"), std::string::npos)
+      << r.output;
   const auto records = read_journal(journal);
   ASSERT_EQ(records.size(), 2u) << r.output;
   // Stroke 1 ends at (14, -6, 5) in; stroke 2 runs from there to (18, -4, 5) in.
@@ -108,8 +110,74 @@ TEST(TwisterStationTest, UnplugAndReplugDuringARunReinitialisesAndContinues) {
   EXPECT_NEAR(records[1].stroke.start[0].origin_m.y, -6.0 * kInch, 0.2 * kInch);
   EXPECT_NEAR(records[1].stroke.end[0].origin_m.x, 18.0 * kInch, 0.2 * kInch);
   EXPECT_NEAR(records[1].stroke.end[0].origin_m.y, -4.0 * kInch, 0.2 * kInch);
+  for (const auto& rec : records) {  // nothing from the untracked excursion to (30, 30, 30) in
+    EXPECT_LT(rec.stroke.end[0].origin_m.x, 20.0 * kInch);
+  }
   ::unlink(journal.c_str());
   ::unlink(cfg.c_str());
+}
+
+// twister-station against twister-sim on a PTY (real termios backend, real time).
+// Starts twister-sim with a scenario and a symlink, waits for its first stdout line
+// (the link is ready), runs the station for the scenario's length.
+RunResult run_against_pty(const char* scenario, const std::string& journal, double seconds) {
+  const std::string link = temp_path("fastrak.link");
+  ::unlink(link.c_str());
+  const std::string sim_cmd = std::string(TWISTER_SIM_BIN) + " --scenario " + TWISTER_SCENARIO_DIR +
+                              "/" + scenario + " --link " + link;
+  FILE* sim = ::popen(sim_cmd.c_str(), "r");
+  RunResult r;
+  if (sim == nullptr) return r;
+  std::array<char, 256> line{};
+  if (std::fgets(line.data(), line.size(), sim) == nullptr) {
+    ::pclose(sim);
+    return r;
+  }
+  const std::string cfg = write_file("pty.toml",
+      "[station]\njournal = \"" + journal + "\"\n[tracker]\nbackend = \"serial\"\n"
+      "reconnect_interval_ms = 200\n[tracker.serial]\ndevice = \"" + link + "\"\n"
+      "[buttons]\nbackend = \"stylus\"\n[systemd]\nnotify = false\n");
+  r = run("--config " + cfg + " --duration " + std::to_string(seconds));
+  ::pclose(sim);  // twister-sim stops at the end of its scenario
+  ::unlink(cfg.c_str());
+  ::unlink(link.c_str());
+  return r;
+}
+
+TEST(TwisterStationTest, AgainstTwisterSimOnAPtyCommitsAScriptedStroke) {
+  const std::string journal = temp_path("pty.bin");
+  ::unlink(journal.c_str());
+  const auto r = run_against_pty("pty_stroke.txt", journal, 7.0);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("tracker serial"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("stroke: hand 0 committed as journal record 0"), std::string::npos) << r.output;
+  const auto records = read_journal(journal);
+  ASSERT_EQ(records.size(), 1u) << r.output;
+  EXPECT_NEAR(records[0].stroke.start[0].origin_m.x, 10.0 * kInch, 0.3 * kInch);
+  EXPECT_NEAR(records[0].stroke.end[0].origin_m.x, 14.0 * kInch, 0.3 * kInch);
+  EXPECT_NEAR(records[0].stroke.end[0].origin_m.y, -6.0 * kInch, 0.3 * kInch);
+  ::unlink(journal.c_str());
+}
+
+// The PTY is closed mid-stroke and re-created at the same symlink 1.5 s later: the
+// station reports, cancels the interrupted stroke, re-initialises the tracker and
+// commits the next stroke; the journal holds exactly the two complete strokes.
+TEST(TwisterStationTest, AgainstTwisterSimOnAPtySurvivesUnplugAndReplug) {
+  const std::string journal = temp_path("pty_unplug.bin");
+  ::unlink(journal.c_str());
+  const auto r = run_against_pty("pty_unplug.txt", journal, 15.5);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("tracker: lost"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("stroke: hand 0 cancelled (tracking lost too long)"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("tracker: streaming (start-up #2)"), std::string::npos) << r.output;
+  const auto records = read_journal(journal);
+  ASSERT_EQ(records.size(), 2u) << r.output;
+  EXPECT_NEAR(records[0].stroke.end[0].origin_m.x, 14.0 * kInch, 0.3 * kInch);
+  EXPECT_NEAR(records[1].stroke.start[0].origin_m.x, 14.0 * kInch, 0.3 * kInch);
+  EXPECT_NEAR(records[1].stroke.end[0].origin_m.x, 18.0 * kInch, 0.3 * kInch);
+  EXPECT_NEAR(records[1].stroke.end[0].origin_m.y, -4.0 * kInch, 0.3 * kInch);
+  ::unlink(journal.c_str());
 }
 
 TEST(TwisterStationTest, CheckAcceptsValidAndRefusesInvalidConfigs) {
