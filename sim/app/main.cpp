@@ -13,9 +13,8 @@
 namespace {
 volatile std::sig_atomic_t g_stop = 0;
 void on_signal(int) { g_stop = 1; }
-}  // namespace
 
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"twister-sim: simulated Polhemus Fastrak on a PTY or serial port"};
   std::string scenario_path;
   twister::sim::ServeOptions serve;
@@ -96,4 +95,16 @@ int main(int argc, char** argv) {
                static_cast<unsigned long long>(server.counters().hangups));
   if (!serve.link.empty()) std::remove(serve.link.c_str());
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Anything thrown (allocation failure, I/O library) ends the run with a message.
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "twister-sim: %s\n", e.what());
+    return 1;
+  }
 }

@@ -68,14 +68,16 @@ Result<std::size_t> encode_record(const FastrakPose& pose, const FastrakConfig& 
       case Item::dcm_x:
       case Item::dcm_y:
       case Item::dcm_z: {
-        const auto row = static_cast<unsigned>(item) - static_cast<unsigned>(Item::dcm_x);
+        const std::size_t row =
+            static_cast<std::size_t>(item) - static_cast<std::size_t>(Item::dcm_x);
         put_values(q, fmt, 4, pose.dcm.data() + 3 * row, 3);
         break;
       }
       case Item::dcm_x_ext:
       case Item::dcm_y_ext:
       case Item::dcm_z_ext: {
-        const auto row = static_cast<unsigned>(item) - static_cast<unsigned>(Item::dcm_x_ext);
+        const std::size_t row =
+            static_cast<std::size_t>(item) - static_cast<std::size_t>(Item::dcm_x_ext);
         put_extended(q, fmt, pose.dcm.data() + 3 * row, 3);
         break;
       }

@@ -137,17 +137,19 @@ FastrakParser::Candidate FastrakParser::examine_record(const std::byte* p, std::
       case Item::dcm_x:
       case Item::dcm_y:
       case Item::dcm_z: {
-        const auto row = static_cast<unsigned>(item) - static_cast<unsigned>(Item::dcm_x);
+        const std::size_t row =
+            static_cast<std::size_t>(item) - static_cast<std::size_t>(Item::dcm_x);
         ok = read_values(q, fmt, 4, 3, pose.dcm.data() + 3 * row);
-        dcm_rows |= 1u << row;
+        dcm_rows |= 1u << static_cast<unsigned>(row);
         break;
       }
       case Item::dcm_x_ext:
       case Item::dcm_y_ext:
       case Item::dcm_z_ext: {
-        const auto row = static_cast<unsigned>(item) - static_cast<unsigned>(Item::dcm_x_ext);
+        const std::size_t row =
+            static_cast<std::size_t>(item) - static_cast<std::size_t>(Item::dcm_x_ext);
         ok = read_extended(q, fmt, 3, pose.dcm.data() + 3 * row);
-        dcm_rows |= 1u << row;
+        dcm_rows |= 1u << static_cast<unsigned>(row);
         break;
       }
       case Item::quaternion:

@@ -16,7 +16,7 @@ bool all_finite(const float* v, std::size_t n) {
 
 bool dcm_ok(const std::array<float, 9>& m, double tol) {
   auto at = [&](int r, int c) {
-    return static_cast<double>(m[static_cast<std::size_t>(3 * r + c)]);
+    return static_cast<double>(m[static_cast<std::size_t>(r) * 3 + static_cast<std::size_t>(c)]);
   };
   for (int i = 0; i < 3; ++i) {
     double row = 0.0, col = 0.0;

@@ -153,9 +153,10 @@ void FastrakDevice::queue_record(int station, ports::TimestampUs at, bool polled
   const double roll = std::remainder(h.euler_deg[2], 360.0);
   pose.euler_deg = {static_cast<float>(az), static_cast<float>(el), static_cast<float>(roll)};
   const glm::dmat3 r = tracker::rotation_from_euler_deg(az, el, roll);
-  for (int row = 0; row < 3; ++row) {
-    for (int col = 0; col < 3; ++col) {
-      pose.dcm[static_cast<std::size_t>(3 * row + col)] = static_cast<float>(r[col][row]);
+  for (std::size_t row = 0; row < 3; ++row) {
+    for (std::size_t col = 0; col < 3; ++col) {
+      pose.dcm[row * 3 + col] =
+          static_cast<float>(r[static_cast<glm::length_t>(col)][static_cast<glm::length_t>(row)]);
     }
   }
   const glm::dquat q = glm::quat_cast(r);

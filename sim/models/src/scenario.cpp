@@ -30,7 +30,7 @@ HandSample sample(const Scenario& scenario, int station, double t_s) {
   if (station < 1 || station > 4) return s;
   const StationTrack& tr = scenario.stations[static_cast<std::size_t>(station - 1)];
   if (tr.circle.enabled) {
-    const double kTwoPi = 6.283185307179586;
+    constexpr double kTwoPi = 6.283185307179586;
     const double a = kTwoPi * t_s / tr.circle.period_s;
     s.position_in = {tr.circle.center_in[0] + tr.circle.radius_in * std::cos(a),
                      tr.circle.center_in[1] + tr.circle.radius_in * std::sin(a),
