@@ -1,27 +1,46 @@
 // `twister`: command-line tools for the station's math, tracker and journal.
 // Each subcommand lives in its own <name>_command.cpp and registers itself here.
 #include <CLI/CLI.hpp>
-
 #include <cstdio>
+#include <exception>
 
 #include "cli_exit.hpp"
 #include "fastrak_dump_command.hpp"
+#include "mesh_command.hpp"
+#include "replay_command.hpp"
+#include "warp_command.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run(int argc, char** argv) {
   CLI::App app{"twister: tools for the Twister sculpting station"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "twister 0.1.0");
   // Subcommands (one line each):
   twister::cli::add_fastrak_dump_command(app);
+  twister::cli::add_warp_command(app);
+  twister::cli::add_replay_command(app);
+  twister::cli::add_mesh_command(app);
 
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     // --help / --version exit 0; every usage error exits 2 (bad options).
     const int rc = app.exit(e);
-    return rc == 0 ? 0 : twister::cli::kExitBadInput;
+    return rc == 0 ? twister::cli::kExitOk : twister::cli::kExitBadInput;
   } catch (const twister::cli::Exit& e) {
     return e.code;
   }
-  return 0;
+  return twister::cli::kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "twister: %s\n", e.what());
+    return twister::cli::kExitFailure;
+  }
 }

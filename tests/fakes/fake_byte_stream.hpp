@@ -32,7 +32,11 @@ class FakeByteStreamWithStorage final : public ports::ByteStream {
   std::string_view tx() const { return {reinterpret_cast<const char*>(tx_.data()), tx_len_}; }
   void clear_tx() { tx_len_ = 0; }
 
-  void unplug() { connected_ = false; rx_len_ = 0; rx_pos_ = 0; }
+  void unplug() {
+    connected_ = false;
+    rx_len_ = 0;
+    rx_pos_ = 0;
+  }
   void plug() { plugged_ = true; }
   void set_present(bool present) { plugged_ = present; }
   bool connected() const { return connected_; }

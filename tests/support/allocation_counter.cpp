@@ -1,5 +1,5 @@
 // Replacement allocation functions that count per thread, then forward to the C
-// library. Under ASan only operator new is replaced: ASan owns malloc itself.
+// library. Under ASan, which owns malloc, the sanitizer's malloc hook counts instead.
 #include "allocation_counter.hpp"
 
 #include <cstdlib>
@@ -45,6 +45,19 @@ void free(void* p) { __libc_free(p); }
 #define TWISTER_MALLOC_COUNTS 1
 #endif
 
+#if defined(TWISTER_SANITIZED)
+extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*,
+                                                                             std::size_t),
+                                                         void (*free_hook)(const volatile void*));
+namespace {
+void count_malloc_hook(const volatile void*, std::size_t) { ++t_allocations; }
+void ignore_free_hook(const volatile void*) {}
+[[maybe_unused]] const int g_hooks_installed =
+    __sanitizer_install_malloc_and_free_hooks(count_malloc_hook, ignore_free_hook);
+}  // namespace
+#define TWISTER_MALLOC_COUNTS 1
+#endif
+
 namespace {
 void* counted_new(std::size_t n) {
 #if !defined(TWISTER_MALLOC_COUNTS)
@@ -64,10 +77,18 @@ void* counted_new_aligned(std::size_t n, std::align_val_t al) {
 void* operator new(std::size_t n) { return counted_new(n); }
 void* operator new[](std::size_t n) { return counted_new(n); }
 void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
-  try { return counted_new(n); } catch (...) { return nullptr; }
+  try {
+    return counted_new(n);
+  } catch (...) {
+    return nullptr;
+  }
 }
 void* operator new[](std::size_t n, const std::nothrow_t&) noexcept {
-  try { return counted_new(n); } catch (...) { return nullptr; }
+  try {
+    return counted_new(n);
+  } catch (...) {
+    return nullptr;
+  }
 }
 void* operator new(std::size_t n, std::align_val_t al) { return counted_new_aligned(n, al); }
 void* operator new[](std::size_t n, std::align_val_t al) { return counted_new_aligned(n, al); }

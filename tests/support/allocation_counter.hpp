@@ -23,11 +23,11 @@ class AllocationCounter {
 }  // namespace twister::test
 
 // Fails the test (non-fatally) when `statement` allocates on the heap.
-#define EXPECT_NO_ALLOCATIONS(statement)                                       \
-  do {                                                                         \
-    ::twister::test::AllocationCounter twister_alloc_counter_;                 \
-    statement;                                                                 \
-    const std::size_t twister_allocs_ = twister_alloc_counter_.count();        \
+#define EXPECT_NO_ALLOCATIONS(statement)                                        \
+  do {                                                                          \
+    ::twister::test::AllocationCounter twister_alloc_counter_;                  \
+    statement;                                                                  \
+    const std::size_t twister_allocs_ = twister_alloc_counter_.count();         \
     EXPECT_EQ(twister_allocs_, 0u) << "heap allocation inside a no-allocation " \
-                                      "scope: " #statement;                    \
+                                      "scope: " #statement;                     \
   } while (0)

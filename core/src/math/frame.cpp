@@ -25,8 +25,9 @@ bool finite(glm::dvec3 a) {
 bool is_orthonormal(const Frame& f, double tolerance) {
   if (!finite(f.origin) || !finite(f.u) || !finite(f.v) || !finite(f.w)) return false;
   const auto near = [tolerance](double a, double b) { return std::fabs(a - b) <= tolerance; };
-  return near(glm::dot(f.u, f.u), 1.0) && near(glm::dot(f.v, f.v), 1.0) &&
-         near(glm::dot(f.w, f.w), 1.0) && near(glm::dot(f.u, f.v), 0.0) &&
+  // Lengths, not squared lengths: "unit within 1e-6" as the warp contract states it.
+  return near(glm::length(f.u), 1.0) && near(glm::length(f.v), 1.0) &&
+         near(glm::length(f.w), 1.0) && near(glm::dot(f.u, f.v), 0.0) &&
          near(glm::dot(f.v, f.w), 0.0) && near(glm::dot(f.w, f.u), 0.0) &&
          glm::length(glm::cross(f.u, f.v) - f.w) <= tolerance;
 }

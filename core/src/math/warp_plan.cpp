@@ -15,15 +15,20 @@ namespace {
 // kernel can run on them unchanged.
 constexpr std::size_t kGatherChunk = 256;
 
-void put(float* f, double* d, glm::dvec3 v) {
-  for (int i = 0; i < 3; ++i) {
-    d[i] = v[i];
-    f[i] = static_cast<float>(v[i]);
-  }
+void put(float (&f)[3], double (&d)[3], glm::dvec3 v) {
+  d[0] = v.x;
+  d[1] = v.y;
+  d[2] = v.z;
+  f[0] = static_cast<float>(v.x);
+  f[1] = static_cast<float>(v.y);
+  f[2] = static_cast<float>(v.z);
 }
 
-KernelHand kernel_hand(const Screw& s, const Frame& start, const Frame& end, WarpMethod method) {
-  KernelHand h;
+// Fills `h` in place: returning the struct by value was miscompiled by GCC 12.2 at
+// -O2 (IPA mod/ref dropped the stores into the member array); in-place is immune.
+void fill_kernel_hand(KernelHand& h, const Screw& s, const Frame& start, const Frame& end,
+                      WarpMethod method) {
+  h = KernelHand{};
   put(h.axis, h.axis_d, s.axis);
   if (method == WarpMethod::rottran) {
     put(h.mid, h.mid_d, start.origin);
@@ -41,7 +46,6 @@ KernelHand kernel_hand(const Screw& s, const Frame& start, const Frame& end, War
   }
   h.half_angle = static_cast<float>(h.half_angle_d);
   h.cot_half = static_cast<float>(h.cot_half_d);
-  return h;
 }
 }  // namespace
 
@@ -156,7 +160,7 @@ Status WarpPlan::rebase(std::span<const Frame> start) {
 
 void WarpPlan::set_kernel_hands() {
   for (std::size_t h = 0; h < hands_; ++h) {
-    kernel_hands_[h] = kernel_hand(screws_[h], start_[h], end_[h], method_);
+    fill_kernel_hand(kernel_hands_[h], screws_[h], start_[h], end_[h], method_);
   }
 }
 

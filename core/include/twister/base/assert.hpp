@@ -7,7 +7,7 @@ namespace twister::internal {
 [[noreturn]] void assert_failed(const char* expr, const char* file, int line);
 }  // namespace twister::internal
 
-#define TWISTER_ASSERT(cond)                                              \
-  do {                                                                    \
+#define TWISTER_ASSERT(cond)                                                    \
+  do {                                                                          \
     if (!(cond)) ::twister::internal::assert_failed(#cond, __FILE__, __LINE__); \
   } while (0)

@@ -15,9 +15,9 @@ namespace twister {
 template <typename T>
 class [[nodiscard]] Result {
  public:
-  Result(const T& value) : has_value_(true) { ::new (&value_) T(value); }     // NOLINT
+  Result(const T& value) : has_value_(true) { ::new (&value_) T(value); }        // NOLINT
   Result(T&& value) : has_value_(true) { ::new (&value_) T(std::move(value)); }  // NOLINT
-  Result(Status status) : status_(status) {                                   // NOLINT
+  Result(Status status) : status_(status) {                                      // NOLINT
     TWISTER_ASSERT(!status.ok());
   }
   Result(StatusCode code) : Result(Status(code)) {}  // NOLINT
@@ -52,9 +52,18 @@ class [[nodiscard]] Result {
   explicit operator bool() const { return has_value_; }
   Status status() const { return status_; }
 
-  T& value() & { TWISTER_ASSERT(has_value_); return value_; }
-  const T& value() const& { TWISTER_ASSERT(has_value_); return value_; }
-  T&& value() && { TWISTER_ASSERT(has_value_); return std::move(value_); }
+  T& value() & {
+    TWISTER_ASSERT(has_value_);
+    return value_;
+  }
+  const T& value() const& {
+    TWISTER_ASSERT(has_value_);
+    return value_;
+  }
+  T&& value() && {
+    TWISTER_ASSERT(has_value_);
+    return std::move(value_);
+  }
   T& operator*() & { return value(); }
   const T& operator*() const& { return value(); }
   T* operator->() { return &value(); }
@@ -79,7 +88,9 @@ class [[nodiscard]] Result {
 
 namespace internal {
 template <typename T>
-Status to_status(const Result<T>& r) { return r.status(); }
+Status to_status(const Result<T>& r) {
+  return r.status();
+}
 }  // namespace internal
 
 }  // namespace twister
@@ -89,9 +100,9 @@ Status to_status(const Result<T>& r) { return r.status(); }
 
 // TWISTER_TRY_ASSIGN(lhs, expr): evaluates a Result; on error returns its Status,
 // otherwise assigns the value to lhs (which may be a declaration: `auto x`).
-#define TWISTER_TRY_ASSIGN(lhs, expr)                                   \
+#define TWISTER_TRY_ASSIGN(lhs, expr) \
   TWISTER_TRY_ASSIGN_IMPL_(TWISTER_CONCAT_(twister_result_, __LINE__), lhs, expr)
 #define TWISTER_TRY_ASSIGN_IMPL_(tmp, lhs, expr) \
-  auto tmp = (expr);                            \
-  if (!tmp.ok()) return tmp.status();           \
+  auto tmp = (expr);                             \
+  if (!tmp.ok()) return tmp.status();            \
   lhs = std::move(tmp).value()

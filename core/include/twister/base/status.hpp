@@ -22,16 +22,26 @@ enum class StatusCode : std::uint8_t {
 // Name of a code, for logs and messages ("ok", "data_loss", ...).
 constexpr const char* status_code_name(StatusCode code) {
   switch (code) {
-    case StatusCode::ok: return "ok";
-    case StatusCode::unavailable: return "unavailable";
-    case StatusCode::invalid_argument: return "invalid_argument";
-    case StatusCode::out_of_range: return "out_of_range";
-    case StatusCode::resource_exhausted: return "resource_exhausted";
-    case StatusCode::data_loss: return "data_loss";
-    case StatusCode::failed_precondition: return "failed_precondition";
-    case StatusCode::io_error: return "io_error";
-    case StatusCode::timeout: return "timeout";
-    case StatusCode::not_supported: return "not_supported";
+    case StatusCode::ok:
+      return "ok";
+    case StatusCode::unavailable:
+      return "unavailable";
+    case StatusCode::invalid_argument:
+      return "invalid_argument";
+    case StatusCode::out_of_range:
+      return "out_of_range";
+    case StatusCode::resource_exhausted:
+      return "resource_exhausted";
+    case StatusCode::data_loss:
+      return "data_loss";
+    case StatusCode::failed_precondition:
+      return "failed_precondition";
+    case StatusCode::io_error:
+      return "io_error";
+    case StatusCode::timeout:
+      return "timeout";
+    case StatusCode::not_supported:
+      return "not_supported";
   }
   return "unknown";
 }
@@ -59,12 +69,12 @@ constexpr Status OkStatus() { return Status(); }
 }  // namespace twister
 
 // Early return of a non-ok Status (or the status of a non-ok Result).
-#define TWISTER_TRY(expr)                                          \
-  do {                                                             \
+#define TWISTER_TRY(expr)                                                \
+  do {                                                                   \
     if (auto twister_try_status_ = ::twister::internal::to_status(expr); \
-        !twister_try_status_.ok()) {                               \
-      return twister_try_status_;                                  \
-    }                                                              \
+        !twister_try_status_.ok()) {                                     \
+      return twister_try_status_;                                        \
+    }                                                                    \
   } while (0)
 
 namespace twister::internal {

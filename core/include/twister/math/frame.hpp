@@ -22,7 +22,7 @@ Frame identity_frame(glm::dvec3 origin = glm::dvec3(0.0));
 // A frame from origin, U and V with W = U x V (no check; see is_orthonormal).
 Frame frame_from_uv(glm::dvec3 origin, glm::dvec3 u, glm::dvec3 v);
 
-// True when U, V, W are unit length and pairwise orthogonal within `tolerance`,
+// True when |U|, |V|, |W| are 1 and the pairwise dot products 0 within `tolerance`,
 // W equals U x V within `tolerance`, and every component is finite.
 bool is_orthonormal(const Frame& frame, double tolerance = kFrameTolerance);
 

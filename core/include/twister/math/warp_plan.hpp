@@ -130,9 +130,9 @@ class WarpPlan {
 namespace internal {
 template <std::size_t N>
 struct WarpPlanArrays {
-  std::array<std::uint32_t, N> indices{};
-  std::array<float, N> weights1{};
-  std::array<float, N> weights2{};
+  std::array<std::uint32_t, N> index_storage{};
+  std::array<float, N> weight1_storage{};
+  std::array<float, N> weight2_storage{};
 };
 }  // namespace internal
 
@@ -142,7 +142,8 @@ template <std::size_t N>
 class WarpPlanWithStorage : private internal::WarpPlanArrays<N>, public WarpPlan {
  public:
   WarpPlanWithStorage()
-      : WarpPlan(WarpPlanStorage{this->indices, this->weights1, this->weights2}) {}
+      : WarpPlan(WarpPlanStorage{this->index_storage, this->weight1_storage,
+                                 this->weight2_storage}) {}
   WarpPlanWithStorage(const WarpPlanWithStorage&) = delete;
   WarpPlanWithStorage& operator=(const WarpPlanWithStorage&) = delete;
 };

@@ -10,9 +10,9 @@
 namespace twister::ports {
 
 struct ButtonEdge {
-  std::uint8_t line = 0;   // index into the source's configured lines, 0-based
-  bool pressed = false;    // logical level after active-low handling
-  TimestampUs time_us = 0; // when the edge happened (kernel timestamp if available)
+  std::uint8_t line = 0;    // index into the source's configured lines, 0-based
+  bool pressed = false;     // logical level after active-low handling
+  TimestampUs time_us = 0;  // when the edge happened (kernel timestamp if available)
 };
 
 class ButtonSource {

@@ -1,0 +1,89 @@
+#include "warp_command.hpp"
+
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <memory>
+#include <span>
+#include <sstream>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "cli_exit.hpp"
+#include "twister/math/warp_plan.hpp"
+#include "warp_case.hpp"
+
+namespace twister::cli {
+
+namespace {
+
+[[noreturn]] void bad_input(const std::string& source, int line, const std::string& message) {
+  std::fprintf(stderr, "twister warp: %s:%d: %s\n", source.c_str(), line, message.c_str());
+  throw Exit{kExitBadInput};
+}
+
+void run_warp(const std::string& path) {
+  std::string text;
+  if (path == "-") {
+    text.assign(std::istreambuf_iterator<char>(std::cin), {});
+  } else {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+      std::fprintf(stderr, "twister warp: cannot open '%s'\n", path.c_str());
+      throw Exit{kExitBadInput};
+    }
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const std::string source = path == "-" ? "<stdin>" : path;
+  auto parsed = parse_warp_case(text);
+  if (auto* err = std::get_if<WarpCaseError>(&parsed)) bad_input(source, err->line, err->message);
+  const WarpCase& c = std::get<WarpCase>(parsed);
+
+  // The station's path: float SoA columns, a plan built once, update, apply.
+  const std::size_t n = c.points.size();
+  std::vector<float> x(n), y(n), z(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    x[i] = static_cast<float>(c.points[i].x);
+    y[i] = static_cast<float>(c.points[i].y);
+    z[i] = static_cast<float>(c.points[i].z);
+  }
+  std::vector<float> ox = x, oy = y, oz = z;
+  std::vector<std::uint32_t> indices(n);
+  std::vector<float> w1(n), w2(n);
+  math::WarpPlan plan(math::WarpPlanStorage{indices, w1, w2});
+  const math::ConstVertexColumns rest(x, y, z);
+  const Status built = plan.build(rest, c.start, c.radius, c.method);
+  if (built.code() == StatusCode::failed_precondition) {
+    bad_input(source, c.hand_lines.back(),
+              "the scodef constraint system is singular (constraint points of the two "
+              "hands coincide)");
+  }
+  if (!built.ok()) {
+    bad_input(source, c.hand_lines.back(), std::string("cannot build the warp: ") + built.name());
+  }
+  if (const Status s = plan.update(c.end); !s.ok()) {
+    bad_input(source, c.hand_lines.back(), std::string("cannot update the warp: ") + s.name());
+  }
+  if (const Status s = plan.apply(rest, math::VertexColumns{ox, oy, oz}); !s.ok()) {
+    std::fprintf(stderr, "twister warp: apply failed: %s\n", s.name());
+    throw Exit{kExitFailure};
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    std::printf("%.9g %.9g %.9g\n", static_cast<double>(ox[i]), static_cast<double>(oy[i]),
+                static_cast<double>(oz[i]));
+  }
+}
+
+}  // namespace
+
+void add_warp_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("warp", "Warp the points of a case file (spec §10)");
+  auto path = std::make_shared<std::string>();
+  cmd->add_option("case", *path, "case file, or - for stdin")->required();
+  cmd->callback([path] { run_warp(*path); });
+}
+
+}  // namespace twister::cli

@@ -1,0 +1,11 @@
+// `twister warp CASE|-`: warps the points of a case file with the station's kernel
+// and prints them (spec §10).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace twister::cli {
+
+void add_warp_command(CLI::App& app);
+
+}  // namespace twister::cli
