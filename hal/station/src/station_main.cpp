@@ -12,11 +12,13 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "backend_factory.hpp"
+#include "twister/meshio/obj_file.hpp"
 #include "twister/hal/posix_file_storage.hpp"
 #include "twister/hal/station_config.hpp"
 #include "twister/hal/station_setup.hpp"
@@ -111,16 +113,37 @@ int run(const Options& opt, StationConfig cfg) {
                  cfg.station.journal.c_str(), s.name(), storage.last_errno());
     return kExitFailure;
   }
-  // The station owns its fixed buffers; it is created once here and never resized.
-  auto core = std::make_unique<station::Station>(*backends.tracker, *backends.buttons,
-                                                 *backends.clock, storage, setup.core);
-  if (const auto s = core->start(); !s.ok()) {
-    std::fprintf(stderr, "twister-station: journal %s: %s\n", cfg.station.journal.c_str(),
-                 s.code() == twister::StatusCode::data_loss
-                     ? "is not a Twister journal (left untouched)"
-                     : s.name());
+  // The initial model; a relative path is relative to the config file.
+  std::filesystem::path mesh_path(cfg.station.mesh);
+  if (mesh_path.is_relative()) mesh_path = std::filesystem::path(opt.config_path).parent_path() / mesh_path;
+  twister::meshio::ObjLoad model = twister::meshio::load_obj(mesh_path, cfg.station.spare_vertices);
+  if (!model.status.ok()) {
+    std::fprintf(stderr, "twister-station: mesh %s: %s\n", mesh_path.c_str(), model.message.c_str());
     return kExitFailure;
   }
+  // All working memory is sized here, once; the loop never allocates.
+  twister::mesh::Mesh& mesh = model.buffer->mesh();
+  const std::size_t n = mesh.vertex_capacity();
+  std::vector<float> live_x(n), live_y(n), live_z(n), weights1(n), weights2(n);
+  std::vector<std::uint32_t> plan_indices(n);
+  std::vector<twister::input::VertexChange> undo_changes(twister::input::kDefaultUndoChanges);
+  std::vector<twister::input::UndoEntry> undo_entries(twister::input::kDefaultUndoEntries);
+  const twister::input::SculptStorage work{
+      live_x, live_y, live_z, twister::math::WarpPlanStorage{plan_indices, weights1, weights2},
+      undo_changes, undo_entries};
+  auto core = std::make_unique<station::Station>(*backends.tracker, *backends.buttons,
+                                                 *backends.clock, storage, mesh, work, setup.core);
+  if (const auto s = core->start(); !s.ok()) {
+    const char* why = s.name();
+    if (s.code() == twister::StatusCode::data_loss) {
+      why = "is not a Twister journal, or does not fit this mesh (left untouched)";
+    }
+    std::fprintf(stderr, "twister-station: journal %s: %s\n", cfg.station.journal.c_str(), why);
+    return kExitFailure;
+  }
+  std::fprintf(stderr, "twister-station: mesh %s: %zu vertices, %zu triangles, checksum %016llx\n",
+               mesh_path.c_str(), mesh.vertex_count(), mesh.triangle_count(),
+               static_cast<unsigned long long>(mesh.checksum()));
 
   sigset_t mask;
   sigemptyset(&mask);
@@ -188,6 +211,8 @@ int run(const Options& opt, StationConfig cfg) {
   }
   if (cfg.systemd.notify) sd_notify(0, "STOPPING=1");
   const auto flushed = core->flush();
+  std::fprintf(stderr, "twister-station: mesh checksum %016llx\n",
+               static_cast<unsigned long long>(core->mesh().checksum()));
   const auto& c = core->counters();
   const auto& tc = core->tracker_session().counters();
   std::fprintf(stderr,

@@ -28,7 +28,7 @@ StationSetup make_station_setup(const StationConfig& config) {
   c.conversion.units = proto.units;
   c.conversion.format = proto.format;
   c.pose_stale_us = std::max<std::int64_t>(200'000, c.session.silence_timeout_us / 2);
-  c.debounce.interval_us.fill(static_cast<ports::TimestampUs>(config.buttons.debounce_ms) * 1000);
+  c.sculpt.debounce.interval_us.fill(static_cast<ports::TimestampUs>(config.buttons.debounce_ms) * 1000);
   if (stylus) {
     // Paper button map: line 0 = hand 0 grab, line 3 = hand 1 grab.
     if (t.left_station == 1) {

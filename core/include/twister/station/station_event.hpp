@@ -28,7 +28,7 @@ struct StationEvent {
   StationEventKind kind = StationEventKind::tracker_lost;
   std::uint8_t hand = 0;
   std::uint32_t sequence = 0;
-  std::uint64_t value = 0;
+  std::uint64_t value = 0;  // kind-specific (see above; committed/cancelled/refused: input::Reason)
   Status status{};
   ports::TimestampUs time_us = 0;
 };

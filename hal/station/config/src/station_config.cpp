@@ -168,6 +168,8 @@ void read_buttons(ConfigReader& root, StationConfig& cfg) {
 void read_station(ConfigReader& root, StationConfig& cfg) {
   ConfigReader s = root.table("station", true);
   s.string("journal", s.present(), cfg.station.journal);
+  s.string("mesh", s.present(), cfg.station.mesh);
+  read_u(s, "spare_vertices", false, 0, 4'000'000, cfg.station.spare_vertices);
   read_u(s, "loop_timeout_ms", false, 1, 1000, cfg.station.loop_timeout_ms);
   s.finish();
 }

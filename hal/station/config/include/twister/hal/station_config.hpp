@@ -83,6 +83,8 @@ struct ButtonsConfig {
 
 struct StationSection {
   std::string journal;               // append-only stroke journal (fsynced per stroke)
+  std::string mesh;                  // initial model (OBJ, metres); relative = to the config file
+  std::uint32_t spare_vertices = 0;  // extra mesh capacity beyond the OBJ's vertices
   std::uint32_t loop_timeout_ms = 10;  // poll() timeout of the event loop
 };
 
