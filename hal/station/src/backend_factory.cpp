@@ -2,6 +2,7 @@
 // exist is decided by CMake (TWISTER_HAVE_* definitions on this file only).
 #include "backend_factory.hpp"
 
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -16,6 +17,9 @@
 #endif
 #ifdef TWISTER_HAVE_HAL_TERMIOS
 #include "twister/hal/termios_byte_stream.hpp"
+#endif
+#ifdef TWISTER_HAVE_HAL_LIBUSB
+#include "twister/hal/libusb_byte_stream.hpp"
 #endif
 
 namespace twister::hal {
@@ -135,8 +139,27 @@ bool make_backends(const StationConfig& config, Backends& out, std::string& erro
     }
 #endif
       break;
-    case TrackerBackend::usb:
+    case TrackerBackend::usb: {
+#ifdef TWISTER_HAVE_HAL_LIBUSB
+      out.clock = std::make_unique<MonotonicClock>();
+      const UsbTrackerConfig& uc = config.tracker.usb;
+      auto stream = std::make_unique<LibusbByteStream>(LibusbConfig{
+          uc.vendor_id, uc.product_id, uc.interface_number, uc.endpoint_in, uc.endpoint_out,
+          uc.timeout_ms});
+      if (const Status st = stream->init(); !st.ok()) {
+        error = std::string("libusb: initialisation failed (") + st.name() + ", libusb error " +
+                std::to_string(stream->last_error()) + ")";
+        return false;
+      }
+      // Opened by the Fastrak session, which retries while the tracker is unplugged.
+      // libusb's own fds are not waited on: the loop's timeout paces the reads.
+      char ids[32];
+      std::snprintf(ids, sizeof ids, "%04x:%04x", uc.vendor_id, uc.product_id);
+      out.tracker_name = std::string("usb ") + ids + (stream->hotplug_supported() ? " (hot-plug)" : "");
+      out.tracker = std::move(stream);
+#endif
       break;
+    }
   }
   switch (config.buttons.backend) {
     case ButtonBackend::stylus:
