@@ -9,7 +9,9 @@ namespace {
 constexpr int kMaxPosesPerPoll = 64;
 constexpr int kMaxEdgesPerPoll = 32;
 
-math::Frame to_frame(const tracker::TrackedFrame& f) { return math::Frame{f.origin, f.u, f.v, f.w}; }
+math::Frame to_frame(const tracker::TrackedFrame& f) {
+  return math::Frame{f.origin, f.u, f.v, f.w};
+}
 
 }  // namespace
 
@@ -96,8 +98,8 @@ void Station::drain_tracker(ports::TimestampUs now_us) {
     if (!streaming) {
       for (auto& h : hands_) h.has_pose = false;
     }
-    push_event({streaming ? StationEventKind::tracker_streaming : StationEventKind::tracker_lost,
-                0, 0, session_.counters().streams_started, OkStatus(), now_us});
+    push_event({streaming ? StationEventKind::tracker_streaming : StationEventKind::tracker_lost, 0,
+                0, session_.counters().streams_started, OkStatus(), now_us});
   }
 }
 

@@ -38,8 +38,8 @@ Status LibusbByteStream::init() {
         ctx_,
         static_cast<libusb_hotplug_event>(LIBUSB_HOTPLUG_EVENT_DEVICE_ARRIVED |
                                           LIBUSB_HOTPLUG_EVENT_DEVICE_LEFT),
-        LIBUSB_HOTPLUG_NO_FLAGS, config_.vendor_id, config_.product_id,
-        LIBUSB_HOTPLUG_MATCH_ANY, &LibusbCallbacks::on_hotplug, this, nullptr);
+        LIBUSB_HOTPLUG_NO_FLAGS, config_.vendor_id, config_.product_id, LIBUSB_HOTPLUG_MATCH_ANY,
+        &LibusbCallbacks::on_hotplug, this, nullptr);
     hotplug_ = rc == LIBUSB_SUCCESS;
     if (!hotplug_) last_error_ = rc;
   }
@@ -47,7 +47,7 @@ Status LibusbByteStream::init() {
 }
 
 int LibusbCallbacks::on_hotplug(libusb_context*, libusb_device*, libusb_hotplug_event event,
-                                 void* self) {
+                                void* self) {
   auto* s = static_cast<LibusbByteStream*>(self);
   if (event == LIBUSB_HOTPLUG_EVENT_DEVICE_ARRIVED) s->arrived_ = true;
   if (event == LIBUSB_HOTPLUG_EVENT_DEVICE_LEFT && s->handle_ != nullptr) s->removed_ = true;
@@ -57,14 +57,16 @@ int LibusbCallbacks::on_hotplug(libusb_context*, libusb_device*, libusb_hotplug_
 void LibusbCallbacks::on_in_transfer(libusb_transfer* transfer) {
   auto* s = static_cast<LibusbByteStream*>(transfer->user_data);
   s->in_flight_ = false;
-  if (transfer->status == LIBUSB_TRANSFER_COMPLETED || transfer->status == LIBUSB_TRANSFER_TIMED_OUT) {
+  if (transfer->status == LIBUSB_TRANSFER_COMPLETED ||
+      transfer->status == LIBUSB_TRANSFER_TIMED_OUT) {
     const auto n = static_cast<std::size_t>(std::max(transfer->actual_length, 0));
     for (std::size_t i = 0; i < n; ++i) {
       if (s->rx_count_ == LibusbByteStream::kRxBytes) {
         s->rx_dropped_ += n - i;
         break;
       }
-      s->rx_[(s->rx_head_ + s->rx_count_) % LibusbByteStream::kRxBytes] = static_cast<std::byte>(s->in_buffer_[i]);
+      s->rx_[(s->rx_head_ + s->rx_count_) % LibusbByteStream::kRxBytes] =
+          static_cast<std::byte>(s->in_buffer_[i]);
       ++s->rx_count_;
     }
     if (s->handle_ != nullptr && libusb_submit_transfer(transfer) == 0) s->in_flight_ = true;
@@ -162,7 +164,8 @@ Result<std::size_t> LibusbByteStream::do_write(std::span<const std::byte> src) {
   auto* data = const_cast<unsigned char*>(reinterpret_cast<const unsigned char*>(src.data()));
   const int rc = libusb_bulk_transfer(handle_, config_.endpoint_out, data,
                                       static_cast<int>(src.size()), &sent, config_.timeout_ms);
-  if (rc == LIBUSB_ERROR_NO_DEVICE || rc == LIBUSB_ERROR_IO || rc == LIBUSB_ERROR_PIPE) return gone(rc);
+  if (rc == LIBUSB_ERROR_NO_DEVICE || rc == LIBUSB_ERROR_IO || rc == LIBUSB_ERROR_PIPE)
+    return gone(rc);
   if (rc != 0 && rc != LIBUSB_ERROR_TIMEOUT) {
     last_error_ = rc;
     return StatusCode::io_error;

@@ -58,7 +58,11 @@ class FastrakResponder {
     auto n = tracker::encode_record(p, config_, buf);
     stream_.push_rx(std::span<const std::byte>(buf.data(), *n));
   }
-  void unplugged() { streaming_ = false; seen_ = 0; stream_.clear_tx(); }
+  void unplugged() {
+    streaming_ = false;
+    seen_ = 0;
+    stream_.clear_tx();
+  }
   bool streaming() const { return streaming_; }
 
  private:
@@ -320,8 +324,8 @@ TEST_F(StationTest, RestartContinuesTheJournalAfterATornTail) {
   right_stroke({10.0f, 0.0f, 5.0f}, {12.0f, 0.0f, 5.0f});
   ASSERT_EQ(journal_records().size(), 1u);
   // Power cut in the middle of the next append: half a record lands on disk.
-  const std::array<std::byte, 7> torn{std::byte{40}, std::byte{0}, std::byte{0},
-                                      std::byte{0}, std::byte{1}, std::byte{1}, std::byte{0}};
+  const std::array<std::byte, 7> torn{std::byte{40}, std::byte{0}, std::byte{0}, std::byte{0},
+                                      std::byte{1},  std::byte{1}, std::byte{0}};
   ASSERT_TRUE(storage_.append(torn).ok());
 
   test::FakeByteStream stream2;

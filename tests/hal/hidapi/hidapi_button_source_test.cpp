@@ -91,9 +91,9 @@ TEST_F(HidapiButtonSourceTest, OpensByIdsNonBlockingAndMapsReportsToEdges) {
   EXPECT_EQ(port.line_count(), 2);
   EXPECT_EQ(port.poll().status().code(), StatusCode::unavailable);
 
-  g_hid.reports.push_back({0x00, 0x04});        // left pedal down
-  g_hid.reports.push_back({0x00, 0x04});        // repeat report: no edge
-  g_hid.reports.push_back({0x00, 0x08 | 0x01}); // left up, right down (0x01 not mapped)
+  g_hid.reports.push_back({0x00, 0x04});         // left pedal down
+  g_hid.reports.push_back({0x00, 0x04});         // repeat report: no edge
+  g_hid.reports.push_back({0x00, 0x08 | 0x01});  // left up, right down (0x01 not mapped)
   clock_.advance_us(1'000);
   auto e = port.poll();
   ASSERT_TRUE(e.ok());

@@ -104,13 +104,20 @@ backend = "gpio"
 )");
   const std::string m = messages(r);
   EXPECT_NE(m.find("t.toml:6: tracker.left_station: expected an integer from 1 to 4, got 7\n"),
-            std::string::npos) << m;
+            std::string::npos)
+      << m;
   EXPECT_NE(m.find("t.toml:9: tracker.serial.baud: expected one of 2400 4800 9600 19200 38400 "
-                   "57600 115200, got 12345\n"), std::string::npos) << m;
+                   "57600 115200, got 12345\n"),
+            std::string::npos)
+      << m;
   EXPECT_NE(m.find("t.toml:10: tracker.serial.flow_control: expected one of \"none\" \"rtscts\" "
-                   "\"xonxoff\", got \"hardware\"\n"), std::string::npos) << m;
+                   "\"xonxoff\", got \"hardware\"\n"),
+            std::string::npos)
+      << m;
   EXPECT_NE(m.find("t.toml:12: buttons.backend: expected one of \"gpiod\" \"hidapi\" \"stylus\", "
-                   "got \"gpio\"\n"), std::string::npos) << m;
+                   "got \"gpio\"\n"),
+            std::string::npos)
+      << m;
   EXPECT_EQ(r.errors.size(), 4u) << m;
 }
 
@@ -118,13 +125,18 @@ TEST(StationConfigTest, MissingRequiredKeysAndSections) {
   const auto r = parse("[station]\n[tracker]\nbackend = \"serial\"\n");
   const std::string m = messages(r);
   EXPECT_NE(m.find("t.toml:1: station.journal: missing required key; expected a string\n"),
-            std::string::npos) << m;
+            std::string::npos)
+      << m;
   EXPECT_NE(m.find("t.toml:1: station.mesh: missing required key; expected a string\n"),
-            std::string::npos) << m;
+            std::string::npos)
+      << m;
   EXPECT_NE(m.find("t.toml:2: tracker.serial: missing required key; expected a table "
-                   "[tracker.serial]\n"), std::string::npos) << m;
+                   "[tracker.serial]\n"),
+            std::string::npos)
+      << m;
   EXPECT_NE(m.find("t.toml:1: buttons: missing required key; expected a table [buttons]\n"),
-            std::string::npos) << m;
+            std::string::npos)
+      << m;
 }
 
 TEST(StationConfigTest, SameReceiverForBothHandsIsRefused) {
@@ -132,8 +144,9 @@ TEST(StationConfigTest, SameReceiverForBothHandsIsRefused) {
   text.replace(text.find("backend = \"serial\""), 18, "backend = \"serial\"\nright_station = 1");
   const auto r = parse(text);
   ASSERT_EQ(r.errors.size(), 1u) << messages(r);
-  EXPECT_EQ(r.errors[0].to_string(), "t.toml:7: tracker.right_station: expected a receiver "
-                                     "different from tracker.left_station (both are 1)");
+  EXPECT_EQ(r.errors[0].to_string(),
+            "t.toml:7: tracker.right_station: expected a receiver "
+            "different from tracker.left_station (both are 1)");
 }
 
 TEST(StationConfigTest, GpiodLineListIsChecked) {
@@ -150,11 +163,15 @@ bias = "up"
 )");
   const std::string m = messages(r);
   EXPECT_NE(m.find("t.toml:9: buttons.gpiod.lines: expected line offsets from 0 to 1023, got -1\n"),
-            std::string::npos) << m;
+            std::string::npos)
+      << m;
   EXPECT_NE(m.find("t.toml:9: buttons.gpiod.lines: expected each line offset once, got 3 twice\n"),
-            std::string::npos) << m;
+            std::string::npos)
+      << m;
   EXPECT_NE(m.find("t.toml:10: buttons.gpiod.bias: expected one of \"as-is\" \"disable\" "
-                   "\"pull-up\" \"pull-down\", got \"up\"\n"), std::string::npos) << m;
+                   "\"pull-up\" \"pull-down\", got \"up\"\n"),
+            std::string::npos)
+      << m;
   EXPECT_EQ(r.errors.size(), 3u) << m;
 }
 
@@ -172,13 +189,21 @@ buttons = [ { byte = 1, mask = 0 }, 5, { byte = 2, mask = 1, bit = 3 } ]
 )");
   const std::string m = messages(r);
   EXPECT_NE(m.find("t.toml:8: buttons.hidapi.product_id: missing required key; expected an "
-                   "integer from 0 to 65535\n"), std::string::npos) << m;
+                   "integer from 0 to 65535\n"),
+            std::string::npos)
+      << m;
   EXPECT_NE(m.find("t.toml:10: buttons.hidapi.buttons[0].mask: expected an integer from 1 to 255, "
-                   "got 0\n"), std::string::npos) << m;
+                   "got 0\n"),
+            std::string::npos)
+      << m;
   EXPECT_NE(m.find("t.toml:10: buttons.hidapi.buttons[1]: expected an inline table { byte = N, "
-                   "mask = M }, got an integer\n"), std::string::npos) << m;
+                   "mask = M }, got an integer\n"),
+            std::string::npos)
+      << m;
   EXPECT_NE(m.find("t.toml:10: buttons.hidapi.buttons[2].bit: unknown key (allowed here: byte, "
-                   "mask)\n"), std::string::npos) << m;
+                   "mask)\n"),
+            std::string::npos)
+      << m;
   EXPECT_EQ(r.errors.size(), 4u) << m;
 }
 

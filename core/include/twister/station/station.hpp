@@ -48,17 +48,17 @@ struct StationConfig {
 };
 
 struct StationCounters {
-  std::uint64_t poses = 0;             // converted poses used for a hand
-  std::uint64_t pose_errors = 0;       // poses that failed conversion (skipped)
-  std::uint64_t foreign_poses = 0;     // poses of receivers bound to no hand
-  std::uint64_t button_edges = 0;     // from the ButtonSource and the stylus
-  std::uint64_t button_errors = 0;     // ButtonSource io_error / out-of-range lines
+  std::uint64_t poses = 0;          // converted poses used for a hand
+  std::uint64_t pose_errors = 0;    // poses that failed conversion (skipped)
+  std::uint64_t foreign_poses = 0;  // poses of receivers bound to no hand
+  std::uint64_t button_edges = 0;   // from the ButtonSource and the stylus
+  std::uint64_t button_errors = 0;  // ButtonSource io_error / out-of-range lines
   std::uint64_t strokes_committed = 0;
   std::uint64_t strokes_cancelled = 0;
   std::uint64_t refused = 0;
   std::uint64_t session_events_dropped = 0;
   std::uint64_t journal_errors = 0;
-  std::uint64_t events_dropped = 0;    // event queue full (the log is behind)
+  std::uint64_t events_dropped = 0;  // event queue full (the log is behind)
 };
 
 class Station {
