@@ -61,6 +61,7 @@ void StationLink::receive() {
     if (!got.ok()) {
       if (connected_) ++counters_.disconnects;
       connected_ = false;
+      peer_hello_ = false;
       out_size_ = 0;  // a torn frame is harmless: the next peer resyncs at 0x00
       full_active_ = false;
       decoder_.reset();
@@ -89,6 +90,7 @@ void StationLink::on_message(const LinkMessage& m) {
   if (m.type == MessageType::hello && m.hello.role == Role::bridge) {
     have = m.hello.mesh_version;
     sum = m.hello.mesh_checksum;
+    peer_hello_ = true;
   } else if (m.type == MessageType::resend_request) {
     ++counters_.resend_requests;
     have = m.resend_request.have_version;

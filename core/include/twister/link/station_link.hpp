@@ -66,6 +66,8 @@ class StationLink {
   // Bytes waiting for the port (0 = everything handed to the peer).
   std::size_t pending_bytes() const { return out_size_; }
   bool idle() const { return out_size_ == 0 && !full_active_ && !full_wanted_; }
+  // A peer said hello and everything it needs has been handed to the port.
+  bool peer_synced() const { return connected_ && peer_hello_ && idle(); }
   const StationLinkCounters& counters() const { return counters_; }
   const DecoderCounters& decoder_counters() const { return decoder_.counters(); }
 
@@ -94,6 +96,7 @@ class StationLink {
   std::size_t out_size_ = 0;
   bool started_ = false;
   bool connected_ = false;
+  bool peer_hello_ = false;
   std::uint32_t version_ = 0;
   std::uint32_t last_sequence_ = 0;
   // Full send in progress (from the shadow).
