@@ -30,6 +30,10 @@ class ByteRing {
   std::size_t size() const { return count_; }
   bool empty() const { return count_ == 0; }
   void clear() { head_ = count_ = 0; }
+  // Line noise: flips bits of the byte `offset` bytes after the oldest one.
+  void flip(std::size_t offset, std::byte mask) {
+    if (offset < count_) data_[(head_ + offset) % data_.size()] ^= mask;
+  }
 
  private:
   std::vector<std::byte> data_;
