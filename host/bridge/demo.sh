@@ -52,10 +52,8 @@ export EGL_PLATFORM=surfaceless
 unset DISPLAY WAYLAND_DISPLAY
 "$bridge" --connect "unix:$sock" --offscreen --size 960x720 --snapshots "$out/pictures" \
   --export "$out/final.obj" --exit-on-disconnect --timeout 50 2> "$out/bridge.log" \
-  > "$out/pictures.txt"
-bridge_rc=$?
-wait "$station_pid"
-station_rc=$?
+  > "$out/pictures.txt" && bridge_rc=0 || bridge_rc=$?
+wait "$station_pid" && station_rc=0 || station_rc=$?
 trap - EXIT
 cat "$out/station.log" "$out/bridge.log"
 if [[ $bridge_rc -ne 0 || $station_rc -ne 0 ]]; then
@@ -63,6 +61,14 @@ if [[ $bridge_rc -ne 0 || $station_rc -ne 0 ]]; then
   exit 1
 fi
 grep -q "commit -> mesh version" "$out/bridge.log" || { echo "demo: no commit reached the display" >&2; exit 1; }
+# The display's final mesh must be the station's, bit for bit.
+station_sum="$(sed -n 's/^twister-station: mesh checksum \([0-9a-f]*\)$/\1/p' "$out/station.log")"
+bridge_sum="$(sed -n 's/^twister-bridge: exported mesh version [0-9]* (checksum \([0-9a-f]*\)).*/\1/p' "$out/bridge.log")"
+if [[ -z "$station_sum" || "$station_sum" != "$bridge_sum" ]]; then
+  echo "demo: final mesh differs (station $station_sum, bridge $bridge_sum)" >&2
+  exit 1
+fi
+echo "demo: station and display agree on the final mesh (checksum $station_sum)"
 echo
 echo "Pictures (rest, live warp, after commit):"
 sed 's/^/  /' "$out/pictures.txt"
