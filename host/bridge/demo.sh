@@ -50,7 +50,7 @@ trap 'kill "$station_pid" 2>/dev/null || true' EXIT
 for _ in $(seq 100); do [[ -S "$sock" ]] && break; sleep 0.05; done
 export EGL_PLATFORM=surfaceless
 unset DISPLAY WAYLAND_DISPLAY
-"$bridge" --connect "unix:$sock" --offscreen --size 960x720 --snapshots "$out/pictures" \
+"$bridge" --connect "unix:$sock" --offscreen --size 960x720 --azimuth 130 --elevation 30 --snapshots "$out/pictures" \
   --export "$out/final.obj" --exit-on-disconnect --timeout 50 2> "$out/bridge.log" \
   > "$out/pictures.txt" && bridge_rc=0 || bridge_rc=$?
 wait "$station_pid" && station_rc=0 || station_rc=$?
