@@ -52,8 +52,8 @@ std::size_t BridgeApp::step() {
 void BridgeApp::handle(const link::LinkMessage& m) {
   // The live warp just before a commit is the stroke's final preview: picture it
   // before the change set replaces the rest mesh.
-  if (m.type == link::MessageType::mesh_begin && !m.mesh_begin.full &&
-      replica_.live().active && !options_.snapshot_dir.empty()) {
+  if (m.type == link::MessageType::mesh_begin && !m.mesh_begin.full && replica_.live().active &&
+      !options_.snapshot_dir.empty()) {
     refresh_display();
     snapshot("live-" + std::to_string(m.mesh_begin.version));
   }
@@ -96,7 +96,8 @@ void BridgeApp::handle(const link::LinkMessage& m) {
 void BridgeApp::send(const link::LinkMessage& m) {
   std::array<std::byte, link::kMaxFrameBytes> frame{};
   const auto n = link::encode_frame(m, frame);
-  if (n.ok()) out_.insert(out_.end(), frame.begin(), frame.begin() + static_cast<std::ptrdiff_t>(*n));
+  if (n.ok())
+    out_.insert(out_.end(), frame.begin(), frame.begin() + static_cast<std::ptrdiff_t>(*n));
 }
 
 void BridgeApp::flush() {

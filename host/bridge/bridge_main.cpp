@@ -40,7 +40,8 @@ int run(const Options& opt) {
   int height = 600;
   if (std::sscanf(opt.size.c_str(), "%dx%d", &width, &height) != 2 || width < 16 || height < 16 ||
       width > 8192 || height > 8192) {
-    std::fprintf(stderr, "twister-bridge: --size must be WxH (16..8192), got %s\n", opt.size.c_str());
+    std::fprintf(stderr, "twister-bridge: --size must be WxH (16..8192), got %s\n",
+                 opt.size.c_str());
     return 2;
   }
   if (!opt.snapshots.empty()) std::filesystem::create_directories(opt.snapshots);
@@ -84,8 +85,7 @@ int run(const Options& opt) {
     if (opt.exit_on_disconnect && app.counters().disconnects > 0 && app.replica().has_mesh()) {
       break;
     }
-    if (opt.exit_after_commits > 0 &&
-        app.replica().counters().commits >= opt.exit_after_commits) {
+    if (opt.exit_after_commits > 0 && app.replica().counters().commits >= opt.exit_after_commits) {
       break;
     }
     const double elapsed =
@@ -108,8 +108,7 @@ int run(const Options& opt) {
       return 1;
     }
     std::fprintf(stderr, "twister-bridge: exported mesh version %u (checksum %016llx) to %s\n",
-                 app.replica().version(),
-                 static_cast<unsigned long long>(app.replica().checksum()),
+                 app.replica().version(), static_cast<unsigned long long>(app.replica().checksum()),
                  opt.export_path.c_str());
   }
   const auto& c = app.replica().counters();
@@ -136,7 +135,8 @@ int main(int argc, char** argv) {
   CLI::App cli{"twister-bridge: scene replica and display of a twister-station"};
   Options opt;
   cli.add_option("--connect", opt.connect, "station link: unix:PATH or tcp:HOST:PORT")->required();
-  cli.add_flag("--offscreen", opt.offscreen, "no window: EGL surfaceless rendering (PNG snapshots)");
+  cli.add_flag("--offscreen", opt.offscreen,
+               "no window: EGL surfaceless rendering (PNG snapshots)");
   cli.add_flag("--kiosk", opt.kiosk, "full screen on the primary monitor");
   cli.add_option("--size", opt.size, "WxH in pixels (window or offscreen)");
   cli.add_option("--snapshots", opt.snapshots,

@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "twister/meshio/obj_file.hpp"
 #include "twister/mesh/mesh.hpp"
+#include "twister/meshio/obj_file.hpp"
 
 namespace twister::bridge {
 namespace {
@@ -51,7 +51,8 @@ bool export_mesh(const std::string& path, const MeshData& m, std::string& messag
   std::vector<float> x(m.x), y(m.y), z(m.z);
   std::vector<std::uint32_t> idx(m.indices.size());
   mesh::Mesh mesh(x, y, z, idx);
-  for (std::size_t i = 0; i < m.vertex_count(); ++i) (void)mesh.add_vertex({m.x[i], m.y[i], m.z[i]});
+  for (std::size_t i = 0; i < m.vertex_count(); ++i)
+    (void)mesh.add_vertex({m.x[i], m.y[i], m.z[i]});
   for (std::size_t t = 0; t < m.triangle_count(); ++t) {
     (void)mesh.add_triangle(m.indices[3 * t], m.indices[3 * t + 1], m.indices[3 * t + 2]);
   }

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -244,20 +243,20 @@ void MeshRenderer::draw() {
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   const glm::vec3 up(view_.up[0], view_.up[1], view_.up[2]);
   // A horizontal reference perpendicular to up, then azimuth/elevation about it.
-  glm::vec3 side = glm::normalize(glm::cross(up, std::abs(up.x) < 0.9F ? glm::vec3(1, 0, 0)
-                                                                      : glm::vec3(0, 1, 0)));
+  glm::vec3 side = glm::normalize(
+      glm::cross(up, std::abs(up.x) < 0.9F ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)));
   const glm::vec3 fwd = glm::cross(side, up);
   const float az = glm::radians(view_.azimuth_deg);
   const float el = glm::radians(view_.elevation_deg);
-  const glm::vec3 dir = std::cos(el) * (std::cos(az) * fwd + std::sin(az) * side) +
-                        std::sin(el) * up;
+  const glm::vec3 dir =
+      std::cos(el) * (std::cos(az) * fwd + std::sin(az) * side) + std::sin(el) * up;
   const glm::vec3 center(center_[0], center_[1], center_[2]);
   const float fov = glm::radians(35.0F);
   const float distance = 1.1F * radius_ / std::sin(0.5F * fov);
   const glm::vec3 eye = center + distance * dir;
-  const glm::mat4 proj = glm::perspective(
-      fov, static_cast<float>(width_) / static_cast<float>(std::max(height_, 1)),
-      0.05F * distance, 4.0F * distance);
+  const glm::mat4 proj =
+      glm::perspective(fov, static_cast<float>(width_) / static_cast<float>(std::max(height_, 1)),
+                       0.05F * distance, 4.0F * distance);
   const glm::mat4 mvp = proj * glm::lookAt(eye, center, up);
   glUseProgram(program_);
   glUniformMatrix4fv(glGetUniformLocation(program_, "u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
@@ -320,7 +319,8 @@ bool write_png(const std::string& path, int width, int height,
                PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
   for (int y = 0; y < height; ++y) {
-    png_write_row(png, rgba.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width) * 4);
+    png_write_row(png,
+                  rgba.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width) * 4);
   }
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);

@@ -138,8 +138,8 @@ void SceneReplica::on_live(const link::LiveWarp& l) {
     return;
   }
   const bool new_stroke = !live_.active || l.stroke != live_.stroke ||
-                          l.hand_mask != live_.hand_mask ||
-                          l.radius_m != live_.message.radius_m || l.method != live_.message.method;
+                          l.hand_mask != live_.hand_mask || l.radius_m != live_.message.radius_m ||
+                          l.method != live_.message.method;
   live_.message = l;
   live_.stroke = l.stroke;
   live_.hand_mask = l.hand_mask;
@@ -174,8 +174,9 @@ std::unique_ptr<PlanHolder> build_plan(const MeshData& mesh, const link::LiveWar
     ++hands;
   }
   const math::ConstVertexColumns rest{mesh.x, mesh.y, mesh.z};
-  if (!h->plan->build(rest, std::span<const math::Frame>(start.data(), hands), l.radius_m,
-                      static_cast<math::WarpMethod>(l.method))
+  if (!h->plan
+           ->build(rest, std::span<const math::Frame>(start.data(), hands), l.radius_m,
+                   static_cast<math::WarpMethod>(l.method))
            .ok()) {
     return nullptr;
   }

@@ -31,12 +31,12 @@ struct ReplicaCounters {
   std::uint64_t full_meshes = 0;
   std::uint64_t commits = 0;
   std::uint64_t checksum_mismatches = 0;
-  std::uint64_t version_gaps = 0;      // a commit for a version we do not hold
-  std::uint64_t malformed = 0;         // chunk outside the announced counts
+  std::uint64_t version_gaps = 0;  // a commit for a version we do not hold
+  std::uint64_t malformed = 0;     // chunk outside the announced counts
   std::uint64_t resend_requests = 0;
   std::uint64_t live_frames = 0;
-  std::uint64_t live_stale = 0;        // for another mesh version (ignored)
-  std::uint64_t plan_errors = 0;       // the live stroke's plan could not be built
+  std::uint64_t live_stale = 0;   // for another mesh version (ignored)
+  std::uint64_t plan_errors = 0;  // the live stroke's plan could not be built
 };
 
 // Per-vertex stroke data for the display.

@@ -31,7 +31,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   if (decoder.counters().bytes_skipped > size) std::abort();
   static twister::link::LinkMessage direct;
-  if (twister::link::decode_payload({reinterpret_cast<const std::byte*>(data), size}, direct).ok()) {
+  if (twister::link::decode_payload({reinterpret_cast<const std::byte*>(data), size}, direct)
+          .ok()) {
     const auto n = twister::link::encode_frame(direct, a);
     if (!n.ok()) std::abort();
     twister::link::LinkDecoder again;

@@ -21,7 +21,8 @@ using input::test_support::Station;
 using input::test_support::z_turn;
 
 struct Rig {
-  Rig() : station_end(wire, true), bridge_end(wire, false), bridge(bridge_end, nullptr, {{}, false}) {
+  Rig()
+      : station_end(wire, true), bridge_end(wire, false), bridge(bridge_end, nullptr, {{}, false}) {
     const std::size_t n = station.mesh.vertex_capacity();
     x.resize(n);
     y.resize(n);

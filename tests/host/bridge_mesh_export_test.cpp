@@ -1,7 +1,5 @@
 // Mesh export of the replica: OBJ reloads bit-identically (same checksum); PLY has
 // the header and exact binary size; unknown extensions are refused.
-#include "mesh_export.hpp"
-
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -9,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "mesh_export.hpp"
 #include "twister/meshio/obj_file.hpp"
 
 namespace twister::bridge {

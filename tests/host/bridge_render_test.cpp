@@ -13,8 +13,8 @@
 #include "mesh_renderer.hpp"
 #include "scene_replica.hpp"
 #include "twister/math/screw.hpp"
-#include "twister/meshio/mesh_generator.hpp"
 #include "twister/mesh/mesh.hpp"
+#include "twister/meshio/mesh_generator.hpp"
 
 namespace twister::bridge {
 namespace {

@@ -1,9 +1,8 @@
 // SceneReplica: full mesh, commits verified by checksum, resend on mismatch or on
 // a commit for a version it does not hold; live stroke weights from the core plan.
-#include "scene_replica.hpp"
-
 #include <gtest/gtest.h>
 
+#include "scene_replica.hpp"
 #include "twister/math/frame.hpp"
 #include "twister/math/screw.hpp"
 

@@ -1,13 +1,13 @@
 // SocketLink (hal/link), the transport twister-station and twister-bridge use:
 // Unix and TCP loopback, non-blocking, client reconnect, newest peer wins.
-#include "twister/hal/socket_link.hpp"
-
 #include <gtest/gtest.h>
 #include <poll.h>
 #include <unistd.h>
 
 #include <string>
 #include <vector>
+
+#include "twister/hal/socket_link.hpp"
 
 namespace twister::hal {
 namespace {
@@ -71,8 +71,8 @@ TEST(BridgeSocketLink, TcpLoopbackExchangeReconnectAndNewestPeerWins) {
 }
 
 TEST(BridgeSocketLink, BadAddressesAreRefused) {
-  for (const char* a : {"", "unix:", "tcp:127.0.0.1", "tcp:localhost:80", "tcp:127.0.0.1:0",
-                        "serial:/dev/ttyS0"}) {
+  for (const char* a :
+       {"", "unix:", "tcp:127.0.0.1", "tcp:localhost:80", "tcp:127.0.0.1:0", "serial:/dev/ttyS0"}) {
     SocketLink link({a, true, 0});
     EXPECT_EQ(link.open().code(), StatusCode::invalid_argument) << a;
   }

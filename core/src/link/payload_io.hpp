@@ -6,9 +6,8 @@
 #include <bit>
 #include <cstddef>
 #include <cstdint>
-#include <span>
-
 #include <glm/vec3.hpp>
+#include <span>
 
 namespace twister::link::internal {
 
@@ -35,7 +34,8 @@ class PayloadWriter {
       ok_ = false;
       return;
     }
-    for (std::size_t i = 0; i < n; ++i) out_[size_++] = static_cast<std::byte>((v >> (8 * i)) & 0xffu);
+    for (std::size_t i = 0; i < n; ++i)
+      out_[size_++] = static_cast<std::byte>((v >> (8 * i)) & 0xffu);
   }
   std::span<std::byte> out_;
   std::size_t size_ = 0;

@@ -135,9 +135,9 @@ bool StationLink::queue_commit(const mesh::Mesh& mesh, std::uint32_t old_vertice
     return false;
   };
   scratch_.type = MessageType::mesh_begin;
-  scratch_.mesh_begin = MeshBegin{false, version_ - 1, version_,
-                                  static_cast<std::uint32_t>(mesh.vertex_count()),
-                                  static_cast<std::uint32_t>(mesh.triangle_count())};
+  scratch_.mesh_begin =
+      MeshBegin{false, version_ - 1, version_, static_cast<std::uint32_t>(mesh.vertex_count()),
+                static_cast<std::uint32_t>(mesh.triangle_count())};
   if (!queue(scratch_)) return fail();
   scratch_.type = MessageType::vertices;
   scratch_.vertices.count = 0;
@@ -148,10 +148,11 @@ bool StationLink::queue_commit(const mesh::Mesh& mesh, std::uint32_t old_vertice
   const auto my = mesh.y();
   const auto mz = mesh.z();
   for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
-    const bool changed = i >= old_vertices ||
-                         std::bit_cast<std::uint32_t>(sx[i]) != std::bit_cast<std::uint32_t>(mx[i]) ||
-                         std::bit_cast<std::uint32_t>(sy[i]) != std::bit_cast<std::uint32_t>(my[i]) ||
-                         std::bit_cast<std::uint32_t>(sz[i]) != std::bit_cast<std::uint32_t>(mz[i]);
+    const bool changed =
+        i >= old_vertices ||
+        std::bit_cast<std::uint32_t>(sx[i]) != std::bit_cast<std::uint32_t>(mx[i]) ||
+        std::bit_cast<std::uint32_t>(sy[i]) != std::bit_cast<std::uint32_t>(my[i]) ||
+        std::bit_cast<std::uint32_t>(sz[i]) != std::bit_cast<std::uint32_t>(mz[i]);
     if (!changed) continue;
     scratch_.vertices.items[scratch_.vertices.count++] =
         VertexEntry{static_cast<std::uint32_t>(i), mx[i], my[i], mz[i]};
@@ -183,9 +184,9 @@ void StationLink::continue_full() {
     switch (full_phase_) {
       case FullPhase::begin:
         scratch_.type = MessageType::mesh_begin;
-        scratch_.mesh_begin = MeshBegin{true, 0, version_,
-                                        static_cast<std::uint32_t>(shadow_.vertex_count()),
-                                        static_cast<std::uint32_t>(shadow_.triangle_count())};
+        scratch_.mesh_begin =
+            MeshBegin{true, 0, version_, static_cast<std::uint32_t>(shadow_.vertex_count()),
+                      static_cast<std::uint32_t>(shadow_.triangle_count())};
         queue(scratch_);
         full_phase_ = FullPhase::vertices;
         full_next_ = 0;
@@ -213,8 +214,9 @@ void StationLink::continue_full() {
         scratch_.type = MessageType::triangles;
         scratch_.triangles.first = static_cast<std::uint32_t>(full_next_);
         scratch_.triangles.count = static_cast<std::uint16_t>(n);
-        std::copy_n(shadow_.triangle_indices().begin() + static_cast<std::ptrdiff_t>(3 * full_next_),
-                    3 * n, scratch_.triangles.indices.begin());
+        std::copy_n(
+            shadow_.triangle_indices().begin() + static_cast<std::ptrdiff_t>(3 * full_next_), 3 * n,
+            scratch_.triangles.indices.begin());
         if (n > 0) queue(scratch_);
         full_next_ += n;
         if (full_next_ >= shadow_.triangle_count()) full_phase_ = FullPhase::end;
@@ -271,14 +273,14 @@ void StationLink::send_status(const input::SculptSession& session, ports::Timest
   if (status_sent_ && now_us - last_status_us_ < config_.status_interval_us) return;
   if (full_active_ || room() < 2 * kMaxFrameBytes) return;  // keep room for commits
   scratch_.type = MessageType::status;
-  scratch_.status = StatusReport{version_,
-                                 session.next_sequence(),
-                                 counters_.live_sent,
-                                 counters_.live_dropped,
-                                 counters_.full_sends,
-                                 counters_.commits_sent,
-                                 decoder_.counters().bad_crc + decoder_.counters().bad_cobs +
-                                     decoder_.counters().bad_payload};
+  scratch_.status = StatusReport{
+      version_,
+      session.next_sequence(),
+      counters_.live_sent,
+      counters_.live_dropped,
+      counters_.full_sends,
+      counters_.commits_sent,
+      decoder_.counters().bad_crc + decoder_.counters().bad_cobs + decoder_.counters().bad_payload};
   if (queue(scratch_)) {
     status_sent_ = true;
     last_status_us_ = now_us;
@@ -295,7 +297,8 @@ bool StationLink::queue(const LinkMessage& m) {
 void StationLink::flush() {
   std::size_t sent = 0;
   while (sent < out_size_) {
-    const Result<std::size_t> n = port_.send(std::span<const std::byte>(out_).subspan(sent, out_size_ - sent));
+    const Result<std::size_t> n =
+        port_.send(std::span<const std::byte>(out_).subspan(sent, out_size_ - sent));
     if (!n.ok()) {
       ++counters_.send_errors;
       break;

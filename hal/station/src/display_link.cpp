@@ -9,8 +9,8 @@ namespace twister::hal {
 std::string DisplayLink::open(const std::string& address, const input::SculptSession& session) {
   socket_ = std::make_unique<SocketLink>(SocketLinkConfig{address, true, 200});
   if (const Status s = socket_->open(); !s.ok()) {
-    return "link " + address + ": " + s.name() + " (errno " + std::to_string(socket_->last_errno()) +
-           ")";
+    return "link " + address + ": " + s.name() + " (errno " +
+           std::to_string(socket_->last_errno()) + ")";
   }
   const std::size_t n = session.mesh().vertex_capacity();
   x_.resize(n);

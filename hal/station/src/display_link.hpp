@@ -24,9 +24,7 @@ class DisplayLink {
   bool wait_for_peer(const input::SculptSession& session, double seconds);
   // Hands everything queued to the peer (up to `seconds`).
   void drain(const input::SculptSession& session, ports::TimestampUs now_us, double seconds);
-  const link::StationLinkCounters* counters() const {
-    return link_ ? &link_->counters() : nullptr;
-  }
+  const link::StationLinkCounters* counters() const { return link_ ? &link_->counters() : nullptr; }
 
  private:
   std::unique_ptr<SocketLink> socket_;

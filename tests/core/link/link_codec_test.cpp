@@ -33,33 +33,43 @@ LinkMessage random_message() {
   LinkMessage m;
   const auto type = *rc::gen::inRange<int>(1, 9);
   m.type = static_cast<MessageType>(type);
-  const auto f = [] { return *rc::gen::map(rc::gen::inRange(-100000, 100000), [](int v) { return static_cast<float>(v) / 1000.0F; }); };
-  const auto d = [] { return *rc::gen::map(rc::gen::arbitrary<std::int32_t>(), [](std::int32_t v) { return static_cast<double>(v) / 7.0; }); };
+  const auto f = [] {
+    return *rc::gen::map(rc::gen::inRange(-100000, 100000),
+                         [](int v) { return static_cast<float>(v) / 1000.0F; });
+  };
+  const auto d = [] {
+    return *rc::gen::map(rc::gen::arbitrary<std::int32_t>(),
+                         [](std::int32_t v) { return static_cast<double>(v) / 7.0; });
+  };
   switch (m.type) {
     case MessageType::hello:
-      m.hello = Hello{*rc::gen::element(Role::station, Role::bridge), *rc::gen::arbitrary<std::uint32_t>(),
-                      *rc::gen::arbitrary<std::uint64_t>()};
+      m.hello = Hello{*rc::gen::element(Role::station, Role::bridge),
+                      *rc::gen::arbitrary<std::uint32_t>(), *rc::gen::arbitrary<std::uint64_t>()};
       break;
     case MessageType::mesh_begin:
-      m.mesh_begin = MeshBegin{*rc::gen::arbitrary<bool>(), *rc::gen::arbitrary<std::uint32_t>(),
-                               *rc::gen::arbitrary<std::uint32_t>(), *rc::gen::arbitrary<std::uint32_t>(),
-                               *rc::gen::arbitrary<std::uint32_t>()};
+      m.mesh_begin =
+          MeshBegin{*rc::gen::arbitrary<bool>(), *rc::gen::arbitrary<std::uint32_t>(),
+                    *rc::gen::arbitrary<std::uint32_t>(), *rc::gen::arbitrary<std::uint32_t>(),
+                    *rc::gen::arbitrary<std::uint32_t>()};
       break;
     case MessageType::vertices:
-      m.vertices.count = static_cast<std::uint16_t>(*rc::gen::inRange<int>(0, kMaxVerticesPerChunk + 1));
+      m.vertices.count =
+          static_cast<std::uint16_t>(*rc::gen::inRange<int>(0, kMaxVerticesPerChunk + 1));
       for (std::size_t i = 0; i < m.vertices.count; ++i) {
         m.vertices.items[i] = VertexEntry{*rc::gen::arbitrary<std::uint32_t>(), f(), f(), f()};
       }
       break;
     case MessageType::triangles:
       m.triangles.first = *rc::gen::arbitrary<std::uint32_t>();
-      m.triangles.count = static_cast<std::uint16_t>(*rc::gen::inRange<int>(0, kMaxTrianglesPerChunk + 1));
+      m.triangles.count =
+          static_cast<std::uint16_t>(*rc::gen::inRange<int>(0, kMaxTrianglesPerChunk + 1));
       for (std::size_t i = 0; i < 3u * m.triangles.count; ++i) {
         m.triangles.indices[i] = *rc::gen::arbitrary<std::uint32_t>();
       }
       break;
     case MessageType::mesh_end:
-      m.mesh_end = MeshEnd{*rc::gen::arbitrary<std::uint32_t>(), *rc::gen::arbitrary<std::uint64_t>()};
+      m.mesh_end =
+          MeshEnd{*rc::gen::arbitrary<std::uint32_t>(), *rc::gen::arbitrary<std::uint64_t>()};
       break;
     case MessageType::live_warp: {
       LiveWarp& l = m.live_warp;
@@ -82,7 +92,8 @@ LinkMessage random_message() {
       break;
     }
     case MessageType::resend_request:
-      m.resend_request = ResendRequest{*rc::gen::arbitrary<std::uint32_t>(), *rc::gen::arbitrary<std::uint64_t>()};
+      m.resend_request =
+          ResendRequest{*rc::gen::arbitrary<std::uint32_t>(), *rc::gen::arbitrary<std::uint64_t>()};
       break;
     case MessageType::status:
       m.status.mesh_version = *rc::gen::arbitrary<std::uint32_t>();
@@ -118,7 +129,8 @@ TEST(LinkCodec, DecoderResyncsAfterGarbageAndTornFrames) {
   const auto fa = encode(a);
   const auto fb = encode(b);
   std::vector<std::byte> stream;
-  for (int i = 1; i < 300; ++i) stream.push_back(static_cast<std::byte>(i * 37 % 255 + 1));  // garbage, no 0
+  for (int i = 1; i < 300; ++i)
+    stream.push_back(static_cast<std::byte>(i * 37 % 255 + 1));  // garbage, no 0
   stream.push_back(std::byte{0});
   stream.insert(stream.end(), fa.begin(), fa.begin() + 5);  // torn frame...
   stream.insert(stream.end(), fb.begin(), fb.end());        // ...swallowed with b's start

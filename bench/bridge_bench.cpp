@@ -1,0 +1,170 @@
+// twister-bridge costs: link codec throughput for live-warp frames (encode,
+// byte-wise decode) against a memcpy of the same bytes, and the offscreen frame
+// time on Mesa llvmpipe of a live warp in the vertex shader vs the same mesh at
+// rest (baseline: the warp's cost is the difference) and vs a CPU warp + upload.
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <vector>
+
+#include "gl_context.hpp"
+#include "mesh_renderer.hpp"
+#include "scene_replica.hpp"
+#include "twister/link/link_codec.hpp"
+#include "twister/math/screw.hpp"
+#include "twister/mesh/mesh.hpp"
+#include "twister/meshio/mesh_generator.hpp"
+
+namespace {
+
+using namespace twister;
+
+link::LinkMessage live_message(std::uint8_t mask) {
+  link::LinkMessage m;
+  m.type = link::MessageType::live_warp;
+  m.live_warp.active = true;
+  m.live_warp.mesh_version = 1;
+  m.live_warp.hand_mask = mask;
+  m.live_warp.radius_m = 0.12;
+  for (std::size_t h = 0; h < 2; ++h) {
+    auto& hand = m.live_warp.hands[h];
+    hand.start = math::identity_frame({0.0, h == 0 ? -0.1 : 0.1, 0.0});
+    hand.end = math::frame_from_uv({0.0, h == 0 ? -0.15 : 0.15, -0.03}, {1.0, 0.0, 0.0},
+                                   {0.0, 0.8253356149, 0.5646424734});
+    hand.screw = math::compute_screw(hand.start, hand.end);
+  }
+  return m;
+}
+
+void BM_LiveFrameEncodeDecode(benchmark::State& state) {
+  const auto m = live_message(static_cast<std::uint8_t>(state.range(0)));
+  std::vector<std::byte> frame(link::kMaxFrameBytes);
+  link::LinkDecoder decoder;
+  std::size_t bytes = 0;
+  for (auto _ : state) {
+    const auto n = link::encode_frame(m, frame);
+    for (std::size_t i = 0; i < *n; ++i) benchmark::DoNotOptimize(decoder.push(frame[i]));
+    bytes += *n;
+  }
+  state.SetBytesProcessed(static_cast<std::int64_t>(bytes));
+  state.counters["frame_bytes"] =
+      static_cast<double>(bytes) / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_LiveFrameEncodeDecode)->Arg(1)->Arg(3);
+
+void BM_LiveFrameMemcpyBaseline(benchmark::State& state) {
+  std::vector<std::byte> a(640), b(640);
+  for (auto _ : state) {
+    std::memcpy(b.data(), a.data(), a.size());
+    benchmark::ClobberMemory();
+  }
+  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) * 640);
+}
+BENCHMARK(BM_LiveFrameMemcpyBaseline);
+
+struct GlFixture {
+  std::unique_ptr<bridge::GlContext> context;
+  bridge::MeshRenderer renderer;
+  bridge::SceneReplica replica;
+  bool ok = false;
+};
+
+GlFixture& gl() {
+  static GlFixture f;
+  static bool init = false;
+  if (init) return f;
+  init = true;
+  ::unsetenv("DISPLAY");
+  std::string error;
+  f.context = bridge::make_offscreen_context(800, 600, error);
+  if (!f.context || !f.renderer.init(800, 600, true, {}).empty()) return f;
+  static mesh::MeshWithStorage<110000, 220000> sphere;
+  (void)meshio::make_sphere(sphere, 256, 400, 0.1F);  // ~102k vertices
+  bridge::MeshData d;
+  d.x.assign(sphere.x().begin(), sphere.x().end());
+  d.y.assign(sphere.y().begin(), sphere.y().end());
+  d.z.assign(sphere.z().begin(), sphere.z().end());
+  d.indices.assign(sphere.triangle_indices().begin(), sphere.triangle_indices().end());
+  link::LinkMessage b;
+  b.type = link::MessageType::mesh_begin;
+  b.mesh_begin = {true, 0, 1, static_cast<std::uint32_t>(d.vertex_count()),
+                  static_cast<std::uint32_t>(d.triangle_count())};
+  (void)f.replica.apply(b);
+  link::LinkMessage v;
+  v.type = link::MessageType::vertices;
+  for (std::uint32_t i = 0; i < d.vertex_count(); ++i) {
+    v.vertices.items[v.vertices.count++] = {i, d.x[i], d.y[i], d.z[i]};
+    if (v.vertices.count == link::kMaxVerticesPerChunk || i + 1 == d.vertex_count()) {
+      (void)f.replica.apply(v);
+      v.vertices.count = 0;
+    }
+  }
+  link::LinkMessage t;
+  t.type = link::MessageType::triangles;
+  for (std::uint32_t k = 0; k < d.triangle_count(); k += link::kMaxTrianglesPerChunk) {
+    const auto n = std::min<std::size_t>(link::kMaxTrianglesPerChunk, d.triangle_count() - k);
+    t.triangles.first = k;
+    t.triangles.count = static_cast<std::uint16_t>(n);
+    std::copy_n(d.indices.begin() + 3 * static_cast<std::ptrdiff_t>(k), 3 * n,
+                t.triangles.indices.begin());
+    (void)f.replica.apply(t);
+  }
+  link::LinkMessage e;
+  e.type = link::MessageType::mesh_end;
+  e.mesh_end = {1, *bridge::mesh_checksum(d)};
+  (void)f.replica.apply(e);
+  (void)f.replica.apply(live_message(3));
+  f.renderer.set_mesh(f.replica.mesh(), false);
+  f.renderer.set_weights(f.replica.live().weight1, f.replica.live().weight2);
+  f.ok = f.replica.live().active;
+  return f;
+}
+
+void BM_FrameRest(benchmark::State& state) {
+  GlFixture& f = gl();
+  if (!f.ok) {
+    state.SkipWithError("no offscreen GL context");
+    return;
+  }
+  f.renderer.set_mesh(f.replica.mesh(), true);
+  f.renderer.set_live(nullptr);
+  for (auto _ : state) f.renderer.draw();  // draw() ends with glFinish
+  state.counters["vertices"] = static_cast<double>(f.replica.mesh().vertex_count());
+}
+BENCHMARK(BM_FrameRest)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+
+void BM_FrameLiveWarpInShader(benchmark::State& state) {
+  GlFixture& f = gl();
+  if (!f.ok) {
+    state.SkipWithError("no offscreen GL context");
+    return;
+  }
+  f.renderer.set_mesh(f.replica.mesh(), true);
+  f.renderer.set_weights(f.replica.live().weight1, f.replica.live().weight2);
+  for (auto _ : state) {
+    f.renderer.set_live(&f.replica.live().message);
+    f.renderer.draw();
+  }
+}
+BENCHMARK(BM_FrameLiveWarpInShader)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+
+void BM_FrameCpuWarpAndUpload(benchmark::State& state) {
+  GlFixture& f = gl();
+  if (!f.ok) {
+    state.SkipWithError("no offscreen GL context");
+    return;
+  }
+  f.renderer.set_live(nullptr);
+  for (auto _ : state) {
+    f.renderer.set_mesh(f.replica.cpu_warp(), true);
+    f.renderer.set_weights(f.replica.live().weight1, f.replica.live().weight2);
+    f.renderer.draw();
+  }
+}
+BENCHMARK(BM_FrameCpuWarpAndUpload)->Unit(benchmark::kMillisecond)->MinTime(2.0);
+
+}  // namespace
+
+BENCHMARK_MAIN();
