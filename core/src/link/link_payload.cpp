@@ -13,12 +13,18 @@ void write_frame(PayloadWriter& w, const math::Frame& f) {
   w.vec(f.w);
 }
 
-math::Frame read_frame(PayloadReader& r) {
+bool finite(const glm::dvec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// A frame or screw with NaN/inf would poison the display's shader: refused here.
+math::Frame read_frame(PayloadReader& r, bool& bad) {
   math::Frame f;
   f.origin = r.vec();
   f.u = r.vec();
   f.v = r.vec();
   f.w = r.vec();
+  bad = bad || !finite(f.origin) || !finite(f.u) || !finite(f.v) || !finite(f.w);
   return f;
 }
 
@@ -41,7 +47,8 @@ math::Screw read_screw(PayloadReader& r, bool& bad) {
   s.chord = r.vec();
   s.cot_half = r.f64();
   const std::uint8_t pure = r.u8();
-  bad = bad || pure > 1;
+  bad = bad || pure > 1 || !finite(s.axis) || !std::isfinite(s.angle) || !std::isfinite(s.slide) ||
+        !finite(s.mid) || !finite(s.chord) || !std::isfinite(s.cot_half);
   s.pure_translation = pure == 1;
   return s;
 }
@@ -181,8 +188,8 @@ bool read_body(PayloadReader& r, LinkMessage& m) {
           l.hands[h] = LiveHand{};
           continue;
         }
-        l.hands[h].start = read_frame(r);
-        l.hands[h].end = read_frame(r);
+        l.hands[h].start = read_frame(r, bad);
+        l.hands[h].end = read_frame(r, bad);
         l.hands[h].screw = read_screw(r, bad);
       }
       break;

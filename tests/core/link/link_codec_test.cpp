@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
+#include <limits>
 #include <vector>
 
 namespace twister::link {
@@ -173,6 +174,23 @@ TEST(LinkCodec, RefusesOtherVersionAndOverCapacityCounts) {
   m.vertices.count = 1;
   std::vector<std::byte> tiny(8);
   EXPECT_EQ(encode_frame(m, tiny).status().code(), StatusCode::resource_exhausted);
+}
+
+TEST(LinkCodec, NonFiniteLiveWarpIsRefused) {
+  LinkMessage m;
+  m.type = MessageType::live_warp;
+  m.live_warp.active = true;
+  m.live_warp.hand_mask = 1;
+  m.live_warp.radius_m = 0.2;
+  m.live_warp.hands[0].screw.mid.y = std::numeric_limits<double>::quiet_NaN();
+  LinkDecoder d;
+  EXPECT_TRUE(feed(d, encode(m)).empty());
+  EXPECT_EQ(d.counters().bad_payload, 1u);
+  m.live_warp.hands[0].screw.mid.y = 0.0;
+  m.live_warp.hands[0].end.origin.x = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(feed(d, encode(m)).empty());
+  m.live_warp.hands[0].end.origin.x = 0.0;
+  EXPECT_EQ(feed(d, encode(m)).size(), 1u);
 }
 
 }  // namespace
