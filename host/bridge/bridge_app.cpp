@@ -10,7 +10,7 @@ BridgeApp::BridgeApp(ports::LinkPort& port, MeshRenderer* renderer, BridgeOption
 
 std::size_t BridgeApp::step() {
   std::size_t frames = 0;
-  std::array<std::byte, 64 * 1024> buf{};
+  std::array<std::byte, std::size_t{64} * 1024> buf{};
   for (int round = 0; round < 64; ++round) {
     const Result<std::size_t> got = port_.receive(buf);
     if (!got.ok()) {
@@ -142,7 +142,7 @@ void BridgeApp::draw() {
 std::string BridgeApp::snapshot(const std::string& name) {
   if (renderer_ == nullptr || options_.snapshot_dir.empty()) return {};
   renderer_->draw();
-  const std::string path = options_.snapshot_dir + "/" + name + ".png";
+  std::string path = options_.snapshot_dir + "/" + name + ".png";
   if (!write_png(path, renderer_->width(), renderer_->height(), renderer_->read_rgba())) {
     std::fprintf(stderr, "twister-bridge: cannot write %s\n", path.c_str());
     return {};

@@ -112,6 +112,9 @@ int run(const Options& opt) {
                  opt.export_path.c_str());
   }
   const auto& c = app.replica().counters();
+  const std::uint64_t bad_frames = app.decoder_counters().bad_crc +
+                                   app.decoder_counters().bad_cobs +
+                                   app.decoder_counters().bad_payload;
   std::fprintf(stderr,
                "twister-bridge: mesh version %u; full meshes %llu, commits %llu, checksum "
                "mismatches %llu, resend requests %llu, live frames %llu, connects %llu, bad "
@@ -122,16 +125,14 @@ int run(const Options& opt) {
                static_cast<unsigned long long>(c.resend_requests),
                static_cast<unsigned long long>(c.live_frames),
                static_cast<unsigned long long>(app.counters().connects),
-               static_cast<unsigned long long>(app.decoder_counters().bad_crc +
-                                               app.decoder_counters().bad_cobs +
-                                               app.decoder_counters().bad_payload));
+               static_cast<unsigned long long>(bad_frames));
   for (const std::string& p : app.pictures()) std::printf("%s\n", p.c_str());
   return rc;
 }
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
   CLI::App cli{"twister-bridge: scene replica and display of a twister-station"};
   Options opt;
   cli.add_option("--connect", opt.connect, "station link: unix:PATH or tcp:HOST:PORT")->required();
@@ -163,4 +164,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "twister-bridge: %s\n", e.what());
     return 1;
   }
+} catch (...) {
+  std::fprintf(stderr, "twister-bridge: unexpected error\n");
+  return 1;
 }

@@ -272,7 +272,8 @@ void MeshRenderer::draw() {
   for (int h = 0; h < 2; ++h) {
     for (int k = 0; k < 5; ++k) {
       const std::string n = std::string(names[k]) + "[" + std::to_string(h) + "]";
-      glUniform3fv(glGetUniformLocation(program_, n.c_str()), 1, hands_[h] + 3 * k);
+      glUniform3fv(glGetUniformLocation(program_, n.c_str()), 1,
+                   &hands_[h][static_cast<std::size_t>(3 * k)]);
     }
     glUniform1f(glGetUniformLocation(program_, ("u_half[" + std::to_string(h) + "]").c_str()),
                 hands_[h][15]);

@@ -65,7 +65,7 @@ std::optional<link::ResendRequest> SceneReplica::apply(const link::LinkMessage& 
         staging_bad_ = true;
         break;
       }
-      std::copy_n(m.triangles.indices.begin(), 3u * m.triangles.count,
+      std::copy_n(m.triangles.indices.begin(), std::size_t{3} * m.triangles.count,
                   staged_.indices.begin() + 3 * static_cast<std::ptrdiff_t>(m.triangles.first));
       break;
     case link::MessageType::mesh_end:

@@ -90,7 +90,8 @@ bool write_body(PayloadWriter& w, const LinkMessage& m) {
       if (m.triangles.count > kMaxTrianglesPerChunk) return false;
       w.u32(m.triangles.first);
       w.u16(m.triangles.count);
-      for (std::size_t i = 0; i < 3u * m.triangles.count; ++i) w.u32(m.triangles.indices[i]);
+      for (std::size_t i = 0; i < std::size_t{3} * m.triangles.count; ++i)
+        w.u32(m.triangles.indices[i]);
       return true;
     case MessageType::mesh_end:
       w.u32(m.mesh_end.version);
@@ -167,7 +168,8 @@ bool read_body(PayloadReader& r, LinkMessage& m) {
       m.triangles.first = r.u32();
       m.triangles.count = r.u16();
       if (m.triangles.count > kMaxTrianglesPerChunk) return false;
-      for (std::size_t i = 0; i < 3u * m.triangles.count; ++i) m.triangles.indices[i] = r.u32();
+      for (std::size_t i = 0; i < std::size_t{3} * m.triangles.count; ++i)
+        m.triangles.indices[i] = r.u32();
       break;
     case MessageType::mesh_end:
       m.mesh_end.version = r.u32();
