@@ -76,6 +76,7 @@ int run(const Options& opt) {
     if (!context->offscreen()) {
       context->poll_events();
       if (!context->open()) break;
+      renderer.resize(context->width(), context->height());
       app.draw();
       context->swap();
     } else {

@@ -38,6 +38,13 @@ class MeshRenderer {
   // Tint by the weights even without a shader warp (scodef / CPU-warped uploads).
   void set_show_weights(bool show) { show_weights_ = show; }
   void draw();
+  // Window resized (default framebuffer only; the offscreen FBO keeps its size).
+  void resize(int width, int height) {
+    if (fbo_ == 0) {
+      width_ = width;
+      height_ = height;
+    }
+  }
   // RGBA rows top to bottom.
   std::vector<std::uint8_t> read_rgba() const;
   int width() const { return width_; }
