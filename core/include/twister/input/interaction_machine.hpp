@@ -1,0 +1,137 @@
+// InteractionMachine: the one explicit state machine of the sculpting interaction
+// (spec twister-math.md section 8; diagram in docs/interaction.md).
+// Per hand: idle -> dragging (grab pressed: start pose recorded, warp plan built)
+// -> idle (grab released: commit). Freeze while dragging commits and restarts.
+// dragging -> dragging_lost when tracking drops: the warp holds at the last valid
+// pose; tracking back within lost_timeout_us resumes, otherwise the stroke is
+// cancelled. moving / moving_lost are the same for the rigid object move.
+// Both hands run the same per-hand machine; the two-handed radius gesture is a
+// small combiner on top (both radius buttons held, both hands idle).
+// Pure: step(inputs, now) -> actions. No clock, no I/O, no allocation.
+// Positions are in metres, in the world (tracker) frame.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include <glm/vec3.hpp>
+
+#include "twister/input/button_map.hpp"
+#include "twister/ports/clock.hpp"
+
+namespace twister::input {
+
+enum class HandState : std::uint8_t { idle = 0, dragging, dragging_lost, moving, moving_lost };
+inline constexpr std::uint8_t kHandStateCount = 5;
+
+enum class ActionKind : std::uint8_t {
+  grab_begin,        // start a stroke for `hand` from its current pose
+  freeze,            // commit the hand's stroke and restart it from the current poses
+  commit,            // grab released: commit the stroke (at the last valid pose if lost)
+  cancel,            // stroke dropped, model unchanged (reason tracking_timeout)
+  tracking_lost,     // live warp holds at the last valid pose
+  tracking_resumed,  // the stroke continues from the live pose
+  move_begin,        // start moving the object rigidly with `hand`
+  move_commit,
+  move_cancel,
+  radius_begin,      // both radius buttons held: radius follows the hand distance
+  radius_change,     // radius_m holds the new, clamped radius
+  radius_end,
+  refused,           // a press was not accepted; `reason` says why
+};
+
+enum class Reason : std::uint8_t {
+  none = 0,
+  released,          // the user released the button
+  tracking_timeout,  // tracking stayed lost longer than lost_timeout_us
+  no_tracking,       // press while the hand's pose is not valid
+  same_point,        // second grab at the other hand's grab point (|OQ| ~ 0)
+  hand_busy,         // the hand already grabs or moves the object
+  object_busy,       // the other hand already moves the object
+  hands_too_close,   // radius gesture with the hands (almost) together
+};
+
+const char* action_kind_name(ActionKind kind);
+const char* reason_name(Reason reason);
+
+struct Action {
+  ActionKind kind = ActionKind::refused;
+  std::uint8_t hand = 0;
+  Reason reason = Reason::none;
+  float radius_m = 0.0f;  // radius_* actions: the radius after the action
+};
+
+inline constexpr std::size_t kMaxActionsPerStep = 8;
+
+// The actions of one step, in the order they must be applied.
+class ActionList {
+ public:
+  void push(const Action& action);
+  std::span<const Action> items() const { return {items_.data(), count_}; }
+  std::size_t size() const { return count_; }
+
+ private:
+  std::array<Action, kMaxActionsPerStep> items_{};
+  std::size_t count_ = 0;
+};
+
+struct HandInput {
+  bool pose_valid = false;
+  glm::vec3 position_m{0.0f};  // world frame; ignored when !pose_valid
+  HandButtons buttons{};       // debounced levels
+};
+
+struct InteractionInputs {
+  std::array<HandInput, kHandCount> hands{};
+};
+
+struct InteractionConfig {
+  ports::TimestampUs lost_timeout_us = 500'000;
+  float min_grab_separation_m = 0.01f;  // closer second grab: refused (same_point)
+  float radius_min_m = 0.02f;
+  float radius_max_m = 2.0f;
+  float initial_radius_m = 0.25f;
+};
+
+class InteractionMachine {
+ public:
+  // The initial radius is clamped into [radius_min_m, radius_max_m].
+  explicit InteractionMachine(const InteractionConfig& config);
+
+  // Advances both hands and the radius gesture by one step. `now_us` must not go
+  // backwards. Every grab_begin of a hand is followed by exactly one commit or
+  // cancel of that hand (the same for move_begin / move_commit / move_cancel).
+  ActionList step(const InteractionInputs& inputs, ports::TimestampUs now_us);
+
+  HandState state(std::uint8_t hand) const { return hands_[hand].state; }
+  ports::TimestampUs state_since_us(std::uint8_t hand) const { return hands_[hand].since_us; }
+  float radius_m() const { return radius_m_; }
+  bool radius_active() const { return radius_ == RadiusGesture::active; }
+  const InteractionConfig& config() const { return config_; }
+
+ private:
+  enum class RadiusGesture : std::uint8_t { off, active, refused };
+  struct Hand {
+    HandState state = HandState::idle;
+    ports::TimestampUs since_us = 0;
+    HandButtons previous{};
+    glm::vec3 last_valid_m{0.0f};
+  };
+
+  void step_hand(std::uint8_t h, const InteractionInputs& inputs, ports::TimestampUs now_us,
+                 ActionList& out);
+  void step_radius(const InteractionInputs& inputs, ActionList& out);
+  void enter(std::uint8_t h, HandState state, ports::TimestampUs now_us);
+  bool other_hand_grabs_near(std::uint8_t h, glm::vec3 position_m) const;
+
+  InteractionConfig config_;
+  std::array<Hand, kHandCount> hands_{};
+  float radius_m_;
+  RadiusGesture radius_ = RadiusGesture::off;
+  float radius_start_m_ = 0.0f;
+  float radius_start_distance_m_ = 0.0f;
+};
+
+}  // namespace twister::input

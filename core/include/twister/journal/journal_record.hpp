@@ -1,0 +1,83 @@
+// JournalRecord: one entry of the stroke journal, and its byte encoding.
+//
+// File: an 8-byte header ("TWJL", u32 format version), then records. Each record:
+//   u32 payload_length | u8 record_version | u8 type | u16 reserved (0)
+//   payload (payload_length bytes) | u32 CRC-32 over header and payload
+// All integers little-endian; reals are IEEE float64 bit patterns, so replay sees
+// exactly the numbers the live session used. Layout details: docs/interaction.md.
+// Poses are in the object frame of the time (metres; U, V unit axes, W = U x V).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include <glm/vec3.hpp>
+
+#include "twister/base/result.hpp"
+
+namespace twister::journal {
+
+inline constexpr std::array<std::byte, 4> kFileMagic{std::byte{'T'}, std::byte{'W'},
+                                                    std::byte{'J'}, std::byte{'L'}};
+inline constexpr std::uint32_t kFileVersion = 1;
+inline constexpr std::size_t kFileHeaderBytes = 8;
+inline constexpr std::uint8_t kRecordVersion = 1;
+inline constexpr std::size_t kRecordHeaderBytes = 8;
+inline constexpr std::size_t kRecordCrcBytes = 4;
+inline constexpr std::size_t kMaxPayloadBytes = 512;
+inline constexpr std::size_t kMaxRecordBytes =
+    kRecordHeaderBytes + kMaxPayloadBytes + kRecordCrcBytes;
+
+enum class RecordType : std::uint8_t {
+  stroke = 1,       // a committed warp (release, freeze step, or hand-set change)
+  object_move = 2,  // a committed rigid move of the whole object
+  undo = 3,
+  redo = 4,
+};
+
+struct JournalPose {
+  glm::dvec3 origin_m{0.0};
+  glm::dvec3 u{1.0, 0.0, 0.0};
+  glm::dvec3 v{0.0, 1.0, 0.0};
+  friend bool operator==(const JournalPose&, const JournalPose&) = default;
+};
+
+struct StrokeRecord {
+  std::uint8_t method = 0;      // math::WarpMethod as a number
+  std::uint8_t hand_mask = 0;   // bit h set: hand h took part (1, 2 or 3)
+  std::uint16_t chain_step = 0; // 0: new selection; k > 0: k-th freeze step, same weights
+  double radius_m = 0.0;
+  std::array<JournalPose, 2> start{};  // per hand, meaningful where hand_mask says
+  std::array<JournalPose, 2> end{};
+  friend bool operator==(const StrokeRecord&, const StrokeRecord&) = default;
+};
+
+struct ObjectMoveRecord {
+  std::uint8_t hand = 0;
+  JournalPose object_before{};  // object pose in the world before and after the move
+  JournalPose object_after{};
+  friend bool operator==(const ObjectMoveRecord&, const ObjectMoveRecord&) = default;
+};
+
+struct JournalRecord {
+  RecordType type = RecordType::stroke;
+  std::uint32_t sequence = 0;  // increases by one per record
+  StrokeRecord stroke{};       // type stroke
+  ObjectMoveRecord move{};     // type object_move
+  friend bool operator==(const JournalRecord&, const JournalRecord&) = default;
+};
+
+// Writes the whole record (header, payload, CRC) into out; returns its size.
+// invalid_argument: the record breaks the rules above (hand_mask 0, method > 2).
+// resource_exhausted: out is smaller than the encoded record.
+Result<std::size_t> encode_record(const JournalRecord& record, std::span<std::byte> out);
+
+// Decodes a payload whose header and CRC have already been checked.
+// data_loss: wrong version, unknown type, wrong length for the type, or a field
+// out of its range (the record must not be applied).
+Result<JournalRecord> decode_payload(std::uint8_t version, std::uint8_t type,
+                                     std::span<const std::byte> payload);
+
+}  // namespace twister::journal

@@ -1,0 +1,42 @@
+// JournalWriter: appends records to the stroke journal through a ports::Storage and
+// makes each durable (Storage::sync, fsync on the POSIX backend) before returning.
+// Open it on a recovered journal (JournalReader read to the end, tail truncated).
+// No allocation: one record buffer inside the writer.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "twister/base/result.hpp"
+#include "twister/journal/journal_record.hpp"
+#include "twister/ports/storage.hpp"
+
+namespace twister::journal {
+
+class JournalWriter {
+ public:
+  explicit JournalWriter(ports::Storage& storage) : storage_(storage) {}
+
+  // Writes the file header to an empty file (and syncs). io_error: storage failed.
+  // data_loss: the file is non-empty and not a journal.
+  Status open();
+
+  // Encodes, appends and syncs one record. invalid_argument: the record is invalid
+  // (nothing written). io_error: the append or sync failed; the writer then tries
+  // to cut the partial record off again, and when that fails too it refuses every
+  // further append (failed_precondition) so no good record lands after a torn one.
+  Status append(const JournalRecord& record);
+
+  bool healthy() const { return opened_ && !broken_; }
+  std::uint64_t size() const { return size_; }
+
+ private:
+  ports::Storage& storage_;
+  bool opened_ = false;
+  bool broken_ = false;
+  std::uint64_t size_ = 0;
+  std::array<std::byte, kMaxRecordBytes> buffer_{};
+};
+
+}  // namespace twister::journal

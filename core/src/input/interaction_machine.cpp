@@ -1,0 +1,209 @@
+#include "twister/input/interaction_machine.hpp"
+
+#include <algorithm>
+
+#include <glm/geometric.hpp>
+
+#include "twister/base/assert.hpp"
+
+namespace twister::input {
+
+const char* action_kind_name(ActionKind kind) {
+  switch (kind) {
+    case ActionKind::grab_begin: return "grab_begin";
+    case ActionKind::freeze: return "freeze";
+    case ActionKind::commit: return "commit";
+    case ActionKind::cancel: return "cancel";
+    case ActionKind::tracking_lost: return "tracking_lost";
+    case ActionKind::tracking_resumed: return "tracking_resumed";
+    case ActionKind::move_begin: return "move_begin";
+    case ActionKind::move_commit: return "move_commit";
+    case ActionKind::move_cancel: return "move_cancel";
+    case ActionKind::radius_begin: return "radius_begin";
+    case ActionKind::radius_change: return "radius_change";
+    case ActionKind::radius_end: return "radius_end";
+    case ActionKind::refused: return "refused";
+  }
+  return "unknown";
+}
+
+const char* reason_name(Reason reason) {
+  switch (reason) {
+    case Reason::none: return "none";
+    case Reason::released: return "released";
+    case Reason::tracking_timeout: return "tracking_timeout";
+    case Reason::no_tracking: return "no_tracking";
+    case Reason::same_point: return "same_point";
+    case Reason::hand_busy: return "hand_busy";
+    case Reason::object_busy: return "object_busy";
+    case Reason::hands_too_close: return "hands_too_close";
+  }
+  return "unknown";
+}
+
+void ActionList::push(const Action& action) {
+  // Two hands produce at most three actions each plus one radius action per step.
+  TWISTER_ASSERT(count_ < items_.size());
+  items_[count_++] = action;
+}
+
+InteractionMachine::InteractionMachine(const InteractionConfig& config)
+    : config_(config),
+      radius_m_(std::clamp(config.initial_radius_m, config.radius_min_m, config.radius_max_m)) {}
+
+void InteractionMachine::enter(std::uint8_t h, HandState state, ports::TimestampUs now_us) {
+  hands_[h].state = state;
+  hands_[h].since_us = now_us;
+}
+
+bool InteractionMachine::other_hand_grabs_near(std::uint8_t h, glm::vec3 position_m) const {
+  const Hand& other = hands_[1 - h];
+  if (other.state != HandState::dragging && other.state != HandState::dragging_lost) return false;
+  // A new grab restarts the other hand's stroke from its current (last valid)
+  // pose, so that is the point the squash would divide by.
+  return glm::distance(other.last_valid_m, position_m) < config_.min_grab_separation_m;
+}
+
+ActionList InteractionMachine::step(const InteractionInputs& inputs, ports::TimestampUs now_us) {
+  ActionList out;
+  for (std::uint8_t h = 0; h < kHandCount; ++h) step_hand(h, inputs, now_us, out);
+  step_radius(inputs, out);
+  for (std::uint8_t h = 0; h < kHandCount; ++h) hands_[h].previous = inputs.hands[h].buttons;
+  return out;
+}
+
+void InteractionMachine::step_hand(std::uint8_t h, const InteractionInputs& inputs,
+                                   ports::TimestampUs now_us, ActionList& out) {
+  Hand& hand = hands_[h];
+  const HandInput& in = inputs.hands[h];
+  const bool grab_pressed = in.buttons.grab && !hand.previous.grab;
+  const bool move_pressed = in.buttons.move_object && !hand.previous.move_object;
+  const bool freeze_pressed = in.buttons.freeze && !hand.previous.freeze;
+  const bool lost_too_long = now_us - hand.since_us >= config_.lost_timeout_us;
+
+  switch (hand.state) {
+    case HandState::idle:
+      if (grab_pressed) {
+        if (!in.pose_valid) {
+          out.push({ActionKind::refused, h, Reason::no_tracking, radius_m_});
+        } else if (other_hand_grabs_near(h, in.position_m)) {
+          out.push({ActionKind::refused, h, Reason::same_point, radius_m_});
+        } else {
+          enter(h, HandState::dragging, now_us);
+          out.push({ActionKind::grab_begin, h, Reason::none, radius_m_});
+        }
+      } else if (move_pressed) {
+        const HandState other = hands_[1 - h].state;
+        if (!in.pose_valid) {
+          out.push({ActionKind::refused, h, Reason::no_tracking, radius_m_});
+        } else if (other == HandState::moving || other == HandState::moving_lost) {
+          out.push({ActionKind::refused, h, Reason::object_busy, radius_m_});
+        } else {
+          enter(h, HandState::moving, now_us);
+          out.push({ActionKind::move_begin, h, Reason::none, radius_m_});
+        }
+      }
+      break;
+
+    case HandState::dragging:
+      if (!in.buttons.grab) {
+        enter(h, HandState::idle, now_us);
+        out.push({ActionKind::commit, h, Reason::released, radius_m_});
+      } else if (!in.pose_valid) {
+        enter(h, HandState::dragging_lost, now_us);
+        out.push({ActionKind::tracking_lost, h, Reason::none, radius_m_});
+      } else if (freeze_pressed) {
+        out.push({ActionKind::freeze, h, Reason::none, radius_m_});
+      } else if (move_pressed) {
+        out.push({ActionKind::refused, h, Reason::hand_busy, radius_m_});
+      }
+      break;
+
+    case HandState::dragging_lost:
+      // Releasing while lost commits what the display shows: the warp held at the
+      // last valid pose.
+      if (!in.buttons.grab) {
+        enter(h, HandState::idle, now_us);
+        out.push({ActionKind::commit, h, Reason::released, radius_m_});
+      } else if (in.pose_valid) {
+        enter(h, HandState::dragging, now_us);
+        out.push({ActionKind::tracking_resumed, h, Reason::none, radius_m_});
+      } else if (lost_too_long) {
+        enter(h, HandState::idle, now_us);
+        out.push({ActionKind::cancel, h, Reason::tracking_timeout, radius_m_});
+      }
+      break;
+
+    case HandState::moving:
+      if (!in.buttons.move_object) {
+        enter(h, HandState::idle, now_us);
+        out.push({ActionKind::move_commit, h, Reason::released, radius_m_});
+      } else if (!in.pose_valid) {
+        enter(h, HandState::moving_lost, now_us);
+        out.push({ActionKind::tracking_lost, h, Reason::none, radius_m_});
+      } else if (grab_pressed) {
+        out.push({ActionKind::refused, h, Reason::hand_busy, radius_m_});
+      }
+      break;
+
+    case HandState::moving_lost:
+      if (!in.buttons.move_object) {
+        enter(h, HandState::idle, now_us);
+        out.push({ActionKind::move_commit, h, Reason::released, radius_m_});
+      } else if (in.pose_valid) {
+        enter(h, HandState::moving, now_us);
+        out.push({ActionKind::tracking_resumed, h, Reason::none, radius_m_});
+      } else if (lost_too_long) {
+        enter(h, HandState::idle, now_us);
+        out.push({ActionKind::move_cancel, h, Reason::tracking_timeout, radius_m_});
+      }
+      break;
+  }
+  if (in.pose_valid) hand.last_valid_m = in.position_m;
+}
+
+void InteractionMachine::step_radius(const InteractionInputs& inputs, ActionList& out) {
+  const HandInput& a = inputs.hands[0];
+  const HandInput& b = inputs.hands[1];
+  const bool both_held = a.buttons.radius && b.buttons.radius;
+  // The radius is locked while a stroke or move is active: the stroke's weights
+  // were computed with it.
+  const bool both_idle =
+      hands_[0].state == HandState::idle && hands_[1].state == HandState::idle;
+
+  if (!both_held || !both_idle) {
+    if (radius_ == RadiusGesture::active) {
+      out.push({ActionKind::radius_end, 0, Reason::none, radius_m_});
+    }
+    radius_ = RadiusGesture::off;
+    return;
+  }
+  if (!a.pose_valid || !b.pose_valid) return;  // hold the radius until tracking is back
+  const float distance_m = glm::distance(a.position_m, b.position_m);
+  switch (radius_) {
+    case RadiusGesture::off:
+      if (distance_m < config_.min_grab_separation_m) {
+        radius_ = RadiusGesture::refused;
+        out.push({ActionKind::refused, 0, Reason::hands_too_close, radius_m_});
+      } else {
+        radius_ = RadiusGesture::active;
+        radius_start_m_ = radius_m_;
+        radius_start_distance_m_ = distance_m;
+        out.push({ActionKind::radius_begin, 0, Reason::none, radius_m_});
+      }
+      return;
+    case RadiusGesture::active: {
+      const float r = std::clamp(radius_start_m_ * distance_m / radius_start_distance_m_,
+                                 config_.radius_min_m, config_.radius_max_m);
+      if (r != radius_m_) {
+        radius_m_ = r;
+        out.push({ActionKind::radius_change, 0, Reason::none, radius_m_});
+      }
+      return;
+    }
+    case RadiusGesture::refused:
+      return;  // wait until a radius button is released
+  }
+}
+
+}  // namespace twister::input

@@ -1,0 +1,111 @@
+#include "twister/journal/journal_reader.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+#include "twister/journal/crc32.hpp"
+
+namespace twister::journal {
+namespace {
+
+std::uint32_t load_u32(const std::byte* p) {
+  return std::uint32_t(static_cast<std::uint8_t>(p[0])) |
+         std::uint32_t(static_cast<std::uint8_t>(p[1])) << 8 |
+         std::uint32_t(static_cast<std::uint8_t>(p[2])) << 16 |
+         std::uint32_t(static_cast<std::uint8_t>(p[3])) << 24;
+}
+
+// Reads exactly dest.size() bytes at offset; a short read is an io_error here
+// because the caller already checked the file size.
+Status read_exact(ports::Storage& storage, std::uint64_t offset, std::span<std::byte> dest) {
+  std::size_t done = 0;
+  while (done < dest.size()) {
+    TWISTER_TRY_ASSIGN(const std::size_t n, storage.read_at(offset + done, dest.subspan(done)));
+    if (n == 0) return StatusCode::io_error;
+    done += n;
+  }
+  return OkStatus();
+}
+
+}  // namespace
+
+const char* tail_problem_name(TailProblem problem) {
+  switch (problem) {
+    case TailProblem::none: return "none";
+    case TailProblem::torn_header: return "torn_header";
+    case TailProblem::torn_record: return "torn_record";
+    case TailProblem::bad_length: return "bad_length";
+    case TailProblem::bad_crc: return "bad_crc";
+    case TailProblem::bad_payload: return "bad_payload";
+  }
+  return "unknown";
+}
+
+Status JournalReader::open() {
+  opened_ = false;
+  problem_ = TailProblem::none;
+  good_end_ = 0;
+  TWISTER_TRY_ASSIGN(file_size_, storage_.size());
+  if (file_size_ == 0) {
+    opened_ = true;
+    return OkStatus();
+  }
+  const std::size_t header = static_cast<std::size_t>(std::min<std::uint64_t>(file_size_, kFileHeaderBytes));
+  TWISTER_TRY(read_exact(storage_, 0, std::span(buffer_).first(header)));
+  // A file that is a prefix of a header is a header torn by a power cut at creation.
+  std::array<std::byte, kFileHeaderBytes> expected{};
+  std::memcpy(expected.data(), kFileMagic.data(), kFileMagic.size());
+  for (std::size_t i = 0; i < 4; ++i) expected[4 + i] = std::byte(static_cast<std::uint8_t>(kFileVersion >> (8 * i)));
+  if (std::memcmp(buffer_.data(), expected.data(), header) != 0) return StatusCode::data_loss;
+  opened_ = true;
+  if (header < kFileHeaderBytes) {
+    problem_ = TailProblem::torn_header;
+    return OkStatus();
+  }
+  good_end_ = kFileHeaderBytes;
+  return OkStatus();
+}
+
+Result<JournalRecord> JournalReader::fail(TailProblem problem) {
+  problem_ = problem;
+  return StatusCode::data_loss;
+}
+
+Result<JournalRecord> JournalReader::next() {
+  if (!opened_) return StatusCode::failed_precondition;
+  if (problem_ != TailProblem::none) return StatusCode::data_loss;
+  if (good_end_ == file_size_) return StatusCode::unavailable;
+  const std::uint64_t left = file_size_ - good_end_;
+  if (left < kRecordHeaderBytes) return fail(TailProblem::torn_header);
+  TWISTER_TRY(read_exact(storage_, good_end_, std::span(buffer_).first(kRecordHeaderBytes)));
+  const std::uint32_t payload = load_u32(buffer_.data());
+  if (payload > kMaxPayloadBytes || buffer_[6] != std::byte{0} || buffer_[7] != std::byte{0}) {
+    return fail(TailProblem::bad_length);
+  }
+  const std::size_t total = kRecordHeaderBytes + payload + kRecordCrcBytes;
+  if (left < total) return fail(TailProblem::torn_record);
+  TWISTER_TRY(read_exact(storage_, good_end_ + kRecordHeaderBytes,
+                         std::span(buffer_).subspan(kRecordHeaderBytes, payload + kRecordCrcBytes)));
+  const std::size_t body = kRecordHeaderBytes + payload;
+  if (crc32(std::span(buffer_).first(body)) != load_u32(buffer_.data() + body)) {
+    return fail(TailProblem::bad_crc);
+  }
+  auto record = decode_payload(static_cast<std::uint8_t>(buffer_[4]),
+                               static_cast<std::uint8_t>(buffer_[5]),
+                               std::span<const std::byte>(buffer_).subspan(kRecordHeaderBytes, payload));
+  if (!record.ok()) return fail(TailProblem::bad_payload);
+  good_end_ += total;
+  return record;
+}
+
+Status JournalReader::truncate_tail() {
+  if (!opened_) return StatusCode::failed_precondition;
+  if (problem_ == TailProblem::none) return OkStatus();
+  TWISTER_TRY(storage_.truncate(good_end_));
+  TWISTER_TRY(storage_.sync());
+  file_size_ = good_end_;
+  problem_ = TailProblem::none;
+  return OkStatus();
+}
+
+}  // namespace twister::journal

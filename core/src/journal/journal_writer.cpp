@@ -1,0 +1,44 @@
+#include "twister/journal/journal_writer.hpp"
+
+#include <cstring>
+
+namespace twister::journal {
+
+Status JournalWriter::open() {
+  opened_ = false;
+  broken_ = false;
+  TWISTER_TRY_ASSIGN(size_, storage_.size());
+  if (size_ == 0) {
+    std::array<std::byte, kFileHeaderBytes> header{};
+    std::memcpy(header.data(), kFileMagic.data(), kFileMagic.size());
+    for (std::size_t i = 0; i < 4; ++i) header[4 + i] = std::byte(static_cast<std::uint8_t>(kFileVersion >> (8 * i)));
+    TWISTER_TRY(storage_.append(header));
+    TWISTER_TRY(storage_.sync());
+    size_ = kFileHeaderBytes;
+  } else {
+    if (size_ < kFileHeaderBytes) return StatusCode::data_loss;
+    std::array<std::byte, 4> magic{};
+    TWISTER_TRY_ASSIGN(const std::size_t n, storage_.read_at(0, magic));
+    if (n != magic.size() || std::memcmp(magic.data(), kFileMagic.data(), magic.size()) != 0) {
+      return StatusCode::data_loss;
+    }
+  }
+  opened_ = true;
+  return OkStatus();
+}
+
+Status JournalWriter::append(const JournalRecord& record) {
+  if (!opened_ || broken_) return StatusCode::failed_precondition;
+  TWISTER_TRY_ASSIGN(const std::size_t n, encode_record(record, buffer_));
+  Status status = storage_.append(std::span<const std::byte>(buffer_).first(n));
+  if (status.ok()) status = storage_.sync();
+  if (status.ok()) {
+    size_ += n;
+    return OkStatus();
+  }
+  // Leave no torn record behind a later good one: cut back to the last good end.
+  if (!storage_.truncate(size_).ok() || !storage_.sync().ok()) broken_ = true;
+  return StatusCode::io_error;
+}
+
+}  // namespace twister::journal

@@ -1,0 +1,162 @@
+#include "replay_command.hpp"
+
+#include <chrono>
+#include <cinttypes>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+
+#include "cli_exit.hpp"
+#include "twister/input/sculpt_session.hpp"
+#include "twister/journal/journal_reader.hpp"
+#include "twister/meshio/obj_file.hpp"
+
+namespace twister::cli {
+namespace {
+
+// The journal file held in memory, read-only: replay never changes the journal
+// (a torn tail is reported, the station truncates it on its next start).
+class ReadOnlyStorage final : public ports::Storage {
+ public:
+  explicit ReadOnlyStorage(std::vector<std::byte> bytes) : bytes_(std::move(bytes)) {}
+
+ private:
+  Result<std::uint64_t> do_size() override { return std::uint64_t{bytes_.size()}; }
+  Result<std::size_t> do_read_at(std::uint64_t offset, std::span<std::byte> dest) override {
+    if (offset >= bytes_.size()) return std::size_t{0};
+    const std::size_t n = std::min<std::size_t>(dest.size(), bytes_.size() - offset);
+    std::memcpy(dest.data(), bytes_.data() + offset, n);
+    return n;
+  }
+  Status do_append(std::span<const std::byte>) override { return StatusCode::not_supported; }
+  Status do_sync() override { return OkStatus(); }
+  Status do_truncate(std::uint64_t) override { return StatusCode::not_supported; }
+
+  std::vector<std::byte> bytes_;
+};
+
+struct Options {
+  std::string journal;
+  std::string mesh_in;
+  std::string mesh_out;
+  std::size_t undo_changes = input::kDefaultUndoChanges;
+  std::size_t undo_entries = input::kDefaultUndoEntries;
+  bool world = false;
+  bool quiet = false;
+  bool progress = false;
+};
+
+[[noreturn]] void fail(int code, const std::string& message) {
+  std::fprintf(stderr, "twister replay: %s\n", message.c_str());
+  throw Exit{code};
+}
+
+std::vector<std::byte> read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(kExitBadInput, "cannot open journal '" + path + "'");
+  std::vector<char> chars((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::vector<std::byte> bytes(chars.size());
+  std::memcpy(bytes.data(), chars.data(), chars.size());
+  return bytes;
+}
+
+// Object frame -> world: p_world = origin + [U V W] p.
+void to_world(mesh::Mesh& m, const math::Frame& pose) {
+  const glm::dmat3 r(pose.u, pose.v, pose.w);
+  for (std::uint32_t i = 0; i < m.vertex_count(); ++i) {
+    m.set_position(i, glm::vec3(pose.origin + r * glm::dvec3(m.position(i))));
+  }
+}
+
+void run_replay(const Options& o) {
+  meshio::ObjLoad loaded = meshio::load_obj(o.mesh_in);
+  if (!loaded.status.ok()) fail(kExitBadInput, o.mesh_in + ": " + loaded.message);
+  if (!loaded.message.empty() && !o.quiet) std::fprintf(stderr, "twister replay: %s\n", loaded.message.c_str());
+  mesh::Mesh& mesh = loaded.buffer->mesh();
+
+  ReadOnlyStorage storage(read_file(o.journal));
+  journal::JournalReader reader(storage);
+  if (!reader.open().ok()) fail(kExitBadInput, "'" + o.journal + "' is not a Twister journal");
+  const std::uint64_t total_bytes = storage.size().value_or(0);
+
+  const std::size_t n = mesh.vertex_count();
+  std::vector<float> lx(n), ly(n), lz(n), w1(n), w2(n);
+  std::vector<std::uint32_t> plan_indices(n);
+  std::vector<input::VertexChange> changes(o.undo_changes);
+  std::vector<input::UndoEntry> entries(std::max<std::size_t>(o.undo_entries, 1));
+  input::SculptStorage work{lx, ly, lz, math::WarpPlanStorage{plan_indices, w1, w2}, changes, entries};
+  input::SculptSession session(input::SculptSessionConfig{}, mesh, work, nullptr);
+
+  // Progress for long journals: a line per 10% of the file, on stderr.
+  const bool show_progress = !o.quiet && (o.progress || total_bytes > (std::uint64_t{1} << 16));
+  int shown_decile = 0;
+  std::size_t applied = 0;
+  for (;;) {
+    auto record = reader.next();
+    if (!record.ok()) {
+      if (record.status().code() == StatusCode::unavailable || record.status().code() == StatusCode::data_loss) break;
+      fail(kExitFailure, "reading '" + o.journal + "': " + record.status().name());
+    }
+    const Status s = session.apply_record(*record);
+    if (!s.ok()) {
+      fail(kExitFailure, "record " + std::to_string(applied + 1) + " (sequence " +
+                             std::to_string(record->sequence) + ") cannot be applied: " + s.name());
+    }
+    ++applied;
+    if (show_progress && total_bytes > 0) {
+      const int decile = static_cast<int>(10 * reader.good_end() / total_bytes);
+      if (decile > shown_decile) {
+        shown_decile = decile;
+        std::fprintf(stderr, "twister replay: %3d%% (%zu records)\n", 10 * decile, applied);
+      }
+    }
+  }
+  if (reader.problem() != journal::TailProblem::none) {
+    std::fprintf(stderr,
+                 "twister replay: %s: %s tail of %" PRIu64 " bytes at offset %" PRIu64
+                 " not applied\n",
+                 o.journal.c_str(), journal::tail_problem_name(reader.problem()),
+                 reader.tail_bytes(), reader.good_end());
+  }
+  if (o.world) to_world(mesh, session.object_pose());
+  std::string message;
+  if (!meshio::save_obj(o.mesh_out, mesh, message).ok()) fail(kExitFailure, message);
+  const input::ReplayStats& st = session.replay_stats();
+  const math::Frame& pose = session.object_pose();
+  std::printf("replayed %zu records (strokes %zu, moves %zu, undos %zu, redos %zu)\n", applied,
+              st.strokes, st.moves, st.undos, st.redos);
+  std::printf("mesh %zu vertices %zu triangles checksum %016" PRIx64 "\n", mesh.vertex_count(),
+              mesh.triangle_count(), mesh.checksum());
+  std::printf("object origin %.9g %.9g %.9g u %.9g %.9g %.9g v %.9g %.9g %.9g\n", pose.origin.x,
+              pose.origin.y, pose.origin.z, pose.u.x, pose.u.y, pose.u.z, pose.v.x, pose.v.y,
+              pose.v.z);
+}
+
+}  // namespace
+
+void add_replay_command(CLI::App& app) {
+  auto options = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand(
+      "replay", "Apply a station's stroke journal to a mesh (same or finer) and write the result");
+  cmd->add_option("journal", options->journal, "Journal file written by twister-station")->required();
+  cmd->add_option("--mesh", options->mesh_in, "Initial mesh (OBJ)")->required();
+  cmd->add_option("--out", options->mesh_out, "Output mesh (OBJ)")->required();
+  cmd->add_option("--undo-changes", options->undo_changes,
+                  "Undo history size in vertex changes (must match the station's)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--undo-entries", options->undo_entries,
+                  "Undo history size in strokes (must match the station's)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--world", options->world, "Write world coordinates (apply the object pose)");
+  cmd->add_flag("--progress", options->progress, "Always print progress (default: journals > 64 KiB)");
+  cmd->add_flag("-q,--quiet", options->quiet, "No progress or warnings on stderr");
+  cmd->callback([options] { run_replay(*options); });
+}
+
+}  // namespace twister::cli

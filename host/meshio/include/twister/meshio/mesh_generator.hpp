@@ -1,0 +1,26 @@
+// Procedural meshes for tests and demos (object frame, metres, centred at 0).
+#pragma once
+
+#include <cstddef>
+
+#include "twister/base/status.hpp"
+#include "twister/mesh/mesh.hpp"
+
+namespace twister::meshio {
+
+// n x n vertices over [-half, half]^2 at z = 0, two triangles per cell (n >= 2).
+// resource_exhausted: does not fit (mesh left cleared); invalid_argument: n < 2.
+Status make_grid(mesh::Mesh& mesh, std::size_t n, float half_size_m);
+inline constexpr std::size_t grid_vertices(std::size_t n) { return n * n; }
+inline constexpr std::size_t grid_triangles(std::size_t n) { return 2 * (n - 1) * (n - 1); }
+
+// UV sphere: `rings` >= 2 latitude bands, `segments` >= 3 longitudes, poles shared.
+Status make_sphere(mesh::Mesh& mesh, std::size_t rings, std::size_t segments, float radius_m);
+inline constexpr std::size_t sphere_vertices(std::size_t rings, std::size_t segments) {
+  return (rings - 1) * segments + 2;
+}
+inline constexpr std::size_t sphere_triangles(std::size_t rings, std::size_t segments) {
+  return 2 * (rings - 1) * segments;
+}
+
+}  // namespace twister::meshio
