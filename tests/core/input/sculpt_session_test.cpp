@@ -224,6 +224,22 @@ TEST(SculptSession, MoveObjectRigidlyWhileTheOtherHandWarps) {
   EXPECT_EQ(s.session->object_pose().origin, glm::dvec3(0.0));
 }
 
+TEST(SculptSession, ManyObjectMovesKeepTheObjectFrameOrthonormal) {
+  Station s(9);
+  for (int k = 0; k < 500; ++k) {
+    s.hand(0, z_turn({0.1 * (k % 7), 0.0, 0.0}, 0.0));
+    s.button(kMove0, true);
+    (void)s.tick();
+    const math::Frame f = z_turn({0.1 * (k % 5), 0.2, 0.01 * k}, 0.37 + 0.01 * k);
+    s.hand(0, math::frame_from_uv(f.origin, f.u, glm::normalize(f.v + glm::dvec3(0, 0, 0.3))));
+    (void)s.tick();
+    s.button(kMove0, false);
+    ASSERT_TRUE(has_event(s.tick(), SessionEventKind::move_committed));
+  }
+  EXPECT_TRUE(math::is_orthonormal(s.session->object_pose(), 1e-12));
+  EXPECT_EQ(s.session->next_sequence(), 500u);
+}
+
 TEST(SculptSession, RadiusGestureScalesTheNextStroke) {
   Station s;
   s.hand(0, math::identity_frame({-0.2, 0, 0}));
