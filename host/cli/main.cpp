@@ -5,6 +5,7 @@
 #include <exception>
 
 #include "cli_exit.hpp"
+#include "figure8_command.hpp"
 #include "mesh_command.hpp"
 #include "replay_command.hpp"
 #include "warp_command.hpp"
@@ -17,6 +18,7 @@ int run(int argc, char** argv) {
   app.set_version_flag("--version", "twister 0.1.0");
   // Subcommands (one line each):
   twister::cli::add_warp_command(app);
+  twister::cli::add_figure8_command(app);
   twister::cli::add_replay_command(app);
   twister::cli::add_mesh_command(app);
 
