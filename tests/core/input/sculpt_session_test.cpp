@@ -2,9 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include <numbers>
-
 #include <glm/geometric.hpp>
+#include <numbers>
 
 #include "session_harness.hpp"
 
@@ -82,7 +81,7 @@ TEST(SculptSession, UndoIsRefusedDuringAStroke) {
 // is the identity and a screw angle is at most 180 degrees).
 TEST(SculptSession, ThreeFrozen120DegreeStepsMakeA360DegreeTwist) {
   Station s;
-  const std::uint32_t half = nearest_vertex(s.mesh, {0.5f, 0, 0});       // weight 0.5
+  const std::uint32_t half = nearest_vertex(s.mesh, {0.5f, 0, 0});        // weight 0.5
   const std::uint32_t quarter = nearest_vertex(s.mesh, {0.6875f, 0, 0});  // ~0.25
   ASSERT_EQ(s.mesh.position(half), glm::vec3(0.5f, 0, 0));
   const glm::vec3 q0 = s.mesh.position(quarter);
