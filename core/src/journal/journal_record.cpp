@@ -9,7 +9,7 @@ namespace twister::journal {
 namespace {
 
 constexpr std::uint8_t kMethodCount = 3;
-constexpr std::size_t kPoseBytes = 9 * 8;
+constexpr std::size_t kPoseBytes = std::size_t{9} * 8;
 constexpr std::size_t kStrokeFixedBytes = 4 + 1 + 1 + 2 + 8;
 constexpr std::size_t kMoveBytes = 4 + 1 + 2 * kPoseBytes;
 constexpr std::size_t kSequenceOnlyBytes = 4;
