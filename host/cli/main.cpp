@@ -5,6 +5,7 @@
 #include <exception>
 
 #include "cli_exit.hpp"
+#include "fastrak_dump_command.hpp"
 #include "figure8_command.hpp"
 #include "mesh_command.hpp"
 #include "replay_command.hpp"
@@ -19,6 +20,7 @@ int run(int argc, char** argv) {
   // Subcommands (one line each):
   twister::cli::add_warp_command(app);
   twister::cli::add_figure8_command(app);
+  twister::cli::add_fastrak_dump_command(app);
   twister::cli::add_replay_command(app);
   twister::cli::add_mesh_command(app);
 

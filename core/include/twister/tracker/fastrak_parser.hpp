@@ -1,0 +1,86 @@
+// FastrakParser: incremental byte-in, event-out parser of the Fastrak record stream
+// (spec §3.7/§3.8). Pure: no I/O, clock or log; fed any split of the stream (one byte
+// at a time included) it yields the same events. Fixed storage (one pending candidate,
+// at most kMaxReplyBytes/kMaxRecordBytes), no heap, no exceptions. Not thread-safe.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "twister/base/result.hpp"
+#include "twister/tracker/fastrak_event.hpp"
+#include "twister/tracker/fastrak_wire.hpp"
+
+namespace twister::tracker {
+
+struct FastrakParserCounters {
+  std::uint64_t bytes = 0;          // bytes consumed
+  std::uint64_t poses = 0;          // pose events
+  std::uint64_t errors = 0;         // plausibility-error events
+  std::uint64_t resyncs = 0;        // resync events (runs of dropped bytes)
+  std::uint64_t dropped_bytes = 0;  // bytes that belonged to no accepted item
+  std::uint64_t replies = 0;        // status + other reply events
+};
+
+class FastrakParser {
+ public:
+  // The configuration must pass validate(); otherwise the parser accepts nothing
+  // and every byte counts as dropped (configure() reports the error).
+  explicit FastrakParser(const FastrakConfig& config = {});
+
+  // Replaces the configuration and clears pending bytes (counters are kept).
+  // invalid_argument: the configuration is invalid (see validate()).
+  Status configure(const FastrakConfig& config);
+  const FastrakConfig& config() const { return config_; }
+
+  // Pulls the next event, consuming bytes from the front of `input` (which is
+  // advanced past them). unavailable: `input` is used up and no event is complete
+  // (a partial candidate is kept for the next call).
+  Result<FastrakEvent> next(std::span<const std::byte>& input);
+
+  // End of the stream: reports the pending run of dropped bytes (pending partial
+  // bytes count as dropped) as a resync. unavailable: nothing pending.
+  Result<FastrakEvent> finish();
+
+  // Drops pending bytes without reporting them (e.g. after a device reset).
+  void reset();
+
+  // Feeds a whole span, calling sink(const FastrakEvent&) for each event.
+  template <typename Sink>
+  void feed(std::span<const std::byte> input, Sink&& sink) {
+    for (;;) {
+      auto ev = next(input);
+      if (!ev.ok()) return;
+      sink(*ev);
+    }
+  }
+
+  const FastrakParserCounters& counters() const { return counters_; }
+
+ private:
+  enum class Verdict : std::uint8_t { need_more, drop, accept };
+  struct Candidate {
+    Verdict verdict = Verdict::drop;
+    std::size_t length = 0;  // need_more: total bytes needed; accept: bytes consumed
+  };
+
+  Candidate examine(const std::byte* p, std::size_t avail, FastrakEvent& out) const;
+  Candidate examine_record(const std::byte* p, std::size_t avail, FastrakEvent& out) const;
+  Candidate examine_reply(const std::byte* p, std::size_t avail, FastrakEvent& out) const;
+  Result<FastrakEvent> emit(const FastrakEvent& ev);
+  void drop_bytes(std::size_t n);
+
+  FastrakConfig config_{};
+  bool config_ok_ = false;
+  std::array<std::size_t, kMaxStations> record_len_{};  // 0 = station disabled
+  std::array<std::byte, kMaxReplyBytes + kMaxRecordBytes> pending_{};
+  std::size_t pending_len_ = 0;
+  std::uint32_t dropped_run_ = 0;
+  bool held_ = false;  // an accepted event waits behind its resync report
+  FastrakEvent held_event_{};
+  FastrakParserCounters counters_{};
+};
+
+}  // namespace twister::tracker

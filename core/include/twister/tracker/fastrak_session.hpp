@@ -1,0 +1,129 @@
+// FastrakSession: owns the command side of a Fastrak over a ByteStream port and
+// emits validated poses only. Start-up: reset ladder (spec §1.2), status check,
+// station enables, output lists, hemispheres, e1,0, units, format, status re-check
+// of format/units, continuous mode. Faults (I/O error/unplug, silence, endless
+// garbage, missing or wrong replies) lead to automatic re-initialisation with
+// exponential back-off. Driven by poll() calls; time comes from the Clock port, so
+// all waits (including the unit's 10-20 s reset) are state, never sleeps. No heap.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "twister/base/result.hpp"
+#include "twister/ports/byte_stream.hpp"
+#include "twister/ports/clock.hpp"
+#include "twister/tracker/fastrak_event.hpp"
+#include "twister/tracker/fastrak_parser.hpp"
+#include "twister/tracker/fastrak_wire.hpp"
+
+namespace twister::tracker {
+
+struct FastrakSessionConfig {
+  FastrakConfig protocol{};  // format, units, enabled stations and their output lists
+  // `H` vector per station (index = station - 1); default +X ("forward").
+  std::array<std::array<int, 3>, kMaxStations> hemisphere{
+      {{1, 0, 0}, {1, 0, 0}, {1, 0, 0}, {1, 0, 0}}};
+  // All durations in microseconds. Defaults suit a real unit; the simulator and
+  // tests shorten them.
+  std::int64_t ladder_char_pause_us = 200'000;  // pause after each ladder byte
+  std::int64_t reset_wait_us = 15'000'000;      // after ^Y (Vrui 15 s, VRPN 20 s)
+  std::int64_t settle_us = 500'000;             // before `S`, input is discarded
+  std::int64_t reply_timeout_us = 2'000'000;    // wait for the status reply
+  std::int64_t command_pause_us = 100'000;      // between configuration commands
+  std::int64_t silence_timeout_us = 2'000'000;  // no valid pose -> fault (VRPN 2 s)
+  std::int64_t backoff_initial_us = 250'000;    // first re-initialisation delay
+  std::int64_t backoff_max_us = 8'000'000;      // back-off cap (doubles per failure)
+  int reset_rung_limit = 3;                     // highest ladder rung: 1 `c`, 2 CR+`c`, 3 CR+`c`+^Y
+};
+
+enum class SessionState : std::uint8_t {
+  backoff,        // waiting before (re)opening the port
+  ladder,         // writing the reset ladder bytes with their pauses
+  settle,         // waiting, then discarding stray input before `S`
+  await_status,   // `S` sent, waiting for the 55-byte status reply
+  configuring,    // sending the configuration commands one by one
+  verify_status,  // `S` sent after configuring: format/units must match
+  streaming,      // `C` sent; poses flow
+};
+const char* session_state_name(SessionState s);
+
+struct FastrakSessionCounters {
+  std::uint64_t poses = 0;            // poses handed to the caller
+  std::uint64_t inits = 0;            // start-up sequences begun
+  std::uint64_t streams_started = 0;  // start-ups that reached streaming
+  std::uint64_t status_timeouts = 0;  // no status reply in time
+  std::uint64_t status_mismatch = 0;  // status flags disagree with the configuration
+  std::uint64_t command_errors = 0;   // command-error records received
+  std::uint64_t io_errors = 0;        // read/write/reopen failures (unplug)
+  std::uint64_t silence_faults = 0;   // no bytes at all for silence_timeout
+  std::uint64_t garbage_faults = 0;   // bytes but no valid pose for silence_timeout
+  std::uint64_t rejected_poses = 0;   // plausibility errors reported by the parser
+  std::uint64_t reinit_requests = 0;  // reinitialise() calls
+};
+
+class FastrakSession {
+ public:
+  // The stream and clock must outlive the session. The stream is (re)opened by the
+  // session itself. The configuration is checked at the first poll(); an invalid
+  // one keeps the session in back-off and poll() returns invalid_argument.
+  FastrakSession(ports::ByteStream& stream, ports::Clock& clock,
+                 const FastrakSessionConfig& config);
+
+  // Advances the state machine (non-blocking) and returns the next validated pose.
+  // Call until it returns unavailable. unavailable: no pose now;
+  // invalid_argument: the configuration is invalid (nothing is sent).
+  Result<FastrakPose> poll();
+
+  // Forces a new start-up (e.g. after the caller changed something on the unit).
+  void reinitialise();
+
+  SessionState state() const { return state_; }
+  bool streaming() const { return state_ == SessionState::streaming; }
+  const FastrakSessionCounters& counters() const { return counters_; }
+  const FastrakParserCounters& parser_counters() const { return parser_.counters(); }
+  const FastrakStatus& last_status() const { return last_status_; }
+  const FastrakSessionConfig& config() const { return config_; }
+  int ladder_rung() const { return rung_; }
+
+ private:
+  void enter(SessionState s, ports::TimestampUs now);
+  void fault(ports::TimestampUs now);
+  void step_timers(ports::TimestampUs now);
+  bool send(std::span<const char> text, ports::TimestampUs now);
+  bool send_text(const char* text, ports::TimestampUs now);
+  void start_ladder(ports::TimestampUs now);
+  void build_commands();
+  void handle_event(const FastrakEvent& ev, ports::TimestampUs now);
+
+  ports::ByteStream& stream_;
+  ports::Clock& clock_;
+  FastrakSessionConfig config_;
+  FastrakParser parser_;
+  bool config_ok_ = false;
+  bool port_open_ = false;
+  SessionState state_ = SessionState::backoff;
+  ports::TimestampUs state_since_ = 0;
+  ports::TimestampUs deadline_ = 0;
+  ports::TimestampUs last_pose_ = 0;
+  ports::TimestampUs last_byte_ = 0;
+  std::int64_t backoff_us_ = 0;
+  int rung_ = 0;
+  FastrakStatus last_status_{};
+  // Ladder bytes of the current attempt, sent one per pause.
+  std::array<char, 8> ladder_{};
+  std::size_t ladder_len_ = 0;
+  std::size_t ladder_pos_ = 0;
+  // Configuration commands, '\0'-separated, sent one per command pause.
+  std::array<char, 1024> commands_{};
+  std::size_t commands_len_ = 0;
+  std::size_t command_pos_ = 0;
+  // Bytes read but not yet parsed.
+  std::array<std::byte, 512> rx_{};
+  std::size_t rx_len_ = 0;
+  std::size_t rx_pos_ = 0;
+  FastrakSessionCounters counters_{};
+};
+
+}  // namespace twister::tracker

@@ -1,0 +1,380 @@
+// Byte-wise hunting parser (spec §3.7/§3.8). Candidates are examined in place in the
+// caller's buffer when they fit; only a candidate cut by the end of a read is copied
+// into pending_, so the common case costs no copy.
+#include "twister/tracker/fastrak_parser.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "fastrak_fields.hpp"
+#include "fastrak_plausibility.hpp"
+
+namespace twister::tracker {
+
+using internal::ch;
+using internal::check_plausibility;
+using internal::is_digit;
+using internal::is_letter;
+
+const char* pose_error_name(PoseError e) {
+  switch (e) {
+    case PoseError::nonfinite:
+      return "nonfinite";
+    case PoseError::position_range:
+      return "position_range";
+    case PoseError::angle_range:
+      return "angle_range";
+    case PoseError::bad_dcm:
+      return "bad_dcm";
+    case PoseError::bad_quaternion:
+      return "bad_quaternion";
+  }
+  return "unknown";
+}
+
+namespace {
+
+bool read_values(const std::byte* p, Format format, int decimals, std::size_t n, float* out) {
+  if (format == Format::binary) {
+    for (std::size_t i = 0; i < n; ++i) out[i] = internal::read_f32_le(p + 4 * i);
+    return true;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!internal::parse_fixed(p + 7 * i, 7, decimals, out[i])) return false;
+  }
+  return true;
+}
+
+bool read_extended(const std::byte* p, Format format, std::size_t n, float* out) {
+  if (format == Format::binary) return read_values(p, format, 0, n, out);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!internal::parse_extended(p + 13 * i, out[i])) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+FastrakParser::FastrakParser(const FastrakConfig& config) { configure(config).ignore(); }
+
+Status FastrakParser::configure(const FastrakConfig& config) {
+  config_ = config;
+  pending_len_ = 0;
+  held_ = false;
+  const Status s = validate(config);
+  config_ok_ = s.ok();
+  for (std::size_t i = 0; i < record_len_.size(); ++i) {
+    const StationConfig& st = config.stations[i];
+    record_len_[i] = (config_ok_ && st.enabled)
+                         ? record_length(st.list, config.format, config.ascii_stylus_width)
+                         : 0;
+  }
+  return s;
+}
+
+void FastrakParser::reset() {
+  pending_len_ = 0;
+  dropped_run_ = 0;
+  held_ = false;
+}
+
+FastrakParser::Candidate FastrakParser::examine(const std::byte* p, std::size_t avail,
+                                                FastrakEvent& out) const {
+  const char c = ch(p[0]);
+  if (c == kRecordType) return examine_record(p, avail, out);
+  if (c == kReplyType) return examine_reply(p, avail, out);
+  return {Verdict::drop, 1};
+}
+
+FastrakParser::Candidate FastrakParser::examine_record(const std::byte* p, std::size_t avail,
+                                                       FastrakEvent& out) const {
+  if (avail < 2) return {Verdict::need_more, 2};
+  const int station = ch(p[1]) - '1';
+  if (station < 0 || station >= kMaxStations) return {Verdict::drop, 1};
+  const std::size_t len = record_len_[static_cast<std::size_t>(station)];
+  if (len == 0) return {Verdict::drop, 1};
+  if (avail < 3) return {Verdict::need_more, 3};
+  const char status = ch(p[2]);
+  if (status != ' ' && !is_letter(status)) return {Verdict::drop, 1};
+  if (avail < len) return {Verdict::need_more, len};
+
+  const Format fmt = config_.format;
+  const bool bin = fmt == Format::binary;
+  const StationConfig& st = config_.stations[static_cast<std::size_t>(station)];
+  FastrakPose pose{};
+  pose.station = static_cast<std::uint8_t>(station + 1);
+  pose.status = status;
+  unsigned dcm_rows = 0;
+  std::size_t off = kHeaderBytes;
+  for (std::size_t i = 0; i < st.list.count; ++i) {
+    const Item item = st.list.items[i];
+    const std::byte* q = p + off;
+    bool ok = true;
+    switch (item) {
+      case Item::space:
+        ok = ch(q[0]) == ' ';
+        break;
+      case Item::crlf:
+        ok = ch(q[0]) == kCr && ch(q[1]) == kLf;
+        break;
+      case Item::position:
+        ok = read_values(q, fmt, 2, 3, pose.position.data());
+        pose.has_position = true;
+        break;
+      case Item::position_ext:
+        ok = read_extended(q, fmt, 3, pose.position.data());
+        pose.has_position = true;
+        break;
+      case Item::euler:
+        ok = read_values(q, fmt, 2, 3, pose.euler_deg.data());
+        pose.has.euler = true;
+        break;
+      case Item::euler_ext:
+        ok = read_extended(q, fmt, 3, pose.euler_deg.data());
+        pose.has.euler = true;
+        break;
+      case Item::dcm_x:
+      case Item::dcm_y:
+      case Item::dcm_z: {
+        const std::size_t row =
+            static_cast<std::size_t>(item) - static_cast<std::size_t>(Item::dcm_x);
+        ok = read_values(q, fmt, 4, 3, pose.dcm.data() + 3 * row);
+        dcm_rows |= 1u << static_cast<unsigned>(row);
+        break;
+      }
+      case Item::dcm_x_ext:
+      case Item::dcm_y_ext:
+      case Item::dcm_z_ext: {
+        const std::size_t row =
+            static_cast<std::size_t>(item) - static_cast<std::size_t>(Item::dcm_x_ext);
+        ok = read_extended(q, fmt, 3, pose.dcm.data() + 3 * row);
+        dcm_rows |= 1u << static_cast<unsigned>(row);
+        break;
+      }
+      case Item::quaternion:
+        ok = read_values(q, fmt, 4, 4, pose.quaternion.data());
+        pose.has.quaternion = true;
+        break;
+      case Item::quaternion_ext:
+        ok = read_extended(q, fmt, 4, pose.quaternion.data());
+        pose.has.quaternion = true;
+        break;
+      case Item::stylus:
+      case Item::stylus_ext: {
+        // Only the last byte carries the state; the first of two is unconfirmed (§3.5).
+        const std::size_t w = bin ? 2 : config_.ascii_stylus_width;
+        const char s = ch(q[w - 1]);
+        ok = s == '0' || s == '1';
+        pose.has_button = true;
+        pose.button = s == '1';
+        break;
+      }
+    }
+    if (!ok) return {Verdict::drop, 1};
+    off += item_width(item, fmt, config_.ascii_stylus_width);
+  }
+  pose.has.dcm = dcm_rows == 7u;
+
+  if (const auto err = check_plausibility(pose, dcm_rows, config_)) {
+    out.kind = EventKind::error;
+    out.station = pose.station;
+    out.error = *err;
+  } else {
+    out.kind = EventKind::pose;
+    out.pose = pose;
+  }
+  return {Verdict::accept, len};
+}
+
+FastrakParser::Candidate FastrakParser::examine_reply(const std::byte* p, std::size_t avail,
+                                                      FastrakEvent& out) const {
+  if (avail < 2) return {Verdict::need_more, 2};
+  const char station = ch(p[1]);
+  if (station != ' ' && !is_digit(station) && !is_letter(station)) return {Verdict::drop, 1};
+  if (avail < 3) return {Verdict::need_more, 3};
+  const char command = ch(p[2]);
+  if (!is_letter(command)) return {Verdict::drop, 1};
+  // A reply is printable text up to CR LF; anything else is not a reply.
+  std::size_t i = 3;
+  for (; i < avail; ++i) {
+    const char c = ch(p[i]);
+    if (c == kCr) break;
+    if (c < 0x20 || c > 0x7E) return {Verdict::drop, 1};
+    if (i + 2 >= kMaxReplyBytes) return {Verdict::drop, 1};
+  }
+  if (i + 1 >= avail) return {Verdict::need_more, std::min(i + 2, kMaxReplyBytes)};
+  if (ch(p[i + 1]) != kLf) return {Verdict::drop, 1};
+  const std::size_t len = i + 2;
+
+  auto hex = [](char c) -> int {
+    if (is_digit(c)) return c - '0';
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    return -1;
+  };
+  if (command == 'S' && len == kStatusReplyBytes) {
+    const int h0 = hex(ch(p[3])), h1 = hex(ch(p[4])), h2 = hex(ch(p[5]));
+    if (h0 >= 0 && h1 >= 0 && h2 >= 0) {
+      out.kind = EventKind::status;
+      FastrakStatus& s = out.status;
+      s = {};
+      s.station = is_digit(station) ? static_cast<std::uint8_t>(station - '0') : 0;
+      s.flags = static_cast<std::uint16_t>((h0 << 8) | (h1 << 4) | h2);
+      // The mode bits sit in the third hex digit (FreeVR, §3.6).
+      s.binary = (h2 & 1) != 0;
+      s.centimetres = (h2 & 2) != 0;
+      s.continuous = (h2 & 8) != 0;
+      return {Verdict::accept, len};
+    }
+  }
+  out.kind = EventKind::reply;
+  FastrakReply& r = out.reply;
+  r = {};
+  r.station = station;
+  r.command = command;
+  r.length = static_cast<std::uint8_t>(len);
+  if (command == 'E') {
+    r.is_error = true;
+    // "*ERROR* EC <code>": find "EC" after the echoed input.
+    for (std::size_t k = 3; k + 2 < len; ++k) {
+      if (ch(p[k]) == 'E' && ch(p[k + 1]) == 'C') {
+        std::size_t j = k + 2;
+        while (j < len && ch(p[j]) == ' ') ++j;
+        bool neg = false;
+        if (j < len && ch(p[j]) == '-') {
+          neg = true;
+          ++j;
+        }
+        int code = 0;
+        while (j < len && is_digit(ch(p[j])) && code < 1000) code = code * 10 + (ch(p[j++]) - '0');
+        r.error_code = neg ? -code : code;
+      }
+    }
+  }
+  return {Verdict::accept, len};
+}
+
+void FastrakParser::drop_bytes(std::size_t n) {
+  dropped_run_ += static_cast<std::uint32_t>(n);
+  counters_.dropped_bytes += n;
+}
+
+Result<FastrakEvent> FastrakParser::emit(const FastrakEvent& ev) {
+  if (dropped_run_ > 0) {
+    // Report the dropped run first; the accepted item follows on the next call.
+    held_ = true;
+    held_event_ = ev;
+    FastrakEvent r{};
+    r.kind = EventKind::resync;
+    r.dropped = dropped_run_;
+    dropped_run_ = 0;
+    ++counters_.resyncs;
+    return r;
+  }
+  switch (ev.kind) {
+    case EventKind::pose:
+      ++counters_.poses;
+      break;
+    case EventKind::error:
+      ++counters_.errors;
+      break;
+    case EventKind::status:
+    case EventKind::reply:
+      ++counters_.replies;
+      break;
+    case EventKind::resync:
+      break;
+  }
+  return ev;
+}
+
+Result<FastrakEvent> FastrakParser::next(std::span<const std::byte>& input) {
+  if (held_) {
+    held_ = false;
+    return emit(held_event_);
+  }
+  if (!config_ok_) {
+    drop_bytes(input.size());
+    counters_.bytes += input.size();
+    input = input.subspan(input.size());
+    return StatusCode::unavailable;
+  }
+  FastrakEvent ev;
+  for (;;) {
+    if (pending_len_ > 0) {
+      const Candidate c = examine(pending_.data(), pending_len_, ev);
+      if (c.verdict == Verdict::need_more) {
+        if (input.empty()) return StatusCode::unavailable;
+        const std::size_t n = std::min(c.length - pending_len_, input.size());
+        std::memcpy(pending_.data() + pending_len_, input.data(), n);
+        pending_len_ += n;
+        input = input.subspan(n);
+        counters_.bytes += n;
+        continue;
+      }
+      const std::size_t used = c.verdict == Verdict::drop ? 1 : c.length;
+      std::memmove(pending_.data(), pending_.data() + used, pending_len_ - used);
+      pending_len_ -= used;
+      if (c.verdict == Verdict::drop) {
+        drop_bytes(1);
+        continue;
+      }
+      return emit(ev);
+    }
+    if (input.empty()) return StatusCode::unavailable;
+    // Fast skip of bytes that cannot start anything.
+    const char c0 = ch(input[0]);
+    if (c0 != kRecordType && c0 != kReplyType) {
+      std::size_t k = 1;
+      while (k < input.size() && ch(input[k]) != kRecordType && ch(input[k]) != kReplyType) ++k;
+      drop_bytes(k);
+      counters_.bytes += k;
+      input = input.subspan(k);
+      continue;
+    }
+    const Candidate c = examine(input.data(), input.size(), ev);
+    if (c.verdict == Verdict::need_more) {
+      std::memcpy(pending_.data(), input.data(), input.size());
+      pending_len_ = input.size();
+      counters_.bytes += input.size();
+      input = input.subspan(input.size());
+      return StatusCode::unavailable;
+    }
+    const std::size_t used = c.verdict == Verdict::drop ? 1 : c.length;
+    counters_.bytes += used;
+    input = input.subspan(used);
+    if (c.verdict == Verdict::drop) {
+      drop_bytes(1);
+      continue;
+    }
+    return emit(ev);
+  }
+}
+
+Result<FastrakEvent> FastrakParser::finish() {
+  if (held_) {
+    held_ = false;
+    return emit(held_event_);
+  }
+  // No more bytes will come: a candidate still waiting can never complete, but a
+  // shorter record may start inside it.
+  FastrakEvent ev;
+  while (pending_len_ > 0) {
+    const Candidate c = examine(pending_.data(), pending_len_, ev);
+    const std::size_t used = c.verdict == Verdict::accept ? c.length : 1;
+    std::memmove(pending_.data(), pending_.data() + used, pending_len_ - used);
+    pending_len_ -= used;
+    if (c.verdict == Verdict::accept) return emit(ev);
+    drop_bytes(1);
+  }
+  if (dropped_run_ == 0) return StatusCode::unavailable;
+  FastrakEvent r{};
+  r.kind = EventKind::resync;
+  r.dropped = dropped_run_;
+  dropped_run_ = 0;
+  ++counters_.resyncs;
+  return r;
+}
+
+}  // namespace twister::tracker

@@ -1,0 +1,60 @@
+// GpiodButtonSource: the ButtonSource port over GPIO lines via libgpiod v1.
+// Lines are requested for both-edge events with the consumer name "twister-station";
+// active_low makes the kernel invert the level, so a rising event is always "pressed".
+// Edge times are the kernel's event timestamps (CLOCK_MONOTONIC on Linux >= 5.7, the
+// same base as MonotonicClock). poll() never blocks; wait on poll_fds() (POLLIN).
+// Errors: open() -> unavailable (chip missing), io_error (line busy, no permission,
+// bias not supported by the kernel), invalid_argument (bad offsets);
+// poll() -> unavailable (no edge pending), io_error (chip gone).
+// Only the owning thread may call it.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "twister/ports/button_source.hpp"
+
+struct gpiod_chip;
+struct gpiod_line;
+
+namespace twister::hal {
+
+struct GpiodButtonConfig {
+  std::string chip = "gpiochip0";  // name, number or /dev path (gpiod_chip_open_lookup)
+  std::vector<std::uint32_t> lines;  // button i = lines[i]; at most kMaxLines
+  bool active_low = true;
+  enum class Bias : std::uint8_t { as_is, disable, pull_up, pull_down } bias = Bias::as_is;
+};
+
+class GpiodButtonSource final : public ports::ButtonSource {
+ public:
+  static constexpr std::size_t kMaxLines = 8;
+
+  GpiodButtonSource() = default;
+  ~GpiodButtonSource() override;
+  GpiodButtonSource(const GpiodButtonSource&) = delete;
+  GpiodButtonSource& operator=(const GpiodButtonSource&) = delete;
+
+  Status open(const GpiodButtonConfig& config);
+  void close();
+  // Event fds to wait on (one per line), valid after a successful open().
+  std::span<const int> poll_fds() const { return {fds_.data(), line_count_}; }
+  // errno of the last failure, for the log at the composition root.
+  int last_errno() const { return last_errno_; }
+
+ private:
+  Result<ports::ButtonEdge> do_poll() override;
+  std::uint8_t do_line_count() const override { return static_cast<std::uint8_t>(line_count_); }
+
+  gpiod_chip* chip_ = nullptr;
+  std::array<gpiod_line*, kMaxLines> lines_{};
+  std::array<int, kMaxLines> fds_{};
+  std::size_t line_count_ = 0;
+  std::size_t next_line_ = 0;  // round-robin start so one chatty line cannot starve others
+  int last_errno_ = 0;
+};
+
+}  // namespace twister::hal

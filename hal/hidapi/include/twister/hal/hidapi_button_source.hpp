@@ -1,0 +1,57 @@
+// HidapiButtonSource: the ButtonSource port over a USB HID device (buttons, foot
+// pedal) via hidapi's hidraw backend. Opened by hidraw path, or by vendor/product id
+// (first match). Reads are non-blocking; edges are stamped with the injected clock
+// when the report is read (HID reports carry no timestamp), so their time resolution
+// is the event loop's period. hidapi offers no fd, so the event loop polls this
+// source every loop_timeout_ms.
+// Errors: open() -> unavailable (no such device), io_error (open failed: permissions),
+// invalid_argument (bad button map); poll() -> unavailable (no edge), io_error
+// (device unplugged: reopen with open()).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "twister/hal/hid_report_decoder.hpp"
+#include "twister/ports/button_source.hpp"
+#include "twister/ports/clock.hpp"
+
+struct hid_device_;
+
+namespace twister::hal {
+
+struct HidapiButtonConfig {
+  std::uint16_t vendor_id = 0;
+  std::uint16_t product_id = 0;
+  std::string path;                     // wins over the ids when not empty
+  std::vector<HidButtonBitMap> buttons;  // button i = buttons[i]
+};
+
+class HidapiButtonSource final : public ports::ButtonSource {
+ public:
+  explicit HidapiButtonSource(ports::Clock& clock) : clock_(clock) {}
+  ~HidapiButtonSource() override;
+  HidapiButtonSource(const HidapiButtonSource&) = delete;
+  HidapiButtonSource& operator=(const HidapiButtonSource&) = delete;
+
+  Status open(const HidapiButtonConfig& config);
+  void close();
+
+ private:
+  Result<ports::ButtonEdge> do_poll() override;
+  std::uint8_t do_line_count() const override {
+    return static_cast<std::uint8_t>(decoder_.button_count());
+  }
+
+  ports::Clock& clock_;
+  hid_device_* device_ = nullptr;
+  HidReportDecoder decoder_;
+  std::array<ports::ButtonEdge, HidReportDecoder::kMaxButtons> pending_{};
+  std::size_t pending_count_ = 0;
+  std::size_t pending_pos_ = 0;
+  std::array<std::uint8_t, 64> report_{};
+};
+
+}  // namespace twister::hal

@@ -1,0 +1,52 @@
+#include "twister/hal/hidapi_button_source.hpp"
+
+#include <hidapi/hidapi.h>
+
+namespace twister::hal {
+
+HidapiButtonSource::~HidapiButtonSource() { close(); }
+
+void HidapiButtonSource::close() {
+  if (device_ != nullptr) hid_close(device_);
+  device_ = nullptr;
+  pending_count_ = pending_pos_ = 0;
+}
+
+Status HidapiButtonSource::open(const HidapiButtonConfig& config) {
+  close();
+  TWISTER_TRY(decoder_.configure(config.buttons));
+  if (config.buttons.empty()) return StatusCode::invalid_argument;
+  if (hid_init() != 0) return StatusCode::io_error;
+  if (!config.path.empty()) {
+    device_ = hid_open_path(config.path.c_str());
+  } else {
+    // Enumerate first so "not plugged in" and "cannot open" are told apart.
+    hid_device_info* found = hid_enumerate(config.vendor_id, config.product_id);
+    if (found == nullptr) return StatusCode::unavailable;
+    device_ = hid_open_path(found->path);
+    hid_free_enumeration(found);
+  }
+  if (device_ == nullptr) return config.path.empty() ? StatusCode::io_error : StatusCode::unavailable;
+  if (hid_set_nonblocking(device_, 1) != 0) {
+    close();
+    return StatusCode::io_error;
+  }
+  return OkStatus();
+}
+
+Result<ports::ButtonEdge> HidapiButtonSource::do_poll() {
+  if (pending_pos_ < pending_count_) return pending_[pending_pos_++];
+  if (device_ == nullptr) return StatusCode::failed_precondition;
+  // Drain queued reports until one changes a button (or none is left).
+  for (;;) {
+    const int n = hid_read(device_, report_.data(), report_.size());
+    if (n < 0) return StatusCode::io_error;  // unplugged or read error
+    if (n == 0) return StatusCode::unavailable;
+    pending_count_ = decoder_.decode(std::span(report_.data(), static_cast<std::size_t>(n)),
+                                     clock_.now_us(), pending_);
+    pending_pos_ = 0;
+    if (pending_count_ > 0) return pending_[pending_pos_++];
+  }
+}
+
+}  // namespace twister::hal

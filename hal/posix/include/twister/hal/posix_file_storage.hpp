@@ -1,0 +1,46 @@
+// PosixFileStorage: the Storage port over one append-only file (the stroke journal).
+// append() writes all bytes (retrying short writes and EINTR); sync() is fsync(2).
+// A newly created file also gets its directory fsynced, so the file survives power
+// loss. Not thread-safe: one owner (the station loop).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "twister/ports/storage.hpp"
+
+namespace twister::hal {
+
+struct PosixFileStorageConfig {
+  std::string path;            // journal file; created (mode 0644) when missing
+  bool create_if_missing = true;
+};
+
+class PosixFileStorage final : public ports::Storage {
+ public:
+  PosixFileStorage() = default;
+  ~PosixFileStorage() override;
+  PosixFileStorage(const PosixFileStorage&) = delete;
+  PosixFileStorage& operator=(const PosixFileStorage&) = delete;
+
+  // Opens (or creates) the file. io_error: open/create failed (errno() tells why);
+  // unavailable: missing and create_if_missing is false.
+  Status open(const PosixFileStorageConfig& config);
+  void close();
+  bool is_open() const { return fd_ >= 0; }
+  // errno of the last failed call (0 if none), for the log at the composition root.
+  int last_errno() const { return last_errno_; }
+
+ private:
+  Result<std::uint64_t> do_size() override;
+  Result<std::size_t> do_read_at(std::uint64_t offset, std::span<std::byte> dest) override;
+  Status do_append(std::span<const std::byte> src) override;
+  Status do_sync() override;
+  Status do_truncate(std::uint64_t length) override;
+  Status fail(int err);
+
+  int fd_ = -1;
+  int last_errno_ = 0;
+};
+
+}  // namespace twister::hal

@@ -1,0 +1,110 @@
+// PosixFileStorage: errno is translated to StatusCode here, at the boundary.
+#include "twister/hal/posix_file_storage.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <climits>
+
+namespace twister::hal {
+namespace {
+
+// Durability of a new file needs its directory entry on disk as well.
+void sync_parent_directory(const std::string& path) {
+  const auto slash = path.rfind('/');
+  const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
+  const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dfd >= 0) {
+    ::fsync(dfd);
+    ::close(dfd);
+  }
+}
+
+}  // namespace
+
+PosixFileStorage::~PosixFileStorage() { close(); }
+
+Status PosixFileStorage::fail(int err) {
+  last_errno_ = err;
+  return StatusCode::io_error;
+}
+
+Status PosixFileStorage::open(const PosixFileStorageConfig& config) {
+  close();
+  if (config.path.empty()) return StatusCode::invalid_argument;
+  struct stat st {};
+  const bool existed = ::stat(config.path.c_str(), &st) == 0;
+  if (!existed && !config.create_if_missing) {
+    last_errno_ = ENOENT;
+    return StatusCode::unavailable;
+  }
+  const int flags = O_RDWR | O_APPEND | O_CLOEXEC | (config.create_if_missing ? O_CREAT : 0);
+  const int fd = ::open(config.path.c_str(), flags, 0644);
+  if (fd < 0) return fail(errno);
+  fd_ = fd;
+  last_errno_ = 0;
+  if (!existed) sync_parent_directory(config.path);
+  return OkStatus();
+}
+
+void PosixFileStorage::close() {
+  if (fd_ >= 0) {
+    ::close(fd_);
+    fd_ = -1;
+  }
+}
+
+Result<std::uint64_t> PosixFileStorage::do_size() {
+  if (fd_ < 0) return StatusCode::failed_precondition;
+  struct stat st {};
+  if (::fstat(fd_, &st) != 0) return fail(errno);
+  return static_cast<std::uint64_t>(st.st_size);
+}
+
+Result<std::size_t> PosixFileStorage::do_read_at(std::uint64_t offset, std::span<std::byte> dest) {
+  if (fd_ < 0) return StatusCode::failed_precondition;
+  if (offset > static_cast<std::uint64_t>(LLONG_MAX)) return StatusCode::out_of_range;
+  std::size_t done = 0;
+  while (done < dest.size()) {
+    const ssize_t n = ::pread(fd_, dest.data() + done, dest.size() - done,
+                              static_cast<off_t>(offset + done));
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return fail(errno);
+    }
+    if (n == 0) break;  // end of file
+    done += static_cast<std::size_t>(n);
+  }
+  return done;
+}
+
+Status PosixFileStorage::do_append(std::span<const std::byte> src) {
+  if (fd_ < 0) return StatusCode::failed_precondition;
+  std::size_t done = 0;
+  while (done < src.size()) {
+    const ssize_t n = ::write(fd_, src.data() + done, src.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return fail(errno);
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  return OkStatus();
+}
+
+Status PosixFileStorage::do_sync() {
+  if (fd_ < 0) return StatusCode::failed_precondition;
+  if (::fsync(fd_) != 0) return fail(errno);
+  return OkStatus();
+}
+
+Status PosixFileStorage::do_truncate(std::uint64_t length) {
+  if (fd_ < 0) return StatusCode::failed_precondition;
+  if (length > static_cast<std::uint64_t>(LLONG_MAX)) return StatusCode::out_of_range;
+  if (::ftruncate(fd_, static_cast<off_t>(length)) != 0) return fail(errno);
+  return OkStatus();
+}
+
+}  // namespace twister::hal

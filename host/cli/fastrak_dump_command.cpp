@@ -1,0 +1,275 @@
+// fastrak-dump. Options are named after the protocol's own commands: -O s,items (output
+// list of station s, repeatable), -F / -f (ASCII / binary), -U / -u (inches / cm).
+// Output: one line per valid record "station ox oy oz ux uy uz vx vy vz wx wy wz"
+// (tracker units; receiver axes as unit vectors in tracker coordinates; %.6g) and one
+// line starting with "error" per rejected stretch of bytes.
+// Note: this tool links twister_hal_termios for DEVICE mode (the one host->hal use).
+#include "fastrak_dump_command.hpp"
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli_exit.hpp"
+#include "twister/hal/termios_byte_stream.hpp"
+#include "twister/tracker/fastrak_parser.hpp"
+#include "twister/tracker/fastrak_session.hpp"
+#include "twister/tracker/pose_conversion.hpp"
+
+namespace twister::cli {
+namespace {
+
+using tracker::FastrakConfig;
+using tracker::Format;
+
+volatile std::sig_atomic_t g_stop = 0;
+void on_signal(int) { g_stop = 1; }
+
+class SteadyClock final : public ports::Clock {
+  ports::TimestampUs do_now_us() override {
+    return std::chrono::duration_cast<std::chrono::microseconds>(
+               std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+  }
+};
+
+struct DumpOptions {
+  std::string device;
+  std::string file;
+  std::vector<std::string> lists;  // -O s,i1,...,in
+  bool ascii = false;              // -F
+  bool binary = false;             // -f
+  bool inches = false;             // -U
+  bool cm = false;                 // -u
+  int baud = 115200;
+  int stylus_width = 1;
+  double seconds = 0.0;
+  long count = 0;
+  bool quick = false;
+};
+
+// Parses "s,i1,...,in" into the config; false with a message on error.
+bool parse_list(const std::string& text, FastrakConfig& config, std::string& error) {
+  std::vector<int> v;
+  std::size_t pos = 0;
+  while (pos <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', pos), text.size());
+    const std::string field = text.substr(pos, comma - pos);
+    if (field.empty() || field.find_first_not_of("0123456789") != std::string::npos ||
+        field.size() > 3) {
+      error = "-O " + text + ": expected station,item,item,... with integers";
+      return false;
+    }
+    v.push_back(std::stoi(field));
+    pos = comma + 1;
+  }
+  if (v.size() < 2 || v[0] < 1 || v[0] > tracker::kMaxStations) {
+    error = "-O " + text + ": station 1..4 and at least one item";
+    return false;
+  }
+  auto& st = config.stations[static_cast<std::size_t>(v[0] - 1)];
+  st.enabled = true;
+  st.list = {};
+  for (std::size_t i = 1; i < v.size(); ++i) {
+    if (v[i] > 255 || !tracker::is_supported_item(static_cast<std::uint8_t>(v[i])) ||
+        st.list.count >= tracker::kMaxItems) {
+      error = "-O " + text + ": unsupported item " + std::to_string(v[i]);
+      return false;
+    }
+    st.list.items[st.list.count++] = static_cast<tracker::Item>(v[i]);
+  }
+  return true;
+}
+
+bool build_config(const DumpOptions& o, FastrakConfig& config, std::string& error) {
+  if (o.ascii && o.binary) {
+    error = "-F and -f exclude each other";
+    return false;
+  }
+  if (o.inches && o.cm) {
+    error = "-U and -u exclude each other";
+    return false;
+  }
+  config.format = o.binary ? Format::binary : Format::ascii;
+  config.units = o.cm ? tracker::Units::centimetres : tracker::Units::inches;
+  config.ascii_stylus_width = static_cast<std::uint8_t>(o.stylus_width);
+  if (o.lists.empty()) {
+    config.stations[0].enabled = true;  // the unit's default list 2,4,1 on station 1
+  }
+  for (const auto& l : o.lists) {
+    if (!parse_list(l, config, error)) return false;
+  }
+  if (!tracker::validate(config).ok()) {
+    error = "output lists give a record longer than 254 bytes";
+    return false;
+  }
+  return true;
+}
+
+void print_pose(const tracker::FastrakPose& p, Format format) {
+  auto r = tracker::tracker_rotation(p, format);
+  if (!r.ok()) {
+    std::printf("error station %d %s\n", p.station,
+                r.status().code() == StatusCode::failed_precondition ? "no_orientation"
+                                                                     : "bad_orientation");
+    return;
+  }
+  const glm::dmat3& m = *r;
+  std::printf("%d %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g\n", p.station,
+              static_cast<double>(p.position[0]), static_cast<double>(p.position[1]),
+              static_cast<double>(p.position[2]), m[0].x, m[0].y, m[0].z, m[1].x, m[1].y, m[1].z,
+              m[2].x, m[2].y, m[2].z);
+}
+
+void print_event(const tracker::FastrakEvent& e, Format format) {
+  switch (e.kind) {
+    case tracker::EventKind::pose:
+      print_pose(e.pose, format);
+      break;
+    case tracker::EventKind::error:
+      std::printf("error station %d %s\n", e.station, tracker::pose_error_name(e.error));
+      break;
+    case tracker::EventKind::resync:
+      std::printf("error resync %u bytes\n", e.dropped);
+      break;
+    case tracker::EventKind::status:
+    case tracker::EventKind::reply:
+      break;  // replies are neither records nor errors
+  }
+}
+
+int run_file(const DumpOptions& o, const FastrakConfig& config) {
+  std::istream* in = &std::cin;
+  std::ifstream file;
+  if (o.file != "-") {
+    file.open(o.file, std::ios::binary);
+    if (!file) {
+      std::fprintf(stderr, "fastrak-dump: cannot read %s\n", o.file.c_str());
+      return kExitFailure;
+    }
+    in = &file;
+  }
+  tracker::FastrakParser parser(config);
+  std::vector<char> buf(1 << 16);
+  while (*in) {
+    in->read(buf.data(), static_cast<std::streamsize>(buf.size()));
+    const auto n = static_cast<std::size_t>(in->gcount());
+    if (n == 0) break;
+    parser.feed(std::as_bytes(std::span<const char>(buf.data(), n)),
+                [&](const tracker::FastrakEvent& e) { print_event(e, config.format); });
+  }
+  for (auto e = parser.finish(); e.ok(); e = parser.finish()) print_event(*e, config.format);
+  const auto& c = parser.counters();
+  std::fprintf(
+      stderr, "fastrak-dump: bytes=%llu poses=%llu errors=%llu resyncs=%llu dropped=%llu\n",
+      static_cast<unsigned long long>(c.bytes), static_cast<unsigned long long>(c.poses),
+      static_cast<unsigned long long>(c.errors), static_cast<unsigned long long>(c.resyncs),
+      static_cast<unsigned long long>(c.dropped_bytes));
+  return kExitOk;
+}
+
+int run_device(const DumpOptions& o, const FastrakConfig& config) {
+  unsigned speed = 0;
+  if (!hal::baud_to_speed(o.baud, speed)) {
+    std::fprintf(stderr, "fastrak-dump: unsupported baud %d\n", o.baud);
+    return kExitBadInput;
+  }
+  tracker::FastrakSessionConfig sc;
+  sc.protocol = config;
+  if (o.quick) {  // simulator timings (twister-sim --reset-time 0.5 or less)
+    sc.ladder_char_pause_us = 20'000;
+    sc.reset_wait_us = 600'000;
+    sc.settle_us = 50'000;
+    sc.reply_timeout_us = 500'000;
+    sc.command_pause_us = 5'000;
+  }
+  hal::TermiosByteStream port({o.device, o.baud, hal::FlowControl::none});
+  SteadyClock clock;
+  tracker::FastrakSession session(port, clock, sc);
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  const auto start = std::chrono::steady_clock::now();
+  auto next_report = start + std::chrono::seconds(1);
+  long printed = 0;
+  auto report = [&] {
+    const auto& c = session.counters();
+    const auto& p = session.parser_counters();
+    std::fprintf(stderr,
+                 "counters state=%s poses=%llu inits=%llu streams=%llu status_timeouts=%llu "
+                 "io_errors=%llu silence=%llu garbage=%llu rejected=%llu resyncs=%llu "
+                 "dropped_bytes=%llu\n",
+                 tracker::session_state_name(session.state()),
+                 static_cast<unsigned long long>(c.poses), static_cast<unsigned long long>(c.inits),
+                 static_cast<unsigned long long>(c.streams_started),
+                 static_cast<unsigned long long>(c.status_timeouts),
+                 static_cast<unsigned long long>(c.io_errors),
+                 static_cast<unsigned long long>(c.silence_faults),
+                 static_cast<unsigned long long>(c.garbage_faults),
+                 static_cast<unsigned long long>(c.rejected_poses),
+                 static_cast<unsigned long long>(p.resyncs),
+                 static_cast<unsigned long long>(p.dropped_bytes));
+  };
+  while (g_stop == 0) {
+    for (auto p = session.poll(); p.ok(); p = session.poll()) {
+      print_pose(*p, config.format);
+      if (o.count > 0 && ++printed >= o.count) g_stop = 1;
+    }
+    std::fflush(stdout);
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= next_report) {
+      report();
+      next_report += std::chrono::seconds(1);
+    }
+    if (o.seconds > 0 && now - start >= std::chrono::duration<double>(o.seconds)) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  report();
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_fastrak_dump_command(CLI::App& app) {
+  auto opts = std::make_shared<DumpOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "fastrak-dump", "Configure a Fastrak and print decoded records, or decode a recording");
+  cmd->add_option("DEVICE", opts->device, "serial device or twister-sim link to configure");
+  cmd->add_option("--file", opts->file, "decode a recorded stream from PATH ('-' = stdin)");
+  cmd->add_option("-O", opts->lists,
+                  "output list of a station as the O command: s,i1,...,in (repeatable; "
+                  "default 1,2,4,1)");
+  cmd->add_flag("-F", opts->ascii, "ASCII format (default)");
+  cmd->add_flag("-f", opts->binary, "binary (IEEE float) format");
+  cmd->add_flag("-U", opts->inches, "inches (default)");
+  cmd->add_flag("-u", opts->cm, "centimetres");
+  cmd->add_option("--baud", opts->baud, "DEVICE mode line rate")->capture_default_str();
+  cmd->add_option("--stylus-width", opts->stylus_width, "ASCII width of item 16 (1 or 2)")
+      ->check(CLI::IsMember({1, 2}));
+  cmd->add_option("--seconds", opts->seconds, "DEVICE mode: stop after this many seconds")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--count", opts->count, "DEVICE mode: stop after this many records")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--quick", opts->quick, "short reset waits, for twister-sim");
+  cmd->callback([opts] {
+    if (opts->device.empty() == opts->file.empty()) {
+      std::fprintf(stderr, "fastrak-dump: give either DEVICE or --file PATH\n");
+      throw Exit{kExitBadInput};
+    }
+    FastrakConfig config;
+    std::string error;
+    if (!build_config(*opts, config, error)) {
+      std::fprintf(stderr, "fastrak-dump: %s\n", error.c_str());
+      throw Exit{kExitBadInput};
+    }
+    const int rc = opts->file.empty() ? run_device(*opts, config) : run_file(*opts, config);
+    std::fflush(stdout);
+    if (rc != kExitOk) throw Exit{rc};
+  });
+}
+
+}  // namespace twister::cli

@@ -1,0 +1,11 @@
+// `twister fastrak-dump`: configure a Fastrak (real or simulated) and print decoded
+// records and error counters live, or decode a recorded stream (--file PATH|-).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace twister::cli {
+
+void add_fastrak_dump_command(CLI::App& app);
+
+}  // namespace twister::cli

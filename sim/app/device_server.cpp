@@ -1,0 +1,151 @@
+// PTY facts used here: shared/design/testing-without-hardware.md (raw mode, hang-up
+// seen as POLLHUP by the reader, the /dev/pts node vanishing, symlink via rename()).
+#include "device_server.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <stdlib.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <array>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+
+namespace twister::sim {
+namespace {
+constexpr std::size_t kMaxBacklog = 1 << 16;
+}
+
+DeviceServer::DeviceServer(FastrakDevice& device, ServeOptions options)
+    : device_(device), options_(std::move(options)), epoch_(std::chrono::steady_clock::now()) {}
+
+DeviceServer::~DeviceServer() { close_pty(); }
+
+std::int64_t DeviceServer::now_us() const {
+  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() -
+                                                               epoch_)
+      .count();
+}
+
+bool DeviceServer::open_pty(std::string& error) {
+  const int m = ::posix_openpt(O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+  if (m < 0 || ::grantpt(m) != 0 || ::unlockpt(m) != 0) {
+    error = std::string("cannot create a PTY: ") + std::strerror(errno);
+    if (m >= 0) ::close(m);
+    return false;
+  }
+  const char* name = ::ptsname(m);
+  if (name == nullptr) {
+    error = "ptsname failed";
+    ::close(m);
+    return false;
+  }
+  termios tio{};
+  if (::tcgetattr(m, &tio) == 0) {
+    ::cfmakeraw(&tio);
+    ::tcsetattr(m, TCSANOW, &tio);
+  }
+  slave_path_ = name;
+  slave_keep_ = ::open(name, O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+  master_ = m;
+  ++counters_.ptys_opened;
+  if (!options_.link.empty()) {
+    // New name first, then an atomic rename: readers never see a missing link.
+    const std::string tmp = options_.link + ".tmp";
+    ::unlink(tmp.c_str());
+    if (::symlink(name, tmp.c_str()) != 0 || ::rename(tmp.c_str(), options_.link.c_str()) != 0) {
+      error = "cannot link " + options_.link + ": " + std::strerror(errno);
+      return false;
+    }
+  }
+  return true;
+}
+
+void DeviceServer::close_pty() {
+  if (slave_keep_ >= 0) ::close(slave_keep_);
+  if (master_ >= 0) ::close(master_);
+  slave_keep_ = master_ = -1;
+}
+
+bool DeviceServer::start(std::string& error) {
+  if (options_.device.empty()) return open_pty(error);
+  tty_ = std::make_unique<hal::TermiosByteStream>(
+      hal::TermiosConfig{options_.device, options_.baud, hal::FlowControl::none});
+  const Status s = tty_->reopen();
+  if (!s.ok()) {
+    error = "cannot open " + options_.device + ": " + std::strerror(tty_->last_errno());
+    return false;
+  }
+  slave_path_ = options_.device;
+  return true;
+}
+
+bool DeviceServer::step(int wait_ms, std::string& error) {
+  const std::int64_t now = now_us();
+  std::array<std::byte, 512> in{};
+  if (tty_) {
+    // HIL: a real line cannot hang up from here; the device just goes quiet.
+    if (device_.hung_up(now)) {
+      out_.clear();
+    } else {
+      auto n = tty_->read(in);
+      if (!n.ok()) {
+        error = "serial device failed";
+        return false;
+      }
+      counters_.bytes_in += *n;
+      device_.receive(in.data(), *n, now);
+      device_.advance(now, out_);
+      if (!out_.empty()) {
+        auto w = tty_->write(out_);
+        if (w.ok()) {
+          counters_.bytes_out += *w;
+          out_.erase(out_.begin(), out_.begin() + static_cast<std::ptrdiff_t>(*w));
+        }
+      }
+    }
+    ::usleep(static_cast<useconds_t>(wait_ms) * 1000u);
+    return true;
+  }
+
+  if (device_.hung_up(now)) {
+    if (master_ >= 0) {
+      // Unplugged: the link goes first (as udev removes by-id links), because the
+      // /dev/pts number is reused by the next PTY anyone opens and a stale link would
+      // lead the reader to somebody else's line. Then the reader sees POLLHUP.
+      if (!options_.link.empty()) ::unlink(options_.link.c_str());
+      close_pty();
+      ++counters_.hangups;
+      out_.clear();
+    }
+    ::usleep(static_cast<useconds_t>(wait_ms) * 1000u);
+    return true;
+  }
+  if (master_ < 0 && !open_pty(error)) return false;
+
+  for (;;) {
+    const ssize_t n = ::read(master_, in.data(), in.size());
+    if (n <= 0) break;  // EAGAIN, or EIO while no client holds the slave
+    counters_.bytes_in += static_cast<std::uint64_t>(n);
+    device_.receive(in.data(), static_cast<std::size_t>(n), now);
+  }
+  device_.advance(now, out_);
+  if (!out_.empty()) {
+    const ssize_t w = ::write(master_, out_.data(), out_.size());
+    if (w > 0) {
+      counters_.bytes_out += static_cast<std::uint64_t>(w);
+      out_.erase(out_.begin(), out_.begin() + w);
+    }
+    if (out_.size() > kMaxBacklog) {
+      counters_.overflow_dropped += out_.size();
+      out_.clear();
+    }
+  }
+  pollfd p{master_, POLLIN, 0};
+  ::poll(&p, 1, wait_ms);
+  return true;
+}
+
+}  // namespace twister::sim

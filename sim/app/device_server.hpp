@@ -1,0 +1,66 @@
+// DeviceServer: serves a FastrakDevice on a fresh PTY (printing/linking the slave
+// path, hanging up and re-plugging on hang-up faults by creating a new pair and
+// moving the symlink atomically with rename()), or on a real serial device for
+// hardware-in-the-loop rigs. Paced in real time from a steady clock; one thread.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "twister/hal/termios_byte_stream.hpp"
+#include "twister/sim/fastrak_device.hpp"
+
+namespace twister::sim {
+
+struct ServeOptions {
+  std::string link;    // PTY mode: stable symlink to the current slave (optional)
+  std::string device;  // HIL mode: a real tty path instead of a PTY
+  int baud = 115200;   // HIL mode line rate
+};
+
+struct ServeCounters {
+  std::uint64_t ptys_opened = 0;
+  std::uint64_t hangups = 0;
+  std::uint64_t bytes_in = 0;
+  std::uint64_t bytes_out = 0;
+  std::uint64_t overflow_dropped = 0;  // output dropped because nobody read it
+};
+
+class DeviceServer {
+ public:
+  // The device's time origin is the moment of construction.
+  DeviceServer(FastrakDevice& device, ServeOptions options);
+  ~DeviceServer();
+  DeviceServer(const DeviceServer&) = delete;
+  DeviceServer& operator=(const DeviceServer&) = delete;
+
+  // Opens the first PTY (or the HIL device). False with a message on failure.
+  bool start(std::string& error);
+  // One iteration: moves bytes both ways, waiting up to wait_ms for input.
+  // False with a message on a fatal error.
+  bool step(int wait_ms, std::string& error);
+  // Microseconds since construction (the device's clock).
+  std::int64_t now_us() const;
+
+  const std::string& slave_path() const { return slave_path_; }
+  const ServeCounters& counters() const { return counters_; }
+
+ private:
+  bool open_pty(std::string& error);
+  void close_pty();
+
+  FastrakDevice& device_;
+  ServeOptions options_;
+  std::chrono::steady_clock::time_point epoch_;
+  int master_ = -1;
+  int slave_keep_ = -1;  // keeps the line up while the client is between opens
+  std::unique_ptr<hal::TermiosByteStream> tty_;
+  std::string slave_path_;
+  std::vector<std::byte> out_;
+  ServeCounters counters_;
+};
+
+}  // namespace twister::sim

@@ -1,0 +1,75 @@
+// Scenario for the simulated Fastrak: hand trajectories (key frames or circles per
+// station), stylus presses, and timed fault injections. Text format in docs/fastrak.md.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace twister::sim {
+
+// One key frame: time, position (inches, tracker frame), Euler angles (degrees),
+// stylus state. Between keys position and angles are interpolated linearly; the
+// button holds its value until the next key.
+struct KeyFrame {
+  double t_s = 0.0;
+  std::array<double, 3> position_in{};
+  std::array<double, 3> euler_deg{};
+  bool button = false;
+};
+
+// A circle in the tracker's x-y plane around `center_in`, one turn per period; the
+// azimuth follows the direction of travel.
+struct Circle {
+  bool enabled = false;
+  std::array<double, 3> center_in{};
+  double radius_in = 0.0;
+  double period_s = 1.0;
+};
+
+enum class FaultKind : std::uint8_t {
+  noise,       // `amount` random bytes injected into the output
+  drop,        // the next `amount` output bytes are lost
+  truncate,    // the next `amount` records are cut short
+  stall,       // no output and no command processing for `amount` seconds
+  hangup,      // the line hangs up for `amount` seconds, then the unit powers up again
+  wrong_baud,  // for `amount` seconds both directions are garbled (baud mismatch)
+};
+const char* fault_kind_name(FaultKind k);
+
+struct Fault {
+  double t_s = 0.0;
+  FaultKind kind = FaultKind::noise;
+  double amount = 0.0;
+};
+
+struct StationTrack {
+  std::vector<KeyFrame> keys;  // sorted by time
+  Circle circle;
+};
+
+struct Scenario {
+  std::uint32_t seed = 1;
+  int receivers = 2;        // receivers plugged in (stations 1..receivers)
+  double duration_s = 0.0;  // 0 = run until stopped
+  std::array<StationTrack, 4> stations;
+  std::vector<Fault> faults;  // sorted by time
+};
+
+// Sample of one station at a time.
+struct HandSample {
+  std::array<double, 3> position_in{};
+  std::array<double, 3> euler_deg{};
+  bool button = false;
+};
+
+// Position/orientation/button of `station` (1..4) at t_s.
+HandSample sample(const Scenario& scenario, int station, double t_s);
+
+// Parses the text format. On error returns false and sets `error` to
+// "line N: message".
+bool parse_scenario(std::string_view text, Scenario& out, std::string& error);
+
+}  // namespace twister::sim

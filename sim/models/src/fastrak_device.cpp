@@ -1,0 +1,300 @@
+// The device model. Records are built with the core encoder, so the simulator and
+// the parser share one definition of the wire layout.
+#include "twister/sim/fastrak_device.hpp"
+
+// GCC 12 reports a false -Wrestrict inside std::string concatenation at -O3
+// (GCC bug 105329); nothing here overlaps.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wrestrict"
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "twister/tracker/fastrak_encoder.hpp"
+#include "twister/tracker/pose_conversion.hpp"
+
+namespace twister::sim {
+namespace {
+
+using tracker::Format;
+using tracker::Item;
+using tracker::OutputList;
+using tracker::Units;
+
+constexpr char kCtrlY = 0x19;
+constexpr char kCtrlK = 0x0B;
+constexpr char kCtrlS = 0x13;
+constexpr char kCtrlQ = 0x11;
+
+// Cycle k starts at k * 1e6 / 120 us (8333.33 us).
+ports::TimestampUs cycle_time(std::int64_t k) { return (k * 25'000) / 3; }
+
+}  // namespace
+
+FastrakDevice::FastrakDevice(const FastrakDeviceConfig& config, Scenario scenario,
+                             ports::TimestampUs start_us)
+    : config_(config), scenario_(std::move(scenario)), start_us_(start_us), rng_(scenario_.seed) {
+  power_up(start_us);
+}
+
+double FastrakDevice::scenario_time_s(ports::TimestampUs now) const {
+  return static_cast<double>(now - start_us_) / 1e6;
+}
+
+void FastrakDevice::power_up(ports::TimestampUs now) {
+  ++counters_.resets;
+  proto_ = {};
+  proto_.format = config_.start_format;
+  for (int s = 0; s < 4; ++s) {
+    proto_.stations[static_cast<std::size_t>(s)].enabled = s < scenario_.receivers;
+  }
+  continuous_ = config_.start_continuous;
+  output_on_ = true;
+  e_mode_ = 1;
+  for (auto& h : hemisphere_) h = {1.0, 0.0, 0.0};
+  busy_until_ = now + config_.reset_time_us;
+  line_.clear();
+  line_free_at_ = now;
+  pending_cmd_.clear();
+  in_param_cmd_ = false;
+  next_cycle_ = 0;
+  while (start_us_ + cycle_time(next_cycle_) < busy_until_) ++next_cycle_;
+}
+
+bool FastrakDevice::in_window(ports::TimestampUs now, FaultKind kind) const {
+  for (const Window& w : windows_) {
+    if (w.kind == kind && now >= w.from && now < w.to) return true;
+  }
+  return false;
+}
+
+bool FastrakDevice::hung_up(ports::TimestampUs now) {
+  apply_faults(now);
+  if (in_window(now, FaultKind::hangup)) {
+    was_hung_up_ = true;
+    return true;
+  }
+  if (was_hung_up_) {
+    // Plugged back in: the unit powers up from its defaults.
+    was_hung_up_ = false;
+    power_up(now);
+  }
+  return false;
+}
+
+void FastrakDevice::apply_faults(ports::TimestampUs now) {
+  while (next_fault_ < scenario_.faults.size()) {
+    const Fault& f = scenario_.faults[next_fault_];
+    const auto at = start_us_ + static_cast<ports::TimestampUs>(f.t_s * 1e6);
+    if (at > now) break;
+    ++next_fault_;
+    ++counters_.faults[static_cast<std::size_t>(f.kind)];
+    const auto amount = static_cast<std::uint64_t>(f.amount);
+    switch (f.kind) {
+      case FaultKind::noise: {
+        std::string noise(amount, '\0');
+        for (char& c : noise) c = static_cast<char>(rng_() & 0xFFu);
+        queue(noise, at);
+        break;
+      }
+      case FaultKind::drop:
+        drop_left_ += amount;
+        break;
+      case FaultKind::truncate:
+        truncate_left_ += amount;
+        break;
+      case FaultKind::stall:
+      case FaultKind::hangup:
+      case FaultKind::wrong_baud:
+        windows_.push_back({f.kind, at, at + static_cast<ports::TimestampUs>(f.amount * 1e6)});
+        break;
+    }
+  }
+}
+
+std::vector<int> FastrakDevice::active_stations() const {
+  std::vector<int> out;
+  for (int s = 1; s <= 4; ++s) {
+    if (proto_.stations[static_cast<std::size_t>(s - 1)].enabled && s <= scenario_.receivers) {
+      out.push_back(s);
+    }
+  }
+  return out;
+}
+
+void FastrakDevice::queue(const std::string& bytes, ports::TimestampUs now) {
+  // The line sends one byte per 10 bit times (8N1); chunks queue behind each other.
+  const ports::TimestampUs start = std::max(now, line_free_at_);
+  const auto duration = static_cast<ports::TimestampUs>(static_cast<double>(bytes.size()) * 10.0 *
+                                                        1e6 / config_.baud);
+  line_free_at_ = start + duration;
+  line_.push_back({line_free_at_, bytes});
+}
+
+void FastrakDevice::queue_record(int station, ports::TimestampUs at, bool polled) {
+  const double t = scenario_time_s(at);
+  const HandSample h = sample(scenario_, station, t);
+  tracker::FastrakPose pose;
+  pose.station = static_cast<std::uint8_t>(station);
+  const double scale = proto_.units == Units::centimetres ? 2.54 : 1.0;
+  glm::dvec3 p(h.position_in[0], h.position_in[1], h.position_in[2]);
+  const auto& hem = hemisphere_[static_cast<std::size_t>(station - 1)];
+  // The unit reports positions in the configured half-space.
+  if (glm::dot(p, glm::dvec3(hem[0], hem[1], hem[2])) < 0.0) p = -p;
+  for (int i = 0; i < 3; ++i) {
+    pose.position[static_cast<std::size_t>(i)] = static_cast<float>(p[i] * scale);
+  }
+  const double az = std::remainder(h.euler_deg[0], 360.0);
+  const double el = std::clamp(h.euler_deg[1], -90.0, 90.0);
+  const double roll = std::remainder(h.euler_deg[2], 360.0);
+  pose.euler_deg = {static_cast<float>(az), static_cast<float>(el), static_cast<float>(roll)};
+  const glm::dmat3 r = tracker::rotation_from_euler_deg(az, el, roll);
+  for (std::size_t row = 0; row < 3; ++row) {
+    for (std::size_t col = 0; col < 3; ++col) {
+      pose.dcm[row * 3 + col] =
+          static_cast<float>(r[static_cast<glm::length_t>(col)][static_cast<glm::length_t>(row)]);
+    }
+  }
+  const glm::dquat q = glm::quat_cast(r);
+  pose.quaternion = {static_cast<float>(q.w), static_cast<float>(q.x), static_cast<float>(q.y),
+                     static_cast<float>(q.z)};
+  pose.button = station == 1 && h.button;  // the stylus works on station 1 only
+  std::array<std::byte, tracker::kMaxRecordBytes> buf{};
+  auto n = tracker::encode_record(pose, proto_, buf);
+  if (!n.ok()) return;
+  std::string bytes(reinterpret_cast<const char*>(buf.data()), *n);
+  if (truncate_left_ > 0 && bytes.size() > 2) {
+    --truncate_left_;
+    bytes.resize(1 + rng_() % (bytes.size() - 2));
+  }
+  ++counters_.records;
+  (void)polled;
+  queue(bytes, at);
+}
+
+void FastrakDevice::send_error(const std::string& input, int code, ports::TimestampUs now) {
+  ++counters_.command_errors;
+  queue("2 E*ERROR* " + input + " *ERROR* EC " + std::to_string(code) + " *PS 0 *FL 1 *ST 0\r\n",
+        now);
+}
+
+void FastrakDevice::receive(const std::byte* data, std::size_t size, ports::TimestampUs now) {
+  apply_faults(now);
+  // A resetting, stalled, hung-up or mis-clocked unit understands nothing.
+  if (now < busy_until_ || in_window(now, FaultKind::stall) || in_window(now, FaultKind::hangup) ||
+      in_window(now, FaultKind::wrong_baud)) {
+    return;
+  }
+  for (std::size_t i = 0; i < size; ++i) {
+    const char c = static_cast<char>(data[i]);
+    if (now < busy_until_) return;  // a ^Y earlier in this chunk
+    if (in_param_cmd_) {
+      if (c == '\r') {
+        in_param_cmd_ = false;
+        execute(pending_cmd_[0], pending_cmd_.substr(1), now);
+        pending_cmd_.clear();
+      } else if (c != '\n') {
+        pending_cmd_ += c;
+        if (pending_cmd_.size() > 80) {
+          in_param_cmd_ = false;
+          send_error(pending_cmd_, -5, now);
+          pending_cmd_.clear();
+        }
+      }
+      continue;
+    }
+    switch (c) {
+      case '\r':
+      case '\n':
+        break;
+      case 'P':
+      case 'C':
+      case 'c':
+      case 'F':
+      case 'f':
+      case 'U':
+      case 'u':
+      case 'S':
+      case 'W':
+      case 'T':
+      case 'D':
+      case 'd':
+      case kCtrlY:
+      case kCtrlK:
+      case kCtrlS:
+      case kCtrlQ:
+        execute(c, {}, now);
+        break;
+      case 'O':
+      case 'l':
+      case 'H':
+      case 'A':
+      case 'R':
+      case 'B':
+      case 'b':
+      case 'G':
+      case 'N':
+      case 'e':
+      case 'I':
+      case 'x':
+      case 'v':
+      case 'Q':
+      case 'X':
+      case 'o':
+        in_param_cmd_ = true;
+        pending_cmd_.assign(1, c);
+        break;
+      default:
+        send_error(std::string(1, c), -99, now);
+        break;
+    }
+  }
+}
+
+void FastrakDevice::advance(ports::TimestampUs now, std::vector<std::byte>& out) {
+  apply_faults(now);
+  if (hung_up(now)) {
+    line_.clear();
+    return;
+  }
+  const bool stalled = in_window(now, FaultKind::stall);
+  // One station per 120 Hz cycle, in ascending order of the active stations.
+  for (ports::TimestampUs t = start_us_ + cycle_time(next_cycle_); t <= now;
+       t = start_us_ + cycle_time(++next_cycle_)) {
+    if (t < busy_until_ || stalled || in_window(t, FaultKind::stall)) continue;
+    const HandSample s1 = sample(scenario_, 1, scenario_time_s(t));
+    if (s1.button && !last_button_ && e_mode_ == 1 && continuous_) output_on_ = !output_on_;
+    last_button_ = s1.button;
+    if (!continuous_ || !output_on_) continue;
+    const auto act = active_stations();
+    if (act.empty()) continue;
+    const int station = act[next_station_++ % act.size()];
+    if (line_free_at_ > t) {
+      ++counters_.dropped_solutions;  // the previous record is still on the wire
+      continue;
+    }
+    queue_record(station, t, false);
+  }
+  if (stalled) return;
+  while (!line_.empty() && line_.front().ready <= now) {
+    const Chunk& c = line_.front();
+    const bool garble = in_window(c.ready, FaultKind::wrong_baud);
+    for (char ch : c.bytes) {
+      if (drop_left_ > 0) {
+        --drop_left_;
+        continue;
+      }
+      // At the wrong baud every byte arrives as some other byte.
+      const auto b = garble ? static_cast<std::byte>(rng_() & 0xFFu) : static_cast<std::byte>(ch);
+      out.push_back(b);
+      ++counters_.bytes_out;
+    }
+    line_.pop_front();
+  }
+}
+
+}  // namespace twister::sim

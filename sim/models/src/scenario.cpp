@@ -1,0 +1,153 @@
+// Scenario text parser and trajectory sampling.
+#include "twister/sim/scenario.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace twister::sim {
+
+const char* fault_kind_name(FaultKind k) {
+  switch (k) {
+    case FaultKind::noise:
+      return "noise";
+    case FaultKind::drop:
+      return "drop";
+    case FaultKind::truncate:
+      return "truncate";
+    case FaultKind::stall:
+      return "stall";
+    case FaultKind::hangup:
+      return "hangup";
+    case FaultKind::wrong_baud:
+      return "wrongbaud";
+  }
+  return "unknown";
+}
+
+HandSample sample(const Scenario& scenario, int station, double t_s) {
+  HandSample s;
+  if (station < 1 || station > 4) return s;
+  const StationTrack& tr = scenario.stations[static_cast<std::size_t>(station - 1)];
+  if (tr.circle.enabled) {
+    constexpr double kTwoPi = 6.283185307179586;
+    const double a = kTwoPi * t_s / tr.circle.period_s;
+    s.position_in = {tr.circle.center_in[0] + tr.circle.radius_in * std::cos(a),
+                     tr.circle.center_in[1] + tr.circle.radius_in * std::sin(a),
+                     tr.circle.center_in[2]};
+    double az = std::remainder(a * 180.0 / 3.141592653589793 + 90.0, 360.0);
+    s.euler_deg = {az, 0.0, 0.0};
+  } else if (tr.keys.empty()) {
+    // A resting hand in front of the transmitter (+X hemisphere).
+    s.position_in = {10.0, station == 1 ? -4.0 : 4.0, 2.0};
+  } else if (t_s <= tr.keys.front().t_s) {
+    s.position_in = tr.keys.front().position_in;
+    s.euler_deg = tr.keys.front().euler_deg;
+    s.button = tr.keys.front().button;
+  } else if (t_s >= tr.keys.back().t_s) {
+    s.position_in = tr.keys.back().position_in;
+    s.euler_deg = tr.keys.back().euler_deg;
+    s.button = tr.keys.back().button;
+  } else {
+    auto it = std::upper_bound(tr.keys.begin(), tr.keys.end(), t_s,
+                               [](double t, const KeyFrame& k) { return t < k.t_s; });
+    const KeyFrame& b = *it;
+    const KeyFrame& a = *(it - 1);
+    const double u = (t_s - a.t_s) / (b.t_s - a.t_s);
+    for (std::size_t i = 0; i < 3; ++i) {
+      s.position_in[i] = a.position_in[i] + u * (b.position_in[i] - a.position_in[i]);
+      s.euler_deg[i] = a.euler_deg[i] + u * (b.euler_deg[i] - a.euler_deg[i]);
+    }
+    s.button = a.button;
+  }
+  return s;
+}
+
+bool parse_scenario(std::string_view text, Scenario& out, std::string& error) {
+  Scenario sc;
+  std::istringstream in{std::string(text)};
+  std::string line;
+  int line_no = 0;
+  auto fail = [&](const std::string& msg) {
+    error = "line " + std::to_string(line_no) + ": " + msg;
+    return false;
+  };
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+    std::istringstream ls(line);
+    std::string word;
+    if (!(ls >> word)) continue;
+    auto finite = [](double v) { return std::isfinite(v); };
+    if (word == "seed") {
+      long long v = 0;
+      if (!(ls >> v) || v < 0) return fail("seed needs a non-negative integer");
+      sc.seed = static_cast<std::uint32_t>(v);
+    } else if (word == "receivers") {
+      if (!(ls >> sc.receivers) || sc.receivers < 1 || sc.receivers > 4) {
+        return fail("receivers must be 1..4");
+      }
+    } else if (word == "duration") {
+      if (!(ls >> sc.duration_s) || !finite(sc.duration_s) || sc.duration_s < 0) {
+        return fail("duration needs seconds >= 0");
+      }
+    } else if (word == "key") {
+      KeyFrame k;
+      int st = 0;
+      if (!(ls >> k.t_s >> st >> k.position_in[0] >> k.position_in[1] >> k.position_in[2] >>
+            k.euler_deg[0] >> k.euler_deg[1] >> k.euler_deg[2])) {
+        return fail("key needs: t station x y z az el roll [button]");
+      }
+      int button = 0;
+      if (ls >> button) k.button = button != 0;
+      if (st < 1 || st > 4) return fail("station must be 1..4");
+      if (!finite(k.t_s) || k.t_s < 0) return fail("time must be >= 0");
+      auto& keys = sc.stations[static_cast<std::size_t>(st - 1)].keys;
+      if (!keys.empty() && k.t_s <= keys.back().t_s) return fail("key times must increase");
+      keys.push_back(k);
+    } else if (word == "circle") {
+      Circle c;
+      int st = 0;
+      if (!(ls >> st >> c.center_in[0] >> c.center_in[1] >> c.center_in[2] >> c.radius_in >>
+            c.period_s)) {
+        return fail("circle needs: station cx cy cz radius period");
+      }
+      if (st < 1 || st > 4) return fail("station must be 1..4");
+      if (!(c.period_s > 0)) return fail("period must be > 0");
+      c.enabled = true;
+      sc.stations[static_cast<std::size_t>(st - 1)].circle = c;
+    } else if (word == "fault") {
+      Fault f;
+      std::string kind;
+      if (!(ls >> f.t_s >> kind >> f.amount)) return fail("fault needs: t kind amount");
+      if (!finite(f.t_s) || f.t_s < 0 || !finite(f.amount) || f.amount < 0) {
+        return fail("fault time and amount must be >= 0");
+      }
+      if (kind == "noise")
+        f.kind = FaultKind::noise;
+      else if (kind == "drop")
+        f.kind = FaultKind::drop;
+      else if (kind == "truncate")
+        f.kind = FaultKind::truncate;
+      else if (kind == "stall")
+        f.kind = FaultKind::stall;
+      else if (kind == "hangup")
+        f.kind = FaultKind::hangup;
+      else if (kind == "wrongbaud")
+        f.kind = FaultKind::wrong_baud;
+      else
+        return fail("unknown fault kind '" + kind + "'");
+      sc.faults.push_back(f);
+    } else {
+      return fail("unknown keyword '" + word + "'");
+    }
+    std::string extra;
+    if (ls >> extra) return fail("unexpected '" + extra + "'");
+  }
+  std::stable_sort(sc.faults.begin(), sc.faults.end(),
+                   [](const Fault& a, const Fault& b) { return a.t_s < b.t_s; });
+  out = std::move(sc);
+  return true;
+}
+
+}  // namespace twister::sim

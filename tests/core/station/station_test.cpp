@@ -1,0 +1,333 @@
+// Station over fakes: a scripted Fastrak responder on a FakeByteStream (answers `S`,
+// streams records after `C`), scripted button edges, FakeStorage, virtual time.
+#include "twister/station/station.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <vector>
+
+#include "fakes/fake_byte_stream.hpp"
+#include "fakes/fake_clock.hpp"
+#include "fakes/fake_storage.hpp"
+#include "support/allocation_counter.hpp"
+#include "twister/journal/journal_reader.hpp"
+#include "twister/tracker/fastrak_encoder.hpp"
+
+namespace twister::station {
+namespace {
+
+using tracker::Item;
+constexpr double kInch = 0.0254;
+
+// The device side: answers every `S` with a status reply matching the configuration
+// and streams one record per receiver per tick once `C` has been seen.
+class FastrakResponder {
+ public:
+  FastrakResponder(test::FakeByteStream& stream, const tracker::FastrakConfig& config)
+      : stream_(stream), config_(config) {}
+
+  void service() {
+    const auto tx = stream_.tx();
+    for (; seen_ < tx.size(); ++seen_) {
+      const char c = tx[seen_];
+      if (c == 'S') {
+        std::array<std::byte, 64> buf{};
+        tracker::FastrakStatus st{1, 0, config_.format == tracker::Format::binary, false, false};
+        auto n = tracker::encode_status(st, buf);
+        stream_.push_rx(std::span<const std::byte>(buf.data(), *n));
+      } else if (c == 'C') {
+        streaming_ = true;
+      } else if (c == 'c') {
+        streaming_ = false;
+      }
+    }
+  }
+  void emit(std::uint8_t station, std::array<float, 3> position_in, bool stylus = false) {
+    if (!streaming_ || !stream_.connected()) return;
+    tracker::FastrakPose p{};
+    p.station = station;
+    p.has_position = true;
+    p.position = position_in;
+    p.has.quaternion = true;
+    p.quaternion = {1.0f, 0.0f, 0.0f, 0.0f};
+    p.has_button = station == 1;
+    p.button = stylus;
+    std::array<std::byte, 256> buf{};
+    auto n = tracker::encode_record(p, config_, buf);
+    stream_.push_rx(std::span<const std::byte>(buf.data(), *n));
+  }
+  void unplugged() { streaming_ = false; seen_ = 0; stream_.clear_tx(); }
+  bool streaming() const { return streaming_; }
+
+ private:
+  test::FakeByteStream& stream_;
+  tracker::FastrakConfig config_;
+  std::size_t seen_ = 0;
+  bool streaming_ = false;
+};
+
+class ScriptedButtons final : public ports::ButtonSource {
+ public:
+  void press(std::uint8_t line, bool pressed, ports::TimestampUs t) {
+    queue_.push_back({line, pressed, t});
+  }
+  void fail(bool f) { failing_ = f; }
+
+ private:
+  Result<ports::ButtonEdge> do_poll() override {
+    if (failing_) return StatusCode::io_error;
+    if (pos_ == queue_.size()) return StatusCode::unavailable;
+    return queue_[pos_++];
+  }
+  std::uint8_t do_line_count() const override { return 6; }
+  std::vector<ports::ButtonEdge> queue_ = [] {
+    std::vector<ports::ButtonEdge> q;
+    q.reserve(256);  // pushes inside no-allocation scopes must not grow it
+    return q;
+  }();
+  std::size_t pos_ = 0;
+  bool failing_ = false;
+};
+
+StationConfig test_config() {
+  StationConfig c{};
+  auto& p = c.session.protocol;
+  p.format = tracker::Format::binary;
+  p.units = tracker::Units::inches;
+  for (int s : {0, 1}) {
+    p.stations[static_cast<std::size_t>(s)].enabled = true;
+    p.stations[static_cast<std::size_t>(s)].list =
+        tracker::OutputList::of({Item::position, Item::quaternion, Item::crlf});
+  }
+  p.stations[0].list =
+      tracker::OutputList::of({Item::position, Item::quaternion, Item::stylus, Item::crlf});
+  c.session.ladder_char_pause_us = 1'000;
+  c.session.reset_wait_us = 1'000;
+  c.session.settle_us = 1'000;
+  c.session.reply_timeout_us = 50'000;
+  c.session.command_pause_us = 1'000;
+  c.session.silence_timeout_us = 100'000;
+  c.session.backoff_initial_us = 10'000;
+  c.session.backoff_max_us = 40'000;
+  c.conversion.units = tracker::Units::inches;
+  c.conversion.format = tracker::Format::binary;
+  c.debounce.interval_us.fill(5'000);
+  return c;
+}
+
+class StationTest : public ::testing::Test {
+ protected:
+  StationTest()
+      : config_(test_config()),
+        responder_(stream_, config_.session.protocol),
+        station_(stream_, buttons_, clock_, storage_, config_) {}
+
+  // Advances virtual time in 8.33 ms ticks (the Fastrak cycle), emitting both hands.
+  void run_ticks(int n) {
+    for (int i = 0; i < n; ++i) {
+      responder_.service();
+      responder_.emit(1, left_in_, stylus_);
+      responder_.emit(2, right_in_);
+      ASSERT_TRUE(station_.poll().ok());
+      responder_.service();
+      clock_.advance_us(8'333);
+    }
+  }
+  void run_until_streaming() {
+    for (int i = 0; i < 500 && !station_.tracker_session().streaming(); ++i) run_ticks(1);
+    ASSERT_TRUE(station_.tracker_session().streaming());
+    run_ticks(3);
+  }
+  std::vector<StationEvent> events() {
+    std::vector<StationEvent> out;
+    for (auto e = station_.next_event(); e.ok(); e = station_.next_event()) out.push_back(*e);
+    return out;
+  }
+  std::vector<journal::JournalRecord> journal_records() {
+    journal::JournalReader reader(storage_);
+    EXPECT_TRUE(reader.open().ok());
+    std::vector<journal::JournalRecord> out;
+    for (auto r = reader.next(); r.ok(); r = reader.next()) out.push_back(*r);
+    return out;
+  }
+  // Right hand (hand 1, paper default: line 3 = grab) drags from `from` to `to`.
+  void right_stroke(std::array<float, 3> from, std::array<float, 3> to) {
+    right_in_ = from;
+    run_ticks(2);
+    buttons_.press(3, true, clock_.now_us());
+    run_ticks(3);  // debounce (5 ms) then grab_begin
+    right_in_ = to;
+    run_ticks(3);
+    buttons_.press(3, false, clock_.now_us());
+    run_ticks(3);
+  }
+
+  StationConfig config_;
+  test::FakeByteStream stream_;
+  test::FakeClock clock_{1'000'000};
+  test::FakeStorageWithStorage<> storage_;
+  ScriptedButtons buttons_;
+  FastrakResponder responder_;
+  Station station_;
+  bool stylus_ = false;
+  std::array<float, 3> left_in_{-10.0f, 0.0f, 5.0f};
+  std::array<float, 3> right_in_{10.0f, 0.0f, 5.0f};
+};
+
+TEST_F(StationTest, PollBeforeStartIsRefused) {
+  EXPECT_EQ(station_.poll().code(), StatusCode::failed_precondition);
+}
+
+TEST_F(StationTest, StrokeIsCommittedToTheJournalWithItsPoses) {
+  ASSERT_TRUE(station_.start().ok());
+  run_until_streaming();
+  right_stroke({10.0f, 0.0f, 5.0f}, {12.0f, 1.0f, 5.0f});
+  EXPECT_EQ(station_.counters().strokes_committed, 1u);
+  const auto records = journal_records();
+  ASSERT_EQ(records.size(), 1u);
+  const auto& s = records[0].stroke;
+  EXPECT_EQ(records[0].type, journal::RecordType::stroke);
+  EXPECT_EQ(records[0].sequence, 0u);
+  EXPECT_EQ(s.hand_mask, 2);
+  EXPECT_NEAR(s.start[1].origin_m.x, 10.0 * kInch, 1e-6);
+  EXPECT_NEAR(s.end[1].origin_m.x, 12.0 * kInch, 1e-6);
+  EXPECT_NEAR(s.end[1].origin_m.y, 1.0 * kInch, 1e-6);
+  bool saw_commit = false;
+  for (const auto& e : events()) {
+    saw_commit |= e.kind == StationEventKind::stroke_committed && e.hand == 1;
+  }
+  EXPECT_TRUE(saw_commit);
+}
+
+TEST_F(StationTest, UnplugMidStrokeCancelsItAndReplugContinues) {
+  ASSERT_TRUE(station_.start().ok());
+  run_until_streaming();
+  right_stroke({10.0f, 0.0f, 5.0f}, {11.0f, 0.0f, 5.0f});
+  ASSERT_EQ(station_.counters().strokes_committed, 1u);
+
+  // Grab, then the cable is pulled in the middle of the drag.
+  buttons_.press(3, true, clock_.now_us());
+  run_ticks(3);
+  stream_.unplug();
+  stream_.set_present(false);
+  responder_.unplugged();
+  right_in_ = {30.0f, 30.0f, 30.0f};  // where the hand goes while untracked
+  run_ticks(120);                     // 1 s: longer than lost_timeout (0.5 s)
+  buttons_.press(3, false, clock_.now_us());
+  run_ticks(3);
+  EXPECT_FALSE(station_.tracker_session().streaming());
+  EXPECT_EQ(station_.counters().strokes_cancelled, 1u);
+  EXPECT_EQ(station_.counters().strokes_committed, 1u);
+
+  // Plugged back: the session re-initialises and the next stroke commits.
+  stream_.set_present(true);
+  run_until_streaming();
+  right_stroke({20.0f, 0.0f, 5.0f}, {21.0f, 2.0f, 5.0f});
+  EXPECT_EQ(station_.counters().strokes_committed, 2u);
+
+  const auto records = journal_records();
+  ASSERT_EQ(records.size(), 2u);
+  EXPECT_EQ(records[1].sequence, 1u);
+  EXPECT_NEAR(records[1].stroke.start[1].origin_m.x, 20.0 * kInch, 1e-6);
+  EXPECT_NEAR(records[1].stroke.end[1].origin_m.y, 2.0 * kInch, 1e-6);
+  for (const auto& r : records) {  // no record carries the untracked position
+    EXPECT_LT(r.stroke.end[1].origin_m.z, 10.0 * kInch);
+  }
+  int lost = 0;
+  int streaming = 0;
+  for (const auto& e : events()) {
+    lost += e.kind == StationEventKind::tracker_lost;
+    streaming += e.kind == StationEventKind::tracker_streaming;
+  }
+  EXPECT_EQ(lost, 1);
+  EXPECT_EQ(streaming, 2);
+}
+
+TEST_F(StationTest, StylusSwitchDrivesItsConfiguredButtonLine) {
+  config_.stylus_line[0] = 0;  // station 1's stylus = line 0 = hand 0 grab (paper map)
+  Station station(stream_, buttons_, clock_, storage_, config_);
+  // Drive this station instead of the fixture's.
+  auto tick = [&](int n) {
+    for (int i = 0; i < n; ++i) {
+      responder_.service();
+      responder_.emit(1, left_in_, stylus_);
+      responder_.emit(2, right_in_);
+      ASSERT_TRUE(station.poll().ok());
+      responder_.service();
+      clock_.advance_us(8'333);
+    }
+  };
+  ASSERT_TRUE(station.start().ok());
+  for (int i = 0; i < 500 && !station.tracker_session().streaming(); ++i) tick(1);
+  ASSERT_TRUE(station.tracker_session().streaming());
+  tick(3);
+  stylus_ = true;
+  tick(3);
+  left_in_ = {-8.0f, 1.0f, 5.0f};
+  tick(3);
+  stylus_ = false;
+  tick(3);
+  EXPECT_EQ(station.counters().strokes_committed, 1u);
+  const auto records = journal_records();
+  ASSERT_EQ(records.size(), 1u);
+  EXPECT_EQ(records[0].stroke.hand_mask, 1);
+  EXPECT_NEAR(records[0].stroke.start[0].origin_m.x, -10.0 * kInch, 1e-6);
+  EXPECT_NEAR(records[0].stroke.end[0].origin_m.x, -8.0 * kInch, 1e-6);
+}
+
+TEST_F(StationTest, RestartContinuesTheJournalAfterATornTail) {
+  ASSERT_TRUE(station_.start().ok());
+  run_until_streaming();
+  right_stroke({10.0f, 0.0f, 5.0f}, {12.0f, 0.0f, 5.0f});
+  ASSERT_EQ(journal_records().size(), 1u);
+  // Power cut in the middle of the next append: half a record lands on disk.
+  const std::array<std::byte, 7> torn{std::byte{40}, std::byte{0}, std::byte{0},
+                                      std::byte{0}, std::byte{1}, std::byte{1}, std::byte{0}};
+  ASSERT_TRUE(storage_.append(torn).ok());
+
+  test::FakeByteStream stream2;
+  Station restarted(stream2, buttons_, clock_, storage_, config_);
+  ASSERT_TRUE(restarted.start().ok());
+  EXPECT_EQ(restarted.journal_records(), 1u);
+  auto e = restarted.next_event();
+  ASSERT_TRUE(e.ok());
+  EXPECT_EQ(e->kind, StationEventKind::journal_recovered);
+  EXPECT_EQ(e->value, torn.size());
+  EXPECT_EQ(journal_records().size(), 1u);
+}
+
+TEST_F(StationTest, NotAJournalIsRefused) {
+  const std::array<std::byte, 12> junk{std::byte{'h'}, std::byte{'e'}, std::byte{'l'},
+                                       std::byte{'l'}, std::byte{'o'}};
+  storage_.load(junk);
+  EXPECT_EQ(station_.start().code(), StatusCode::data_loss);
+}
+
+TEST_F(StationTest, ButtonSourceFailureIsReportedOnce) {
+  ASSERT_TRUE(station_.start().ok());
+  buttons_.fail(true);
+  run_ticks(5);
+  int reports = 0;
+  for (const auto& e : events()) reports += e.kind == StationEventKind::button_source_error;
+  EXPECT_EQ(reports, 1);
+  EXPECT_EQ(station_.counters().button_errors, 5u);
+}
+
+TEST_F(StationTest, PollDoesNotAllocateWhileStreamingAndCommitting) {
+  ASSERT_TRUE(station_.start().ok());
+  run_until_streaming();
+  auto stroke = [&] {
+    buttons_.press(3, true, clock_.now_us());
+    run_ticks(5);
+    right_in_ = {11.0f, 1.0f, 5.0f};
+    run_ticks(5);
+    buttons_.press(3, false, clock_.now_us());
+    run_ticks(5);
+  };
+  EXPECT_NO_ALLOCATIONS(stroke());
+  EXPECT_EQ(station_.counters().strokes_committed, 1u);
+}
+
+}  // namespace
+}  // namespace twister::station

@@ -1,0 +1,254 @@
+// FastrakSession in virtual time against FakeByteStream: start-up sequence, reply
+// timeouts and the reset ladder, silence / garbage / unplug detection, re-init with
+// back-off, and that only validated poses come out.
+#include "twister/tracker/fastrak_session.hpp"
+
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <string>
+
+#include "allocation_counter.hpp"
+#include "fakes/fake_byte_stream.hpp"
+#include "fakes/fake_clock.hpp"
+#include "tracker_test_util.hpp"
+#include "twister/tracker/fastrak_encoder.hpp"
+
+namespace twister::tracker {
+namespace {
+
+using test::f32le;
+
+FastrakSessionConfig fast_config() {
+  FastrakSessionConfig c;
+  c.protocol = test::one_station(Format::binary,
+                                 OutputList::of({Item::position, Item::quaternion, Item::crlf}));
+  c.ladder_char_pause_us = 1'000;
+  c.reset_wait_us = 50'000;
+  c.settle_us = 2'000;
+  c.reply_timeout_us = 20'000;
+  c.command_pause_us = 500;
+  c.backoff_initial_us = 10'000;
+  c.backoff_max_us = 80'000;
+  return c;
+}
+
+std::string status_reply(bool binary, bool cm = false, bool continuous = false) {
+  std::array<std::byte, 64> buf{};
+  FastrakStatus s;
+  s.station = 1;
+  s.flags = 0x3F0;
+  s.binary = binary;
+  s.centimetres = cm;
+  s.continuous = continuous;
+  auto n = encode_status(s, buf);
+  return std::string(reinterpret_cast<const char*>(buf.data()), *n);
+}
+
+std::string record(float x, float q0 = 1.0f) {
+  std::string r =
+      "01 " + f32le(x) + f32le(2) + f32le(3) + f32le(q0) + f32le(0) + f32le(0) + f32le(0);
+  return r + "\r\n";
+}
+
+struct Rig {
+  ::twister::test::FakeByteStream stream;
+  ::twister::test::FakeClock clock{1000000};
+  FastrakSession session;
+  std::vector<FastrakPose> poses;
+
+  explicit Rig(const FastrakSessionConfig& c = fast_config()) : session(stream, clock, c) {}
+
+  void poll_all() {
+    for (auto p = session.poll(); p.ok(); p = session.poll()) poses.push_back(*p);
+  }
+  // Advances virtual time in steps until pred() holds; false after max_us.
+  bool run_until(const std::function<bool()>& pred, std::int64_t max_us,
+                 std::int64_t step_us = 250) {
+    for (std::int64_t t = 0; t <= max_us; t += step_us) {
+      poll_all();
+      if (pred()) return true;
+      clock.advance_us(step_us);
+    }
+    return false;
+  }
+  bool reach(SessionState s, std::int64_t max_us = 500'000) {
+    return run_until([&] { return session.state() == s; }, max_us);
+  }
+  // Plays the device's part of a start-up.
+  void start_streaming() {
+    ASSERT_TRUE(reach(SessionState::await_status));
+    stream.push_rx(status_reply(false));
+    ASSERT_TRUE(reach(SessionState::verify_status));
+    stream.push_rx(status_reply(true));
+    ASSERT_TRUE(reach(SessionState::streaming));
+  }
+};
+
+TEST(FastrakSession, StartUpSequenceSendsTheSpecCommands) {
+  Rig rig;
+  ASSERT_TRUE(rig.reach(SessionState::await_status));
+  EXPECT_EQ(rig.stream.tx(), "cS");  // rung 1: leave continuous mode, then status
+  rig.stream.clear_tx();
+  rig.stream.push_rx(status_reply(false));
+  ASSERT_TRUE(rig.reach(SessionState::verify_status));
+  EXPECT_EQ(rig.stream.tx(), "l1,1\rO1,2,11,1\rH1,1,0,0\rl2,0\rl3,0\rl4,0\re1,0\rUfS");
+  rig.stream.clear_tx();
+  rig.stream.push_rx(status_reply(true));
+  ASSERT_TRUE(rig.reach(SessionState::streaming));
+  EXPECT_EQ(rig.stream.tx(), "C");
+  rig.stream.push_rx(record(10) + record(11));
+  rig.poll_all();
+  ASSERT_EQ(rig.poses.size(), 2u);
+  EXPECT_EQ(rig.poses[1].position[0], 11.0f);
+  EXPECT_EQ(rig.session.counters().streams_started, 1u);
+}
+
+TEST(FastrakSession, PosesBeforeStreamingAreNotEmitted) {
+  Rig rig;
+  ASSERT_TRUE(rig.reach(SessionState::await_status));
+  rig.stream.push_rx(record(1) + status_reply(false));
+  ASSERT_TRUE(rig.reach(SessionState::verify_status));
+  EXPECT_TRUE(rig.poses.empty());
+}
+
+TEST(FastrakSession, StatusTimeoutClimbsTheResetLadder) {
+  Rig rig;
+  ASSERT_TRUE(rig.reach(SessionState::await_status));
+  rig.stream.clear_tx();
+  ASSERT_TRUE(rig.run_until([&] { return rig.session.ladder_rung() == 2; }, 100'000));
+  ASSERT_TRUE(rig.reach(SessionState::await_status));
+  EXPECT_EQ(rig.stream.tx(), "\rcS");
+  rig.stream.clear_tx();
+  ASSERT_TRUE(rig.run_until([&] { return rig.session.ladder_rung() == 3; }, 100'000));
+  // Rung 3 adds ^Y and waits reset_wait_us before asking for status.
+  ASSERT_TRUE(rig.reach(SessionState::settle, 100'000));
+  EXPECT_EQ(rig.stream.tx(), "\rc\x19");
+  EXPECT_EQ(rig.session.counters().status_timeouts, 2u);
+  // Past the top rung: back-off, reopen, and the ladder again from the top rung.
+  ASSERT_TRUE(rig.run_until([&] { return rig.session.counters().status_timeouts == 3; }, 200'000));
+  EXPECT_EQ(rig.session.state(), SessionState::backoff);
+  rig.stream.clear_tx();
+  ASSERT_TRUE(rig.reach(SessionState::await_status, 200'000));
+  EXPECT_EQ(rig.stream.tx(), "\rc\x19S");
+  EXPECT_GE(rig.stream.reopen_count(), 2);
+  // The unit answers at last.
+  rig.stream.push_rx(status_reply(false));
+  ASSERT_TRUE(rig.reach(SessionState::verify_status));
+  rig.stream.push_rx(status_reply(true));
+  ASSERT_TRUE(rig.reach(SessionState::streaming));
+  EXPECT_EQ(rig.session.ladder_rung(), 0);
+}
+
+TEST(FastrakSession, SilenceTriggersReinitialisation) {
+  Rig rig;
+  rig.start_streaming();
+  rig.stream.push_rx(record(5));
+  rig.poll_all();
+  const int reopens = rig.stream.reopen_count();
+  rig.clock.advance_us(2'000'000);
+  rig.poll_all();
+  EXPECT_EQ(rig.session.state(), SessionState::streaming);  // exactly 2 s: not yet
+  rig.clock.advance_us(1);
+  rig.poll_all();
+  EXPECT_EQ(rig.session.state(), SessionState::backoff);
+  EXPECT_EQ(rig.session.counters().silence_faults, 1u);
+  rig.start_streaming();
+  EXPECT_EQ(rig.stream.reopen_count(), reopens + 1);
+  EXPECT_EQ(rig.session.counters().streams_started, 2u);
+}
+
+TEST(FastrakSession, EndlessGarbageIsDetected) {
+  Rig rig;
+  rig.start_streaming();
+  // Bytes keep coming but none forms a valid record.
+  ASSERT_TRUE(rig.run_until(
+      [&] {
+        rig.stream.push_rx("garbage\x01\x7f 0 1 2 garbage");
+        return rig.session.state() != SessionState::streaming;
+      },
+      3'000'000, 10'000));
+  EXPECT_EQ(rig.session.counters().garbage_faults, 1u);
+  EXPECT_EQ(rig.session.counters().silence_faults, 0u);
+  EXPECT_GT(rig.session.parser_counters().dropped_bytes, 1000u);
+  EXPECT_TRUE(rig.poses.empty());
+}
+
+TEST(FastrakSession, UnplugAndReplugWithBackoff) {
+  Rig rig;
+  rig.start_streaming();
+  rig.stream.unplug();
+  rig.stream.set_present(false);
+  rig.poll_all();
+  EXPECT_EQ(rig.session.state(), SessionState::backoff);
+  EXPECT_EQ(rig.session.counters().io_errors, 1u);
+  // Absent for 300 ms: reopen fails with growing delays (10, 20, 40, 80, 80 ms).
+  rig.run_until([] { return false; }, 300'000, 1'000);
+  const auto failures = rig.session.counters().io_errors;
+  EXPECT_GE(failures, 4u);
+  EXPECT_LE(failures, 7u);
+  rig.stream.set_present(true);
+  rig.start_streaming();
+  rig.stream.push_rx(record(7));
+  rig.poll_all();
+  ASSERT_EQ(rig.poses.size(), 1u);
+}
+
+TEST(FastrakSession, StatusMismatchAfterConfiguringIsAFault) {
+  Rig rig;
+  ASSERT_TRUE(rig.reach(SessionState::await_status));
+  rig.stream.push_rx(status_reply(false));
+  ASSERT_TRUE(rig.reach(SessionState::verify_status));
+  rig.stream.push_rx(status_reply(false));  // still ASCII: `f` was not taken
+  rig.poll_all();
+  EXPECT_EQ(rig.session.state(), SessionState::backoff);
+  EXPECT_EQ(rig.session.counters().status_mismatch, 1u);
+}
+
+TEST(FastrakSession, CommandErrorDuringConfigurationIsAFault) {
+  Rig rig;
+  ASSERT_TRUE(rig.reach(SessionState::await_status));
+  rig.stream.push_rx(status_reply(false));
+  ASSERT_TRUE(rig.reach(SessionState::configuring));
+  rig.stream.push_rx("2 E*ERROR* O1,2,11,1 *ERROR* EC -3 *PS 4 *FL 2 *ST 0\r\n");
+  ASSERT_TRUE(rig.reach(SessionState::backoff));
+  EXPECT_EQ(rig.session.counters().command_errors, 1u);
+}
+
+TEST(FastrakSession, ImplausiblePosesNeverReachTheCaller) {
+  Rig rig;
+  rig.start_streaming();
+  rig.stream.push_rx(record(1) + record(500) + record(2, 0.5f) + "noise" + record(3));
+  rig.poll_all();
+  ASSERT_EQ(rig.poses.size(), 2u);
+  EXPECT_EQ(rig.poses[0].position[0], 1.0f);
+  EXPECT_EQ(rig.poses[1].position[0], 3.0f);
+  EXPECT_EQ(rig.session.counters().rejected_poses, 2u);
+  EXPECT_EQ(rig.session.parser_counters().resyncs, 1u);
+}
+
+TEST(FastrakSession, InvalidConfigurationSendsNothing) {
+  FastrakSessionConfig c = fast_config();
+  c.protocol.stations[0].enabled = false;
+  Rig rig(c);
+  EXPECT_EQ(rig.session.poll().status().code(), StatusCode::invalid_argument);
+  EXPECT_EQ(rig.stream.tx(), "");
+}
+
+TEST(FastrakSession, NoHeapAllocationWhileStreaming) {
+  Rig rig;
+  rig.start_streaming();
+  const std::string recs = record(1) + record(2) + "x" + record(3);
+  std::size_t n = 0;
+  EXPECT_NO_ALLOCATIONS({
+    for (int i = 0; i < 100; ++i) {
+      rig.stream.push_rx(recs);
+      for (auto p = rig.session.poll(); p.ok(); p = rig.session.poll()) ++n;
+      rig.clock.advance_us(8'333);
+    }
+  });
+  EXPECT_EQ(n, 300u);
+}
+
+}  // namespace
+}  // namespace twister::tracker

@@ -1,0 +1,53 @@
+// Helpers for the tracker tests: byte strings, whole-stream parsing, common configs.
+#pragma once
+
+#include <cstring>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "twister/tracker/fastrak_parser.hpp"
+
+namespace twister::tracker::test {
+
+inline std::span<const std::byte> bytes_of(std::string_view s) {
+  return std::as_bytes(std::span<const char>(s.data(), s.size()));
+}
+
+inline std::string f32le(float f) {
+  std::string s(4, '\0');
+  std::uint32_t v;
+  std::memcpy(&v, &f, 4);
+  for (int i = 0; i < 4; ++i)
+    s[static_cast<std::size_t>(i)] = static_cast<char>((v >> (8 * i)) & 0xFF);
+  return s;
+}
+
+// Feeds `stream` in chunks of the given sizes (cycled; empty = all at once), then
+// finish(); returns every event.
+inline std::vector<FastrakEvent> parse_all(FastrakParser& parser, std::string_view stream,
+                                           const std::vector<std::size_t>& chunks = {}) {
+  std::vector<FastrakEvent> out;
+  std::size_t pos = 0, k = 0;
+  while (pos < stream.size()) {
+    std::size_t n = chunks.empty() ? stream.size() : chunks[k++ % chunks.size()];
+    if (n == 0) n = 1;
+    n = std::min(n, stream.size() - pos);
+    parser.feed(bytes_of(stream.substr(pos, n)), [&](const FastrakEvent& e) { out.push_back(e); });
+    pos += n;
+  }
+  for (auto e = parser.finish(); e.ok(); e = parser.finish()) out.push_back(*e);
+  return out;
+}
+
+inline FastrakConfig one_station(Format format, OutputList list, Units units = Units::inches) {
+  FastrakConfig c;
+  c.format = format;
+  c.units = units;
+  c.stations[0].enabled = true;
+  c.stations[0].list = list;
+  return c;
+}
+
+}  // namespace twister::tracker::test

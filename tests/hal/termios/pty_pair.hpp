@@ -1,0 +1,46 @@
+// Test helper: a PTY pair whose master side plays the device.
+#pragma once
+
+#include <fcntl.h>
+#include <poll.h>
+#include <stdlib.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <string>
+
+namespace twister::hal::test {
+
+struct PtyPair {
+  int master = -1;
+  std::string slave;
+
+  PtyPair() {
+    master = ::posix_openpt(O_RDWR | O_NOCTTY | O_NONBLOCK);
+    if (master < 0 || ::grantpt(master) != 0 || ::unlockpt(master) != 0) return;
+    slave = ::ptsname(master);
+    termios tio{};
+    ::tcgetattr(master, &tio);
+    ::cfmakeraw(&tio);
+    ::tcsetattr(master, TCSANOW, &tio);
+  }
+  ~PtyPair() { hang_up(); }
+  void hang_up() {
+    if (master >= 0) ::close(master);
+    master = -1;
+  }
+  void write(const std::string& s) const { (void)!::write(master, s.data(), s.size()); }
+  std::string read_all(int wait_ms = 50) const {
+    std::string out;
+    pollfd p{master, POLLIN, 0};
+    while (::poll(&p, 1, wait_ms) > 0) {
+      char buf[256];
+      const ssize_t n = ::read(master, buf, sizeof buf);
+      if (n <= 0) break;
+      out.append(buf, static_cast<std::size_t>(n));
+    }
+    return out;
+  }
+};
+
+}  // namespace twister::hal::test
