@@ -9,6 +9,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git clang libclang-rt-14-dev
   clang-format clang-tidy googletest libgtest-dev libgmock-dev libbenchmark-dev
   librapidcheck-dev
+  python3  # CLI tests (tests/sim/fastrak_dump_cli_test.py)
   # core
   libglm-dev
   # hal backends and the station

@@ -122,19 +122,24 @@ void print_pose(const tracker::FastrakPose& p, Format format) {
   const glm::dmat3& m = *r;
   std::printf("%d %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g\n", p.station,
               static_cast<double>(p.position[0]), static_cast<double>(p.position[1]),
-              static_cast<double>(p.position[2]), m[0].x, m[0].y, m[0].z, m[1].x, m[1].y,
-              m[1].z, m[2].x, m[2].y, m[2].z);
+              static_cast<double>(p.position[2]), m[0].x, m[0].y, m[0].z, m[1].x, m[1].y, m[1].z,
+              m[2].x, m[2].y, m[2].z);
 }
 
 void print_event(const tracker::FastrakEvent& e, Format format) {
   switch (e.kind) {
-    case tracker::EventKind::pose: print_pose(e.pose, format); break;
+    case tracker::EventKind::pose:
+      print_pose(e.pose, format);
+      break;
     case tracker::EventKind::error:
       std::printf("error station %d %s\n", e.station, tracker::pose_error_name(e.error));
       break;
-    case tracker::EventKind::resync: std::printf("error resync %u bytes\n", e.dropped); break;
+    case tracker::EventKind::resync:
+      std::printf("error resync %u bytes\n", e.dropped);
+      break;
     case tracker::EventKind::status:
-    case tracker::EventKind::reply: break;  // replies are neither records nor errors
+    case tracker::EventKind::reply:
+      break;  // replies are neither records nor errors
   }
 }
 
@@ -160,10 +165,11 @@ int run_file(const DumpOptions& o, const FastrakConfig& config) {
   }
   for (auto e = parser.finish(); e.ok(); e = parser.finish()) print_event(*e, config.format);
   const auto& c = parser.counters();
-  std::fprintf(stderr, "fastrak-dump: bytes=%llu poses=%llu errors=%llu resyncs=%llu dropped=%llu\n",
-               static_cast<unsigned long long>(c.bytes), static_cast<unsigned long long>(c.poses),
-               static_cast<unsigned long long>(c.errors), static_cast<unsigned long long>(c.resyncs),
-               static_cast<unsigned long long>(c.dropped_bytes));
+  std::fprintf(
+      stderr, "fastrak-dump: bytes=%llu poses=%llu errors=%llu resyncs=%llu dropped=%llu\n",
+      static_cast<unsigned long long>(c.bytes), static_cast<unsigned long long>(c.poses),
+      static_cast<unsigned long long>(c.errors), static_cast<unsigned long long>(c.resyncs),
+      static_cast<unsigned long long>(c.dropped_bytes));
   return kExitOk;
 }
 

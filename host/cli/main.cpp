@@ -6,6 +6,7 @@
 
 #include "cli_exit.hpp"
 #include "fastrak_dump_command.hpp"
+#include "figure8_command.hpp"
 #include "mesh_command.hpp"
 #include "replay_command.hpp"
 #include "warp_command.hpp"
@@ -17,8 +18,9 @@ int run(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "twister 0.1.0");
   // Subcommands (one line each):
-  twister::cli::add_fastrak_dump_command(app);
   twister::cli::add_warp_command(app);
+  twister::cli::add_figure8_command(app);
+  twister::cli::add_fastrak_dump_command(app);
   twister::cli::add_replay_command(app);
   twister::cli::add_mesh_command(app);
 

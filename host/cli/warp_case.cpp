@@ -61,9 +61,7 @@ std::variant<WarpCase, WarpCaseError> parse_warp_case(std::string_view text) {
     const std::vector<std::string> tok = tokens_of(line);
     if (tok.empty()) continue;
     const std::string& key = tok[0];
-    const auto fail = [line_no](std::string m) {
-      return WarpCaseError{line_no, std::move(m)};
-    };
+    const auto fail = [line_no](std::string m) { return WarpCaseError{line_no, std::move(m)}; };
     const auto numbers = [&](std::size_t want,
                              std::vector<double>& out) -> std::optional<WarpCaseError> {
       if (tok.size() - 1 != want) {

@@ -24,8 +24,8 @@ DeviceServer::DeviceServer(FastrakDevice& device, ServeOptions options)
 DeviceServer::~DeviceServer() { close_pty(); }
 
 std::int64_t DeviceServer::now_us() const {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::steady_clock::now() - epoch_)
+  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() -
+                                                               epoch_)
       .count();
 }
 
@@ -112,7 +112,11 @@ bool DeviceServer::step(int wait_ms, std::string& error) {
 
   if (device_.hung_up(now)) {
     if (master_ >= 0) {
-      close_pty();  // the reader sees POLLHUP; its /dev/pts node disappears
+      // Unplugged: the link goes first (as udev removes by-id links), because the
+      // /dev/pts number is reused by the next PTY anyone opens and a stale link would
+      // lead the reader to somebody else's line. Then the reader sees POLLHUP.
+      if (!options_.link.empty()) ::unlink(options_.link.c_str());
+      close_pty();
       ++counters_.hangups;
       out_.clear();
     }

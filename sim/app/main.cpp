@@ -1,7 +1,6 @@
 // twister-sim: a simulated Polhemus Fastrak on a PTY (or a real serial port for HIL
 // rigs), driven by a scenario file. Prints the device path on stdout as its first line.
 #include <CLI/CLI.hpp>
-
 #include <csignal>
 #include <cstdio>
 #include <fstream>
@@ -14,9 +13,8 @@
 namespace {
 volatile std::sig_atomic_t g_stop = 0;
 void on_signal(int) { g_stop = 1; }
-}  // namespace
 
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"twister-sim: simulated Polhemus Fastrak on a PTY or serial port"};
   std::string scenario_path;
   twister::sim::ServeOptions serve;
@@ -24,9 +22,11 @@ int main(int argc, char** argv) {
   double reset_s = 0.5;
   double duration_s = 0.0;
   bool binary = false;
-  app.add_option("--scenario", scenario_path, "scenario file (docs/fastrak.md); default: resting hands");
+  app.add_option("--scenario", scenario_path,
+                 "scenario file (docs/fastrak.md); default: resting hands");
   app.add_option("--link", serve.link, "PTY mode: keep a symlink to the current slave here");
-  app.add_option("--device", serve.device, "serve on this real serial device (HIL) instead of a PTY");
+  app.add_option("--device", serve.device,
+                 "serve on this real serial device (HIL) instead of a PTY");
   app.add_option("--baud", dev.baud, "modelled line rate (bits/s, 10 bits per byte)")
       ->check(CLI::Range(300, 4000000));
   serve.baud = dev.baud;
@@ -95,4 +95,16 @@ int main(int argc, char** argv) {
                static_cast<unsigned long long>(server.counters().hangups));
   if (!serve.link.empty()) std::remove(serve.link.c_str());
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Anything thrown (allocation failure, I/O library) ends the run with a message.
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "twister-sim: %s\n", e.what());
+    return 1;
+  }
 }

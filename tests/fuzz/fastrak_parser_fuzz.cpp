@@ -26,12 +26,15 @@ FastrakConfig config_from(std::uint8_t b) {
       c.stations[0] = {true, OutputList::of({Item::position, Item::euler, Item::crlf})};
       break;
     case 1:
-      c.stations[0] = {true, OutputList::of({Item::position, Item::quaternion, Item::stylus, Item::space})};
+      c.stations[0] = {
+          true, OutputList::of({Item::position, Item::quaternion, Item::stylus, Item::space})};
       c.stations[1] = {true, OutputList::of({Item::position, Item::quaternion, Item::space})};
       break;
     case 2:
-      c.stations[0] = {true, OutputList::of({Item::position, Item::dcm_x, Item::dcm_y, Item::dcm_z, Item::crlf})};
-      c.stations[2] = {true, OutputList::of({Item::position, Item::euler, Item::stylus, Item::crlf})};
+      c.stations[0] = {true, OutputList::of({Item::position, Item::dcm_x, Item::dcm_y, Item::dcm_z,
+                                             Item::crlf})};
+      c.stations[2] = {true,
+                       OutputList::of({Item::position, Item::euler, Item::stylus, Item::crlf})};
       break;
     case 3:
       c.stations[0] = {true, OutputList::of({Item::position_ext, Item::euler_ext, Item::crlf})};
@@ -39,7 +42,8 @@ FastrakConfig config_from(std::uint8_t b) {
       c.stations[3] = {true, OutputList::of({Item::position, Item::crlf})};
       break;
     default:
-      for (auto& s : c.stations) s = {true, OutputList::of({Item::position, Item::quaternion, Item::crlf})};
+      for (auto& s : c.stations)
+        s = {true, OutputList::of({Item::position, Item::quaternion, Item::crlf})};
       break;
   }
   return c;
@@ -48,9 +52,7 @@ FastrakConfig config_from(std::uint8_t b) {
 struct Summary {
   std::uint64_t hash = 1469598103934665603ull;
   std::uint64_t events = 0;
-  void add(std::uint64_t v) {
-    hash = (hash ^ v) * 1099511628211ull;
-  }
+  void add(std::uint64_t v) { hash = (hash ^ v) * 1099511628211ull; }
 };
 
 void check_pose(const FastrakPose& p, const FastrakConfig& c) {
@@ -63,8 +65,9 @@ void check_pose(const FastrakPose& p, const FastrakConfig& c) {
     std::abort();
   }
   if (p.has.quaternion) {
-    const double n = std::sqrt(double(p.quaternion[0]) * p.quaternion[0] + double(p.quaternion[1]) * p.quaternion[1] +
-                               double(p.quaternion[2]) * p.quaternion[2] + double(p.quaternion[3]) * p.quaternion[3]);
+    const double n = std::sqrt(
+        double(p.quaternion[0]) * p.quaternion[0] + double(p.quaternion[1]) * p.quaternion[1] +
+        double(p.quaternion[2]) * p.quaternion[2] + double(p.quaternion[3]) * p.quaternion[3]);
     if (!(std::fabs(n - 1.0) <= 0.0101)) std::abort();
   }
   PoseConversion conv;
@@ -86,10 +89,18 @@ Summary run(const FastrakConfig& c, std::span<const std::byte> in, std::size_t c
         s.add(e.pose.station);
         s.add(static_cast<std::uint64_t>(std::fabs(e.pose.position[0]) * 100.0f));
         break;
-      case EventKind::error: s.add(static_cast<std::uint64_t>(e.error)); break;
-      case EventKind::resync: s.add(e.dropped); break;
-      case EventKind::status: s.add(e.status.flags); break;
-      case EventKind::reply: s.add(e.reply.length); break;
+      case EventKind::error:
+        s.add(static_cast<std::uint64_t>(e.error));
+        break;
+      case EventKind::resync:
+        s.add(e.dropped);
+        break;
+      case EventKind::status:
+        s.add(e.status.flags);
+        break;
+      case EventKind::reply:
+        s.add(e.reply.length);
+        break;
     }
   };
   for (std::size_t pos = 0; pos < in.size(); pos += chunk) {

@@ -164,6 +164,25 @@ def check_bad(twister):
     return ok
 
 
+def check_file_argument(twister):
+    """A case given by path prints the same as on stdin; a missing file exits 2."""
+    import tempfile
+    text = "radius 1\n%s\npoint 0.25 0 0\npoint 3 0 0\n" % HAND
+    with tempfile.NamedTemporaryFile("w", suffix=".case", delete=False) as f:
+        f.write(text)
+    try:
+        by_path = subprocess.run([twister, "warp", f.name], capture_output=True, text=True)
+    finally:
+        os.unlink(f.name)
+    by_stdin = run(twister, text)
+    missing = subprocess.run([twister, "warp", f.name], capture_output=True, text=True)
+    ok = (by_path.returncode == 0 and by_path.stdout == by_stdin.stdout and
+          len(by_path.stdout.splitlines()) == 2 and by_path.stdout.splitlines()[1] == "3 0 0" and
+          missing.returncode == 2 and not missing.stdout)
+    print(("ok" if ok else "FAIL") + ": case file by path, and a missing file")
+    return ok
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("twister")
@@ -171,6 +190,7 @@ def main():
     parser.add_argument("--seed", type=int, default=4)
     args = parser.parse_args()
     ok = check_bad(args.twister)
+    ok = check_file_argument(args.twister) and ok
     ok = check_random(args.twister, args.cases, args.seed) and ok
     sys.exit(0 if ok else 1)
 

@@ -26,7 +26,7 @@ class DeviceByteStream final : public ports::ByteStream {
     }
     device_.advance(now, buf_);
     const std::size_t n = std::min(dest.size(), buf_.size());
-    std::memcpy(dest.data(), buf_.data(), n);
+    if (n > 0) std::memcpy(dest.data(), buf_.data(), n);
     buf_.erase(buf_.begin(), buf_.begin() + static_cast<std::ptrdiff_t>(n));
     bytes_read += n;
     return n;

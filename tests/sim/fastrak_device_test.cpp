@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <ostream>
 #include <string>
 
 #include "device_byte_stream.hpp"
@@ -51,8 +52,7 @@ struct SimRig {
   tracker::FastrakSession session;
   std::vector<std::pair<double, tracker::FastrakPose>> poses;
 
-  SimRig(const Scenario& sc, const tracker::FastrakSessionConfig& cfg,
-         FastrakDeviceConfig dev = {})
+  SimRig(const Scenario& sc, const tracker::FastrakSessionConfig& cfg, FastrakDeviceConfig dev = {})
       : device(dev, sc, 0), session(stream, clock, cfg) {}
 
   void run(double seconds, std::int64_t step_us = 1'000) {
@@ -153,6 +153,9 @@ struct FaultCase {
   Format format;
 };
 
+// Names the case in test output instead of dumping its bytes.
+void PrintTo(const FaultCase& c, std::ostream* os) { *os << c.name; }
+
 class FastrakDeviceFaults : public ::testing::TestWithParam<FaultCase> {};
 
 TEST_P(FastrakDeviceFaults, SessionRecoversAndEmitsOnlyTruePoses) {
@@ -175,13 +178,14 @@ TEST_P(FastrakDeviceFaults, SessionRecoversAndEmitsOnlyTruePoses) {
   }
   const auto& c = rig.session.counters();
   const auto& pc = rig.session.parser_counters();
-  std::printf("[%s] inits=%llu streams=%llu status_timeouts=%llu io=%llu silence=%llu "
-              "garbage=%llu rejected=%llu resyncs=%llu dropped=%llu\n",
-              fc.name, (unsigned long long)c.inits, (unsigned long long)c.streams_started,
-              (unsigned long long)c.status_timeouts, (unsigned long long)c.io_errors,
-              (unsigned long long)c.silence_faults, (unsigned long long)c.garbage_faults,
-              (unsigned long long)c.rejected_poses, (unsigned long long)pc.resyncs,
-              (unsigned long long)pc.dropped_bytes);
+  std::printf(
+      "[%s] inits=%llu streams=%llu status_timeouts=%llu io=%llu silence=%llu "
+      "garbage=%llu rejected=%llu resyncs=%llu dropped=%llu\n",
+      fc.name, (unsigned long long)c.inits, (unsigned long long)c.streams_started,
+      (unsigned long long)c.status_timeouts, (unsigned long long)c.io_errors,
+      (unsigned long long)c.silence_faults, (unsigned long long)c.garbage_faults,
+      (unsigned long long)c.rejected_poses, (unsigned long long)pc.resyncs,
+      (unsigned long long)pc.dropped_bytes);
   const std::string name = fc.name;
   if (name == "noise" || name == "drop" || name == "truncate") {
     EXPECT_GE(pc.resyncs, 1u);

@@ -9,10 +9,12 @@ namespace {
 TEST(Scenario, ParsesAndSamples) {
   Scenario sc;
   std::string err;
-  ASSERT_TRUE(parse_scenario("# demo\nseed 3\nreceivers 1\nduration 5\n"
-                             "key 0 1 10 0 0 0 0 0\nkey 2 1 20 4 0 90 0 0 1  # press\n"
-                             "circle 2 0 10 0 5 4\nfault 3 stall 1.5\nfault 1 noise 20\n",
-                             sc, err)) << err;
+  ASSERT_TRUE(
+      parse_scenario("# demo\nseed 3\nreceivers 1\nduration 5\n"
+                     "key 0 1 10 0 0 0 0 0\nkey 2 1 20 4 0 90 0 0 1  # press\n"
+                     "circle 2 0 10 0 5 4\nfault 3 stall 1.5\nfault 1 noise 20\n",
+                     sc, err))
+      << err;
   EXPECT_EQ(sc.seed, 3u);
   EXPECT_EQ(sc.receivers, 1);
   ASSERT_EQ(sc.faults.size(), 2u);

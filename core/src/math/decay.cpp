@@ -1,9 +1,8 @@
 #include "twister/math/decay.hpp"
 
 #include <cmath>
-#include <numbers>
-
 #include <glm/geometric.hpp>
+#include <numbers>
 
 namespace twister::math {
 

@@ -1,7 +1,6 @@
 #include "twister/math/frame.hpp"
 
 #include <cmath>
-
 #include <glm/geometric.hpp>
 
 namespace twister::math {
@@ -17,9 +16,7 @@ Frame frame_from_uv(glm::dvec3 origin, glm::dvec3 u, glm::dvec3 v) {
 }
 
 namespace {
-bool finite(glm::dvec3 a) {
-  return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
-}
+bool finite(glm::dvec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
 }  // namespace
 
 bool is_orthonormal(const Frame& f, double tolerance) {

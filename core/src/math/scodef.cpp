@@ -1,7 +1,6 @@
 #include "twister/math/scodef.hpp"
 
 #include <cmath>
-
 #include <glm/geometric.hpp>
 
 #include "twister/math/decay.hpp"
@@ -41,8 +40,7 @@ Status ScodefSystem::build(std::span<const Frame> start, double radius) {
     grab_[h] = start[h].origin;
     constraint_points(start[h], epsilon_, &points_[h * kScodefConstraintsPerHand]);
   }
-  if (hands_ == 2 &&
-      glm::length(grab_[1] - grab_[0]) <= kCoincidentGrabFraction * radius) {
+  if (hands_ == 2 && glm::length(grab_[1] - grab_[0]) <= kCoincidentGrabFraction * radius) {
     return StatusCode::invalid_argument;
   }
   for (std::size_t i = 0; i < count_; ++i) {

@@ -1,11 +1,10 @@
 #include "twister/math/screw.hpp"
 
 #include <cmath>
-#include <numbers>
-
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
+#include <numbers>
 
 namespace twister::math {
 
@@ -17,9 +16,7 @@ glm::dvec3 rotate(glm::dvec3 axis, double angle, glm::dvec3 v) {
 }
 }  // namespace
 
-glm::dvec3 Screw::axis_point() const {
-  return mid + glm::cross(axis, chord) * (0.5 * cot_half);
-}
+glm::dvec3 Screw::axis_point() const { return mid + glm::cross(axis, chord) * (0.5 * cot_half); }
 
 Screw compute_screw(const Frame& start, const Frame& end, std::optional<glm::dvec3> previous_axis) {
   // R from the frames rather than the axis sum of the paper: the sum has the wrong

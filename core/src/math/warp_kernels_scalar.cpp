@@ -25,12 +25,12 @@ Disp hand_displacement(const KernelHand& h, double px, double py, double pz, dou
   const double cx = d[1] * vz - d[2] * vy;
   const double cy = d[2] * vx - d[0] * vz;
   const double cz = d[0] * vy - d[1] * vx;
-  return {a * (2.0 * cx + k * h.chord_d[0]) + b * (2.0 * (d[0] * dv - vx) + k * h.axis_x_chord_d[0]) +
-              t * h.shift_d[0],
-          a * (2.0 * cy + k * h.chord_d[1]) + b * (2.0 * (d[1] * dv - vy) + k * h.axis_x_chord_d[1]) +
-              t * h.shift_d[1],
-          a * (2.0 * cz + k * h.chord_d[2]) + b * (2.0 * (d[2] * dv - vz) + k * h.axis_x_chord_d[2]) +
-              t * h.shift_d[2]};
+  return {a * (2.0 * cx + k * h.chord_d[0]) +
+              b * (2.0 * (d[0] * dv - vx) + k * h.axis_x_chord_d[0]) + t * h.shift_d[0],
+          a * (2.0 * cy + k * h.chord_d[1]) +
+              b * (2.0 * (d[1] * dv - vy) + k * h.axis_x_chord_d[1]) + t * h.shift_d[1],
+          a * (2.0 * cz + k * h.chord_d[2]) +
+              b * (2.0 * (d[2] * dv - vz) + k * h.axis_x_chord_d[2]) + t * h.shift_d[2]};
 }
 }  // namespace
 

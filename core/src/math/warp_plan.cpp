@@ -2,9 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-
 #include <glm/geometric.hpp>
+#include <limits>
 
 #include "twister/math/decay.hpp"
 
@@ -100,8 +99,8 @@ Status WarpPlan::build(ConstVertexColumns rest, std::span<const Frame> start, do
     const glm::dvec3 p(rest.x[i], rest.y[i], rest.z[i]);
     const double w1 = weight_of(0, p);
     const double w2 = hands_ == 2 ? weight_of(1, p) : 0.0;
-    const bool moved = w1 > 0.0 || w2 > 0.0 ||
-                       (method == WarpMethod::scodef && scodef_.influences(p));
+    const bool moved =
+        w1 > 0.0 || w2 > 0.0 || (method == WarpMethod::scodef && scodef_.influences(p));
     if (!moved) continue;
     if (count_ == capacity_) {
       reset();
@@ -195,7 +194,8 @@ Status WarpPlan::apply(ConstVertexColumns rest, VertexColumns out) const {
   const auto run = [this](const KernelSpan& s) {
     const bool two = hands_ == 2;
     if (kernel_ == KernelKind::simd) {
-      two ? warp_two_simd(kernel_hands_[0], kernel_hands_[1], s) : warp_one_simd(kernel_hands_[0], s);
+      two ? warp_two_simd(kernel_hands_[0], kernel_hands_[1], s)
+          : warp_one_simd(kernel_hands_[0], s);
     } else {
       two ? warp_two_scalar(kernel_hands_[0], kernel_hands_[1], s)
           : warp_one_scalar(kernel_hands_[0], s);
@@ -204,8 +204,8 @@ Status WarpPlan::apply(ConstVertexColumns rest, VertexColumns out) const {
   if (dense_) {
     const std::size_t first = indices_[0];
     run(KernelSpan{rest.x.data() + first, rest.y.data() + first, rest.z.data() + first,
-                   weights1_.data(), weights2_.data(), out.x.data() + first,
-                   out.y.data() + first, out.z.data() + first, count_});
+                   weights1_.data(), weights2_.data(), out.x.data() + first, out.y.data() + first,
+                   out.z.data() + first, count_});
     return OkStatus();
   }
   float gx[kGatherChunk];

@@ -46,31 +46,47 @@ Result<std::size_t> encode_record(const FastrakPose& pose, const FastrakConfig& 
     const Item item = st.list.items[i];
     std::byte* q = p + off;
     switch (item) {
-      case Item::space: q[0] = static_cast<std::byte>(' '); break;
+      case Item::space:
+        q[0] = static_cast<std::byte>(' ');
+        break;
       case Item::crlf:
         q[0] = static_cast<std::byte>(kCr);
         q[1] = static_cast<std::byte>(kLf);
         break;
-      case Item::position: put_values(q, fmt, 2, pose.position.data(), 3); break;
-      case Item::position_ext: put_extended(q, fmt, pose.position.data(), 3); break;
-      case Item::euler: put_values(q, fmt, 2, pose.euler_deg.data(), 3); break;
-      case Item::euler_ext: put_extended(q, fmt, pose.euler_deg.data(), 3); break;
+      case Item::position:
+        put_values(q, fmt, 2, pose.position.data(), 3);
+        break;
+      case Item::position_ext:
+        put_extended(q, fmt, pose.position.data(), 3);
+        break;
+      case Item::euler:
+        put_values(q, fmt, 2, pose.euler_deg.data(), 3);
+        break;
+      case Item::euler_ext:
+        put_extended(q, fmt, pose.euler_deg.data(), 3);
+        break;
       case Item::dcm_x:
       case Item::dcm_y:
       case Item::dcm_z: {
-        const auto row = static_cast<unsigned>(item) - static_cast<unsigned>(Item::dcm_x);
+        const std::size_t row =
+            static_cast<std::size_t>(item) - static_cast<std::size_t>(Item::dcm_x);
         put_values(q, fmt, 4, pose.dcm.data() + 3 * row, 3);
         break;
       }
       case Item::dcm_x_ext:
       case Item::dcm_y_ext:
       case Item::dcm_z_ext: {
-        const auto row = static_cast<unsigned>(item) - static_cast<unsigned>(Item::dcm_x_ext);
+        const std::size_t row =
+            static_cast<std::size_t>(item) - static_cast<std::size_t>(Item::dcm_x_ext);
         put_extended(q, fmt, pose.dcm.data() + 3 * row, 3);
         break;
       }
-      case Item::quaternion: put_values(q, fmt, 4, pose.quaternion.data(), 4); break;
-      case Item::quaternion_ext: put_extended(q, fmt, pose.quaternion.data(), 4); break;
+      case Item::quaternion:
+        put_values(q, fmt, 4, pose.quaternion.data(), 4);
+        break;
+      case Item::quaternion_ext:
+        put_extended(q, fmt, pose.quaternion.data(), 4);
+        break;
       case Item::stylus:
       case Item::stylus_ext: {
         const std::size_t w = fmt == Format::binary ? 2 : config.ascii_stylus_width;
@@ -89,13 +105,13 @@ Result<std::size_t> encode_status(const FastrakStatus& status, std::span<std::by
   static constexpr char kHex[] = "0123456789ABCDEF";
   // Bytes 1-based per §3.6: '2', station, 'S', 3 hex flags, 3-char BIT code, blank,
   // ID tag, sensor map, blanks, 6-char firmware, 32-char system id, CR LF.
-  char text[kStatusReplyBytes + 1] =
-      "21S3F0    013    3.00Twister simulated FASTRAK       \r\n";
-  text[1] = static_cast<char>('0' + (status.station >= 1 && status.station <= 4 ? status.station : 1));
+  char text[kStatusReplyBytes + 1] = "21S3F0    013    3.00Twister simulated FASTRAK       \r\n";
+  text[1] =
+      static_cast<char>('0' + (status.station >= 1 && status.station <= 4 ? status.station : 1));
   std::uint16_t flags = status.flags;
-  flags = static_cast<std::uint16_t>((flags & ~0xBu) | (status.binary ? 1u : 0u) |
-                                     (status.centimetres ? 2u : 0u) |
-                                     (status.continuous ? 8u : 0u));
+  flags =
+      static_cast<std::uint16_t>((flags & ~0xBu) | (status.binary ? 1u : 0u) |
+                                 (status.centimetres ? 2u : 0u) | (status.continuous ? 8u : 0u));
   text[3] = kHex[(flags >> 8) & 0xF];
   text[4] = kHex[(flags >> 4) & 0xF];
   text[5] = kHex[flags & 0xF];

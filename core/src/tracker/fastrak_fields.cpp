@@ -111,7 +111,10 @@ void write_extended(std::byte* p, float value) {
       ++e;
       m = std::llround(scale(1, 5 - e) * a);
     }
-    if (e > 99 || e < -99) { e = 0; m = 0; }
+    if (e > 99 || e < -99) {
+      e = 0;
+      m = 0;
+    }
   }
   p[0] = static_cast<std::byte>(value < 0.0f && m != 0 ? '-' : ' ');
   std::int64_t rest = m;

@@ -8,28 +8,34 @@
 #include <cstring>
 
 #include "fastrak_fields.hpp"
+#include "fastrak_plausibility.hpp"
 
 namespace twister::tracker {
 
 using internal::ch;
+using internal::check_plausibility;
 using internal::is_digit;
 using internal::is_letter;
 
 const char* pose_error_name(PoseError e) {
   switch (e) {
-    case PoseError::nonfinite: return "nonfinite";
-    case PoseError::position_range: return "position_range";
-    case PoseError::angle_range: return "angle_range";
-    case PoseError::bad_dcm: return "bad_dcm";
-    case PoseError::bad_quaternion: return "bad_quaternion";
+    case PoseError::nonfinite:
+      return "nonfinite";
+    case PoseError::position_range:
+      return "position_range";
+    case PoseError::angle_range:
+      return "angle_range";
+    case PoseError::bad_dcm:
+      return "bad_dcm";
+    case PoseError::bad_quaternion:
+      return "bad_quaternion";
   }
   return "unknown";
 }
 
 namespace {
 
-bool read_values(const std::byte* p, Format format, int decimals, std::size_t n,
-                 float* out) {
+bool read_values(const std::byte* p, Format format, int decimals, std::size_t n, float* out) {
   if (format == Format::binary) {
     for (std::size_t i = 0; i < n; ++i) out[i] = internal::read_f32_le(p + 4 * i);
     return true;
@@ -46,38 +52,6 @@ bool read_extended(const std::byte* p, Format format, std::size_t n, float* out)
     if (!internal::parse_extended(p + 13 * i, out[i])) return false;
   }
   return true;
-}
-
-bool all_finite(const float* v, std::size_t n) {
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!std::isfinite(v[i])) return false;
-  }
-  return true;
-}
-
-bool dcm_ok(const std::array<float, 9>& m, double tol) {
-  auto at = [&](int r, int c) { return static_cast<double>(m[static_cast<std::size_t>(3 * r + c)]); };
-  for (int i = 0; i < 3; ++i) {
-    double row = 0.0, col = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      row += at(i, k) * at(i, k);
-      col += at(k, i) * at(k, i);
-    }
-    if (std::fabs(std::sqrt(row) - 1.0) > tol || std::fabs(std::sqrt(col) - 1.0) > tol) {
-      return false;
-    }
-  }
-  for (int i = 0; i < 3; ++i) {
-    for (int j = i + 1; j < 3; ++j) {
-      double d = 0.0;
-      for (int k = 0; k < 3; ++k) d += at(k, i) * at(k, j);
-      if (std::fabs(d) > tol) return false;
-    }
-  }
-  const double det = at(0, 0) * (at(1, 1) * at(2, 2) - at(1, 2) * at(2, 1)) -
-                     at(0, 1) * (at(1, 0) * at(2, 2) - at(1, 2) * at(2, 0)) +
-                     at(0, 2) * (at(1, 0) * at(2, 1) - at(1, 1) * at(2, 0));
-  return det > 0.0;
 }
 
 }  // namespace
@@ -138,8 +112,12 @@ FastrakParser::Candidate FastrakParser::examine_record(const std::byte* p, std::
     const std::byte* q = p + off;
     bool ok = true;
     switch (item) {
-      case Item::space: ok = ch(q[0]) == ' '; break;
-      case Item::crlf: ok = ch(q[0]) == kCr && ch(q[1]) == kLf; break;
+      case Item::space:
+        ok = ch(q[0]) == ' ';
+        break;
+      case Item::crlf:
+        ok = ch(q[0]) == kCr && ch(q[1]) == kLf;
+        break;
       case Item::position:
         ok = read_values(q, fmt, 2, 3, pose.position.data());
         pose.has_position = true;
@@ -159,17 +137,19 @@ FastrakParser::Candidate FastrakParser::examine_record(const std::byte* p, std::
       case Item::dcm_x:
       case Item::dcm_y:
       case Item::dcm_z: {
-        const auto row = static_cast<unsigned>(item) - static_cast<unsigned>(Item::dcm_x);
+        const std::size_t row =
+            static_cast<std::size_t>(item) - static_cast<std::size_t>(Item::dcm_x);
         ok = read_values(q, fmt, 4, 3, pose.dcm.data() + 3 * row);
-        dcm_rows |= 1u << row;
+        dcm_rows |= 1u << static_cast<unsigned>(row);
         break;
       }
       case Item::dcm_x_ext:
       case Item::dcm_y_ext:
       case Item::dcm_z_ext: {
-        const auto row = static_cast<unsigned>(item) - static_cast<unsigned>(Item::dcm_x_ext);
+        const std::size_t row =
+            static_cast<std::size_t>(item) - static_cast<std::size_t>(Item::dcm_x_ext);
         ok = read_extended(q, fmt, 3, pose.dcm.data() + 3 * row);
-        dcm_rows |= 1u << row;
+        dcm_rows |= 1u << static_cast<unsigned>(row);
         break;
       }
       case Item::quaternion:
@@ -196,36 +176,10 @@ FastrakParser::Candidate FastrakParser::examine_record(const std::byte* p, std::
   }
   pose.has.dcm = dcm_rows == 7u;
 
-  // Plausibility, in the order §3.8 lists the reasons.
-  const double tol = bin ? 0.001 : 0.01;
-  const double pos_limit = config_.units == Units::inches ? 400.0 : 1016.0;
-  PoseError err{};
-  bool bad = true;
-  if (!all_finite(pose.position.data(), 3) || !all_finite(pose.euler_deg.data(), 3) ||
-      !all_finite(pose.dcm.data(), 9) || !all_finite(pose.quaternion.data(), 4)) {
-    err = PoseError::nonfinite;
-  } else if (std::fabs(pose.position[0]) > pos_limit || std::fabs(pose.position[1]) > pos_limit ||
-             std::fabs(pose.position[2]) > pos_limit) {
-    err = PoseError::position_range;
-  } else if (std::fabs(pose.euler_deg[0]) > 180.0f || std::fabs(pose.euler_deg[1]) > 90.0f ||
-             std::fabs(pose.euler_deg[2]) > 180.0f) {
-    err = PoseError::angle_range;
-  } else if (dcm_rows != 0 && (dcm_rows != 7u || !dcm_ok(pose.dcm, tol))) {
-    err = PoseError::bad_dcm;
-  } else if (pose.has.quaternion &&
-             std::fabs(std::sqrt(static_cast<double>(pose.quaternion[0]) * pose.quaternion[0] +
-                                 static_cast<double>(pose.quaternion[1]) * pose.quaternion[1] +
-                                 static_cast<double>(pose.quaternion[2]) * pose.quaternion[2] +
-                                 static_cast<double>(pose.quaternion[3]) * pose.quaternion[3]) -
-                       1.0) > tol) {
-    err = PoseError::bad_quaternion;
-  } else {
-    bad = false;
-  }
-  if (bad) {
+  if (const auto err = check_plausibility(pose, dcm_rows, config_)) {
     out.kind = EventKind::error;
     out.station = pose.station;
-    out.error = err;
+    out.error = *err;
   } else {
     out.kind = EventKind::pose;
     out.pose = pose;
@@ -288,7 +242,10 @@ FastrakParser::Candidate FastrakParser::examine_reply(const std::byte* p, std::s
         std::size_t j = k + 2;
         while (j < len && ch(p[j]) == ' ') ++j;
         bool neg = false;
-        if (j < len && ch(p[j]) == '-') { neg = true; ++j; }
+        if (j < len && ch(p[j]) == '-') {
+          neg = true;
+          ++j;
+        }
         int code = 0;
         while (j < len && is_digit(ch(p[j])) && code < 1000) code = code * 10 + (ch(p[j++]) - '0');
         r.error_code = neg ? -code : code;
@@ -316,11 +273,18 @@ Result<FastrakEvent> FastrakParser::emit(const FastrakEvent& ev) {
     return r;
   }
   switch (ev.kind) {
-    case EventKind::pose: ++counters_.poses; break;
-    case EventKind::error: ++counters_.errors; break;
+    case EventKind::pose:
+      ++counters_.poses;
+      break;
+    case EventKind::error:
+      ++counters_.errors;
+      break;
     case EventKind::status:
-    case EventKind::reply: ++counters_.replies; break;
-    case EventKind::resync: break;
+    case EventKind::reply:
+      ++counters_.replies;
+      break;
+    case EventKind::resync:
+      break;
   }
   return ev;
 }

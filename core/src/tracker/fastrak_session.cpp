@@ -38,13 +38,20 @@ bool append_int(std::array<char, 1024>& buf, std::size_t& len, int v) {
 
 const char* session_state_name(SessionState s) {
   switch (s) {
-    case SessionState::backoff: return "backoff";
-    case SessionState::ladder: return "ladder";
-    case SessionState::settle: return "settle";
-    case SessionState::await_status: return "await_status";
-    case SessionState::configuring: return "configuring";
-    case SessionState::verify_status: return "verify_status";
-    case SessionState::streaming: return "streaming";
+    case SessionState::backoff:
+      return "backoff";
+    case SessionState::ladder:
+      return "ladder";
+    case SessionState::settle:
+      return "settle";
+    case SessionState::await_status:
+      return "await_status";
+    case SessionState::configuring:
+      return "configuring";
+    case SessionState::verify_status:
+      return "verify_status";
+    case SessionState::streaming:
+      return "streaming";
   }
   return "unknown";
 }
@@ -128,8 +135,8 @@ void FastrakSession::start_ladder(ports::TimestampUs now) {
   if (rung_ < 1) rung_ = 1;
   ++counters_.inits;
   ladder_len_ = 0;
-  if (rung_ >= 2) ladder_[ladder_len_++] = '\r';  // ends a half-typed command
-  ladder_[ladder_len_++] = 'c';                   // leave continuous mode
+  if (rung_ >= 2) ladder_[ladder_len_++] = '\r';    // ends a half-typed command
+  ladder_[ladder_len_++] = 'c';                     // leave continuous mode
   if (rung_ >= 3) ladder_[ladder_len_++] = kCtrlY;  // full re-initialisation
   ladder_pos_ = 0;
   deadline_ = now;

@@ -34,7 +34,10 @@ Result<glm::dmat3> rotation_from_quaternion(const std::array<float, 4>& qf) {
   double q0 = qf[0], q1 = qf[1], q2 = qf[2], q3 = qf[3];
   const double n = std::sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3);
   if (!(n > 1e-6) || !std::isfinite(n)) return StatusCode::out_of_range;
-  q0 /= n; q1 /= n; q2 /= n; q3 /= n;
+  q0 /= n;
+  q1 /= n;
+  q2 /= n;
+  q3 /= n;
   return glm::dmat3(
       glm::dvec3(1 - 2 * (q2 * q2 + q3 * q3), 2 * (q1 * q2 + q0 * q3), 2 * (q1 * q3 - q0 * q2)),
       glm::dvec3(2 * (q1 * q2 - q0 * q3), 1 - 2 * (q1 * q1 + q3 * q3), 2 * (q2 * q3 + q0 * q1)),
@@ -85,8 +88,8 @@ Result<TrackedFrame> to_station_frame(const FastrakPose& pose, const PoseConvers
   if (glm::dot(h, h) > 0.0 && glm::dot(p, h) < 0.0) p = -p;
   if (conv.boresight[s]) {
     const glm::dvec3& ref = conv.boresight_reference_deg[s];
-    r = rotation_from_euler_deg(ref.x, ref.y, ref.z) *
-        glm::transpose(conv.boresight_rotation[s]) * r;
+    r = rotation_from_euler_deg(ref.x, ref.y, ref.z) * glm::transpose(conv.boresight_rotation[s]) *
+        r;
   }
   const glm::dvec3 tool = p + r * conv.tool_offset_m[s];
   const glm::dmat3 world_r = conv.world_rotation * r;

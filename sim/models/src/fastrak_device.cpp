@@ -33,32 +33,11 @@ constexpr char kCtrlQ = 0x11;
 // Cycle k starts at k * 1e6 / 120 us (8333.33 us).
 ports::TimestampUs cycle_time(std::int64_t k) { return (k * 25'000) / 3; }
 
-// Splits "1,2,,3" into fields; empty fields are kept as "".
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out(1);
-  for (char c : s) {
-    if (c == ',') out.emplace_back();
-    else out.back() += c;
-  }
-  return out;
-}
-
-// -1 missing, -2 non-numeric, else 0 and the value.
-int to_int(const std::string& s, int& v) {
-  if (s.empty()) return -1;
-  char* end = nullptr;
-  const long x = std::strtol(s.c_str(), &end, 10);
-  if (end == s.c_str() || *end != '\0') return -2;
-  v = static_cast<int>(x);
-  return 0;
-}
-
 }  // namespace
 
 FastrakDevice::FastrakDevice(const FastrakDeviceConfig& config, Scenario scenario,
                              ports::TimestampUs start_us)
-    : config_(config), scenario_(std::move(scenario)), start_us_(start_us),
-      rng_(scenario_.seed) {
+    : config_(config), scenario_(std::move(scenario)), start_us_(start_us), rng_(scenario_.seed) {
   power_up(start_us);
 }
 
@@ -122,8 +101,12 @@ void FastrakDevice::apply_faults(ports::TimestampUs now) {
         queue(noise, at);
         break;
       }
-      case FaultKind::drop: drop_left_ += amount; break;
-      case FaultKind::truncate: truncate_left_ += amount; break;
+      case FaultKind::drop:
+        drop_left_ += amount;
+        break;
+      case FaultKind::truncate:
+        truncate_left_ += amount;
+        break;
       case FaultKind::stall:
       case FaultKind::hangup:
       case FaultKind::wrong_baud:
@@ -146,8 +129,8 @@ std::vector<int> FastrakDevice::active_stations() const {
 void FastrakDevice::queue(const std::string& bytes, ports::TimestampUs now) {
   // The line sends one byte per 10 bit times (8N1); chunks queue behind each other.
   const ports::TimestampUs start = std::max(now, line_free_at_);
-  const auto duration = static_cast<ports::TimestampUs>(
-      static_cast<double>(bytes.size()) * 10.0 * 1e6 / config_.baud);
+  const auto duration = static_cast<ports::TimestampUs>(static_cast<double>(bytes.size()) * 10.0 *
+                                                        1e6 / config_.baud);
   line_free_at_ = start + duration;
   line_.push_back({line_free_at_, bytes});
 }
@@ -170,9 +153,10 @@ void FastrakDevice::queue_record(int station, ports::TimestampUs at, bool polled
   const double roll = std::remainder(h.euler_deg[2], 360.0);
   pose.euler_deg = {static_cast<float>(az), static_cast<float>(el), static_cast<float>(roll)};
   const glm::dmat3 r = tracker::rotation_from_euler_deg(az, el, roll);
-  for (int row = 0; row < 3; ++row) {
-    for (int col = 0; col < 3; ++col) {
-      pose.dcm[static_cast<std::size_t>(3 * row + col)] = static_cast<float>(r[col][row]);
+  for (std::size_t row = 0; row < 3; ++row) {
+    for (std::size_t col = 0; col < 3; ++col) {
+      pose.dcm[row * 3 + col] =
+          static_cast<float>(r[static_cast<glm::length_t>(col)][static_cast<glm::length_t>(row)]);
     }
   }
   const glm::dquat q = glm::quat_cast(r);
@@ -201,8 +185,8 @@ void FastrakDevice::send_error(const std::string& input, int code, ports::Timest
 void FastrakDevice::receive(const std::byte* data, std::size_t size, ports::TimestampUs now) {
   apply_faults(now);
   // A resetting, stalled, hung-up or mis-clocked unit understands nothing.
-  if (now < busy_until_ || in_window(now, FaultKind::stall) ||
-      in_window(now, FaultKind::hangup) || in_window(now, FaultKind::wrong_baud)) {
+  if (now < busy_until_ || in_window(now, FaultKind::stall) || in_window(now, FaultKind::hangup) ||
+      in_window(now, FaultKind::wrong_baud)) {
     return;
   }
   for (std::size_t i = 0; i < size; ++i) {
@@ -224,14 +208,43 @@ void FastrakDevice::receive(const std::byte* data, std::size_t size, ports::Time
       continue;
     }
     switch (c) {
-      case '\r': case '\n': break;
-      case 'P': case 'C': case 'c': case 'F': case 'f': case 'U': case 'u': case 'S':
-      case 'W': case 'T': case 'D': case 'd': case kCtrlY: case kCtrlK: case kCtrlS:
+      case '\r':
+      case '\n':
+        break;
+      case 'P':
+      case 'C':
+      case 'c':
+      case 'F':
+      case 'f':
+      case 'U':
+      case 'u':
+      case 'S':
+      case 'W':
+      case 'T':
+      case 'D':
+      case 'd':
+      case kCtrlY:
+      case kCtrlK:
+      case kCtrlS:
       case kCtrlQ:
         execute(c, {}, now);
         break;
-      case 'O': case 'l': case 'H': case 'A': case 'R': case 'B': case 'b': case 'G':
-      case 'N': case 'e': case 'I': case 'x': case 'v': case 'Q': case 'X': case 'o':
+      case 'O':
+      case 'l':
+      case 'H':
+      case 'A':
+      case 'R':
+      case 'B':
+      case 'b':
+      case 'G':
+      case 'N':
+      case 'e':
+      case 'I':
+      case 'x':
+      case 'v':
+      case 'Q':
+      case 'X':
+      case 'o':
         in_param_cmd_ = true;
         pending_cmd_.assign(1, c);
         break;
@@ -239,123 +252,6 @@ void FastrakDevice::receive(const std::byte* data, std::size_t size, ports::Time
         send_error(std::string(1, c), -99, now);
         break;
     }
-  }
-}
-
-void FastrakDevice::execute(char command, const std::string& args, ports::TimestampUs now) {
-  ++counters_.commands;
-  const std::string echo = std::string(1, command) + args;
-  switch (command) {
-    case 'P':
-      for (int s : active_stations()) queue_record(s, now, true);
-      return;
-    case 'C': continuous_ = true; output_on_ = true; return;
-    case 'c': continuous_ = false; return;
-    case 'F': proto_.format = Format::ascii; return;
-    case 'f': proto_.format = Format::binary; return;
-    case 'U': proto_.units = Units::inches; return;
-    case 'u': proto_.units = Units::centimetres; return;
-    case 'S': {
-      tracker::FastrakStatus st;
-      const auto act = active_stations();
-      st.station = static_cast<std::uint8_t>(act.empty() ? 1 : act[next_station_ % act.size()]);
-      st.flags = 0x3F0;
-      st.binary = proto_.format == Format::binary;
-      st.centimetres = proto_.units == Units::centimetres;
-      st.continuous = continuous_;
-      std::array<std::byte, 64> buf{};
-      auto n = tracker::encode_status(st, buf);
-      if (n.ok()) queue(std::string(reinterpret_cast<const char*>(buf.data()), *n), now);
-      return;
-    }
-    case 'W': {
-      const bool cont = continuous_;
-      const ports::TimestampUs busy = busy_until_;
-      power_up(now);
-      --counters_.resets;
-      continuous_ = cont;
-      busy_until_ = busy;
-      return;
-    }
-    case kCtrlY: power_up(now); return;
-    default: break;
-  }
-  const auto f = split(args);
-  int station = 0;
-  auto station_arg = [&]() -> bool {
-    const int rc = to_int(f[0], station);
-    if (rc != 0) { send_error(echo, rc, now); return false; }
-    if (station < 1 || station > 4) { send_error(echo, -3, now); return false; }
-    return true;
-  };
-  switch (command) {
-    case 'O': {
-      if (!station_arg()) return;
-      auto& st = proto_.stations[static_cast<std::size_t>(station - 1)];
-      if (f.size() == 1) {
-        std::string r = "2" + std::to_string(station) + "O";
-        char item[8];
-        for (std::size_t i = 0; i < st.list.count; ++i) {
-          std::snprintf(item, sizeof item, "%2d", static_cast<int>(st.list.items[i]));
-          r += item;
-        }
-        queue(r + "\r\n", now);
-        return;
-      }
-      OutputList list;
-      for (std::size_t i = 1; i < f.size(); ++i) {
-        int code = 0;
-        if (const int rc = to_int(f[i], code); rc != 0) { send_error(echo, rc, now); return; }
-        if (code < 0 || code > 255 || !tracker::is_supported_item(static_cast<std::uint8_t>(code)) ||
-            list.count >= tracker::kMaxItems) {
-          send_error(echo, -3, now);
-          return;
-        }
-        list.items[list.count++] = static_cast<Item>(code);
-      }
-      if (tracker::record_length(list, proto_.format) > tracker::kMaxRecordBytes) {
-        send_error(echo, -5, now);
-        return;
-      }
-      st.list = list;
-      return;
-    }
-    case 'l': {
-      if (!station_arg()) return;
-      if (f.size() == 1) {
-        std::string r = "2" + std::to_string(station) + "l";
-        for (const auto& s : proto_.stations) r += s.enabled ? '1' : '0';
-        queue(r + "\r\n", now);
-        return;
-      }
-      int state = 0;
-      if (const int rc = to_int(f[1], state); rc != 0) { send_error(echo, rc, now); return; }
-      proto_.stations[static_cast<std::size_t>(station - 1)].enabled = state != 0;
-      return;
-    }
-    case 'H': {
-      if (!station_arg()) return;
-      if (f.size() < 4) { send_error(echo, -1, now); return; }
-      auto& h = hemisphere_[static_cast<std::size_t>(station - 1)];
-      for (std::size_t i = 0; i < 3; ++i) {
-        int v = 0;
-        if (const int rc = to_int(f[i + 1], v); rc != 0) { send_error(echo, rc, now); return; }
-        h[i] = v;
-      }
-      return;
-    }
-    case 'e': {
-      if (!station_arg()) return;
-      int mode = 0;
-      if (f.size() < 2 || to_int(f[1], mode) != 0 || (mode != 0 && mode != 1)) {
-        send_error(echo, -3, now);
-        return;
-      }
-      e_mode_ = mode;
-      return;
-    }
-    default:
-      return;  // accepted, no effect on the model (A, R, B, b, G, N, I, x, v, Q, X, o, ...)
   }
 }
 

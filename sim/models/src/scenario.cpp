@@ -9,12 +9,18 @@ namespace twister::sim {
 
 const char* fault_kind_name(FaultKind k) {
   switch (k) {
-    case FaultKind::noise: return "noise";
-    case FaultKind::drop: return "drop";
-    case FaultKind::truncate: return "truncate";
-    case FaultKind::stall: return "stall";
-    case FaultKind::hangup: return "hangup";
-    case FaultKind::wrong_baud: return "wrongbaud";
+    case FaultKind::noise:
+      return "noise";
+    case FaultKind::drop:
+      return "drop";
+    case FaultKind::truncate:
+      return "truncate";
+    case FaultKind::stall:
+      return "stall";
+    case FaultKind::hangup:
+      return "hangup";
+    case FaultKind::wrong_baud:
+      return "wrongbaud";
   }
   return "unknown";
 }
@@ -24,7 +30,7 @@ HandSample sample(const Scenario& scenario, int station, double t_s) {
   if (station < 1 || station > 4) return s;
   const StationTrack& tr = scenario.stations[static_cast<std::size_t>(station - 1)];
   if (tr.circle.enabled) {
-    const double kTwoPi = 6.283185307179586;
+    constexpr double kTwoPi = 6.283185307179586;
     const double a = kTwoPi * t_s / tr.circle.period_s;
     s.position_in = {tr.circle.center_in[0] + tr.circle.radius_in * std::cos(a),
                      tr.circle.center_in[1] + tr.circle.radius_in * std::sin(a),
@@ -117,13 +123,20 @@ bool parse_scenario(std::string_view text, Scenario& out, std::string& error) {
       if (!finite(f.t_s) || f.t_s < 0 || !finite(f.amount) || f.amount < 0) {
         return fail("fault time and amount must be >= 0");
       }
-      if (kind == "noise") f.kind = FaultKind::noise;
-      else if (kind == "drop") f.kind = FaultKind::drop;
-      else if (kind == "truncate") f.kind = FaultKind::truncate;
-      else if (kind == "stall") f.kind = FaultKind::stall;
-      else if (kind == "hangup") f.kind = FaultKind::hangup;
-      else if (kind == "wrongbaud") f.kind = FaultKind::wrong_baud;
-      else return fail("unknown fault kind '" + kind + "'");
+      if (kind == "noise")
+        f.kind = FaultKind::noise;
+      else if (kind == "drop")
+        f.kind = FaultKind::drop;
+      else if (kind == "truncate")
+        f.kind = FaultKind::truncate;
+      else if (kind == "stall")
+        f.kind = FaultKind::stall;
+      else if (kind == "hangup")
+        f.kind = FaultKind::hangup;
+      else if (kind == "wrongbaud")
+        f.kind = FaultKind::wrong_baud;
+      else
+        return fail("unknown fault kind '" + kind + "'");
       sc.faults.push_back(f);
     } else {
       return fail("unknown keyword '" + word + "'");

@@ -3,9 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <limits>
-
 #include <glm/geometric.hpp>
+#include <limits>
 
 namespace twister::math {
 namespace {
@@ -18,7 +17,8 @@ TEST(FrameTest, IdentityIsOrthonormal) {
 }
 
 TEST(FrameTest, FromUvComputesWAsCross) {
-  const Frame f = frame_from_uv(glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0), glm::dvec3(0.0, 0.0, 1.0));
+  const Frame f =
+      frame_from_uv(glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0), glm::dvec3(0.0, 0.0, 1.0));
   EXPECT_EQ(f.w, glm::dvec3(1.0, 0.0, 0.0));
   EXPECT_TRUE(is_orthonormal(f));
 }
@@ -32,7 +32,8 @@ TEST(FrameTest, RejectsNonUnitAxis) {
 }
 
 TEST(FrameTest, RejectsNonOrthogonalAxes) {
-  Frame f = frame_from_uv(glm::dvec3(0.0), glm::dvec3(1.0, 0.0, 0.0), glm::normalize(glm::dvec3(1e-4, 1.0, 0.0)));
+  Frame f = frame_from_uv(glm::dvec3(0.0), glm::dvec3(1.0, 0.0, 0.0),
+                          glm::normalize(glm::dvec3(1e-4, 1.0, 0.0)));
   EXPECT_FALSE(is_orthonormal(f));
 }
 

@@ -4,10 +4,9 @@
 #include <rapidcheck.h>
 
 #include <cmath>
-#include <numbers>
-
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <numbers>
 
 #include "twister/math/frame.hpp"
 
@@ -26,10 +25,11 @@ inline rc::Gen<glm::dvec3> gen_point(double extent) {
 }
 
 inline rc::Gen<glm::dvec3> gen_unit() {
-  return rc::gen::map(rc::gen::suchThat(gen_point(1.0), [](glm::dvec3 v) {
-                        const double l = glm::length(v);
-                        return l > 0.1 && l <= 1.0;
-                      }),
+  return rc::gen::map(rc::gen::suchThat(gen_point(1.0),
+                                        [](glm::dvec3 v) {
+                                          const double l = glm::length(v);
+                                          return l > 0.1 && l <= 1.0;
+                                        }),
                       [](glm::dvec3 v) { return glm::normalize(v); });
 }
 
@@ -62,8 +62,8 @@ inline rc::Gen<Frame> gen_end_frame(const Frame& start, double extent) {
         if (kind == 3) angle = 0.0;
         return rotated(start, axis, angle, start.origin + move);
       },
-      gen_unit(), rc::gen::inRange(0, 4), gen_real(0.0, std::numbers::pi),
-      gen_real(0.0, 1e-6), gen_point(extent));
+      gen_unit(), rc::gen::inRange(0, 4), gen_real(0.0, std::numbers::pi), gen_real(0.0, 1e-6),
+      gen_point(extent));
 }
 
 inline double distance(glm::dvec3 a, glm::dvec3 b) { return glm::length(a - b); }

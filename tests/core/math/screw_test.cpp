@@ -140,7 +140,9 @@ TEST(ScrewTest, AxisPointIsFixedByRotationPart) {
   const Screw s = compute_screw(start, end);
   // A quarter turn about z through the origin takes (1,0,0) to (0,1,0).
   EXPECT_LT(distance(s.axis_point(), glm::dvec3(0.0)), 1e-12);
-  EXPECT_LT(distance(screw_at(s, 0.5, start.origin), glm::dvec3(std::sqrt(0.5), std::sqrt(0.5), 0.0)), 1e-12);
+  EXPECT_LT(
+      distance(screw_at(s, 0.5, start.origin), glm::dvec3(std::sqrt(0.5), std::sqrt(0.5), 0.0)),
+      1e-12);
 }
 
 TEST(ScrewTest, RottranRotatesAboutGrabPointThenTranslates) {
@@ -148,9 +150,11 @@ TEST(ScrewTest, RottranRotatesAboutGrabPointThenTranslates) {
   const Frame end = rotated(start, glm::dvec3(0.0, 0.0, 1.0), kPi / 2, glm::dvec3(0.0, 1.0, 0.0));
   const Screw s = compute_screw(start, end);
   EXPECT_LT(distance(rottran_at(s, start, end, 1.0, start.origin), end.origin), 1e-12);
-  EXPECT_LT(distance(rottran_at(s, start, end, 1.0, start.origin + start.u), end.origin + end.u), 1e-12);
+  EXPECT_LT(distance(rottran_at(s, start, end, 1.0, start.origin + start.u), end.origin + end.u),
+            1e-12);
   // Half way: rotate (2,0,0) by 45 degrees about (1,0,0), then move half of (-1,1,0).
-  const glm::dvec3 expected = glm::dvec3(1.0 + std::sqrt(0.5), std::sqrt(0.5), 0.0) + glm::dvec3(-0.5, 0.5, 0.0);
+  const glm::dvec3 expected =
+      glm::dvec3(1.0 + std::sqrt(0.5), std::sqrt(0.5), 0.0) + glm::dvec3(-0.5, 0.5, 0.0);
   EXPECT_LT(distance(rottran_at(s, start, end, 0.5, glm::dvec3(2.0, 0.0, 0.0)), expected), 1e-12);
 }
 

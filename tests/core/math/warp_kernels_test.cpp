@@ -46,8 +46,8 @@ RC_GTEST_PROP(WarpKernelsTest, SimdAgreesWithScalarAndDouble, ()) {
   Columns rest(n);
   for (std::size_t i = 0; i < n; ++i) {
     // Half of the points inside the first ball so that most of them are warped.
-    const glm::dvec3 p = i % 2 == 0 ? first.origin + radius * 0.99 * *gen_point(0.577)
-                                    : *gen_point(extent);
+    const glm::dvec3 p =
+        i % 2 == 0 ? first.origin + radius * 0.99 * *gen_point(0.577) : *gen_point(extent);
     rest.x[i] = static_cast<float>(p.x);
     rest.y[i] = static_cast<float>(p.y);
     rest.z[i] = static_cast<float>(p.z);
@@ -88,7 +88,8 @@ TEST(WarpKernelsTest, ZeroWeightLeavesPointsBitExact) {
   const std::array<float, 4> x{1.5f, -2.0f, 1e6f, 0.1f};
   const std::array<float, 4> w{0.0f, 0.0f, 0.0f, 0.0f};
   std::array<float, 4> ox{}, oy{}, oz{};
-  const KernelSpan s{x.data(), x.data(), x.data(), w.data(), w.data(), ox.data(), oy.data(), oz.data(), 4};
+  const KernelSpan s{x.data(),  x.data(),  x.data(),  w.data(), w.data(),
+                     ox.data(), oy.data(), oz.data(), 4};
   warp_two_simd(h, h, s);
   EXPECT_EQ(0, std::memcmp(ox.data(), x.data(), sizeof(x)));
   EXPECT_EQ(0, std::memcmp(oz.data(), x.data(), sizeof(x)));

@@ -45,8 +45,9 @@ struct Out {
 WarpPlanWithStorage<4096> g_plan;  // 48 KiB: static, as the station would do
 
 rc::Gen<WarpMethod> gen_method(bool with_scodef) {
-  return with_scodef ? rc::gen::element(WarpMethod::twister, WarpMethod::rottran, WarpMethod::scodef)
-                     : rc::gen::element(WarpMethod::twister, WarpMethod::rottran);
+  return with_scodef
+             ? rc::gen::element(WarpMethod::twister, WarpMethod::rottran, WarpMethod::scodef)
+             : rc::gen::element(WarpMethod::twister, WarpMethod::rottran);
 }
 
 // §4: for one hand the grab point and its frame follow the hand exactly.
@@ -65,7 +66,8 @@ RC_GTEST_PROP(WarpPlanTest, OneHandGrabPointAndFrameFollowTheHand, ()) {
   const double h = 1e-6 * radius;
   for (const auto& [a, b] : {std::pair{start[0].u, end[0].u}, std::pair{start[0].v, end[0].v},
                              std::pair{start[0].w, end[0].w}}) {
-    const glm::dvec3 derivative = (g_plan.warp_point(o + h * a) - g_plan.warp_point(o - h * a)) / (2 * h);
+    const glm::dvec3 derivative =
+        (g_plan.warp_point(o + h * a) - g_plan.warp_point(o - h * a)) / (2 * h);
     RC_ASSERT(distance(derivative, b) < 1e-4);
   }
   // The float kernel puts the grab point there too (float rounding of the scene).
@@ -123,7 +125,8 @@ TEST(WarpPlanTest, OnlyInfluencedVerticesAreSelectedAndWritten) {
   Cloud cloud;
   for (int i = -20; i <= 20; ++i) cloud.add(glm::dvec3(0.1 * i, 0.0, 0.0));
   const std::array<Frame, 1> start{identity_frame()};
-  const std::array<Frame, 1> end{rotated(start[0], glm::dvec3(0, 0, 1), 1.0, glm::dvec3(0, 0.5, 0))};
+  const std::array<Frame, 1> end{
+      rotated(start[0], glm::dvec3(0, 0, 1), 1.0, glm::dvec3(0, 0.5, 0))};
   ASSERT_TRUE(g_plan.build(cloud.rest(), start, 1.0, WarpMethod::twister).ok());
   ASSERT_EQ(g_plan.indices().size(), 19u);  // |x| < 1
   EXPECT_EQ(g_plan.indices().front(), 11u);
@@ -173,18 +176,25 @@ TEST(WarpPlanTest, RefusesBadArguments) {
   cloud.add(glm::dvec3(0.0));
   const Frame f = identity_frame();
   const std::array<Frame, 2> same{f, f};
-  const std::array<Frame, 3> three{f, identity_frame(glm::dvec3(1, 0, 0)), identity_frame(glm::dvec3(2, 0, 0))};
-  EXPECT_EQ(g_plan.build(cloud.rest(), same, 1.0, WarpMethod::twister).code(), StatusCode::invalid_argument);
+  const std::array<Frame, 3> three{f, identity_frame(glm::dvec3(1, 0, 0)),
+                                   identity_frame(glm::dvec3(2, 0, 0))};
+  EXPECT_EQ(g_plan.build(cloud.rest(), same, 1.0, WarpMethod::twister).code(),
+            StatusCode::invalid_argument);
   EXPECT_FALSE(g_plan.built());
-  EXPECT_EQ(g_plan.build(cloud.rest(), three, 1.0, WarpMethod::twister).code(), StatusCode::invalid_argument);
-  EXPECT_EQ(g_plan.build(cloud.rest(), {}, 1.0, WarpMethod::twister).code(), StatusCode::invalid_argument);
+  EXPECT_EQ(g_plan.build(cloud.rest(), three, 1.0, WarpMethod::twister).code(),
+            StatusCode::invalid_argument);
+  EXPECT_EQ(g_plan.build(cloud.rest(), {}, 1.0, WarpMethod::twister).code(),
+            StatusCode::invalid_argument);
   const std::array<Frame, 1> one{f};
-  EXPECT_EQ(g_plan.build(cloud.rest(), one, 0.0, WarpMethod::twister).code(), StatusCode::invalid_argument);
-  EXPECT_EQ(g_plan.build(cloud.rest(), one, -1.0, WarpMethod::twister).code(), StatusCode::invalid_argument);
+  EXPECT_EQ(g_plan.build(cloud.rest(), one, 0.0, WarpMethod::twister).code(),
+            StatusCode::invalid_argument);
+  EXPECT_EQ(g_plan.build(cloud.rest(), one, -1.0, WarpMethod::twister).code(),
+            StatusCode::invalid_argument);
   Frame skew = f;
   skew.u = glm::dvec3(1.0, 0.01, 0.0);
   const std::array<Frame, 1> bad{skew};
-  EXPECT_EQ(g_plan.build(cloud.rest(), bad, 1.0, WarpMethod::twister).code(), StatusCode::invalid_argument);
+  EXPECT_EQ(g_plan.build(cloud.rest(), bad, 1.0, WarpMethod::twister).code(),
+            StatusCode::invalid_argument);
   Out out(1);
   EXPECT_EQ(g_plan.apply(cloud.rest(), out.cols()).code(), StatusCode::failed_precondition);
   EXPECT_EQ(g_plan.update(one).code(), StatusCode::failed_precondition);
@@ -214,7 +224,8 @@ TEST(WarpPlanTest, RebaseKeepsSelectionAndRestartsFromNewPoses) {
   Cloud cloud;
   for (int i = -10; i <= 10; ++i) cloud.add(glm::dvec3(0.1 * i, 0.05, 0.0));
   const std::array<Frame, 1> start{identity_frame()};
-  const std::array<Frame, 1> end{rotated(start[0], glm::dvec3(0, 0, 1), 1.5, glm::dvec3(0, 0.5, 0))};
+  const std::array<Frame, 1> end{
+      rotated(start[0], glm::dvec3(0, 0, 1), 1.5, glm::dvec3(0, 0.5, 0))};
   ASSERT_TRUE(g_plan.build(cloud.rest(), start, 0.55, WarpMethod::twister).ok());
   const std::vector<std::uint32_t> indices(g_plan.indices().begin(), g_plan.indices().end());
   const std::vector<float> weights(g_plan.weights(0).begin(), g_plan.weights(0).end());
@@ -254,9 +265,11 @@ TEST(WarpPlanTest, UpdateAndApplyDoNotAllocate) {
   Cloud cloud;
   for (int i = 0; i < 2000; ++i) cloud.add(glm::dvec3(0.001 * i - 1.0, (i % 3) * 0.4, 0.0));
   Out out(cloud.x.size());
-  const std::array<Frame, 2> start{identity_frame(glm::dvec3(-0.5, 0, 0)), identity_frame(glm::dvec3(0.5, 0, 0))};
-  const std::array<Frame, 2> end{rotated(start[0], glm::dvec3(0, 0, 1), 1.0, glm::dvec3(-0.5, 0.3, 0)),
-                                 rotated(start[1], glm::dvec3(0, 0, 1), -1.0, glm::dvec3(0.5, 0.3, 0))};
+  const std::array<Frame, 2> start{identity_frame(glm::dvec3(-0.5, 0, 0)),
+                                   identity_frame(glm::dvec3(0.5, 0, 0))};
+  const std::array<Frame, 2> end{
+      rotated(start[0], glm::dvec3(0, 0, 1), 1.0, glm::dvec3(-0.5, 0.3, 0)),
+      rotated(start[1], glm::dvec3(0, 0, 1), -1.0, glm::dvec3(0.5, 0.3, 0))};
   for (const WarpMethod method : {WarpMethod::twister, WarpMethod::rottran, WarpMethod::scodef}) {
     for (const KernelKind kind : {KernelKind::simd, KernelKind::scalar}) {
       ASSERT_TRUE(g_plan.build(cloud.rest(), start, 0.5, method).ok());

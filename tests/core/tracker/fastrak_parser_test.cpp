@@ -26,18 +26,38 @@ const std::string kDefaultAscii = std::string("01 ") + "  12.50" + "  -3.21" + "
 
 TEST(FastrakParser, RecordLengthsMatchSpecTables) {
   EXPECT_EQ(record_length(kDefaultList, Format::ascii), 47u);
-  EXPECT_EQ(record_length(OutputList::of({Item::position, Item::quaternion, Item::crlf}), Format::ascii), 54u);
-  EXPECT_EQ(record_length(OutputList::of({Item::position, Item::dcm_x, Item::dcm_y, Item::dcm_z, Item::crlf}), Format::ascii), 89u);
-  EXPECT_EQ(record_length(OutputList::of({Item::position, Item::quaternion, Item::space}), Format::binary), 32u);
-  EXPECT_EQ(record_length(OutputList::of({Item::position, Item::quaternion, Item::stylus, Item::space}), Format::binary), 34u);
-  EXPECT_EQ(record_length(OutputList::of({Item::position, Item::euler, Item::stylus, Item::crlf}), Format::binary), 31u);
+  EXPECT_EQ(
+      record_length(OutputList::of({Item::position, Item::quaternion, Item::crlf}), Format::ascii),
+      54u);
+  EXPECT_EQ(record_length(
+                OutputList::of({Item::position, Item::dcm_x, Item::dcm_y, Item::dcm_z, Item::crlf}),
+                Format::ascii),
+            89u);
+  EXPECT_EQ(record_length(OutputList::of({Item::position, Item::quaternion, Item::space}),
+                          Format::binary),
+            32u);
+  EXPECT_EQ(
+      record_length(OutputList::of({Item::position, Item::quaternion, Item::stylus, Item::space}),
+                    Format::binary),
+      34u);
+  EXPECT_EQ(record_length(OutputList::of({Item::position, Item::euler, Item::stylus, Item::crlf}),
+                          Format::binary),
+            31u);
   EXPECT_EQ(record_length(kDefaultList, Format::binary), 29u);
   // The spec's table says 41 (= 3 + 36 + 2) for 2,5,6,7,1, which leaves out the 12
   // position bytes; 41 is the length of 5,6,7,1 and 2,5,6,7,1 is 53 (docs/fastrak.md).
-  EXPECT_EQ(record_length(OutputList::of({Item::dcm_x, Item::dcm_y, Item::dcm_z, Item::crlf}), Format::binary), 41u);
-  EXPECT_EQ(record_length(OutputList::of({Item::position, Item::dcm_x, Item::dcm_y, Item::dcm_z, Item::crlf}), Format::binary), 53u);
-  EXPECT_EQ(record_length(OutputList::of({Item::position, Item::quaternion, Item::crlf}), Format::binary), 33u);
-  EXPECT_EQ(record_length(OutputList::of({Item::position_ext, Item::crlf}), Format::ascii), 3u + 39u + 2u);
+  EXPECT_EQ(record_length(OutputList::of({Item::dcm_x, Item::dcm_y, Item::dcm_z, Item::crlf}),
+                          Format::binary),
+            41u);
+  EXPECT_EQ(record_length(
+                OutputList::of({Item::position, Item::dcm_x, Item::dcm_y, Item::dcm_z, Item::crlf}),
+                Format::binary),
+            53u);
+  EXPECT_EQ(
+      record_length(OutputList::of({Item::position, Item::quaternion, Item::crlf}), Format::binary),
+      33u);
+  EXPECT_EQ(record_length(OutputList::of({Item::position_ext, Item::crlf}), Format::ascii),
+            3u + 39u + 2u);
 }
 
 TEST(FastrakParser, DefaultAsciiRecord) {
@@ -86,16 +106,17 @@ TEST(FastrakParser, AsciiFieldSyntaxErrorsAreDropped) {
 }
 
 TEST(FastrakParser, AsciiDirectionCosinesAndQuaternion) {
-  const std::string dcm = std::string("02 ") + "   1.00" + "   2.00" + "   3.00" +
-                          " 1.0000" + " 0.0000" + " 0.0000" + " 0.0000" + " 1.0000" +
-                          " 0.0000" + " 0.0000" + " 0.0000" + " 1.0000" + "\r\n";
+  const std::string dcm = std::string("02 ") + "   1.00" + "   2.00" + "   3.00" + " 1.0000" +
+                          " 0.0000" + " 0.0000" + " 0.0000" + " 1.0000" + " 0.0000" + " 0.0000" +
+                          " 0.0000" + " 1.0000" + "\r\n";
   FastrakConfig c;
   c.stations[1].enabled = true;
-  c.stations[1].list = OutputList::of({Item::position, Item::dcm_x, Item::dcm_y, Item::dcm_z, Item::crlf});
+  c.stations[1].list =
+      OutputList::of({Item::position, Item::dcm_x, Item::dcm_y, Item::dcm_z, Item::crlf});
   c.stations[2].enabled = true;
   c.stations[2].list = OutputList::of({Item::position, Item::quaternion, Item::crlf});
-  const std::string quat = std::string("03 ") + "   1.00" + "   2.00" + "   3.00" +
-                           " 0.7071" + " 0.0000" + " 0.0000" + "-0.7071" + "\r\n";
+  const std::string quat = std::string("03 ") + "   1.00" + "   2.00" + "   3.00" + " 0.7071" +
+                           " 0.0000" + " 0.0000" + "-0.7071" + "\r\n";
   ASSERT_EQ(dcm.size(), 89u);
   ASSERT_EQ(quat.size(), 54u);
   FastrakParser p(c);
@@ -116,8 +137,8 @@ TEST(FastrakParser, BinaryVrpnRecordWithStylus) {
   for (float v : {1.5f, -2.25f, 3.0f, 1.0f, 0.0f, 0.0f, 0.0f}) rec += f32le(v);
   rec += " 1 ";
   ASSERT_EQ(rec.size(), 34u);
-  FastrakParser p(one_station(Format::binary,
-      OutputList::of({Item::position, Item::quaternion, Item::stylus, Item::space})));
+  FastrakParser p(one_station(Format::binary, OutputList::of({Item::position, Item::quaternion,
+                                                              Item::stylus, Item::space})));
   auto ev = parse_all(p, rec);
   ASSERT_EQ(ev.size(), 1u);
   ASSERT_EQ(ev[0].kind, EventKind::pose);
@@ -127,8 +148,8 @@ TEST(FastrakParser, BinaryVrpnRecordWithStylus) {
 }
 
 TEST(FastrakParser, AsciiStylusWidthIsConfigurable) {
-  FastrakConfig c = one_station(Format::ascii,
-      OutputList::of({Item::position, Item::stylus, Item::crlf}));
+  FastrakConfig c =
+      one_station(Format::ascii, OutputList::of({Item::position, Item::stylus, Item::crlf}));
   c.ascii_stylus_width = 2;
   FastrakParser p(c);
   auto ev = parse_all(p, std::string("01 ") + "   1.00   2.00   3.00" + " 1" + "\r\n");
@@ -148,9 +169,8 @@ TEST(FastrakParser, LetterStatusIsAWarningNotAnError) {
 }
 
 TEST(FastrakParser, StatusReply) {
-  const std::string status =
-      std::string("21S3F0   ") + " 01" + "3" + "  " + "  3.00" +
-      "OutputCompensat simulator       " + "\r\n";
+  const std::string status = std::string("21S3F0   ") + " 01" + "3" + "  " + "  3.00" +
+                             "OutputCompensat simulator       " + "\r\n";
   ASSERT_EQ(status.size(), 55u);
   FastrakParser p(one_station(Format::ascii, kDefaultList));
   auto ev = parse_all(p, status + kDefaultAscii);
@@ -164,8 +184,8 @@ TEST(FastrakParser, StatusReply) {
 }
 
 TEST(FastrakParser, StatusFlagsDecodeFormatUnitsMode) {
-  std::string status = std::string("22S3FB   ") + " 01" + "3" + "  " + "  3.00" +
-                       std::string(32, ' ') + "\r\n";
+  std::string status =
+      std::string("22S3FB   ") + " 01" + "3" + "  " + "  3.00" + std::string(32, ' ') + "\r\n";
   FastrakParser p(one_station(Format::binary, kDefaultList));
   auto ev = parse_all(p, status);
   ASSERT_EQ(ev.size(), 1u);
@@ -221,8 +241,8 @@ TEST(FastrakParser, TruncatedBinaryRecordThenGoodRecords) {
   std::string rec = "01 ";
   for (float v : {10.0f, 20.0f, 30.0f, 1.0f, 0.0f, 0.0f, 0.0f}) rec += f32le(v);
   rec += "\r\n";
-  FastrakParser p(one_station(Format::binary,
-      OutputList::of({Item::position, Item::quaternion, Item::crlf})));
+  FastrakParser p(
+      one_station(Format::binary, OutputList::of({Item::position, Item::quaternion, Item::crlf})));
   auto ev = parse_all(p, rec.substr(0, 20) + rec + rec, {1});
   ASSERT_EQ(ev.size(), 3u);
   EXPECT_EQ(ev[0].kind, EventKind::resync);
@@ -244,9 +264,12 @@ TEST(FastrakParser, MissingTerminatorRejectsCandidate) {
 
 TEST(FastrakParser, StationOutOfRangeOrDisabledAndBadStatusCharAreBadHeaders) {
   FastrakParser p(one_station(Format::ascii, kDefaultList));
-  std::string s7 = kDefaultAscii; s7[1] = '7';
-  std::string s2 = kDefaultAscii; s2[1] = '2';  // not enabled in our configuration
-  std::string bad_status = kDefaultAscii; bad_status[2] = '#';
+  std::string s7 = kDefaultAscii;
+  s7[1] = '7';
+  std::string s2 = kDefaultAscii;
+  s2[1] = '2';  // not enabled in our configuration
+  std::string bad_status = kDefaultAscii;
+  bad_status[2] = '#';
   auto ev = parse_all(p, s7 + s2 + bad_status + kDefaultAscii);
   ASSERT_EQ(ev.size(), 2u);
   EXPECT_EQ(ev[0].kind, EventKind::resync);
@@ -260,8 +283,8 @@ TEST(FastrakParser, ImplausibleValuesGiveErrorEventsInSpecOrder) {
     for (float v : {x, 0.0f, 0.0f, 0.0f, el, 0.0f, q0, 0.0f, 0.0f, 0.0f}) r += f32le(v);
     return r + "\r\n";
   };
-  FastrakParser p(one_station(Format::binary,
-      OutputList::of({Item::position, Item::euler, Item::quaternion, Item::crlf})));
+  FastrakParser p(one_station(
+      Format::binary, OutputList::of({Item::position, Item::euler, Item::quaternion, Item::crlf})));
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float inf = std::numeric_limits<float>::infinity();
   auto ev = parse_all(p, rec(nan, 95.0f, 2.0f) + rec(inf, 0.0f, 1.0f) + rec(400.5f, 95.0f, 1.0f) +
@@ -283,8 +306,8 @@ TEST(FastrakParser, ImplausibleValuesGiveErrorEventsInSpecOrder) {
 }
 
 TEST(FastrakParser, PositionRangeDependsOnUnits) {
-  const std::string rec = std::string("01 ") + " 500.00" + "   0.00" + "   0.00" +
-                          "   0.00" + "   0.00" + "   0.00" + "\r\n";
+  const std::string rec = std::string("01 ") + " 500.00" + "   0.00" + "   0.00" + "   0.00" +
+                          "   0.00" + "   0.00" + "\r\n";
   FastrakParser inches(one_station(Format::ascii, kDefaultList, Units::inches));
   FastrakParser cm(one_station(Format::ascii, kDefaultList, Units::centimetres));
   EXPECT_EQ(parse_all(inches, rec)[0].kind, EventKind::error);
@@ -297,10 +320,12 @@ TEST(FastrakParser, NonOrthonormalDcmIsRejected) {
     for (float v : m) r += f32le(v);
     return r + "\r\n";
   };
-  FastrakParser p(one_station(Format::binary,
+  FastrakParser p(one_station(
+      Format::binary,
       OutputList::of({Item::position, Item::dcm_x, Item::dcm_y, Item::dcm_z, Item::crlf})));
-  auto ev = parse_all(p, rec({1, 0, 0, 0, 1, 0, 0, 0, 1}) + rec({1, 0, 0, 0, 1.01f, 0, 0, 0, 1}) +
-                             rec({1, 0, 0, 0, -1, 0, 0, 0, 1}) + rec({1, 0.01f, 0, 0, 1, 0, 0, 0, 1}));
+  auto ev =
+      parse_all(p, rec({1, 0, 0, 0, 1, 0, 0, 0, 1}) + rec({1, 0, 0, 0, 1.01f, 0, 0, 0, 1}) +
+                       rec({1, 0, 0, 0, -1, 0, 0, 0, 1}) + rec({1, 0.01f, 0, 0, 1, 0, 0, 0, 1}));
   ASSERT_EQ(ev.size(), 4u);
   EXPECT_EQ(ev[0].kind, EventKind::pose);
   EXPECT_EQ(ev[1].error, PoseError::bad_dcm);  // column norm
@@ -317,8 +342,8 @@ TEST(FastrakParser, FalseHeaderInsideBinaryPayload) {
   ASSERT_TRUE(std::isfinite(y));
   std::string rec = "01 " + f32le(1.0f) + f32le(y < 300 && y > -300 ? y : 5.0f) + f32le(3.0f) +
                     f32le(1) + f32le(0) + f32le(0) + f32le(0) + "\r\n";
-  FastrakParser p(one_station(Format::binary,
-      OutputList::of({Item::position, Item::quaternion, Item::crlf})));
+  FastrakParser p(
+      one_station(Format::binary, OutputList::of({Item::position, Item::quaternion, Item::crlf})));
   auto ev = parse_all(p, "0" + rec + rec + "\r\n01" + rec, {3});
   std::size_t poses = 0;
   for (const auto& e : ev) poses += e.kind == EventKind::pose;
@@ -383,9 +408,8 @@ TEST(FastrakParser, NoHeapAllocationWhileParsing) {
   std::size_t poses = 0;
   EXPECT_NO_ALLOCATIONS({
     for (char c : stream) {
-      p.feed(bytes_of(std::string_view(&c, 1)), [&](const FastrakEvent& e) {
-        poses += e.kind == EventKind::pose;
-      });
+      p.feed(bytes_of(std::string_view(&c, 1)),
+             [&](const FastrakEvent& e) { poses += e.kind == EventKind::pose; });
     }
   });
   EXPECT_EQ(poses, 2u);

@@ -22,7 +22,7 @@ using test::f32le;
 FastrakSessionConfig fast_config() {
   FastrakSessionConfig c;
   c.protocol = test::one_station(Format::binary,
-      OutputList::of({Item::position, Item::quaternion, Item::crlf}));
+                                 OutputList::of({Item::position, Item::quaternion, Item::crlf}));
   c.ladder_char_pause_us = 1'000;
   c.reset_wait_us = 50'000;
   c.settle_us = 2'000;
@@ -46,8 +46,8 @@ std::string status_reply(bool binary, bool cm = false, bool continuous = false) 
 }
 
 std::string record(float x, float q0 = 1.0f) {
-  std::string r = "01 " + f32le(x) + f32le(2) + f32le(3) + f32le(q0) + f32le(0) + f32le(0) +
-                  f32le(0);
+  std::string r =
+      "01 " + f32le(x) + f32le(2) + f32le(3) + f32le(q0) + f32le(0) + f32le(0) + f32le(0);
   return r + "\r\n";
 }
 
@@ -92,8 +92,7 @@ TEST(FastrakSession, StartUpSequenceSendsTheSpecCommands) {
   rig.stream.clear_tx();
   rig.stream.push_rx(status_reply(false));
   ASSERT_TRUE(rig.reach(SessionState::verify_status));
-  EXPECT_EQ(rig.stream.tx(),
-            "l1,1\rO1,2,11,1\rH1,1,0,0\rl2,0\rl3,0\rl4,0\re1,0\rUfS");
+  EXPECT_EQ(rig.stream.tx(), "l1,1\rO1,2,11,1\rH1,1,0,0\rl2,0\rl3,0\rl4,0\re1,0\rUfS");
   rig.stream.clear_tx();
   rig.stream.push_rx(status_reply(true));
   ASSERT_TRUE(rig.reach(SessionState::streaming));
@@ -163,10 +162,12 @@ TEST(FastrakSession, EndlessGarbageIsDetected) {
   Rig rig;
   rig.start_streaming();
   // Bytes keep coming but none forms a valid record.
-  ASSERT_TRUE(rig.run_until([&] {
-    rig.stream.push_rx("garbage\x01\x7f 0 1 2 garbage");
-    return rig.session.state() != SessionState::streaming;
-  }, 3'000'000, 10'000));
+  ASSERT_TRUE(rig.run_until(
+      [&] {
+        rig.stream.push_rx("garbage\x01\x7f 0 1 2 garbage");
+        return rig.session.state() != SessionState::streaming;
+      },
+      3'000'000, 10'000));
   EXPECT_EQ(rig.session.counters().garbage_faults, 1u);
   EXPECT_EQ(rig.session.counters().silence_faults, 0u);
   EXPECT_GT(rig.session.parser_counters().dropped_bytes, 1000u);

@@ -32,7 +32,8 @@ RC_GTEST_PROP(PoseConversion, QuaternionDcmAndEulerAgree, ()) {
   double n = 0;
   do {
     for (float& x : q) x = static_cast<float>(*rc::gen::inRange(-1000, 1001)) / 1000.0f;
-    n = std::sqrt(double(q[0]) * q[0] + double(q[1]) * q[1] + double(q[2]) * q[2] + double(q[3]) * q[3]);
+    n = std::sqrt(double(q[0]) * q[0] + double(q[1]) * q[1] + double(q[2]) * q[2] +
+                  double(q[3]) * q[3]);
   } while (n < 0.1);
   const glm::dmat3 rq = *rotation_from_quaternion(q);
   RC_ASSERT(std::fabs(glm::determinant(rq) - 1.0) < 1e-9);
@@ -40,7 +41,8 @@ RC_GTEST_PROP(PoseConversion, QuaternionDcmAndEulerAgree, ()) {
   const glm::dmat3 re = rotation_from_euler_deg(e.x, e.y, e.z);
   std::array<float, 9> rows{};
   for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) rows[static_cast<std::size_t>(3 * r + c)] = static_cast<float>(rq[c][r]);
+    for (int c = 0; c < 3; ++c)
+      rows[static_cast<std::size_t>(3 * r + c)] = static_cast<float>(rq[c][r]);
   const glm::dmat3 rd = *rotation_from_dcm(rows, 1e-4);
   for (int c = 0; c < 3; ++c) {
     for (int r = 0; r < 3; ++r) {

@@ -19,7 +19,8 @@ inline std::string f32le(float f) {
   std::string s(4, '\0');
   std::uint32_t v;
   std::memcpy(&v, &f, 4);
-  for (int i = 0; i < 4; ++i) s[static_cast<std::size_t>(i)] = static_cast<char>((v >> (8 * i)) & 0xFF);
+  for (int i = 0; i < 4; ++i)
+    s[static_cast<std::size_t>(i)] = static_cast<char>((v >> (8 * i)) & 0xFF);
   return s;
 }
 
@@ -40,8 +41,7 @@ inline std::vector<FastrakEvent> parse_all(FastrakParser& parser, std::string_vi
   return out;
 }
 
-inline FastrakConfig one_station(Format format, OutputList list,
-                                 Units units = Units::inches) {
+inline FastrakConfig one_station(Format format, OutputList list, Units units = Units::inches) {
   FastrakConfig c;
   c.format = format;
   c.units = units;

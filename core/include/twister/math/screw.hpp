@@ -2,9 +2,8 @@
 // (spec §2-§3). Double precision, world frame, scene units; angles in radians.
 #pragma once
 
-#include <optional>
-
 #include <glm/vec3.hpp>
+#include <optional>
 
 #include "twister/math/frame.hpp"
 
@@ -23,11 +22,11 @@ inline constexpr double kHalfTurnTolerance = 1e-9;
 // A pure translation has angle 0, cot_half 0, slide 0 and chord = OO'.
 struct Screw {
   glm::dvec3 axis{0.0, 0.0, 1.0};  // D, unit; arbitrary for a pure translation
-  double angle = 0.0;               // a in [0, pi]
-  double slide = 0.0;               // d = D . OO'
-  glm::dvec3 mid{0.0};              // M = (O + O'')/2
-  glm::dvec3 chord{0.0};            // X = O'' - O (perpendicular to D); OO' if pure
-  double cot_half = 0.0;            // cot(a/2); 0 for a pure translation and at a = pi
+  double angle = 0.0;              // a in [0, pi]
+  double slide = 0.0;              // d = D . OO'
+  glm::dvec3 mid{0.0};             // M = (O + O'')/2
+  glm::dvec3 chord{0.0};           // X = O'' - O (perpendicular to D); OO' if pure
+  double cot_half = 0.0;           // cot(a/2); 0 for a pure translation and at a = pi
   bool pure_translation = true;
 
   // The axis point A = M + (D x X)/(2 tan(a/2)); only meaningful when not pure.
@@ -48,8 +47,7 @@ glm::dvec3 screw_at(const Screw& screw, double t, glm::dvec3 p);
 
 // The closed form P' = (AP.U)U' + (AP.V)V' + (AP.W)W' + dD + A of §2, for tests;
 // for a pure translation P + OO'.
-glm::dvec3 full_screw_image(const Screw& screw, const Frame& start, const Frame& end,
-                            glm::dvec3 p);
+glm::dvec3 full_screw_image(const Screw& screw, const Frame& start, const Frame& end, glm::dvec3 p);
 
 // rottran (§6): rotation about the axis through O with direction D by t*a, then
 // translation by t*OO'.

@@ -17,13 +17,13 @@ enum class KernelKind : std::uint8_t { scalar, simd };
 
 // One hand's per-update parameters in kernel form (see above), world frame.
 struct KernelHand {
-  float axis[3] = {0.0f, 0.0f, 1.0f};       // D
-  float mid[3] = {0.0f, 0.0f, 0.0f};        // M (O for rottran)
-  float chord[3] = {0.0f, 0.0f, 0.0f};      // X (0 for rottran)
+  float axis[3] = {0.0f, 0.0f, 1.0f};          // D
+  float mid[3] = {0.0f, 0.0f, 0.0f};           // M (O for rottran)
+  float chord[3] = {0.0f, 0.0f, 0.0f};         // X (0 for rottran)
   float axis_x_chord[3] = {0.0f, 0.0f, 0.0f};  // D x X
-  float shift[3] = {0.0f, 0.0f, 0.0f};      // T: dD (twister), OO' (rottran, pure)
-  float half_angle = 0.0f;                  // a/2 in [0, pi/2]
-  float cot_half = 0.0f;                    // k
+  float shift[3] = {0.0f, 0.0f, 0.0f};         // T: dD (twister), OO' (rottran, pure)
+  float half_angle = 0.0f;                     // a/2 in [0, pi/2]
+  float cot_half = 0.0f;                       // k
   // Double copies for the scalar reference kernel.
   double axis_d[3] = {0.0, 0.0, 1.0};
   double mid_d[3] = {0.0, 0.0, 0.0};

@@ -16,9 +16,12 @@ enum class WarpMethod : std::uint8_t {
 // "twister" | "rottran" | "scodef".
 constexpr std::string_view warp_method_name(WarpMethod method) {
   switch (method) {
-    case WarpMethod::twister: return "twister";
-    case WarpMethod::rottran: return "rottran";
-    case WarpMethod::scodef: return "scodef";
+    case WarpMethod::twister:
+      return "twister";
+    case WarpMethod::rottran:
+      return "rottran";
+    case WarpMethod::scodef:
+      return "scodef";
   }
   return "unknown";
 }

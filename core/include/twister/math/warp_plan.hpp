@@ -20,9 +20,8 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <span>
-
 #include <glm/vec3.hpp>
+#include <span>
 
 #include "twister/base/status.hpp"
 #include "twister/math/frame.hpp"
@@ -142,8 +141,8 @@ template <std::size_t N>
 class WarpPlanWithStorage : private internal::WarpPlanArrays<N>, public WarpPlan {
  public:
   WarpPlanWithStorage()
-      : WarpPlan(WarpPlanStorage{this->index_storage, this->weight1_storage,
-                                 this->weight2_storage}) {}
+      : WarpPlan(
+            WarpPlanStorage{this->index_storage, this->weight1_storage, this->weight2_storage}) {}
   WarpPlanWithStorage(const WarpPlanWithStorage&) = delete;
   WarpPlanWithStorage& operator=(const WarpPlanWithStorage&) = delete;
 };

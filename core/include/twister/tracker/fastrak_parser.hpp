@@ -78,7 +78,7 @@ class FastrakParser {
   std::array<std::byte, kMaxReplyBytes + kMaxRecordBytes> pending_{};
   std::size_t pending_len_ = 0;
   std::uint32_t dropped_run_ = 0;
-  bool held_ = false;        // an accepted event waits behind its resync report
+  bool held_ = false;  // an accepted event waits behind its resync report
   FastrakEvent held_event_{};
   FastrakParserCounters counters_{};
 };

@@ -27,15 +27,15 @@ struct FastrakSessionConfig {
       {{1, 0, 0}, {1, 0, 0}, {1, 0, 0}, {1, 0, 0}}};
   // All durations in microseconds. Defaults suit a real unit; the simulator and
   // tests shorten them.
-  std::int64_t ladder_char_pause_us = 200'000;   // pause after each ladder byte
-  std::int64_t reset_wait_us = 15'000'000;       // after ^Y (Vrui 15 s, VRPN 20 s)
-  std::int64_t settle_us = 500'000;              // before `S`, input is discarded
-  std::int64_t reply_timeout_us = 2'000'000;     // wait for the status reply
-  std::int64_t command_pause_us = 100'000;       // between configuration commands
-  std::int64_t silence_timeout_us = 2'000'000;   // no valid pose -> fault (VRPN 2 s)
-  std::int64_t backoff_initial_us = 250'000;     // first re-initialisation delay
-  std::int64_t backoff_max_us = 8'000'000;       // back-off cap (doubles per failure)
-  int reset_rung_limit = 3;  // highest ladder rung: 1 `c`, 2 CR+`c`, 3 CR+`c`+^Y
+  std::int64_t ladder_char_pause_us = 200'000;  // pause after each ladder byte
+  std::int64_t reset_wait_us = 15'000'000;      // after ^Y (Vrui 15 s, VRPN 20 s)
+  std::int64_t settle_us = 500'000;             // before `S`, input is discarded
+  std::int64_t reply_timeout_us = 2'000'000;    // wait for the status reply
+  std::int64_t command_pause_us = 100'000;      // between configuration commands
+  std::int64_t silence_timeout_us = 2'000'000;  // no valid pose -> fault (VRPN 2 s)
+  std::int64_t backoff_initial_us = 250'000;    // first re-initialisation delay
+  std::int64_t backoff_max_us = 8'000'000;      // back-off cap (doubles per failure)
+  int reset_rung_limit = 3;                     // highest ladder rung: 1 `c`, 2 CR+`c`, 3 CR+`c`+^Y
 };
 
 enum class SessionState : std::uint8_t {
@@ -50,17 +50,17 @@ enum class SessionState : std::uint8_t {
 const char* session_state_name(SessionState s);
 
 struct FastrakSessionCounters {
-  std::uint64_t poses = 0;             // poses handed to the caller
-  std::uint64_t inits = 0;             // start-up sequences begun
-  std::uint64_t streams_started = 0;   // start-ups that reached streaming
-  std::uint64_t status_timeouts = 0;   // no status reply in time
-  std::uint64_t status_mismatch = 0;   // status flags disagree with the configuration
-  std::uint64_t command_errors = 0;    // command-error records received
-  std::uint64_t io_errors = 0;         // read/write/reopen failures (unplug)
-  std::uint64_t silence_faults = 0;    // no bytes at all for silence_timeout
-  std::uint64_t garbage_faults = 0;    // bytes but no valid pose for silence_timeout
-  std::uint64_t rejected_poses = 0;    // plausibility errors reported by the parser
-  std::uint64_t reinit_requests = 0;   // reinitialise() calls
+  std::uint64_t poses = 0;            // poses handed to the caller
+  std::uint64_t inits = 0;            // start-up sequences begun
+  std::uint64_t streams_started = 0;  // start-ups that reached streaming
+  std::uint64_t status_timeouts = 0;  // no status reply in time
+  std::uint64_t status_mismatch = 0;  // status flags disagree with the configuration
+  std::uint64_t command_errors = 0;   // command-error records received
+  std::uint64_t io_errors = 0;        // read/write/reopen failures (unplug)
+  std::uint64_t silence_faults = 0;   // no bytes at all for silence_timeout
+  std::uint64_t garbage_faults = 0;   // bytes but no valid pose for silence_timeout
+  std::uint64_t rejected_poses = 0;   // plausibility errors reported by the parser
+  std::uint64_t reinit_requests = 0;  // reinitialise() calls
 };
 
 class FastrakSession {

@@ -46,7 +46,7 @@ enum class Item : std::uint8_t {
 // True for the codes listed in Item.
 bool is_supported_item(std::uint8_t code);
 
-enum class Format : std::uint8_t { ascii, binary };  // `F` / `f` (binary = IEEE LE float32)
+enum class Format : std::uint8_t { ascii, binary };       // `F` / `f` (binary = IEEE LE float32)
 enum class Units : std::uint8_t { inches, centimetres };  // `U` / `u`
 
 // One station's output list as sent with `O`s,i1,...,in.

@@ -24,19 +24,19 @@
 namespace twister::sim {
 
 struct FastrakDeviceConfig {
-  int baud = 115200;                    // line rate; 10 bits per byte
-  std::int64_t reset_time_us = 500'000; // ^Y and power-up (a real unit: 10-20 s)
-  bool start_continuous = false;        // power-up mode (the real default is polled)
+  int baud = 115200;                     // line rate; 10 bits per byte
+  std::int64_t reset_time_us = 500'000;  // ^Y and power-up (a real unit: 10-20 s)
+  bool start_continuous = false;         // power-up mode (the real default is polled)
   tracker::Format start_format = tracker::Format::ascii;
 };
 
 struct FastrakDeviceCounters {
-  std::uint64_t records = 0;            // records queued for transmission
-  std::uint64_t dropped_solutions = 0;  // cycles skipped because the line was busy
-  std::uint64_t commands = 0;           // commands executed
-  std::uint64_t command_errors = 0;     // error records sent
-  std::uint64_t resets = 0;             // ^Y and power-ups
-  std::uint64_t bytes_out = 0;          // bytes handed to the line
+  std::uint64_t records = 0;              // records queued for transmission
+  std::uint64_t dropped_solutions = 0;    // cycles skipped because the line was busy
+  std::uint64_t commands = 0;             // commands executed
+  std::uint64_t command_errors = 0;       // error records sent
+  std::uint64_t resets = 0;               // ^Y and power-ups
+  std::uint64_t bytes_out = 0;            // bytes handed to the line
   std::array<std::uint64_t, 6> faults{};  // injected, indexed by FaultKind
 };
 
@@ -76,11 +76,11 @@ class FastrakDevice {
   // Unit state.
   tracker::FastrakConfig proto_;
   bool continuous_ = false;
-  bool output_on_ = true;       // stylus point/track toggle in continuous mode
+  bool output_on_ = true;  // stylus point/track toggle in continuous mode
   int e_mode_ = 1;
   bool last_button_ = false;
   std::array<std::array<double, 3>, 4> hemisphere_{};
-  ports::TimestampUs busy_until_ = 0;   // reset in progress until then
+  ports::TimestampUs busy_until_ = 0;  // reset in progress until then
   std::int64_t next_cycle_ = 0;
   std::size_t next_station_ = 0;
 

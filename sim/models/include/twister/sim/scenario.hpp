@@ -30,12 +30,12 @@ struct Circle {
 };
 
 enum class FaultKind : std::uint8_t {
-  noise,      // `amount` random bytes injected into the output
-  drop,       // the next `amount` output bytes are lost
-  truncate,   // the next `amount` records are cut short
-  stall,      // no output and no command processing for `amount` seconds
-  hangup,     // the line hangs up for `amount` seconds, then the unit powers up again
-  wrong_baud, // for `amount` seconds both directions are garbled (baud mismatch)
+  noise,       // `amount` random bytes injected into the output
+  drop,        // the next `amount` output bytes are lost
+  truncate,    // the next `amount` records are cut short
+  stall,       // no output and no command processing for `amount` seconds
+  hangup,      // the line hangs up for `amount` seconds, then the unit powers up again
+  wrong_baud,  // for `amount` seconds both directions are garbled (baud mismatch)
 };
 const char* fault_kind_name(FaultKind k);
 
@@ -52,10 +52,10 @@ struct StationTrack {
 
 struct Scenario {
   std::uint32_t seed = 1;
-  int receivers = 2;            // receivers plugged in (stations 1..receivers)
-  double duration_s = 0.0;      // 0 = run until stopped
+  int receivers = 2;        // receivers plugged in (stations 1..receivers)
+  double duration_s = 0.0;  // 0 = run until stopped
   std::array<StationTrack, 4> stations;
-  std::vector<Fault> faults;    // sorted by time
+  std::vector<Fault> faults;  // sorted by time
 };
 
 // Sample of one station at a time.

@@ -1,0 +1,83 @@
+#include "figure8_command.hpp"
+
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cli_exit.hpp"
+#include "figure8_experiment.hpp"
+#include "figure8_plot.hpp"
+
+namespace twister::cli {
+
+namespace {
+
+struct Figure8Options {
+  std::string svg;
+  std::string png;
+};
+
+constexpr math::WarpMethod kMethods[] = {math::WarpMethod::twister, math::WarpMethod::rottran,
+                                         math::WarpMethod::scodef};
+
+std::vector<Figure8Curve> run_table(const Figure8Setup& setup) {
+  std::printf(
+      "# %zu points from x = -1 to 1, grabs at x = -0.5 and 0.5, r = %g, both hands "
+      "move by (0, %g, 0); hand 1 turns +angle about z, hand 2 -angle\n",
+      setup.points, setup.radius, setup.lift);
+  std::printf("# cell: self-intersections / sharpest turn between segments (degrees)\n");
+  std::printf("%6s", "angle");
+  for (const auto m : kMethods)
+    std::printf("  %-16s", std::string(math::warp_method_name(m)).c_str());
+  std::printf("\n");
+  std::vector<Figure8Curve> curves;
+  for (const int angle : figure8_angles()) {
+    std::printf("%6d", angle);
+    for (const auto m : kMethods) {
+      Figure8Curve c;
+      if (const Status s = run_figure8_curve(setup, angle, m, c); !s.ok()) {
+        std::fprintf(stderr, "twister figure8: %s at %d degrees failed: %s\n",
+                     std::string(math::warp_method_name(m)).c_str(), angle, s.name());
+        throw Exit{kExitFailure};
+      }
+      char cell[32];
+      std::snprintf(cell, sizeof cell, "%zu / %.1f", c.intersections, c.sharpest_turn_deg);
+      std::printf("  %-16s", cell);
+      curves.push_back(std::move(c));
+    }
+    std::printf("\n");
+  }
+  return curves;
+}
+
+void run_figure8(const Figure8Options& opt) {
+  const Figure8Setup paper_like{};
+  const std::vector<Figure8Curve> curves = run_table(paper_like);
+  std::printf("\n");
+  run_table(Figure8Setup{2001, 1.0, 0.3});
+  std::string error;
+  const std::string title =
+      "Figure 8 (spec 9): r = 0.5, lift 0.6; cell: self-intersections, sharpest turn";
+  if (!opt.svg.empty() && !write_figure8_svg(opt.svg, curves, title, error)) {
+    std::fprintf(stderr, "twister figure8: %s\n", error.c_str());
+    throw Exit{kExitFailure};
+  }
+  if (!opt.png.empty() && !write_figure8_png(opt.png, curves, error)) {
+    std::fprintf(stderr, "twister figure8: %s\n", error.c_str());
+    throw Exit{kExitFailure};
+  }
+}
+
+}  // namespace
+
+void add_figure8_command(CLI::App& app) {
+  auto* cmd =
+      app.add_subcommand("figure8", "Run the Figure 8 comparison of the warp methods (spec §9)");
+  auto opt = std::make_shared<Figure8Options>();
+  cmd->add_option("--svg", opt->svg, "write the grid of curves as SVG");
+  cmd->add_option("--png", opt->png, "write the grid of curves as PNG");
+  cmd->callback([opt] { run_figure8(*opt); });
+}
+
+}  // namespace twister::cli

@@ -1,0 +1,11 @@
+// `twister figure8 [--svg FILE] [--png FILE]`: the spec's Figure 8 experiment (§9):
+// prints self-intersections and sharpest turns per angle and method, draws the grid.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace twister::cli {
+
+void add_figure8_command(CLI::App& app);
+
+}  // namespace twister::cli

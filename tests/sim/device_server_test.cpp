@@ -1,0 +1,79 @@
+// DeviceServer modes not covered by the acceptance test: HIL mode on a tty given by
+// path (a PTY slave stands in for the rig's serial port; the test plays the host on
+// the master side), and PTY mode's printed path and link.
+#include "device_server.hpp"
+
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <poll.h>
+#include <stdlib.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <string>
+
+namespace twister::sim {
+namespace {
+
+std::string pump(DeviceServer& server, int master, int ms) {
+  std::string out;
+  std::string err;
+  for (int i = 0; i < ms; ++i) {
+    EXPECT_TRUE(server.step(1, err)) << err;
+    char buf[512];
+    const ssize_t n = ::read(master, buf, sizeof buf);
+    if (n > 0) out.append(buf, static_cast<std::size_t>(n));
+  }
+  return out;
+}
+
+TEST(DeviceServer, HilModeServesARealTtyPath) {
+  const int master = ::posix_openpt(O_RDWR | O_NOCTTY | O_NONBLOCK);
+  ASSERT_GE(master, 0);
+  ASSERT_EQ(::grantpt(master), 0);
+  ASSERT_EQ(::unlockpt(master), 0);
+  termios tio{};
+  ::tcgetattr(master, &tio);
+  ::cfmakeraw(&tio);
+  ::tcsetattr(master, TCSANOW, &tio);
+  Scenario sc;
+  FastrakDeviceConfig dev;
+  dev.reset_time_us = 0;
+  FastrakDevice device(dev, sc, 0);
+  ServeOptions opts;
+  opts.device = ::ptsname(master);
+  DeviceServer server(device, opts);
+  std::string err;
+  ASSERT_TRUE(server.start(err)) << err;
+  EXPECT_EQ(server.slave_path(), opts.device);
+  ASSERT_EQ(::write(master, "S", 1), 1);
+  const std::string status = pump(server, master, 100);
+  ASSERT_EQ(status.size(), 55u);
+  EXPECT_EQ(status.substr(0, 6), "21S3F0");
+  ASSERT_EQ(::write(master, "P", 1), 1);
+  const std::string records = pump(server, master, 100);
+  // Default list 2,4,1 in ASCII for the two default receivers: 2 x 47 bytes.
+  ASSERT_EQ(records.size(), 94u);
+  EXPECT_EQ(records.substr(0, 3), "01 ");
+  EXPECT_EQ(records.substr(47, 3), "02 ");
+  ::close(master);
+}
+
+TEST(DeviceServer, PtyModeLinksTheSlave) {
+  Scenario sc;
+  FastrakDevice device({}, sc, 0);
+  ServeOptions opts;
+  opts.link = ::testing::TempDir() + "fastrak_server_" + std::to_string(::getpid());
+  DeviceServer server(device, opts);
+  std::string err;
+  ASSERT_TRUE(server.start(err)) << err;
+  char target[256] = {};
+  const ssize_t n = ::readlink(opts.link.c_str(), target, sizeof target - 1);
+  ASSERT_GT(n, 0);
+  EXPECT_EQ(std::string(target), server.slave_path());
+  EXPECT_EQ(server.counters().ptys_opened, 1u);
+  ::unlink(opts.link.c_str());
+}
+
+}  // namespace
+}  // namespace twister::sim
