@@ -1,7 +1,5 @@
 #include "twister/station/station.hpp"
 
-#include <glm/vec3.hpp>
-
 #include "twister/journal/journal_reader.hpp"
 
 namespace twister::station {
@@ -11,51 +9,44 @@ namespace {
 constexpr int kMaxPosesPerPoll = 64;
 constexpr int kMaxEdgesPerPoll = 32;
 
-journal::JournalPose to_journal(const tracker::TrackedFrame& f) {
-  return journal::JournalPose{f.origin, f.u, f.v};
+math::Frame to_frame(const tracker::TrackedFrame& f) {
+  return math::Frame{f.origin, f.u, f.v, f.w};
 }
 
 }  // namespace
 
 Station::Station(ports::ByteStream& tracker, ports::ButtonSource& buttons, ports::Clock& clock,
-                 ports::Storage& storage, const StationConfig& config)
+                 ports::Storage& storage, mesh::Mesh& mesh, input::SculptStorage work,
+                 const StationConfig& config)
     : buttons_(buttons),
       clock_(clock),
       storage_(storage),
       config_(config),
       session_(tracker, clock, config.session),
-      debouncer_(config.debounce),
-      machine_(config.interaction),
-      writer_(storage) {}
+      writer_(storage),
+      sculpt_(config.sculpt, mesh, work, &writer_) {}
 
 Status Station::start() {
   const auto s0 = config_.hand_station[0];
   const auto s1 = config_.hand_station[1];
   if (s0 < 1 || s0 > tracker::kMaxStations || s1 < 1 || s1 > tracker::kMaxStations || s0 == s1) {
-    return StatusCode::invalid_argument;
+    return StatusCode::failed_precondition;
   }
-  // Recover: every good record counts towards the sequence; a torn tail (power cut
-  // mid-append) is cut off so new records follow the last good one.
+  // Replay through the session's own commit path, so the mesh is exactly the one
+  // the last run left; a torn tail (power cut mid-append) is cut so new records
+  // follow the last good one.
   journal::JournalReader reader(storage_);
   TWISTER_TRY(reader.open());
-  std::uint32_t records = 0;
+  TWISTER_TRY_ASSIGN(const std::size_t applied, sculpt_.replay(reader));
   std::uint64_t cut = 0;
-  for (;;) {
-    auto rec = reader.next();
-    if (rec.ok()) {
-      records = rec->sequence + 1;
-      continue;
-    }
-    if (rec.status().code() == StatusCode::unavailable) break;
-    if (rec.status().code() != StatusCode::data_loss) return rec.status();
+  if (reader.problem() != journal::TailProblem::none) {
     cut = reader.tail_bytes();
     TWISTER_TRY(reader.truncate_tail());
-    break;
   }
   TWISTER_TRY(writer_.open());
-  next_sequence_ = records;
   started_ = true;
-  push_event({StationEventKind::journal_recovered, 0, records, cut, OkStatus(), clock_.now_us()});
+  push_event({StationEventKind::journal_recovered, 0, static_cast<std::uint32_t>(applied), cut,
+              OkStatus(), clock_.now_us()});
   return OkStatus();
 }
 
@@ -75,7 +66,7 @@ void Station::drain_tracker(ports::TimestampUs now_us) {
         stylus_down_[idx] = pose->button;
         ++counters_.button_edges;
         const ports::ButtonEdge edge{static_cast<std::uint8_t>(line), pose->button, now_us};
-        if (!debouncer_.feed(edge).ok()) ++counters_.button_errors;
+        if (!sculpt_.feed_button(edge).ok()) ++counters_.button_errors;
       }
     }
     int hand = -1;
@@ -100,15 +91,15 @@ void Station::drain_tracker(ports::TimestampUs now_us) {
   const bool streaming = session_.streaming();
   if (streaming != was_streaming_) {
     was_streaming_ = streaming;
+    // Poses from before a loss must not count as valid after re-initialisation. A
+    // stylus held at the loss stays "held": no release is invented, so the session
+    // holds the stroke and cancels it after lost_timeout instead of committing it;
+    // the first record after re-plug brings the true state.
     if (!streaming) {
-      // Poses from before the loss must not count as valid after re-initialisation.
-      // A stylus held at the loss stays "held": no release is invented, so the
-      // interaction machine holds the stroke and cancels it after lost_timeout
-      // instead of committing it; the first record after re-plug brings the truth.
       for (auto& h : hands_) h.has_pose = false;
     }
-    push_event({streaming ? StationEventKind::tracker_streaming : StationEventKind::tracker_lost,
-                0, 0, session_.counters().streams_started, OkStatus(), now_us});
+    push_event({streaming ? StationEventKind::tracker_streaming : StationEventKind::tracker_lost, 0,
+                0, session_.counters().streams_started, OkStatus(), now_us});
   }
 }
 
@@ -118,7 +109,7 @@ void Station::drain_buttons(ports::TimestampUs now_us) {
     if (edge.ok()) {
       buttons_failed_ = false;
       ++counters_.button_edges;
-      if (!debouncer_.feed(*edge).ok()) ++counters_.button_errors;
+      if (!sculpt_.feed_button(*edge).ok()) ++counters_.button_errors;
       continue;
     }
     if (edge.status().code() == StatusCode::unavailable) break;
@@ -129,11 +120,6 @@ void Station::drain_buttons(ports::TimestampUs now_us) {
     buttons_failed_ = true;
     break;
   }
-  for (;;) {
-    auto ev = debouncer_.poll(now_us);
-    if (!ev.ok()) break;
-    config_.buttons.apply(*ev, levels_);
-  }
 }
 
 Status Station::poll() {
@@ -141,68 +127,45 @@ Status Station::poll() {
   const ports::TimestampUs now_us = clock_.now_us();
   drain_tracker(now_us);
   drain_buttons(now_us);
-  input::InteractionInputs inputs{};
   for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
-    inputs.hands[h].pose_valid = hand_valid(h, now_us);
-    inputs.hands[h].position_m = glm::vec3(hands_[h].pose.origin);
-    inputs.hands[h].buttons = levels_[h];
+    const bool valid = hand_valid(h, now_us);
+    // invalid_argument: not orthonormal; the session then treats the hand as lost.
+    if (!sculpt_.set_hand(h, valid, to_frame(hands_[h].pose)).ok()) ++counters_.pose_errors;
   }
-  const input::ActionList actions = machine_.step(inputs, now_us);
-  for (const input::Action& a : actions.items()) apply(a, now_us);
+  const input::SessionEvents events = sculpt_.step(now_us);
+  counters_.session_events_dropped += events.dropped();
+  for (const input::SessionEvent& e : events.items()) report(e, now_us);
   return OkStatus();
 }
 
-void Station::apply(const input::Action& action, ports::TimestampUs now_us) {
-  const std::uint8_t h = action.hand;
-  switch (action.kind) {
-    case input::ActionKind::grab_begin:
-      hands_[h].stroke_start = hands_[h].pose;
-      hands_[h].chain_step = 0;
-      push_event({StationEventKind::stroke_begin, h, 0, 0, OkStatus(), now_us});
+void Station::report(const input::SessionEvent& e, ports::TimestampUs now_us) {
+  using K = input::SessionEventKind;
+  switch (e.kind) {
+    case K::grab_begin:
+      push_event({StationEventKind::stroke_begin, e.hand, 0, 0, OkStatus(), now_us});
       break;
-    case input::ActionKind::freeze:
-      commit_stroke(h, now_us);
-      hands_[h].stroke_start = hands_[h].pose;
-      ++hands_[h].chain_step;
+    case K::committed:
+      ++counters_.strokes_committed;
+      push_event({StationEventKind::stroke_committed, e.hand, e.sequence,
+                  static_cast<std::uint64_t>(e.reason), OkStatus(), now_us});
       break;
-    case input::ActionKind::commit:
-      commit_stroke(h, now_us);
-      break;
-    case input::ActionKind::cancel:
+    case K::cancelled:
       ++counters_.strokes_cancelled;
-      push_event({StationEventKind::stroke_cancelled, h, 0,
-                  static_cast<std::uint64_t>(action.reason), OkStatus(), now_us});
+      push_event({StationEventKind::stroke_cancelled, e.hand, 0,
+                  static_cast<std::uint64_t>(e.reason), e.status, now_us});
       break;
-    case input::ActionKind::refused:
+    case K::refused:
       ++counters_.refused;
-      push_event({StationEventKind::refused, h, 0, static_cast<std::uint64_t>(action.reason),
-                  OkStatus(), now_us});
+      push_event({StationEventKind::refused, e.hand, 0, static_cast<std::uint64_t>(e.reason),
+                  e.status, now_us});
+      break;
+    case K::journal_failed:
+      ++counters_.journal_errors;
+      push_event({StationEventKind::journal_error, e.hand, e.sequence, 0, e.status, now_us});
       break;
     default:
-      break;  // tracking_lost/resumed, moves and the radius gesture need no journal entry
+      break;  // tracking, radius, moves, undo/redo: visible in the session's state
   }
-}
-
-void Station::commit_stroke(std::uint8_t hand, ports::TimestampUs now_us) {
-  journal::JournalRecord record{};
-  record.type = journal::RecordType::stroke;
-  record.sequence = next_sequence_;
-  record.stroke.method = config_.warp_method;
-  record.stroke.hand_mask = static_cast<std::uint8_t>(1u << hand);
-  record.stroke.chain_step = hands_[hand].chain_step;
-  record.stroke.radius_m = static_cast<double>(machine_.radius_m());
-  // The end pose is the hand's last valid pose (the machine commits at it when lost).
-  record.stroke.start[hand] = to_journal(hands_[hand].stroke_start);
-  record.stroke.end[hand] = to_journal(hands_[hand].pose);
-  const Status s = writer_.append(record);
-  if (!s.ok()) {
-    ++counters_.journal_errors;
-    push_event({StationEventKind::journal_error, hand, record.sequence, 0, s, now_us});
-    return;
-  }
-  ++next_sequence_;
-  ++counters_.strokes_committed;
-  push_event({StationEventKind::stroke_committed, hand, record.sequence, 0, OkStatus(), now_us});
 }
 
 void Station::push_event(const StationEvent& event) {

@@ -32,10 +32,17 @@ Status GpiodButtonSource::open(const GpiodButtonConfig& config) {
   }
   int flags = config.active_low ? GPIOD_LINE_REQUEST_FLAG_ACTIVE_LOW : 0;
   switch (config.bias) {
-    case GpiodButtonConfig::Bias::as_is: break;
-    case GpiodButtonConfig::Bias::disable: flags |= GPIOD_LINE_REQUEST_FLAG_BIAS_DISABLE; break;
-    case GpiodButtonConfig::Bias::pull_up: flags |= GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_UP; break;
-    case GpiodButtonConfig::Bias::pull_down: flags |= GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_DOWN; break;
+    case GpiodButtonConfig::Bias::as_is:
+      break;
+    case GpiodButtonConfig::Bias::disable:
+      flags |= GPIOD_LINE_REQUEST_FLAG_BIAS_DISABLE;
+      break;
+    case GpiodButtonConfig::Bias::pull_up:
+      flags |= GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_UP;
+      break;
+    case GpiodButtonConfig::Bias::pull_down:
+      flags |= GPIOD_LINE_REQUEST_FLAG_BIAS_PULL_DOWN;
+      break;
   }
   // One request per line (v1 event requests are per line anyway); each line's fd
   // joins the event loop's poll set.
@@ -86,8 +93,8 @@ Result<ports::ButtonEdge> GpiodButtonSource::do_poll() {
     ports::ButtonEdge edge;
     edge.line = static_cast<std::uint8_t>(i);
     edge.pressed = event.event_type == GPIOD_LINE_EVENT_RISING_EDGE;
-    edge.time_us = static_cast<ports::TimestampUs>(event.ts.tv_sec) * 1'000'000 +
-                   event.ts.tv_nsec / 1'000;
+    edge.time_us =
+        static_cast<ports::TimestampUs>(event.ts.tv_sec) * 1'000'000 + event.ts.tv_nsec / 1'000;
     return edge;
   }
   return StatusCode::unavailable;

@@ -26,7 +26,8 @@ Status HidapiButtonSource::open(const HidapiButtonConfig& config) {
     device_ = hid_open_path(found->path);
     hid_free_enumeration(found);
   }
-  if (device_ == nullptr) return config.path.empty() ? StatusCode::io_error : StatusCode::unavailable;
+  if (device_ == nullptr)
+    return config.path.empty() ? StatusCode::io_error : StatusCode::unavailable;
   if (hid_set_nonblocking(device_, 1) != 0) {
     close();
     return StatusCode::io_error;

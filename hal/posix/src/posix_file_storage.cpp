@@ -14,7 +14,8 @@ namespace {
 // Durability of a new file needs its directory entry on disk as well.
 void sync_parent_directory(const std::string& path) {
   const auto slash = path.rfind('/');
-  const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
+  const std::string dir =
+      slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
   const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (dfd >= 0) {
     ::fsync(dfd);
@@ -68,8 +69,8 @@ Result<std::size_t> PosixFileStorage::do_read_at(std::uint64_t offset, std::span
   if (offset > static_cast<std::uint64_t>(LLONG_MAX)) return StatusCode::out_of_range;
   std::size_t done = 0;
   while (done < dest.size()) {
-    const ssize_t n = ::pread(fd_, dest.data() + done, dest.size() - done,
-                              static_cast<off_t>(offset + done));
+    const ssize_t n =
+        ::pread(fd_, dest.data() + done, dest.size() - done, static_cast<off_t>(offset + done));
     if (n < 0) {
       if (errno == EINTR) continue;
       return fail(errno);

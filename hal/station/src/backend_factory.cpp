@@ -2,6 +2,7 @@
 // exist is decided by CMake (TWISTER_HAVE_* definitions on this file only).
 #include "backend_factory.hpp"
 
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -16,6 +17,9 @@
 #endif
 #ifdef TWISTER_HAVE_HAL_TERMIOS
 #include "twister/hal/termios_byte_stream.hpp"
+#endif
+#ifdef TWISTER_HAVE_HAL_LIBUSB
+#include "twister/hal/libusb_byte_stream.hpp"
 #endif
 
 namespace twister::hal {
@@ -52,8 +56,8 @@ bool make_sim_tracker(const StationConfig& config, Backends& out, std::string& e
     out.tracker_name = "sim " + s.scenario;
   }
   if (s.unplug_at_ms > 0) {
-    scenario.faults.push_back({s.unplug_at_ms / 1000.0, sim::FaultKind::hangup,
-                               s.replug_after_ms / 1000.0});
+    scenario.faults.push_back(
+        {s.unplug_at_ms / 1000.0, sim::FaultKind::hangup, s.replug_after_ms / 1000.0});
   }
   out.scenario_duration_s = scenario.duration_s;
   if (s.time == SimTime::virtual_time) {
@@ -75,27 +79,35 @@ bool make_sim_tracker(const StationConfig& config, Backends& out, std::string& e
 
 bool tracker_backend_built(TrackerBackend b) {
   switch (b) {
-    case TrackerBackend::sim: return true;
+    case TrackerBackend::sim:
+      return true;
 #ifdef TWISTER_HAVE_HAL_TERMIOS
-    case TrackerBackend::serial: return true;
+    case TrackerBackend::serial:
+      return true;
 #endif
 #ifdef TWISTER_HAVE_HAL_LIBUSB
-    case TrackerBackend::usb: return true;
+    case TrackerBackend::usb:
+      return true;
 #endif
-    default: return false;
+    default:
+      return false;
   }
 }
 
 bool button_backend_built(ButtonBackend b) {
   switch (b) {
-    case ButtonBackend::stylus: return true;
+    case ButtonBackend::stylus:
+      return true;
 #ifdef TWISTER_HAVE_HAL_GPIOD
-    case ButtonBackend::gpiod: return true;
+    case ButtonBackend::gpiod:
+      return true;
 #endif
 #ifdef TWISTER_HAVE_HAL_HIDAPI
-    case ButtonBackend::hidapi: return true;
+    case ButtonBackend::hidapi:
+      return true;
 #endif
-    default: return false;
+    default:
+      return false;
   }
 }
 
@@ -134,9 +146,29 @@ bool make_backends(const StationConfig& config, Backends& out, std::string& erro
       out.tracker_name = "serial " + sc.device + " at " + std::to_string(sc.baud) + " baud";
     }
 #endif
+    break;
+    case TrackerBackend::usb: {
+#ifdef TWISTER_HAVE_HAL_LIBUSB
+      out.clock = std::make_unique<MonotonicClock>();
+      const UsbTrackerConfig& uc = config.tracker.usb;
+      auto stream = std::make_unique<LibusbByteStream>(
+          LibusbConfig{uc.vendor_id, uc.product_id, uc.interface_number, uc.endpoint_in,
+                       uc.endpoint_out, uc.timeout_ms});
+      if (const Status st = stream->init(); !st.ok()) {
+        error = std::string("libusb: initialisation failed (") + st.name() + ", libusb error " +
+                std::to_string(stream->last_error()) + ")";
+        return false;
+      }
+      // Opened by the Fastrak session, which retries while the tracker is unplugged.
+      // libusb's own fds are not waited on: the loop's timeout paces the reads.
+      char ids[32];
+      std::snprintf(ids, sizeof ids, "%04x:%04x", uc.vendor_id, uc.product_id);
+      out.tracker_name =
+          std::string("usb ") + ids + (stream->hotplug_supported() ? " (hot-plug)" : "");
+      out.tracker = std::move(stream);
+#endif
       break;
-    case TrackerBackend::usb:
-      break;
+    }
   }
   switch (config.buttons.backend) {
     case ButtonBackend::stylus:
@@ -153,8 +185,8 @@ bool make_backends(const StationConfig& config, Backends& out, std::string& erro
       gc.bias = static_cast<GpiodButtonConfig::Bias>(config.buttons.gpiod.bias);
       const Status s = src->open(gc);
       if (!s.ok()) {
-        error = "gpiod: cannot request lines on " + gc.chip + " (" + s.name() +
-                ", errno " + std::to_string(src->last_errno()) + ")";
+        error = "gpiod: cannot request lines on " + gc.chip + " (" + s.name() + ", errno " +
+                std::to_string(src->last_errno()) + ")";
         return false;
       }
       GpiodButtonSource* raw = src.get();

@@ -20,12 +20,12 @@ struct Backends {
   std::unique_ptr<ports::Clock> clock;
   VirtualClock* virtual_clock = nullptr;  // set when the simulator runs in virtual time
   std::unique_ptr<ports::ByteStream> tracker;
-  std::function<int()> tracker_fd;        // fd to wait on (-1 = none now); may be empty
+  std::function<int()> tracker_fd;  // fd to wait on (-1 = none now); may be empty
   std::unique_ptr<ports::ButtonSource> buttons;
   std::function<std::vector<int>()> button_fds;  // may be empty
   std::function<bool()> reopen_buttons;          // after an io_error; may be empty
-  double scenario_duration_s = 0.0;       // simulator: the scenario's length (0 = none)
-  std::string tracker_name;               // for the log: "serial /dev/...", "sim stroke", ...
+  double scenario_duration_s = 0.0;              // simulator: the scenario's length (0 = none)
+  std::string tracker_name;  // for the log: "serial /dev/...", "sim stroke", ...
   std::string buttons_name;
 };
 

@@ -4,14 +4,15 @@
 // wake-up. SIGINT/SIGTERM end the loop cleanly with the journal synced. Optional
 // sd_notify READY / WATCHDOG / STOPPING (no effect without systemd).
 // Exit codes: 0 clean stop, 1 runtime failure, 2 invalid config or options.
-#include <CLI/CLI.hpp>
 #include <poll.h>
 #include <signal.h>
 #include <sys/signalfd.h>
 #include <systemd/sd-daemon.h>
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "twister/hal/posix_file_storage.hpp"
 #include "twister/hal/station_config.hpp"
 #include "twister/hal/station_setup.hpp"
+#include "twister/meshio/obj_file.hpp"
 #include "twister/station/station.hpp"
 
 namespace {
@@ -44,31 +46,38 @@ void log_event(const station::StationEvent& e) {
   const double t = static_cast<double>(e.time_us) / 1e6;
   switch (e.kind) {
     case K::journal_recovered:
-      std::fprintf(stderr, "[%9.3f] journal: %u good records%s\n", t, e.sequence,
-                   e.value ? (", cut a torn tail of " + std::to_string(e.value) + " bytes").c_str() : "");
+      std::fprintf(
+          stderr, "[%9.3f] journal: %u good records%s\n", t, e.sequence,
+          e.value ? (", cut a torn tail of " + std::to_string(e.value) + " bytes").c_str() : "");
       break;
     case K::tracker_streaming:
       std::fprintf(stderr, "[%9.3f] tracker: streaming (start-up #%llu)\n", t,
                    static_cast<unsigned long long>(e.value));
       break;
     case K::tracker_lost:
-      std::fprintf(stderr, "[%9.3f] tracker: lost (unplugged, silent or garbled); waiting and re-initialising\n", t);
+      std::fprintf(
+          stderr,
+          "[%9.3f] tracker: lost (unplugged, silent or garbled); waiting and re-initialising\n", t);
       break;
     case K::stroke_begin:
       std::fprintf(stderr, "[%9.3f] stroke: hand %u grabbed\n", t, e.hand);
       break;
     case K::stroke_committed:
-      std::fprintf(stderr, "[%9.3f] stroke: hand %u committed as journal record %u\n", t, e.hand, e.sequence);
+      std::fprintf(stderr, "[%9.3f] stroke: hand %u committed as journal record %u\n", t, e.hand,
+                   e.sequence);
       break;
     case K::stroke_cancelled:
-      std::fprintf(stderr, "[%9.3f] stroke: hand %u cancelled (tracking lost too long); model unchanged\n", t, e.hand);
+      std::fprintf(stderr,
+                   "[%9.3f] stroke: hand %u cancelled (tracking lost too long); model unchanged\n",
+                   t, e.hand);
       break;
     case K::refused:
       std::fprintf(stderr, "[%9.3f] press refused: hand %u (%s)\n", t, e.hand,
                    twister::input::reason_name(static_cast<twister::input::Reason>(e.value)));
       break;
     case K::journal_error:
-      std::fprintf(stderr, "[%9.3f] journal: append failed (%s); stroke not recorded\n", t, e.status.name());
+      std::fprintf(stderr, "[%9.3f] journal: append failed (%s); stroke not recorded\n", t,
+                   e.status.name());
       break;
     case K::button_source_error:
       std::fprintf(stderr, "[%9.3f] buttons: device failed (%s); reopening\n", t, e.status.name());
@@ -111,16 +120,40 @@ int run(const Options& opt, StationConfig cfg) {
                  cfg.station.journal.c_str(), s.name(), storage.last_errno());
     return kExitFailure;
   }
-  // The station owns its fixed buffers; it is created once here and never resized.
-  auto core = std::make_unique<station::Station>(*backends.tracker, *backends.buttons,
-                                                 *backends.clock, storage, setup.core);
-  if (const auto s = core->start(); !s.ok()) {
-    std::fprintf(stderr, "twister-station: journal %s: %s\n", cfg.station.journal.c_str(),
-                 s.code() == twister::StatusCode::data_loss
-                     ? "is not a Twister journal (left untouched)"
-                     : s.name());
+  // The initial model; a relative path is relative to the config file.
+  std::filesystem::path mesh_path(cfg.station.mesh);
+  if (mesh_path.is_relative())
+    mesh_path = std::filesystem::path(opt.config_path).parent_path() / mesh_path;
+  twister::meshio::ObjLoad model = twister::meshio::load_obj(mesh_path, cfg.station.spare_vertices);
+  if (!model.status.ok()) {
+    std::fprintf(stderr, "twister-station: mesh %s: %s\n", mesh_path.c_str(),
+                 model.message.c_str());
     return kExitFailure;
   }
+  // All working memory is sized here, once; the loop never allocates.
+  twister::mesh::Mesh& mesh = model.buffer->mesh();
+  const std::size_t n = mesh.vertex_capacity();
+  std::vector<float> live_x(n), live_y(n), live_z(n), weights1(n), weights2(n);
+  std::vector<std::uint32_t> plan_indices(n);
+  std::vector<twister::input::VertexChange> undo_changes(twister::input::kDefaultUndoChanges);
+  std::vector<twister::input::UndoEntry> undo_entries(twister::input::kDefaultUndoEntries);
+  const twister::input::SculptStorage work{
+      live_x,       live_y,
+      live_z,       twister::math::WarpPlanStorage{plan_indices, weights1, weights2},
+      undo_changes, undo_entries};
+  auto core = std::make_unique<station::Station>(*backends.tracker, *backends.buttons,
+                                                 *backends.clock, storage, mesh, work, setup.core);
+  if (const auto s = core->start(); !s.ok()) {
+    const char* why = s.name();
+    if (s.code() == twister::StatusCode::data_loss) {
+      why = "is not a Twister journal, or does not fit this mesh (left untouched)";
+    }
+    std::fprintf(stderr, "twister-station: journal %s: %s\n", cfg.station.journal.c_str(), why);
+    return kExitFailure;
+  }
+  std::fprintf(stderr, "twister-station: mesh %s: %zu vertices, %zu triangles, checksum %016llx\n",
+               mesh_path.c_str(), mesh.vertex_count(), mesh.triangle_count(),
+               static_cast<unsigned long long>(mesh.checksum()));
 
   sigset_t mask;
   sigemptyset(&mask);
@@ -140,7 +173,8 @@ int run(const Options& opt, StationConfig cfg) {
   const auto start_us = clock.now_us();
   auto last_watchdog_us = start_us;
   double stop_after_s = opt.duration_s;
-  if (stop_after_s <= 0.0 && backends.scenario_duration_s > 0.0) stop_after_s = backends.scenario_duration_s;
+  if (stop_after_s <= 0.0 && backends.scenario_duration_s > 0.0)
+    stop_after_s = backends.scenario_duration_s;
   auto last_button_retry_us = start_us;
   bool buttons_broken = false;
   std::vector<pollfd> fds;
@@ -156,7 +190,8 @@ int run(const Options& opt, StationConfig cfg) {
       for (const int fd : backends.button_fds()) fds.push_back({fd, POLLIN, 0});
     }
     // Virtual time: never wait, advance 1 ms per iteration instead.
-    const int timeout_ms = backends.virtual_clock ? 0 : static_cast<int>(cfg.station.loop_timeout_ms);
+    const int timeout_ms =
+        backends.virtual_clock ? 0 : static_cast<int>(cfg.station.loop_timeout_ms);
     ::poll(fds.data(), fds.size(), timeout_ms);
     if (fds[0].revents & POLLIN) {
       signalfd_siginfo info{};
@@ -173,7 +208,8 @@ int run(const Options& opt, StationConfig cfg) {
       if (!opt.quiet) log_event(*e);
     }
     if (buttons_broken && backends.reopen_buttons &&
-        now_us - last_button_retry_us >= static_cast<std::int64_t>(cfg.tracker.reconnect_interval_ms) * 1000) {
+        now_us - last_button_retry_us >=
+            static_cast<std::int64_t>(cfg.tracker.reconnect_interval_ms) * 1000) {
       last_button_retry_us = now_us;
       if (backends.reopen_buttons()) {
         buttons_broken = false;
@@ -188,6 +224,8 @@ int run(const Options& opt, StationConfig cfg) {
   }
   if (cfg.systemd.notify) sd_notify(0, "STOPPING=1");
   const auto flushed = core->flush();
+  std::fprintf(stderr, "twister-station: mesh checksum %016llx\n",
+               static_cast<unsigned long long>(core->mesh().checksum()));
   const auto& c = core->counters();
   const auto& tc = core->tracker_session().counters();
   std::fprintf(stderr,
@@ -206,12 +244,16 @@ int run(const Options& opt, StationConfig cfg) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"twister-station: the Twister sculpting station (tracker + buttons -> strokes -> journal)"};
+  CLI::App app{
+      "twister-station: the Twister sculpting station (tracker + buttons -> strokes -> journal)"};
   Options opt;
   app.add_option("-c,--config", opt.config_path, "station.toml to use")->required();
-  app.add_flag("--check", opt.check, "validate the config and exit (0 valid, 2 invalid); touches no hardware");
+  app.add_flag("--check", opt.check,
+               "validate the config and exit (0 valid, 2 invalid); touches no hardware");
   app.add_option("--journal", opt.journal_override, "override station.journal");
-  app.add_option("--duration", opt.duration_s, "stop after this many seconds (default: run until SIGINT/SIGTERM, or the simulator scenario ends)")
+  app.add_option("--duration", opt.duration_s,
+                 "stop after this many seconds (default: run until SIGINT/SIGTERM, or the "
+                 "simulator scenario ends)")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("-q,--quiet", opt.quiet, "log only start and stop");
   app.set_version_flag("--version", "twister-station 0.1.0");

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "fakes/fake_byte_stream.hpp"
@@ -57,7 +58,11 @@ class FastrakResponder {
     auto n = tracker::encode_record(p, config_, buf);
     stream_.push_rx(std::span<const std::byte>(buf.data(), *n));
   }
-  void unplugged() { streaming_ = false; seen_ = 0; stream_.clear_tx(); }
+  void unplugged() {
+    streaming_ = false;
+    seen_ = 0;
+    stream_.clear_tx();
+  }
   bool streaming() const { return streaming_; }
 
  private:
@@ -112,16 +117,47 @@ StationConfig test_config() {
   c.session.backoff_max_us = 40'000;
   c.conversion.units = tracker::Units::inches;
   c.conversion.format = tracker::Format::binary;
-  c.debounce.interval_us.fill(5'000);
+  c.sculpt.debounce.interval_us.fill(5'000);
   return c;
 }
+
+// 21 x 21 vertices over x in [0.1, 0.7] m, y in [-0.5, 0.1] m at z = 0.127 m (5 in):
+// around the hands of the tests.
+constexpr std::size_t kGridN = 21;
+void make_grid(mesh::Mesh& m) {
+  m.clear();
+  for (std::size_t j = 0; j < kGridN; ++j) {
+    for (std::size_t i = 0; i < kGridN; ++i) {
+      const float x = 0.1f + 0.6f * static_cast<float>(i) / (kGridN - 1);
+      const float y = -0.5f + 0.6f * static_cast<float>(j) / (kGridN - 1);
+      ASSERT_TRUE(m.add_vertex({x, y, 0.127f}).ok());
+    }
+  }
+  for (std::uint32_t j = 0; j + 1 < kGridN; ++j) {
+    for (std::uint32_t i = 0; i + 1 < kGridN; ++i) {
+      const std::uint32_t a = j * kGridN + i;
+      ASSERT_TRUE(m.add_triangle(a, a + 1, a + kGridN).ok());
+      ASSERT_TRUE(m.add_triangle(a + 1, a + kGridN + 1, a + kGridN).ok());
+    }
+  }
+}
+
+using TestMesh = mesh::MeshWithStorage<kGridN * kGridN, 2 * kGridN * kGridN>;
+using TestWork = input::SculptStorageArrays<kGridN * kGridN, kGridN * kGridN, 8192, 16>;
 
 class StationTest : public ::testing::Test {
  protected:
   StationTest()
       : config_(test_config()),
         responder_(stream_, config_.session.protocol),
-        station_(stream_, buttons_, clock_, storage_, config_) {}
+        mesh_(initial_mesh()),
+        station_(stream_, buttons_, clock_, storage_, *mesh_, work_->spans(), config_) {}
+
+  static std::unique_ptr<TestMesh> initial_mesh() {
+    auto m = std::make_unique<TestMesh>();
+    make_grid(*m);
+    return m;
+  }
 
   // Advances virtual time in 8.33 ms ticks (the Fastrak cycle), emitting both hands.
   void run_ticks(int n) {
@@ -169,6 +205,8 @@ class StationTest : public ::testing::Test {
   test::FakeStorageWithStorage<> storage_;
   ScriptedButtons buttons_;
   FastrakResponder responder_;
+  std::unique_ptr<TestMesh> mesh_;
+  std::unique_ptr<TestWork> work_ = std::make_unique<TestWork>();
   Station station_;
   bool stylus_ = false;
   std::array<float, 3> left_in_{-10.0f, 0.0f, 5.0f};
@@ -181,6 +219,7 @@ TEST_F(StationTest, PollBeforeStartIsRefused) {
 
 TEST_F(StationTest, StrokeIsCommittedToTheJournalWithItsPoses) {
   ASSERT_TRUE(station_.start().ok());
+  const std::uint64_t before = station_.mesh().checksum();
   run_until_streaming();
   right_stroke({10.0f, 0.0f, 5.0f}, {12.0f, 1.0f, 5.0f});
   EXPECT_EQ(station_.counters().strokes_committed, 1u);
@@ -198,6 +237,7 @@ TEST_F(StationTest, StrokeIsCommittedToTheJournalWithItsPoses) {
     saw_commit |= e.kind == StationEventKind::stroke_committed && e.hand == 1;
   }
   EXPECT_TRUE(saw_commit);
+  EXPECT_NE(station_.mesh().checksum(), before);  // the stroke warped the model
 }
 
 TEST_F(StationTest, UnplugMidStrokeCancelsItAndReplugContinues) {
@@ -246,7 +286,9 @@ TEST_F(StationTest, UnplugMidStrokeCancelsItAndReplugContinues) {
 
 TEST_F(StationTest, StylusSwitchDrivesItsConfiguredButtonLine) {
   config_.stylus_line[0] = 0;  // station 1's stylus = line 0 = hand 0 grab (paper map)
-  Station station(stream_, buttons_, clock_, storage_, config_);
+  auto mesh = initial_mesh();
+  auto work = std::make_unique<TestWork>();
+  Station station(stream_, buttons_, clock_, storage_, *mesh, work->spans(), config_);
   // Drive this station instead of the fixture's.
   auto tick = [&](int n) {
     for (int i = 0; i < n; ++i) {
@@ -282,14 +324,18 @@ TEST_F(StationTest, RestartContinuesTheJournalAfterATornTail) {
   right_stroke({10.0f, 0.0f, 5.0f}, {12.0f, 0.0f, 5.0f});
   ASSERT_EQ(journal_records().size(), 1u);
   // Power cut in the middle of the next append: half a record lands on disk.
-  const std::array<std::byte, 7> torn{std::byte{40}, std::byte{0}, std::byte{0},
-                                      std::byte{0}, std::byte{1}, std::byte{1}, std::byte{0}};
+  const std::array<std::byte, 7> torn{std::byte{40}, std::byte{0}, std::byte{0}, std::byte{0},
+                                      std::byte{1},  std::byte{1}, std::byte{0}};
   ASSERT_TRUE(storage_.append(torn).ok());
 
   test::FakeByteStream stream2;
-  Station restarted(stream2, buttons_, clock_, storage_, config_);
+  auto mesh2 = initial_mesh();
+  auto work2 = std::make_unique<TestWork>();
+  Station restarted(stream2, buttons_, clock_, storage_, *mesh2, work2->spans(), config_);
   ASSERT_TRUE(restarted.start().ok());
   EXPECT_EQ(restarted.journal_records(), 1u);
+  // Replay rebuilt exactly the mesh the first run committed.
+  EXPECT_EQ(restarted.mesh().checksum(), station_.mesh().checksum());
   auto e = restarted.next_event();
   ASSERT_TRUE(e.ok());
   EXPECT_EQ(e->kind, StationEventKind::journal_recovered);

@@ -11,6 +11,7 @@ namespace {
 constexpr const char* kValidSerial = R"(
 [station]
 journal = "/tmp/j.bin"
+mesh = "m.obj"
 [tracker]
 backend = "serial"
 [tracker.serial]
@@ -69,12 +70,13 @@ TEST(StationConfigTest, UnknownKeyIsAnErrorWithAllowedKeys) {
   const auto r = parse(text);
   ASSERT_EQ(r.errors.size(), 1u) << messages(r);
   EXPECT_EQ(r.errors[0].to_string(),
-            "t.toml:13: systemd.notfy: unknown key (allowed here: notify, watchdog)");
+            "t.toml:14: systemd.notfy: unknown key (allowed here: notify, watchdog)");
 }
 
 TEST(StationConfigTest, WrongTypeNamesExpectedForm) {
   const auto r = parse(R"([station]
 journal = "/tmp/j"
+mesh = "m.obj"
 loop_timeout_ms = "fast"
 [tracker]
 backend = "sim"
@@ -83,12 +85,13 @@ backend = "stylus"
 )");
   ASSERT_EQ(r.errors.size(), 1u) << messages(r);
   EXPECT_EQ(r.errors[0].to_string(),
-            "t.toml:3: station.loop_timeout_ms: expected an integer from 1 to 1000, got \"fast\"");
+            "t.toml:4: station.loop_timeout_ms: expected an integer from 1 to 1000, got \"fast\"");
 }
 
 TEST(StationConfigTest, OutOfRangeAndBadEnumValues) {
   const auto r = parse(R"([station]
 journal = "/tmp/j"
+mesh = "m.obj"
 [tracker]
 backend = "serial"
 left_station = 7
@@ -100,14 +103,21 @@ flow_control = "hardware"
 backend = "gpio"
 )");
   const std::string m = messages(r);
-  EXPECT_NE(m.find("t.toml:5: tracker.left_station: expected an integer from 1 to 4, got 7\n"),
-            std::string::npos) << m;
-  EXPECT_NE(m.find("t.toml:8: tracker.serial.baud: expected one of 2400 4800 9600 19200 38400 "
-                   "57600 115200, got 12345\n"), std::string::npos) << m;
-  EXPECT_NE(m.find("t.toml:9: tracker.serial.flow_control: expected one of \"none\" \"rtscts\" "
-                   "\"xonxoff\", got \"hardware\"\n"), std::string::npos) << m;
-  EXPECT_NE(m.find("t.toml:11: buttons.backend: expected one of \"gpiod\" \"hidapi\" \"stylus\", "
-                   "got \"gpio\"\n"), std::string::npos) << m;
+  EXPECT_NE(m.find("t.toml:6: tracker.left_station: expected an integer from 1 to 4, got 7\n"),
+            std::string::npos)
+      << m;
+  EXPECT_NE(m.find("t.toml:9: tracker.serial.baud: expected one of 2400 4800 9600 19200 38400 "
+                   "57600 115200, got 12345\n"),
+            std::string::npos)
+      << m;
+  EXPECT_NE(m.find("t.toml:10: tracker.serial.flow_control: expected one of \"none\" \"rtscts\" "
+                   "\"xonxoff\", got \"hardware\"\n"),
+            std::string::npos)
+      << m;
+  EXPECT_NE(m.find("t.toml:12: buttons.backend: expected one of \"gpiod\" \"hidapi\" \"stylus\", "
+                   "got \"gpio\"\n"),
+            std::string::npos)
+      << m;
   EXPECT_EQ(r.errors.size(), 4u) << m;
 }
 
@@ -115,11 +125,18 @@ TEST(StationConfigTest, MissingRequiredKeysAndSections) {
   const auto r = parse("[station]\n[tracker]\nbackend = \"serial\"\n");
   const std::string m = messages(r);
   EXPECT_NE(m.find("t.toml:1: station.journal: missing required key; expected a string\n"),
-            std::string::npos) << m;
+            std::string::npos)
+      << m;
+  EXPECT_NE(m.find("t.toml:1: station.mesh: missing required key; expected a string\n"),
+            std::string::npos)
+      << m;
   EXPECT_NE(m.find("t.toml:2: tracker.serial: missing required key; expected a table "
-                   "[tracker.serial]\n"), std::string::npos) << m;
+                   "[tracker.serial]\n"),
+            std::string::npos)
+      << m;
   EXPECT_NE(m.find("t.toml:1: buttons: missing required key; expected a table [buttons]\n"),
-            std::string::npos) << m;
+            std::string::npos)
+      << m;
 }
 
 TEST(StationConfigTest, SameReceiverForBothHandsIsRefused) {
@@ -127,13 +144,15 @@ TEST(StationConfigTest, SameReceiverForBothHandsIsRefused) {
   text.replace(text.find("backend = \"serial\""), 18, "backend = \"serial\"\nright_station = 1");
   const auto r = parse(text);
   ASSERT_EQ(r.errors.size(), 1u) << messages(r);
-  EXPECT_EQ(r.errors[0].to_string(), "t.toml:6: tracker.right_station: expected a receiver "
-                                     "different from tracker.left_station (both are 1)");
+  EXPECT_EQ(r.errors[0].to_string(),
+            "t.toml:7: tracker.right_station: expected a receiver "
+            "different from tracker.left_station (both are 1)");
 }
 
 TEST(StationConfigTest, GpiodLineListIsChecked) {
   const auto r = parse(R"([station]
 journal = "/tmp/j"
+mesh = "m.obj"
 [tracker]
 backend = "sim"
 [buttons]
@@ -143,18 +162,23 @@ lines = [3, -1, 3]
 bias = "up"
 )");
   const std::string m = messages(r);
-  EXPECT_NE(m.find("t.toml:8: buttons.gpiod.lines: expected line offsets from 0 to 1023, got -1\n"),
-            std::string::npos) << m;
-  EXPECT_NE(m.find("t.toml:8: buttons.gpiod.lines: expected each line offset once, got 3 twice\n"),
-            std::string::npos) << m;
-  EXPECT_NE(m.find("t.toml:9: buttons.gpiod.bias: expected one of \"as-is\" \"disable\" "
-                   "\"pull-up\" \"pull-down\", got \"up\"\n"), std::string::npos) << m;
+  EXPECT_NE(m.find("t.toml:9: buttons.gpiod.lines: expected line offsets from 0 to 1023, got -1\n"),
+            std::string::npos)
+      << m;
+  EXPECT_NE(m.find("t.toml:9: buttons.gpiod.lines: expected each line offset once, got 3 twice\n"),
+            std::string::npos)
+      << m;
+  EXPECT_NE(m.find("t.toml:10: buttons.gpiod.bias: expected one of \"as-is\" \"disable\" "
+                   "\"pull-up\" \"pull-down\", got \"up\"\n"),
+            std::string::npos)
+      << m;
   EXPECT_EQ(r.errors.size(), 3u) << m;
 }
 
 TEST(StationConfigTest, HidapiButtonEntriesAreChecked) {
   const auto r = parse(R"([station]
 journal = "/tmp/j"
+mesh = "m.obj"
 [tracker]
 backend = "sim"
 [buttons]
@@ -164,14 +188,22 @@ vendor_id = 0x05f3
 buttons = [ { byte = 1, mask = 0 }, 5, { byte = 2, mask = 1, bit = 3 } ]
 )");
   const std::string m = messages(r);
-  EXPECT_NE(m.find("t.toml:7: buttons.hidapi.product_id: missing required key; expected an "
-                   "integer from 0 to 65535\n"), std::string::npos) << m;
-  EXPECT_NE(m.find("t.toml:9: buttons.hidapi.buttons[0].mask: expected an integer from 1 to 255, "
-                   "got 0\n"), std::string::npos) << m;
-  EXPECT_NE(m.find("t.toml:9: buttons.hidapi.buttons[1]: expected an inline table { byte = N, "
-                   "mask = M }, got an integer\n"), std::string::npos) << m;
-  EXPECT_NE(m.find("t.toml:9: buttons.hidapi.buttons[2].bit: unknown key (allowed here: byte, "
-                   "mask)\n"), std::string::npos) << m;
+  EXPECT_NE(m.find("t.toml:8: buttons.hidapi.product_id: missing required key; expected an "
+                   "integer from 0 to 65535\n"),
+            std::string::npos)
+      << m;
+  EXPECT_NE(m.find("t.toml:10: buttons.hidapi.buttons[0].mask: expected an integer from 1 to 255, "
+                   "got 0\n"),
+            std::string::npos)
+      << m;
+  EXPECT_NE(m.find("t.toml:10: buttons.hidapi.buttons[1]: expected an inline table { byte = N, "
+                   "mask = M }, got an integer\n"),
+            std::string::npos)
+      << m;
+  EXPECT_NE(m.find("t.toml:10: buttons.hidapi.buttons[2].bit: unknown key (allowed here: byte, "
+                   "mask)\n"),
+            std::string::npos)
+      << m;
   EXPECT_EQ(r.errors.size(), 4u) << m;
 }
 

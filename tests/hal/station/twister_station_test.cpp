@@ -62,17 +62,22 @@ std::vector<twister::journal::JournalRecord> read_journal(const std::string& pat
 }
 
 std::string sim_config(const std::string& journal, const char* scenario, const char* time) {
-  return "[station]\njournal = \"" + journal + "\"\n[tracker]\nbackend = \"sim\"\n"
-         "[tracker.sim]\nscenario = \"" + scenario + "\"\ntime = \"" + time + "\"\n"
+  return "[station]\njournal = \"" + journal + "\"\nmesh = \"" + std::string(TWISTER_DEPLOY_DIR) +
+         "/sim_sphere.obj\"\n[tracker]\nbackend = \"sim\"\n"
+         "[tracker.sim]\nscenario = \"" +
+         scenario + "\"\ntime = \"" + time +
+         "\"\n"
          "[buttons]\nbackend = \"stylus\"\n";
 }
 
 TEST(TwisterStationTest, SimConfigRunsAScriptedStrokeIntoTheJournal) {
   const std::string journal = temp_path("sim.bin");
   ::unlink(journal.c_str());
-  const auto r = run(std::string("--config ") + TWISTER_DEPLOY_DIR + "/sim.toml --journal " + journal);
+  const auto r =
+      run(std::string("--config ") + TWISTER_DEPLOY_DIR + "/sim.toml --journal " + journal);
   EXPECT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("stroke: hand 0 committed as journal record 0"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("stroke: hand 0 committed as journal record 0"), std::string::npos)
+      << r.output;
   const auto records = read_journal(journal);
   ASSERT_EQ(records.size(), 1u);
   const auto& s = records[0].stroke;
@@ -83,12 +88,30 @@ TEST(TwisterStationTest, SimConfigRunsAScriptedStrokeIntoTheJournal) {
   EXPECT_NEAR(s.end[0].origin_m.x, 14.0 * kInch, 0.2 * kInch);
   EXPECT_NEAR(s.end[0].origin_m.y, -6.0 * kInch, 0.2 * kInch);
 
-  // A second run appends after the first record.
-  const auto again = run(std::string("--config ") + TWISTER_DEPLOY_DIR + "/sim.toml --quiet --journal " + journal);
+  // A second run replays the first stroke onto the model, then appends its own.
+  const auto again =
+      run(std::string("--config ") + TWISTER_DEPLOY_DIR + "/sim.toml --quiet --journal " + journal);
   EXPECT_EQ(again.exit_code, 0) << again.output;
   const auto both = read_journal(journal);
   ASSERT_EQ(both.size(), 2u);
   EXPECT_EQ(both[1].sequence, 1u);
+  const std::string final_line = "twister-station: mesh checksum ";
+  const auto at = again.output.rfind(final_line);
+  ASSERT_NE(at, std::string::npos) << again.output;
+  const std::string checksum = again.output.substr(at + final_line.size(), 16);
+  // `twister replay` rebuilds the very same model from the journal and the OBJ.
+  const std::string replay_cmd = std::string(TWISTER_CLI_BIN) + " replay " + journal + " --mesh " +
+                                 TWISTER_DEPLOY_DIR + "/sim_sphere.obj --out " + journal +
+                                 ".obj 2>&1";
+  FILE* p = ::popen(replay_cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  std::string replay_out;
+  std::array<char, 256> buf{};
+  while (std::fgets(buf.data(), buf.size(), p) != nullptr) replay_out += buf.data();
+  EXPECT_EQ(::pclose(p), 0) << replay_out;
+  EXPECT_NE(replay_out.find("checksum " + checksum), std::string::npos)
+      << replay_out << again.output;
+  ::unlink((journal + ".obj").c_str());
   ::unlink(journal.c_str());
 }
 
@@ -133,10 +156,13 @@ RunResult run_against_pty(const char* scenario, const std::string& journal, doub
     ::pclose(sim);
     return r;
   }
-  const std::string cfg = write_file("pty.toml",
-      "[station]\njournal = \"" + journal + "\"\n[tracker]\nbackend = \"serial\"\n"
-      "reconnect_interval_ms = 200\n[tracker.serial]\ndevice = \"" + link + "\"\n"
-      "[buttons]\nbackend = \"stylus\"\n[systemd]\nnotify = false\n");
+  const std::string cfg = write_file(
+      "pty.toml", "[station]\njournal = \"" + journal + "\"\nmesh = \"" + TWISTER_DEPLOY_DIR +
+                      "/sim_sphere.obj\"\n[tracker]\nbackend = \"serial\"\n"
+                      "reconnect_interval_ms = 200\n[tracker.serial]\ndevice = \"" +
+                      link +
+                      "\"\n"
+                      "[buttons]\nbackend = \"stylus\"\n[systemd]\nnotify = false\n");
   r = run("--config " + cfg + " --duration " + std::to_string(seconds));
   ::pclose(sim);  // twister-sim stops at the end of its scenario
   ::unlink(cfg.c_str());
@@ -150,7 +176,8 @@ TEST(TwisterStationTest, AgainstTwisterSimOnAPtyCommitsAScriptedStroke) {
   const auto r = run_against_pty("pty_stroke.txt", journal, 7.0);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("tracker serial"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("stroke: hand 0 committed as journal record 0"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("stroke: hand 0 committed as journal record 0"), std::string::npos)
+      << r.output;
   const auto records = read_journal(journal);
   ASSERT_EQ(records.size(), 1u) << r.output;
   EXPECT_NEAR(records[0].stroke.start[0].origin_m.x, 10.0 * kInch, 0.3 * kInch);
@@ -185,26 +212,33 @@ TEST(TwisterStationTest, CheckAcceptsValidAndRefusesInvalidConfigs) {
   EXPECT_EQ(ok.exit_code, 0) << ok.output;
   EXPECT_NE(ok.output.find("valid (tracker sim, buttons stylus)"), std::string::npos) << ok.output;
 
-  const std::string bad = write_file("bad.toml",
-      "[station]\njournal = \"/nonexistent/dir/j.bin\"\nloop_timeout_ms = 0\n"
+  const std::string bad = write_file(
+      "bad.toml",
+      "[station]\njournal = \"/nonexistent/dir/j.bin\"\nmesh = \"m.obj\"\nloop_timeout_ms = 0\n"
       "[tracker]\nbackend = \"sim\"\n[buttons]\nbackend = \"stylus\"\ncolour = \"red\"\n");
   const auto r = run("--config " + bad + " --check");
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find(bad + ":3: station.loop_timeout_ms: expected an integer from 1 to 1000, got 0"),
-            std::string::npos) << r.output;
-  EXPECT_NE(r.output.find(bad + ":8: buttons.colour: unknown key (allowed here: backend, "
+  EXPECT_NE(
+      r.output.find(bad + ":4: station.loop_timeout_ms: expected an integer from 1 to 1000, got 0"),
+      std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find(bad + ":9: buttons.colour: unknown key (allowed here: backend, "
                                 "debounce_ms, gpiod, hidapi)"),
-            std::string::npos) << r.output;
+            std::string::npos)
+      << r.output;
   EXPECT_NE(r.output.find("2 error(s)"), std::string::npos) << r.output;
   // --check never opened the journal (its directory does not even exist).
   EXPECT_EQ(run("--config " + bad).exit_code, 2);
 
-  const std::string no_stylus = write_file("nostylus.toml",
-      "[station]\njournal = \"/tmp/x\"\n[tracker]\nbackend = \"sim\"\nleft_station = 2\n"
-      "right_station = 3\n[buttons]\nbackend = \"stylus\"\n");
+  const std::string no_stylus =
+      write_file("nostylus.toml",
+                 "[station]\njournal = \"/tmp/x\"\nmesh = \"m.obj\"\n[tracker]\nbackend = "
+                 "\"sim\"\nleft_station = 2\n"
+                 "right_station = 3\n[buttons]\nbackend = \"stylus\"\n");
   const auto ns = run("--config " + no_stylus + " --check");
   EXPECT_EQ(ns.exit_code, 2) << ns.output;
-  EXPECT_NE(ns.output.find("needs receiver 1 (the stylus) in a hand"), std::string::npos) << ns.output;
+  EXPECT_NE(ns.output.find("needs receiver 1 (the stylus) in a hand"), std::string::npos)
+      << ns.output;
 
   EXPECT_EQ(run("--config /nonexistent.toml --check").exit_code, 2);
   EXPECT_EQ(run("--check").exit_code, 2);  // --config is required
@@ -218,7 +252,9 @@ TEST(TwisterStationTest, NotAJournalIsRefusedAndLeftAlone) {
   const std::string cfg = write_file("nj.toml", sim_config(journal, "idle", "virtual"));
   const auto r = run("--config " + cfg);
   EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_NE(r.output.find("is not a Twister journal (left untouched)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("is not a Twister journal, or does not fit this mesh (left untouched)"),
+            std::string::npos)
+      << r.output;
   std::ifstream in(journal);
   std::stringstream content;
   content << in.rdbuf();
@@ -243,8 +279,8 @@ TEST(TwisterStationTest, SigtermStopsCleanlyAndSystemdIsNotified) {
 
   const std::string journal = temp_path("rt.bin");
   ::unlink(journal.c_str());
-  const std::string cfg = write_file("rt.toml",
-      sim_config(journal, "idle", "real") + "[systemd]\nnotify = true\nwatchdog = true\n");
+  const std::string cfg = write_file("rt.toml", sim_config(journal, "idle", "real") +
+                                                    "[systemd]\nnotify = true\nwatchdog = true\n");
   const pid_t pid = ::fork();
   ASSERT_GE(pid, 0);
   if (pid == 0) {

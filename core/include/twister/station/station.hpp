@@ -1,15 +1,17 @@
 // Station: the sculpting station's core behind the ports. It owns the Fastrak
-// session (tracker ByteStream), the button debouncer and map (ButtonSource), the
-// interaction machine and the stroke journal (Storage), and is driven by poll()
-// from the composition root's event loop; time comes from the Clock port.
+// session (tracker ByteStream) and the journal writer (Storage), feeds hand poses
+// and button edges (ButtonSource, and the Fastrak stylus where configured) into the
+// SculptSession (debounce, button map, interaction machine, warp, undo, journal),
+// and is driven by poll() from the composition root's event loop; time comes from
+// the Clock port.
 // One poll(): drain tracker poses -> hand poses (metres, world frame); drain button
-// edges -> debounced events -> per-hand levels; one interaction step; apply its
-// actions: on commit / freeze the stroke (start and end pose of the hand, radius) is
-// appended to the journal and synced before poll() returns.
-// Strokes are only built from valid poses: while the tracker is lost the machine
-// holds the stroke (dragging_lost) and cancels it after lost_timeout, so an unplug
-// never commits a stroke from stale or missing poses.
-// No heap; all storage is inside the object. Not thread-safe (one loop thread).
+// edges; one session step; its events become StationEvents for the log.
+// Hands are valid only while the tracker streams and their pose is fresh: on a loss
+// the session holds the stroke (tracking_lost) and cancels it after lost_timeout, so
+// an unplug never commits a stroke from stale or missing poses.
+// start() replays the journal into the mesh (the same code path as live commits),
+// cuts a torn tail, and opens the journal for appending.
+// No heap; all working memory is given at construction. Not thread-safe.
 #pragma once
 
 #include <array>
@@ -17,10 +19,9 @@
 #include <cstdint>
 
 #include "twister/base/result.hpp"
-#include "twister/input/button_debouncer.hpp"
-#include "twister/input/button_map.hpp"
-#include "twister/input/interaction_machine.hpp"
+#include "twister/input/sculpt_session.hpp"
 #include "twister/journal/journal_writer.hpp"
+#include "twister/mesh/mesh.hpp"
 #include "twister/ports/button_source.hpp"
 #include "twister/ports/byte_stream.hpp"
 #include "twister/ports/clock.hpp"
@@ -42,35 +43,39 @@ struct StationConfig {
   // button line its state drives (-1 = none). The edge goes through the debouncer
   // like any ButtonSource edge, stamped with the poll time of the record.
   std::array<std::int8_t, tracker::kMaxStations> stylus_line{-1, -1, -1, -1};
-  input::ButtonDebouncerConfig debounce{};
-  input::ButtonMap buttons = input::ButtonMap::paper_default();
-  input::InteractionConfig interaction{};
-  std::uint8_t warp_method = 0;  // math::WarpMethod as a number, stored in strokes
+  // Debounce, button map, interaction timing, warp method.
+  input::SculptSessionConfig sculpt{};
 };
 
 struct StationCounters {
-  std::uint64_t poses = 0;             // converted poses used for a hand
-  std::uint64_t pose_errors = 0;       // poses that failed conversion (skipped)
-  std::uint64_t foreign_poses = 0;     // poses of receivers bound to no hand
-  std::uint64_t button_edges = 0;     // from the ButtonSource and the stylus
-  std::uint64_t button_errors = 0;     // ButtonSource io_error / out-of-range lines
+  std::uint64_t poses = 0;          // converted poses used for a hand
+  std::uint64_t pose_errors = 0;    // poses that failed conversion (skipped)
+  std::uint64_t foreign_poses = 0;  // poses of receivers bound to no hand
+  std::uint64_t button_edges = 0;   // from the ButtonSource and the stylus
+  std::uint64_t button_errors = 0;  // ButtonSource io_error / out-of-range lines
   std::uint64_t strokes_committed = 0;
   std::uint64_t strokes_cancelled = 0;
   std::uint64_t refused = 0;
+  std::uint64_t session_events_dropped = 0;
   std::uint64_t journal_errors = 0;
-  std::uint64_t events_dropped = 0;    // event queue full (the log is behind)
+  std::uint64_t events_dropped = 0;  // event queue full (the log is behind)
 };
 
 class Station {
  public:
-  // Ports must outlive the station. Nothing happens until start().
+  // Ports, mesh and work memory must outlive the station. `mesh` holds the initial
+  // model (object frame); the journal's strokes are replayed onto it by start().
+  // Nothing happens until start().
   Station(ports::ByteStream& tracker, ports::ButtonSource& buttons, ports::Clock& clock,
-          ports::Storage& storage, const StationConfig& config);
+          ports::Storage& storage, mesh::Mesh& mesh, input::SculptStorage work,
+          const StationConfig& config);
 
-  // Recovers the journal (reads it to the end, cuts a torn tail) and opens it for
-  // appending. data_loss: the file is not a journal (refuse to run: it is left
-  // alone); io_error: storage failed; invalid_argument: hand_station out of 1..4 or
-  // both hands on one receiver.
+  // Replays the journal onto the mesh, cuts a torn tail and opens the journal for
+  // appending. data_loss: the file is not a journal (it is left alone), or a record
+  // does not fit this mesh (wrong initial mesh: nothing is written);
+  // invalid_argument / resource_exhausted: a record was refused by the warp plan;
+  // io_error: storage failed; failed_precondition: hand_station out of 1..4 or both
+  // hands on one receiver.
   Status start();
 
   // One loop iteration (never blocks). failed_precondition: start() did not succeed.
@@ -84,8 +89,9 @@ class Station {
 
   const StationCounters& counters() const { return counters_; }
   const tracker::FastrakSession& tracker_session() const { return session_; }
-  const input::InteractionMachine& interaction() const { return machine_; }
-  std::uint32_t journal_records() const { return next_sequence_; }
+  const input::SculptSession& sculpt() const { return sculpt_; }
+  const mesh::Mesh& mesh() const { return sculpt_.mesh(); }
+  std::uint32_t journal_records() const { return sculpt_.next_sequence(); }
   bool hand_valid(std::uint8_t hand, ports::TimestampUs now_us) const;
 
  private:
@@ -93,14 +99,11 @@ class Station {
     tracker::TrackedFrame pose{};
     ports::TimestampUs pose_time_us = 0;
     bool has_pose = false;
-    tracker::TrackedFrame stroke_start{};
-    std::uint16_t chain_step = 0;
   };
 
   void drain_tracker(ports::TimestampUs now_us);
   void drain_buttons(ports::TimestampUs now_us);
-  void apply(const input::Action& action, ports::TimestampUs now_us);
-  void commit_stroke(std::uint8_t hand, ports::TimestampUs now_us);
+  void report(const input::SessionEvent& event, ports::TimestampUs now_us);
   void push_event(const StationEvent& event);
 
   ports::ButtonSource& buttons_;
@@ -108,16 +111,13 @@ class Station {
   ports::Storage& storage_;
   StationConfig config_;
   tracker::FastrakSession session_;
-  input::ButtonDebouncer debouncer_;
-  input::InteractionMachine machine_;
-  journal::JournalWriter writer_;
+  journal::JournalWriter writer_;  // before sculpt_, which keeps a pointer to it
+  input::SculptSession sculpt_;
   std::array<Hand, input::kHandCount> hands_{};
-  std::array<input::HandButtons, input::kHandCount> levels_{};
   std::array<bool, tracker::kMaxStations> stylus_down_{};
   bool started_ = false;
   bool buttons_failed_ = false;
   bool was_streaming_ = false;
-  std::uint32_t next_sequence_ = 0;
   StationCounters counters_{};
   static constexpr std::size_t kEventCapacity = 64;
   std::array<StationEvent, kEventCapacity> events_{};

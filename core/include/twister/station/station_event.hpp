@@ -11,15 +11,15 @@
 namespace twister::station {
 
 enum class StationEventKind : std::uint8_t {
-  journal_recovered,   // start(): `sequence` good records; `value` torn-tail bytes cut
-  tracker_streaming,   // the Fastrak session reached streaming (value = start-ups so far)
-  tracker_lost,        // streaming stopped (unplug, silence, garbage); re-init follows
-  stroke_begin,        // hand grabbed
-  stroke_committed,    // journal record `sequence` appended and synced
-  stroke_cancelled,    // dropped (tracking lost too long); model unchanged
-  refused,             // a press was refused; value = input::Reason
-  journal_error,       // append failed; status says how (stroke not recorded)
-  button_source_error, // the button device failed; status says how
+  journal_recovered,    // start(): `sequence` good records; `value` torn-tail bytes cut
+  tracker_streaming,    // the Fastrak session reached streaming (value = start-ups so far)
+  tracker_lost,         // streaming stopped (unplug, silence, garbage); re-init follows
+  stroke_begin,         // hand grabbed
+  stroke_committed,     // journal record `sequence` appended and synced
+  stroke_cancelled,     // dropped (tracking lost too long); model unchanged
+  refused,              // a press was refused; value = input::Reason
+  journal_error,        // append failed; status says how (stroke not recorded)
+  button_source_error,  // the button device failed; status says how
 };
 
 const char* station_event_kind_name(StationEventKind kind);
@@ -28,7 +28,7 @@ struct StationEvent {
   StationEventKind kind = StationEventKind::tracker_lost;
   std::uint8_t hand = 0;
   std::uint32_t sequence = 0;
-  std::uint64_t value = 0;
+  std::uint64_t value = 0;  // kind-specific (see above; committed/cancelled/refused: input::Reason)
   Status status{};
   ports::TimestampUs time_us = 0;
 };

@@ -6,16 +6,26 @@ namespace twister::hal::internal {
 
 std::string type_name(const toml::node& node) {
   switch (node.type()) {
-    case toml::node_type::table: return "a table";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a float";
-    case toml::node_type::boolean: return "a boolean";
-    case toml::node_type::date: return "a date";
-    case toml::node_type::time: return "a time";
-    case toml::node_type::date_time: return "a date-time";
-    default: return "nothing";
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a float";
+    case toml::node_type::boolean:
+      return "a boolean";
+    case toml::node_type::date:
+      return "a date";
+    case toml::node_type::time:
+      return "a time";
+    case toml::node_type::date_time:
+      return "a date-time";
+    default:
+      return "nothing";
   }
 }
 
@@ -65,7 +75,8 @@ ConfigReader ConfigReader::table(std::string_view key, bool required) {
   const toml::table* t = nullptr;
   if (node != nullptr) {
     t = node->as_table();
-    if (t == nullptr) error(node, key, "expected a table [" + name(key) + "], got " + type_name(*node));
+    if (t == nullptr)
+      error(node, key, "expected a table [" + name(key) + "], got " + type_name(*node));
   }
   return ConfigReader(t, name(key), file_, errors_);
 }
@@ -98,8 +109,8 @@ bool ConfigReader::string(std::string_view key, bool required, std::string& out,
   return true;
 }
 
-bool ConfigReader::integer(std::string_view key, bool required, std::int64_t min,
-                           std::int64_t max, std::int64_t& out) {
+bool ConfigReader::integer(std::string_view key, bool required, std::int64_t min, std::int64_t max,
+                           std::int64_t& out) {
   const std::string expected =
       "an integer from " + std::to_string(min) + " to " + std::to_string(max);
   const toml::node* node = lookup(key, required, expected);

@@ -29,14 +29,15 @@ void read_tracker(ConfigReader& root, StationConfig& cfg) {
   std::string backend;
   if (t.string("backend", t.present(), backend, {"serial", "usb", "sim"})) {
     tc.backend = backend == "serial" ? TrackerBackend::serial
-               : backend == "usb"    ? TrackerBackend::usb
+                 : backend == "usb"  ? TrackerBackend::usb
                                      : TrackerBackend::sim;
   }
   read_u(t, "left_station", false, 1, 4, tc.left_station);
   read_u(t, "right_station", false, 1, 4, tc.right_station);
   if (tc.left_station == tc.right_station) {
-    t.error(t.node("right_station"), "right_station", "expected a receiver different from tracker.left_station (both are " +
-                                          std::to_string(tc.left_station) + ")");
+    t.error(t.node("right_station"), "right_station",
+            "expected a receiver different from tracker.left_station (both are " +
+                std::to_string(tc.left_station) + ")");
   }
   std::string format;
   if (t.string("format", false, format, {"binary", "ascii"})) {
@@ -52,17 +53,18 @@ void read_tracker(ConfigReader& root, StationConfig& cfg) {
   if (s.integer("baud", false, 1, 1'000'000, baud)) {
     constexpr std::int64_t kBauds[] = {2400, 4800, 9600, 19200, 38400, 57600, 115200};
     if (std::find(std::begin(kBauds), std::end(kBauds), baud) == std::end(kBauds)) {
-      s.error(s.node("baud"), "baud",
-              "expected one of 2400 4800 9600 19200 38400 57600 115200, got " + std::to_string(baud));
+      s.error(
+          s.node("baud"), "baud",
+          "expected one of 2400 4800 9600 19200 38400 57600 115200, got " + std::to_string(baud));
     } else {
       tc.serial.baud = static_cast<std::uint32_t>(baud);
     }
   }
   std::string flow;
   if (s.string("flow_control", false, flow, {"none", "rtscts", "xonxoff"})) {
-    tc.serial.flow_control = flow == "none" ? SerialFlowControl::none
-                           : flow == "rtscts" ? SerialFlowControl::rtscts
-                                              : SerialFlowControl::xonxoff;
+    tc.serial.flow_control = flow == "none"     ? SerialFlowControl::none
+                             : flow == "rtscts" ? SerialFlowControl::rtscts
+                                                : SerialFlowControl::xonxoff;
   }
   s.finish();
 
@@ -104,7 +106,8 @@ void read_gpiod(ConfigReader& b, ButtonsConfig& bc, bool required) {
       }
       const auto off = static_cast<std::uint32_t>(v->get());
       if (std::find(bc.gpiod.lines.begin(), bc.gpiod.lines.end(), off) != bc.gpiod.lines.end()) {
-        g.error(&n, "lines", "expected each line offset once, got " + std::to_string(off) + " twice");
+        g.error(&n, "lines",
+                "expected each line offset once, got " + std::to_string(off) + " twice");
         continue;
       }
       bc.gpiod.lines.push_back(off);
@@ -113,10 +116,10 @@ void read_gpiod(ConfigReader& b, ButtonsConfig& bc, bool required) {
   g.boolean("active_low", bc.gpiod.active_low);
   std::string bias;
   if (g.string("bias", false, bias, {"as-is", "disable", "pull-up", "pull-down"})) {
-    bc.gpiod.bias = bias == "as-is" ? GpioBias::as_is
-                  : bias == "disable" ? GpioBias::disable
-                  : bias == "pull-up" ? GpioBias::pull_up
-                                      : GpioBias::pull_down;
+    bc.gpiod.bias = bias == "as-is"     ? GpioBias::as_is
+                    : bias == "disable" ? GpioBias::disable
+                    : bias == "pull-up" ? GpioBias::pull_up
+                                        : GpioBias::pull_down;
   }
   g.finish();
 }
@@ -129,14 +132,16 @@ void read_hidapi(ConfigReader& b, ButtonsConfig& bc, bool required) {
   read_u(h, "product_id", ids_required, 0, 0xffff, bc.hidapi.product_id);
   if (const toml::array* buttons = h.array("buttons", h.present())) {
     if (buttons->empty() || buttons->size() > 8) {
-      h.error(buttons, "buttons", "expected 1 to 8 buttons, got " + std::to_string(buttons->size()));
+      h.error(buttons, "buttons",
+              "expected 1 to 8 buttons, got " + std::to_string(buttons->size()));
     }
     for (std::size_t i = 0; i < buttons->size(); ++i) {
       const toml::node& n = *buttons->get(i);
       const std::string key = "buttons[" + std::to_string(i) + "]";
       const toml::table* t = n.as_table();
       if (t == nullptr) {
-        h.error(&n, key, "expected an inline table { byte = N, mask = M }, got " + internal::type_name(n));
+        h.error(&n, key,
+                "expected an inline table { byte = N, mask = M }, got " + internal::type_name(n));
         continue;
       }
       ConfigReader e = h.element(t, key);
@@ -155,9 +160,9 @@ void read_buttons(ConfigReader& root, StationConfig& cfg) {
   ButtonsConfig& bc = cfg.buttons;
   std::string backend;
   if (b.string("backend", b.present(), backend, {"gpiod", "hidapi", "stylus"})) {
-    bc.backend = backend == "gpiod" ? ButtonBackend::gpiod
-               : backend == "hidapi" ? ButtonBackend::hidapi
-                                     : ButtonBackend::stylus;
+    bc.backend = backend == "gpiod"    ? ButtonBackend::gpiod
+                 : backend == "hidapi" ? ButtonBackend::hidapi
+                                       : ButtonBackend::stylus;
   }
   read_u(b, "debounce_ms", false, 0, 200, bc.debounce_ms);
   read_gpiod(b, bc, b.present() && backend == "gpiod");
@@ -168,6 +173,8 @@ void read_buttons(ConfigReader& root, StationConfig& cfg) {
 void read_station(ConfigReader& root, StationConfig& cfg) {
   ConfigReader s = root.table("station", true);
   s.string("journal", s.present(), cfg.station.journal);
+  s.string("mesh", s.present(), cfg.station.mesh);
+  read_u(s, "spare_vertices", false, 0, 4'000'000, cfg.station.spare_vertices);
   read_u(s, "loop_timeout_ms", false, 1, 1000, cfg.station.loop_timeout_ms);
   s.finish();
 }
@@ -189,18 +196,24 @@ std::string ConfigError::to_string() const {
 
 const char* to_string(TrackerBackend b) {
   switch (b) {
-    case TrackerBackend::serial: return "serial";
-    case TrackerBackend::usb: return "usb";
-    case TrackerBackend::sim: return "sim";
+    case TrackerBackend::serial:
+      return "serial";
+    case TrackerBackend::usb:
+      return "usb";
+    case TrackerBackend::sim:
+      return "sim";
   }
   return "?";
 }
 
 const char* to_string(ButtonBackend b) {
   switch (b) {
-    case ButtonBackend::gpiod: return "gpiod";
-    case ButtonBackend::hidapi: return "hidapi";
-    case ButtonBackend::stylus: return "stylus";
+    case ButtonBackend::gpiod:
+      return "gpiod";
+    case ButtonBackend::hidapi:
+      return "hidapi";
+    case ButtonBackend::stylus:
+      return "stylus";
   }
   return "?";
 }

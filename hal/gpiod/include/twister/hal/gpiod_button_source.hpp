@@ -23,7 +23,7 @@ struct gpiod_line;
 namespace twister::hal {
 
 struct GpiodButtonConfig {
-  std::string chip = "gpiochip0";  // name, number or /dev path (gpiod_chip_open_lookup)
+  std::string chip = "gpiochip0";    // name, number or /dev path (gpiod_chip_open_lookup)
   std::vector<std::uint32_t> lines;  // button i = lines[i]; at most kMaxLines
   bool active_low = true;
   enum class Bias : std::uint8_t { as_is, disable, pull_up, pull_down } bias = Bias::as_is;

@@ -25,7 +25,7 @@ namespace twister::hal {
 struct HidapiButtonConfig {
   std::uint16_t vendor_id = 0;
   std::uint16_t product_id = 0;
-  std::string path;                     // wins over the ids when not empty
+  std::string path;                      // wins over the ids when not empty
   std::vector<HidButtonBitMap> buttons;  // button i = buttons[i]
 };
 

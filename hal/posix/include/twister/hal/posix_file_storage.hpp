@@ -12,7 +12,7 @@
 namespace twister::hal {
 
 struct PosixFileStorageConfig {
-  std::string path;            // journal file; created (mode 0644) when missing
+  std::string path;  // journal file; created (mode 0644) when missing
   bool create_if_missing = true;
 };
 

@@ -21,8 +21,8 @@ enum class RecordFormat : std::uint8_t { binary, ascii };
 enum class SimTime : std::uint8_t { virtual_time, real_time };
 
 struct SerialTrackerConfig {
-  std::string device;               // e.g. /dev/twister-fastrak (udev symlink)
-  std::uint32_t baud = 115200;      // one of 2400 ... 115200
+  std::string device;           // e.g. /dev/twister-fastrak (udev symlink)
+  std::uint32_t baud = 115200;  // one of 2400 ... 115200
   SerialFlowControl flow_control = SerialFlowControl::none;
 };
 
@@ -36,16 +36,16 @@ struct UsbTrackerConfig {
 };
 
 struct SimTrackerConfig {
-  std::string scenario = "stroke";   // built-in scenario name
-  std::string scenario_file;         // scenario text file (sim/ format); wins when set
+  std::string scenario = "stroke";  // built-in scenario name
+  std::string scenario_file;        // scenario text file (sim/ format); wins when set
   SimTime time = SimTime::virtual_time;
-  std::uint32_t unplug_at_ms = 0;    // 0 = never; else simulated unplug at this time
-  std::uint32_t replug_after_ms = 0; // how long the simulated tracker stays unplugged
+  std::uint32_t unplug_at_ms = 0;     // 0 = never; else simulated unplug at this time
+  std::uint32_t replug_after_ms = 0;  // how long the simulated tracker stays unplugged
 };
 
 struct TrackerConfig {
   TrackerBackend backend = TrackerBackend::serial;
-  std::uint8_t left_station = 1;     // Fastrak receiver (1..4) held in the left hand
+  std::uint8_t left_station = 1;  // Fastrak receiver (1..4) held in the left hand
   std::uint8_t right_station = 2;
   RecordFormat format = RecordFormat::binary;
   std::uint32_t reconnect_interval_ms = 1000;
@@ -56,12 +56,12 @@ struct TrackerConfig {
 };
 
 struct HidButtonBit {
-  std::uint8_t byte = 0;   // index into the input report (0 = report id if numbered)
-  std::uint8_t mask = 0;   // bit(s) that mean "pressed"
+  std::uint8_t byte = 0;  // index into the input report (0 = report id if numbered)
+  std::uint8_t mask = 0;  // bit(s) that mean "pressed"
 };
 
 struct GpiodButtonsConfig {
-  std::string chip = "gpiochip0";  // name, number or /dev path
+  std::string chip = "gpiochip0";    // name, number or /dev path
   std::vector<std::uint32_t> lines;  // line offsets; button i = lines[i]
   bool active_low = true;
   GpioBias bias = GpioBias::as_is;
@@ -70,8 +70,8 @@ struct GpiodButtonsConfig {
 struct HidapiButtonsConfig {
   std::uint16_t vendor_id = 0;
   std::uint16_t product_id = 0;
-  std::string path;                  // hidraw path; overrides the ids when set
-  std::vector<HidButtonBit> buttons; // button i = buttons[i]
+  std::string path;                   // hidraw path; overrides the ids when set
+  std::vector<HidButtonBit> buttons;  // button i = buttons[i]
 };
 
 struct ButtonsConfig {
@@ -82,13 +82,15 @@ struct ButtonsConfig {
 };
 
 struct StationSection {
-  std::string journal;               // append-only stroke journal (fsynced per stroke)
+  std::string journal;                 // append-only stroke journal (fsynced per stroke)
+  std::string mesh;                    // initial model (OBJ, metres); relative = to the config file
+  std::uint32_t spare_vertices = 0;    // extra mesh capacity beyond the OBJ's vertices
   std::uint32_t loop_timeout_ms = 10;  // poll() timeout of the event loop
 };
 
 struct SystemdConfig {
-  bool notify = true;     // READY=1 / STOPPING=1 via sd_notify (no-op without systemd)
-  bool watchdog = true;   // WATCHDOG=1 at half of WATCHDOG_USEC when the unit sets it
+  bool notify = true;    // READY=1 / STOPPING=1 via sd_notify (no-op without systemd)
+  bool watchdog = true;  // WATCHDOG=1 at half of WATCHDOG_USEC when the unit sets it
 };
 
 struct StationConfig {
