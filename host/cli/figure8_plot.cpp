@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <fstream>
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <limits>
 #include <memory>
 #include <numbers>
@@ -203,13 +204,21 @@ void draw_cell(Painter& pt, const PanelScale& panel_scale, const Figure8Panel& p
   cairo_set_line_width(cr, 1.8);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  // The 2001 points lie about 0.2 px apart: points closer than kMinStepPx to the last
+  // drawn one are skipped (the drawn line stays within that distance of the curve),
+  // which keeps the SVG small. The last point is always drawn.
+  constexpr double kMinStepPx = 0.4;
+  glm::dvec2 last{0.0};
   for (std::size_t i = 0; i < c.points.size(); ++i) {
     const glm::dvec2 q = panel_scale.map(c.points[i], x0, y0);
     if (i == 0) {
       cairo_move_to(cr, q.x, q.y);
-    } else {
+    } else if (i + 1 == c.points.size() || glm::distance(q, last) >= kMinStepPx) {
       cairo_line_to(cr, q.x, q.y);
+    } else {
+      continue;
     }
+    last = q;
   }
   cairo_stroke(cr);
 
