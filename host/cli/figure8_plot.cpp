@@ -19,12 +19,12 @@ namespace {
 
 // Layout in pixels. Cells are wider than tall because the bent line is.
 constexpr int kMargin = 24;
-constexpr int kTitleH = 108;    // title, subtitle, legend
-constexpr int kHeadingH = 34;   // panel heading
-constexpr int kColHeadH = 24;   // angle above each column
-constexpr int kRowLabelW = 96;  // method name left of each row
+constexpr int kTitleH = 108;     // title, subtitle, legend
+constexpr int kHeadingH = 34;    // panel heading
+constexpr int kColHeadH = 24;    // angle above each column
+constexpr int kRowLabelW = 110;  // method name left of each row
 constexpr int kCellW = 190;
-constexpr int kPlotH = 132;  // curve area at the top of a cell
+constexpr int kPlotH = 132;          // curve area at the top of a cell
 constexpr int kCellH = kPlotH + 22;  // plus one line of numbers
 constexpr int kPanelGap = 18;
 constexpr double kPlotPad = 8.0;
@@ -188,15 +188,16 @@ void draw_legend(Painter& pt, double y) {
   pt.text(x + 14, y, "grab point held by the hand", 13, false, kInk);
 }
 
-void draw_cell(Painter& pt, const PanelScale& panel_scale, const Figure8Panel& panel, const Figure8Curve& c,
-               double x0, double y0) {
+void draw_cell(Painter& pt, const PanelScale& panel_scale, const Figure8Panel& panel,
+               const Figure8Curve& c, double x0, double y0) {
   cairo_t* cr = pt.cr();
   cairo_set_source_rgb(cr, kFrame.r, kFrame.g, kFrame.b);
   cairo_set_line_width(cr, 1.0);
   cairo_rectangle(cr, x0 + 0.5, y0 + 0.5, kCellW, kCellH);
   cairo_stroke(cr);
 
-  const glm::dvec2 a = panel_scale.map({-1.0, 0.0}, x0, y0), b = panel_scale.map({1.0, 0.0}, x0, y0);
+  const glm::dvec2 a = panel_scale.map({-1.0, 0.0}, x0, y0),
+                   b = panel_scale.map({1.0, 0.0}, x0, y0);
   pt.line(a.x, a.y, b.x, b.y, kRest, 1.5);
 
   const Rgb rgb = colour(c.method);
@@ -298,10 +299,14 @@ bool render(cairo_surface_t* surface, const Figure8Picture& pic, std::vector<std
 std::string xml_escape(const std::string& s) {
   std::string out;
   for (const char ch : s) {
-    if (ch == '&') out += "&amp;";
-    else if (ch == '<') out += "&lt;";
-    else if (ch == '>') out += "&gt;";
-    else out += ch;
+    if (ch == '&')
+      out += "&amp;";
+    else if (ch == '<')
+      out += "&lt;";
+    else if (ch == '>')
+      out += "&gt;";
+    else
+      out += ch;
   }
   return out;
 }
@@ -325,15 +330,14 @@ Figure8Size figure8_picture_size(std::size_t panels, std::size_t rows, std::size
           2 * kMargin + kTitleH + p * panel_h + std::max(0, p - 1) * kPanelGap};
 }
 
-bool write_figure8_svg(const std::string& path, const Figure8Picture& picture,
-                       std::string& error) {
+bool write_figure8_svg(const std::string& path, const Figure8Picture& picture, std::string& error) {
   const Figure8Size size = size_of(picture);
   std::string svg;
   std::vector<std::string> texts;
   {
-    const SurfacePtr surface(cairo_svg_surface_create_for_stream(&append_to_string, &svg,
-                                                                 size.width, size.height),
-                             &cairo_surface_destroy);
+    const SurfacePtr surface(
+        cairo_svg_surface_create_for_stream(&append_to_string, &svg, size.width, size.height),
+        &cairo_surface_destroy);
     cairo_svg_surface_set_document_unit(surface.get(), CAIRO_SVG_UNIT_PX);
     if (!render(surface.get(), picture, texts, error)) return false;
     cairo_surface_finish(surface.get());
@@ -367,8 +371,7 @@ bool write_figure8_svg(const std::string& path, const Figure8Picture& picture,
   return true;
 }
 
-bool write_figure8_png(const std::string& path, const Figure8Picture& picture,
-                       std::string& error) {
+bool write_figure8_png(const std::string& path, const Figure8Picture& picture, std::string& error) {
   const Figure8Size size = size_of(picture);
   const SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, size.width, size.height),
                            &cairo_surface_destroy);
