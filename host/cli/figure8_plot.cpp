@@ -9,7 +9,6 @@
 #include <fstream>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
-#include <limits>
 #include <memory>
 #include <numbers>
 
