@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "backend_factory.hpp"
+#include "display_link.hpp"
 #include "twister/hal/posix_file_storage.hpp"
 #include "twister/hal/station_config.hpp"
 #include "twister/hal/station_setup.hpp"
@@ -40,6 +41,8 @@ struct Options {
   std::string journal_override;
   double duration_s = 0.0;  // 0 = until signalled (or the scenario ends)
   bool quiet = false;
+  std::string link_address;  // --link: serve twister-bridge (unix:PATH | tcp:HOST:PORT)
+  double link_wait_s = 0.0;  // --link-wait: wait for a bridge before running
 };
 
 void log_event(const station::StationEvent& e) {
@@ -156,6 +159,18 @@ int run(const Options& opt, StationConfig cfg) {
                mesh_path.c_str(), mesh.vertex_count(), mesh.triangle_count(),
                static_cast<unsigned long long>(mesh.checksum()));
 
+  twister::hal::DisplayLink display;
+  if (!opt.link_address.empty()) {
+    if (const std::string e = display.open(opt.link_address, core->sculpt()); !e.empty()) {
+      std::fprintf(stderr, "twister-station: %s\n", e.c_str());
+      return kExitFailure;
+    }
+    if (opt.link_wait_s > 0.0 && !display.wait_for_peer(core->sculpt(), opt.link_wait_s)) {
+      std::fprintf(stderr, "twister-station: no bridge on %s after %.1f s; running without\n",
+                   opt.link_address.c_str(), opt.link_wait_s);
+    }
+  }
+
   sigset_t mask;
   sigemptyset(&mask);
   sigaddset(&mask, SIGINT);
@@ -190,6 +205,7 @@ int run(const Options& opt, StationConfig cfg) {
     if (backends.button_fds && !buttons_broken) {
       for (const int fd : backends.button_fds()) fds.push_back({fd, POLLIN, 0});
     }
+    if (const int fd = display.poll_fd(); fd >= 0) fds.push_back({fd, POLLIN, 0});
     // Virtual time: never wait, advance 1 ms per iteration instead.
     const int timeout_ms =
         backends.virtual_clock ? 0 : static_cast<int>(cfg.station.loop_timeout_ms);
@@ -204,6 +220,7 @@ int run(const Options& opt, StationConfig cfg) {
     if (backends.virtual_clock) backends.virtual_clock->advance_us(1000);
     const auto now_us = clock.now_us();
     if (!core->poll().ok()) break;
+    display.poll(core->sculpt(), now_us);
     for (auto e = core->next_event(); e.ok(); e = core->next_event()) {
       if (e->kind == station::StationEventKind::button_source_error) buttons_broken = true;
       if (!opt.quiet) log_event(*e);
@@ -224,6 +241,7 @@ int run(const Options& opt, StationConfig cfg) {
     if (stop_after_s > 0.0 && static_cast<double>(now_us - start_us) / 1e6 >= stop_after_s) break;
   }
   if (cfg.systemd.notify) sd_notify(0, "STOPPING=1");
+  display.drain(core->sculpt(), clock.now_us(), 2.0);
   const auto flushed = core->flush();
   std::fprintf(stderr, "twister-station: mesh checksum %016llx\n",
                static_cast<unsigned long long>(core->mesh().checksum()));
@@ -255,6 +273,11 @@ int station_main(int argc, char** argv) {
                  "simulator scenario ends)")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("-q,--quiet", opt.quiet, "log only start and stop");
+  app.add_option("--link", opt.link_address,
+                 "serve the display link to twister-bridge on unix:PATH or tcp:HOST:PORT");
+  app.add_option("--link-wait", opt.link_wait_s,
+                 "seconds to wait for a bridge to connect and receive the mesh before running")
+      ->check(CLI::NonNegativeNumber);
   app.set_version_flag("--version", "twister-station 0.1.0");
   try {
     app.parse(argc, argv);

@@ -1,0 +1,150 @@
+// COBS framing with a CRC-32 trailer. COBS was chosen over byte stuffing because its
+// overhead is bounded (1 byte per 254), so a frame's worst-case size is a constant
+// and both sides can use fixed buffers.
+#include "twister/link/link_codec.hpp"
+
+#include "link_payload.hpp"
+#include "twister/journal/crc32.hpp"
+
+namespace twister::link {
+namespace {
+
+constexpr std::size_t kCrcBytes = 4;
+
+// COBS-encodes `in` into `out` followed by the 0x00 delimiter; 0 when it does not fit.
+std::size_t cobs_encode(std::span<const std::byte> in, std::span<std::byte> out) {
+  std::size_t code_pos = 0;
+  std::size_t pos = 1;
+  std::uint8_t code = 1;
+  if (out.empty()) return 0;
+  for (const std::byte b : in) {
+    if (b != std::byte{0}) {
+      if (pos >= out.size()) return 0;
+      out[pos++] = b;
+      ++code;
+    }
+    if (b == std::byte{0} || code == 0xff) {
+      out[code_pos] = static_cast<std::byte>(code);
+      code = 1;
+      code_pos = pos;
+      if (pos >= out.size()) return 0;
+      ++pos;
+    }
+  }
+  out[code_pos] = static_cast<std::byte>(code);
+  if (pos >= out.size()) return 0;
+  out[pos++] = std::byte{0};
+  return pos;
+}
+
+// Decodes in place; returns the decoded length or -1 when the structure is broken.
+long cobs_decode(std::span<std::byte> buf) {
+  std::size_t in = 0;
+  std::size_t out = 0;
+  while (in < buf.size()) {
+    const auto code = std::to_integer<std::uint8_t>(buf[in]);
+    if (code == 0 || in + code > buf.size()) return -1;
+    ++in;
+    for (std::uint8_t i = 1; i < code; ++i) buf[out++] = buf[in++];
+    if (code != 0xff && in < buf.size()) buf[out++] = std::byte{0};
+  }
+  return static_cast<long>(out);
+}
+
+}  // namespace
+
+Result<std::size_t> encode_frame(const LinkMessage& message, std::span<std::byte> out) {
+  std::array<std::byte, kMaxPayload + kCrcBytes> payload{};
+  internal::PayloadWriter w(std::span<std::byte>(payload).first(kMaxPayload));
+  w.u8(kProtocolVersion);
+  w.u8(static_cast<std::uint8_t>(message.type));
+  if (!internal::write_body(w, message)) return StatusCode::invalid_argument;
+  if (!w.ok()) return StatusCode::invalid_argument;  // cannot happen within the caps
+  const std::size_t n = w.size();
+  const std::uint32_t crc = journal::crc32(std::span<const std::byte>(payload).first(n));
+  for (std::size_t i = 0; i < kCrcBytes; ++i) {
+    payload[n + i] = static_cast<std::byte>((crc >> (8 * i)) & 0xffu);
+  }
+  const std::size_t written =
+      cobs_encode(std::span<const std::byte>(payload).first(n + kCrcBytes), out);
+  if (written == 0) return StatusCode::resource_exhausted;
+  return written;
+}
+
+Status decode_payload(std::span<const std::byte> payload, LinkMessage& out) {
+  internal::PayloadReader r(payload);
+  const std::uint8_t version = r.u8();
+  const std::uint8_t type = r.u8();
+  if (!r.ok()) return StatusCode::invalid_argument;
+  if (version != kProtocolVersion) return StatusCode::not_supported;
+  if (type < 1 || type > static_cast<std::uint8_t>(MessageType::status)) {
+    return StatusCode::invalid_argument;
+  }
+  out.type = static_cast<MessageType>(type);
+  if (!internal::read_body(r, out)) return StatusCode::invalid_argument;
+  return OkStatus();
+}
+
+void LinkDecoder::reset() {
+  size_ = 0;
+  overflow_ = false;
+}
+
+bool LinkDecoder::push(std::byte byte) {
+  if (byte != std::byte{0}) {
+    if (size_ == buffer_.size()) {
+      // Too long to be ours: drop everything up to the next delimiter.
+      if (!overflow_) ++counters_.oversize;
+      overflow_ = true;
+      counters_.bytes_skipped += size_;
+      size_ = 0;
+    }
+    if (overflow_) {
+      ++counters_.bytes_skipped;
+      return false;
+    }
+    buffer_[size_++] = byte;
+    return false;
+  }
+  if (overflow_) {
+    overflow_ = false;
+    size_ = 0;
+    return false;
+  }
+  if (size_ == 0) return false;  // back-to-back delimiters: an empty frame is no frame
+  const bool good = finish_frame();
+  if (!good) counters_.bytes_skipped += size_ + 1;
+  size_ = 0;
+  return good;
+}
+
+bool LinkDecoder::finish_frame() {
+  const long decoded = cobs_decode(std::span<std::byte>(buffer_).first(size_));
+  if (decoded < 0) {
+    ++counters_.bad_cobs;
+    return false;
+  }
+  const auto n = static_cast<std::size_t>(decoded);
+  if (n < 2 + kCrcBytes) {
+    ++counters_.bad_crc;
+    return false;
+  }
+  const auto body = std::span<const std::byte>(buffer_).first(n - kCrcBytes);
+  std::uint32_t want = 0;
+  for (std::size_t i = 0; i < kCrcBytes; ++i) {
+    want |= static_cast<std::uint32_t>(std::to_integer<std::uint8_t>(buffer_[n - kCrcBytes + i]))
+            << (8 * i);
+  }
+  if (journal::crc32(body) != want) {
+    ++counters_.bad_crc;
+    return false;
+  }
+  if (!decode_payload(body, message_).ok()) {
+    ++counters_.bad_payload;
+    return false;
+  }
+  ++counters_.frames;
+  return true;
+}
+
+}  // namespace twister::link

@@ -1,0 +1,155 @@
+#include "bridge_app.hpp"
+
+#include <array>
+#include <cstdio>
+
+namespace twister::bridge {
+
+BridgeApp::BridgeApp(ports::LinkPort& port, MeshRenderer* renderer, BridgeOptions options)
+    : port_(port), renderer_(renderer), options_(std::move(options)) {}
+
+std::size_t BridgeApp::step() {
+  std::size_t frames = 0;
+  std::array<std::byte, 64 * 1024> buf{};
+  for (int round = 0; round < 64; ++round) {
+    const Result<std::size_t> got = port_.receive(buf);
+    if (!got.ok()) {
+      if (connected_) {
+        ++counters_.disconnects;
+        if (options_.verbose) std::fprintf(stderr, "twister-bridge: link lost; reconnecting\n");
+      }
+      connected_ = false;
+      out_.clear();
+      return frames;
+    }
+    if (!connected_) {
+      connected_ = true;
+      ++counters_.connects;
+      decoder_.reset();
+      // Resync by version: the station sends the full mesh only if ours differs.
+      link::LinkMessage hello;
+      hello.type = link::MessageType::hello;
+      hello.hello = replica_.hello();
+      send(hello);
+      if (options_.verbose) {
+        std::fprintf(stderr, "twister-bridge: connected (holding mesh version %u)\n",
+                     replica_.version());
+      }
+    }
+    for (std::size_t i = 0; i < *got; ++i) {
+      if (decoder_.push(buf[i])) {
+        handle(decoder_.message());
+        ++frames;
+      }
+    }
+    if (*got < buf.size()) break;
+  }
+  flush();
+  refresh_display();
+  return frames;
+}
+
+void BridgeApp::handle(const link::LinkMessage& m) {
+  // The live warp just before a commit is the stroke's final preview: picture it
+  // before the change set replaces the rest mesh.
+  if (m.type == link::MessageType::mesh_begin && !m.mesh_begin.full &&
+      replica_.live().active && !options_.snapshot_dir.empty()) {
+    refresh_display();
+    snapshot("live-" + std::to_string(m.mesh_begin.version));
+  }
+  const std::uint64_t commits = replica_.counters().commits;
+  const std::uint64_t fulls = replica_.counters().full_meshes;
+  if (const auto request = replica_.apply(m)) {
+    link::LinkMessage r;
+    r.type = link::MessageType::resend_request;
+    r.resend_request = *request;
+    send(r);
+    if (options_.verbose) {
+      std::fprintf(stderr,
+                   "twister-bridge: mesh change set rejected (checksum/version); asked for a "
+                   "full resend\n");
+    }
+  }
+  if (replica_.counters().full_meshes != fulls) {
+    if (options_.verbose) {
+      std::fprintf(stderr, "twister-bridge: mesh version %u: %zu vertices, %zu triangles\n",
+                   replica_.version(), replica_.mesh().vertex_count(),
+                   replica_.mesh().triangle_count());
+    }
+    if (!options_.snapshot_dir.empty() && fulls == 0) {
+      refresh_display();
+      snapshot("rest");
+    }
+  }
+  if (replica_.counters().commits != commits) {
+    if (options_.verbose) {
+      std::fprintf(stderr, "twister-bridge: commit -> mesh version %u, checksum %016llx verified\n",
+                   replica_.version(), static_cast<unsigned long long>(replica_.checksum()));
+    }
+    if (!options_.snapshot_dir.empty()) {
+      refresh_display();
+      snapshot("commit-" + std::to_string(replica_.version()));
+    }
+  }
+}
+
+void BridgeApp::send(const link::LinkMessage& m) {
+  std::array<std::byte, link::kMaxFrameBytes> frame{};
+  const auto n = link::encode_frame(m, frame);
+  if (n.ok()) out_.insert(out_.end(), frame.begin(), frame.begin() + static_cast<std::ptrdiff_t>(*n));
+}
+
+void BridgeApp::flush() {
+  while (!out_.empty()) {
+    const auto n = port_.send(out_);
+    if (!n.ok() || *n == 0) return;
+    out_.erase(out_.begin(), out_.begin() + static_cast<std::ptrdiff_t>(*n));
+  }
+}
+
+void BridgeApp::refresh_display() {
+  if (renderer_ == nullptr || !replica_.has_mesh()) return;
+  LiveState& live = replica_.live();
+  const bool cpu_live = live.active && live.method == math::WarpMethod::scodef;
+  if (replica_.mesh_changed() || (display_mesh_live_ && !cpu_live)) {
+    const bool first = shown_version_ == 0;
+    renderer_->set_mesh(replica_.mesh(), !first);
+    replica_.clear_mesh_changed();
+    shown_version_ = replica_.version();
+    display_mesh_live_ = false;
+    live.weights_changed = live.active;
+  }
+  if (live.active && (live.weights_changed || live.stroke != shown_stroke_)) {
+    renderer_->set_weights(live.weight1, live.weight2);
+    live.weights_changed = false;
+    shown_stroke_ = live.stroke;
+  }
+  if (cpu_live) {
+    // scodef has no closed form per vertex in the shader: show the CPU warp.
+    renderer_->set_mesh(replica_.cpu_warp(), true);
+    renderer_->set_weights(live.weight1, live.weight2);
+    display_mesh_live_ = true;
+  }
+  renderer_->set_show_weights(live.active);
+  renderer_->set_live(live.active ? &live.message : nullptr);
+}
+
+void BridgeApp::draw() {
+  if (renderer_ != nullptr) renderer_->draw();
+}
+
+std::string BridgeApp::snapshot(const std::string& name) {
+  if (renderer_ == nullptr || options_.snapshot_dir.empty()) return {};
+  renderer_->draw();
+  const std::string path = options_.snapshot_dir + "/" + name + ".png";
+  if (!write_png(path, renderer_->width(), renderer_->height(), renderer_->read_rgba())) {
+    std::fprintf(stderr, "twister-bridge: cannot write %s\n", path.c_str());
+    return {};
+  }
+  ++counters_.snapshots;
+  pictures_.push_back(path);
+  if (options_.verbose) std::fprintf(stderr, "twister-bridge: wrote %s\n", path.c_str());
+  return path;
+}
+
+}  // namespace twister::bridge

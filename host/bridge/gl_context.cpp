@@ -1,0 +1,137 @@
+// EGL surfaceless is selected explicitly: without DISPLAY the default EGL display
+// fails on Mesa, and eglGetPlatformDisplayEXT (not the 1.5 entry point) is what
+// works through libepoxy (docs: testing-without-hardware.md).
+#include "gl_context.hpp"
+
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
+// GLFW after epoxy: epoxy provides the GL declarations.
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+namespace twister::bridge {
+namespace {
+
+class OffscreenContext final : public GlContext {
+ public:
+  OffscreenContext(EGLDisplay display, EGLContext context, int w, int h)
+      : display_(display), context_(context), width_(w), height_(h) {}
+  ~OffscreenContext() override {
+    eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglDestroyContext(display_, context_);
+    eglTerminate(display_);
+  }
+  int width() const override { return width_; }
+  int height() const override { return height_; }
+  bool offscreen() const override { return true; }
+
+ private:
+  EGLDisplay display_;
+  EGLContext context_;
+  int width_;
+  int height_;
+};
+
+class WindowContext final : public GlContext {
+ public:
+  explicit WindowContext(GLFWwindow* window) : window_(window) {}
+  ~WindowContext() override {
+    glfwDestroyWindow(window_);
+    glfwTerminate();
+  }
+  void swap() override { glfwSwapBuffers(window_); }
+  bool open() const override { return glfwWindowShouldClose(window_) == 0; }
+  void poll_events() override { glfwPollEvents(); }
+  int width() const override {
+    int w = 0;
+    int h = 0;
+    glfwGetFramebufferSize(window_, &w, &h);
+    return w;
+  }
+  int height() const override {
+    int w = 0;
+    int h = 0;
+    glfwGetFramebufferSize(window_, &w, &h);
+    return h;
+  }
+  bool offscreen() const override { return false; }
+
+ private:
+  GLFWwindow* window_;
+};
+
+}  // namespace
+
+std::unique_ptr<GlContext> make_offscreen_context(int width, int height, std::string& error) {
+  EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY,
+                                                nullptr);
+  if (display == EGL_NO_DISPLAY) {
+    error = "EGL: no surfaceless display (Mesa EGL_MESA_platform_surfaceless missing)";
+    return nullptr;
+  }
+  EGLint major = 0;
+  EGLint minor = 0;
+  if (eglInitialize(display, &major, &minor) != EGL_TRUE) {
+    error = "EGL: eglInitialize failed";
+    return nullptr;
+  }
+  if (eglBindAPI(EGL_OPENGL_API) != EGL_TRUE) {
+    error = "EGL: desktop OpenGL not available";
+    eglTerminate(display);
+    return nullptr;
+  }
+  const EGLint config_attribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE,
+                                   EGL_OPENGL_BIT, EGL_NONE};
+  EGLConfig config = nullptr;
+  EGLint count = 0;
+  if (eglChooseConfig(display, config_attribs, &config, 1, &count) != EGL_TRUE || count == 0) {
+    config = nullptr;  // surfaceless needs no config (EGL_KHR_no_config_context)
+  }
+  const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
+                                    EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                    EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+  EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attribs);
+  if (context == EGL_NO_CONTEXT) {
+    error = "EGL: cannot create an OpenGL 3.3 core context";
+    eglTerminate(display);
+    return nullptr;
+  }
+  if (eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context) != EGL_TRUE) {
+    error = "EGL: eglMakeCurrent (surfaceless) failed";
+    eglDestroyContext(display, context);
+    eglTerminate(display);
+    return nullptr;
+  }
+  return std::make_unique<OffscreenContext>(display, context, width, height);
+}
+
+std::unique_ptr<GlContext> make_window_context(int width, int height, bool kiosk,
+                                               std::string& error) {
+  if (glfwInit() != GLFW_TRUE) {
+    error = "GLFW: cannot initialise (no display? use --offscreen)";
+    return nullptr;
+  }
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  GLFWmonitor* monitor = nullptr;
+  if (kiosk) {
+    monitor = glfwGetPrimaryMonitor();
+    if (monitor != nullptr) {
+      const GLFWvidmode* mode = glfwGetVideoMode(monitor);
+      width = mode->width;
+      height = mode->height;
+    }
+  }
+  GLFWwindow* window = glfwCreateWindow(width, height, "Twister", monitor, nullptr);
+  if (window == nullptr) {
+    error = "GLFW: cannot open an OpenGL 3.3 core window";
+    glfwTerminate();
+    return nullptr;
+  }
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(1);
+  return std::make_unique<WindowContext>(window);
+}
+
+}  // namespace twister::bridge

@@ -1,0 +1,330 @@
+#include "mesh_renderer.hpp"
+
+#include <epoxy/gl.h>
+#include <png.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+namespace twister::bridge {
+namespace {
+
+// The displacement is core's scalar kernel term by term (warp_kernels_scalar.cpp),
+// so the preview equals the CPU warp up to float rounding.
+constexpr const char* kVertexShader = R"(#version 330 core
+layout(location = 0) in vec3 a_pos;
+layout(location = 1) in vec2 a_weight;
+uniform mat4 u_mvp;
+uniform int u_hand_mask;
+uniform vec3 u_axis[2];
+uniform vec3 u_mid[2];
+uniform vec3 u_chord[2];
+uniform vec3 u_axc[2];
+uniform vec3 u_shift[2];
+uniform float u_half[2];
+uniform float u_cot[2];
+out vec3 v_pos;
+out vec2 v_weight;
+vec3 displacement(int h, vec3 p, float t) {
+  vec3 d = u_axis[h];
+  vec3 v = p - u_mid[h];
+  float hl = t * u_half[h];
+  float sh = sin(hl);
+  float ch = cos(hl);
+  float a = sh * ch;
+  float b = sh * sh;
+  float k = u_cot[h];
+  float dv = dot(d, v);
+  vec3 c = cross(d, v);
+  return a * (2.0 * c + k * u_chord[h]) + b * (2.0 * (d * dv - v) + k * u_axc[h]) +
+         t * u_shift[h];
+}
+void main() {
+  vec3 p = a_pos;
+  vec3 q = p;
+  if ((u_hand_mask & 1) != 0 && a_weight.x > 0.0) q += displacement(0, p, a_weight.x);
+  if ((u_hand_mask & 2) != 0 && a_weight.y > 0.0) q += displacement(1, p, a_weight.y);
+  v_pos = q;
+  v_weight = a_weight;
+  gl_Position = u_mvp * vec4(q, 1.0);
+}
+)";
+
+constexpr const char* kFragmentShader = R"(#version 330 core
+in vec3 v_pos;
+in vec2 v_weight;
+uniform vec3 u_eye;
+uniform vec3 u_light0;
+uniform vec3 u_light1;
+uniform int u_show_weights;
+out vec4 frag;
+void main() {
+  vec3 n = normalize(cross(dFdx(v_pos), dFdy(v_pos)));
+  vec3 to_eye = normalize(u_eye - v_pos);
+  if (dot(n, to_eye) < 0.0) n = -n;
+  vec3 base = vec3(0.78, 0.80, 0.86);
+  if (u_show_weights != 0) {
+    base = mix(base, vec3(0.90, 0.12, 0.10), clamp(v_weight.x, 0.0, 1.0));
+    base = mix(base, vec3(0.12, 0.80, 0.20), clamp(v_weight.y, 0.0, 1.0));
+  }
+  float d0 = max(dot(n, u_light0), 0.0);
+  float d1 = max(dot(n, u_light1), 0.0);
+  vec3 h = normalize(u_light0 + to_eye);
+  float spec = pow(max(dot(n, h), 0.0), 40.0);
+  vec3 c = base * (0.22 + 0.70 * d0 + 0.25 * d1) + vec3(0.25) * spec;
+  frag = vec4(pow(c, vec3(1.0 / 1.1)), 1.0);
+}
+)";
+
+unsigned compile(GLenum type, const char* source, std::string& error) {
+  const GLuint s = glCreateShader(type);
+  glShaderSource(s, 1, &source, nullptr);
+  glCompileShader(s);
+  GLint ok = 0;
+  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+  if (ok == 0) {
+    char log[1024] = {};
+    glGetShaderInfoLog(s, sizeof log, nullptr, log);
+    error = std::string("shader: ") + log;
+  }
+  return s;
+}
+
+void put3(float* dst, const glm::dvec3& v) {
+  dst[0] = static_cast<float>(v.x);
+  dst[1] = static_cast<float>(v.y);
+  dst[2] = static_cast<float>(v.z);
+}
+
+}  // namespace
+
+MeshRenderer::~MeshRenderer() {
+  if (program_ != 0) glDeleteProgram(program_);
+  const GLuint buffers[] = {vbo_pos_, vbo_weight_, ebo_};
+  glDeleteBuffers(3, buffers);
+  if (vao_ != 0) glDeleteVertexArrays(1, &vao_);
+  if (fbo_ != 0) glDeleteFramebuffers(1, &fbo_);
+  const GLuint rbs[] = {color_rb_, depth_rb_};
+  glDeleteRenderbuffers(2, rbs);
+}
+
+std::string MeshRenderer::init(int width, int height, bool offscreen, const ViewConfig& view) {
+  width_ = width;
+  height_ = height;
+  view_ = view;
+  std::string error;
+  const GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader, error);
+  const GLuint fs = compile(GL_FRAGMENT_SHADER, kFragmentShader, error);
+  if (!error.empty()) return error;
+  program_ = glCreateProgram();
+  glAttachShader(program_, vs);
+  glAttachShader(program_, fs);
+  glLinkProgram(program_);
+  glDeleteShader(vs);
+  glDeleteShader(fs);
+  GLint linked = 0;
+  glGetProgramiv(program_, GL_LINK_STATUS, &linked);
+  if (linked == 0) return "shader program does not link";
+  glGenVertexArrays(1, &vao_);
+  glGenBuffers(1, &vbo_pos_);
+  glGenBuffers(1, &vbo_weight_);
+  glGenBuffers(1, &ebo_);
+  glBindVertexArray(vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, vbo_pos_);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glEnableVertexAttribArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, vbo_weight_);
+  glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glEnableVertexAttribArray(1);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);
+  if (offscreen) {
+    glGenFramebuffers(1, &fbo_);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    glGenRenderbuffers(1, &color_rb_);
+    glBindRenderbuffer(GL_RENDERBUFFER, color_rb_);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_rb_);
+    glGenRenderbuffers(1, &depth_rb_);
+    glBindRenderbuffer(GL_RENDERBUFFER, depth_rb_);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_rb_);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+      return "framebuffer object incomplete";
+    }
+  }
+  glEnable(GL_DEPTH_TEST);
+  return {};
+}
+
+void MeshRenderer::set_mesh(const MeshData& mesh, bool keep_camera) {
+  vertex_count_ = mesh.vertex_count();
+  std::vector<float> pos(3 * vertex_count_);
+  glm::vec3 lo(1e30F);
+  glm::vec3 hi(-1e30F);
+  for (std::size_t i = 0; i < vertex_count_; ++i) {
+    const glm::vec3 p(mesh.x[i], mesh.y[i], mesh.z[i]);
+    pos[3 * i] = p.x;
+    pos[3 * i + 1] = p.y;
+    pos[3 * i + 2] = p.z;
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  if (!keep_camera && vertex_count_ > 0) {
+    const glm::vec3 c = 0.5F * (lo + hi);
+    center_[0] = c.x;
+    center_[1] = c.y;
+    center_[2] = c.z;
+    radius_ = std::max(0.5F * glm::length(hi - lo), 1e-6F);
+  }
+  glBindVertexArray(vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, vbo_pos_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(pos.size() * sizeof(float)), pos.data(),
+               GL_DYNAMIC_DRAW);
+  std::vector<float> zero(2 * vertex_count_, 0.0F);
+  glBindBuffer(GL_ARRAY_BUFFER, vbo_weight_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(zero.size() * sizeof(float)), zero.data(),
+               GL_DYNAMIC_DRAW);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+               static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
+               mesh.indices.data(), GL_STATIC_DRAW);
+  index_count_ = mesh.indices.size();
+}
+
+void MeshRenderer::set_weights(const std::vector<float>& w1, const std::vector<float>& w2) {
+  std::vector<float> w(2 * vertex_count_, 0.0F);
+  for (std::size_t i = 0; i < vertex_count_ && i < w1.size() && i < w2.size(); ++i) {
+    w[2 * i] = w1[i];
+    w[2 * i + 1] = w2[i];
+  }
+  glBindBuffer(GL_ARRAY_BUFFER, vbo_weight_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(w.size() * sizeof(float)), w.data(),
+               GL_DYNAMIC_DRAW);
+}
+
+void MeshRenderer::set_live(const link::LiveWarp* live) {
+  hand_mask_ = 0;
+  if (live == nullptr || !live->active) return;
+  const auto method = static_cast<math::WarpMethod>(live->method);
+  if (method == math::WarpMethod::scodef) return;  // CPU path (positions uploaded)
+  hand_mask_ = live->hand_mask;
+  // Same constants as core's fill_kernel_hand (warp_plan.cpp).
+  for (std::size_t h = 0; h < link::kLinkHands; ++h) {
+    float* k = hands_[h];
+    std::fill(k, k + 17, 0.0F);
+    if ((live->hand_mask & (1u << h)) == 0) continue;
+    const math::Screw& s = live->hands[h].screw;
+    put3(k, s.axis);
+    if (method == math::WarpMethod::rottran) {
+      put3(k + 3, live->hands[h].start.origin);
+      put3(k + 12, live->hands[h].end.origin - live->hands[h].start.origin);
+      k[15] = s.pure_translation ? 0.0F : static_cast<float>(0.5 * s.angle);
+    } else if (s.pure_translation) {
+      put3(k + 12, s.chord);
+    } else {
+      put3(k + 3, s.mid);
+      put3(k + 6, s.chord);
+      put3(k + 9, glm::cross(s.axis, s.chord));
+      put3(k + 12, s.slide * s.axis);
+      k[15] = static_cast<float>(0.5 * s.angle);
+      k[16] = static_cast<float>(s.cot_half);
+    }
+  }
+}
+
+void MeshRenderer::draw() {
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  glViewport(0, 0, width_, height_);
+  glClearColor(0.13F, 0.14F, 0.17F, 1.0F);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  const glm::vec3 up(view_.up[0], view_.up[1], view_.up[2]);
+  // A horizontal reference perpendicular to up, then azimuth/elevation about it.
+  glm::vec3 side = glm::normalize(glm::cross(up, std::abs(up.x) < 0.9F ? glm::vec3(1, 0, 0)
+                                                                      : glm::vec3(0, 1, 0)));
+  const glm::vec3 fwd = glm::cross(side, up);
+  const float az = glm::radians(view_.azimuth_deg);
+  const float el = glm::radians(view_.elevation_deg);
+  const glm::vec3 dir = std::cos(el) * (std::cos(az) * fwd + std::sin(az) * side) +
+                        std::sin(el) * up;
+  const glm::vec3 center(center_[0], center_[1], center_[2]);
+  const float fov = glm::radians(35.0F);
+  const float distance = 1.1F * radius_ / std::sin(0.5F * fov);
+  const glm::vec3 eye = center + distance * dir;
+  const glm::mat4 proj = glm::perspective(
+      fov, static_cast<float>(width_) / static_cast<float>(std::max(height_, 1)),
+      0.05F * distance, 4.0F * distance);
+  const glm::mat4 mvp = proj * glm::lookAt(eye, center, up);
+  glUseProgram(program_);
+  glUniformMatrix4fv(glGetUniformLocation(program_, "u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
+  glUniform3fv(glGetUniformLocation(program_, "u_eye"), 1, glm::value_ptr(eye));
+  const glm::vec3 right = glm::normalize(glm::cross(-dir, up));
+  const glm::vec3 l0 = glm::normalize(dir + 0.8F * up + 0.6F * right);
+  const glm::vec3 l1 = glm::normalize(-dir + 0.3F * up - 0.8F * right);
+  glUniform3fv(glGetUniformLocation(program_, "u_light0"), 1, glm::value_ptr(l0));
+  glUniform3fv(glGetUniformLocation(program_, "u_light1"), 1, glm::value_ptr(l1));
+  glUniform1i(glGetUniformLocation(program_, "u_show_weights"), hand_mask_ != 0 || show_weights_);
+  glUniform1i(glGetUniformLocation(program_, "u_hand_mask"), hand_mask_);
+  const char* names[] = {"u_axis", "u_mid", "u_chord", "u_axc", "u_shift"};
+  for (int h = 0; h < 2; ++h) {
+    for (int k = 0; k < 5; ++k) {
+      const std::string n = std::string(names[k]) + "[" + std::to_string(h) + "]";
+      glUniform3fv(glGetUniformLocation(program_, n.c_str()), 1, hands_[h] + 3 * k);
+    }
+    glUniform1f(glGetUniformLocation(program_, ("u_half[" + std::to_string(h) + "]").c_str()),
+                hands_[h][15]);
+    glUniform1f(glGetUniformLocation(program_, ("u_cot[" + std::to_string(h) + "]").c_str()),
+                hands_[h][16]);
+  }
+  glBindVertexArray(vao_);
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(index_count_), GL_UNSIGNED_INT, nullptr);
+  glFinish();
+}
+
+std::vector<std::uint8_t> MeshRenderer::read_rgba() const {
+  std::vector<std::uint8_t> rows(static_cast<std::size_t>(width_) *
+                                 static_cast<std::size_t>(height_) * 4);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+  // GL's origin is bottom-left; images go top to bottom.
+  const std::size_t stride = static_cast<std::size_t>(width_) * 4;
+  for (std::size_t y = 0; y < static_cast<std::size_t>(height_) / 2; ++y) {
+    std::swap_ranges(rows.begin() + static_cast<std::ptrdiff_t>(y * stride),
+                     rows.begin() + static_cast<std::ptrdiff_t>((y + 1) * stride),
+                     rows.begin() + static_cast<std::ptrdiff_t>(
+                                        (static_cast<std::size_t>(height_) - 1 - y) * stride));
+  }
+  return rows;
+}
+
+bool write_png(const std::string& path, int width, int height,
+               const std::vector<std::uint8_t>& rgba) {
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (f == nullptr) return false;
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png_create_info_struct(png);
+  if (png == nullptr || info == nullptr || setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    std::fclose(f);
+    return false;
+  }
+  png_init_io(png, f);
+  png_set_compression_level(png, 1);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8,
+               PNG_COLOR_TYPE_RGBA, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+               PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(png, info);
+  for (int y = 0; y < height; ++y) {
+    png_write_row(png, rgba.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(width) * 4);
+  }
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+  return std::fclose(f) == 0;
+}
+
+}  // namespace twister::bridge

@@ -1,0 +1,72 @@
+// MeshRenderer: draws the replica's mesh with OpenGL 3.3 core into an FBO
+// (offscreen, readable) or the default framebuffer (window). The live stroke is
+// applied in the vertex shader: per vertex the two weights (attribute), per hand
+// the screw constants (uniforms, the same terms as core's scalar kernel), the
+// displacements of both hands summed. Lit with per-pixel face normals (derivatives
+// of the warped position, so shading follows the warp); weights tint the surface
+// red (hand 1) and green (hand 2) as in the paper's figures.
+// The camera frames the rest mesh's bounding sphere. Needs a current context.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "scene_replica.hpp"
+
+namespace twister::bridge {
+
+struct ViewConfig {
+  float azimuth_deg = 200.0F;   // around the up axis
+  float elevation_deg = 25.0F;  // above the horizontal
+  // Object-frame up (tracker frame: +Z points down, so up is -Z).
+  float up[3] = {0.0F, 0.0F, -1.0F};
+};
+
+class MeshRenderer {
+ public:
+  ~MeshRenderer();
+  // Compiles the shaders; with `offscreen`, renders into a width x height FBO.
+  // Empty string on success.
+  std::string init(int width, int height, bool offscreen, const ViewConfig& view);
+  // New rest mesh (positions + triangles); resets weights and recentres the camera
+  // unless keep_camera.
+  void set_mesh(const MeshData& mesh, bool keep_camera);
+  void set_weights(const std::vector<float>& w1, const std::vector<float>& w2);
+  // Hand uniforms from a live message (scodef: no shader warp, see set_mesh).
+  void set_live(const link::LiveWarp* live);
+  // Tint by the weights even without a shader warp (scodef / CPU-warped uploads).
+  void set_show_weights(bool show) { show_weights_ = show; }
+  void draw();
+  // RGBA rows top to bottom.
+  std::vector<std::uint8_t> read_rgba() const;
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  unsigned program_ = 0;
+  unsigned vao_ = 0;
+  unsigned vbo_pos_ = 0;
+  unsigned vbo_weight_ = 0;
+  unsigned ebo_ = 0;
+  unsigned fbo_ = 0;
+  unsigned color_rb_ = 0;
+  unsigned depth_rb_ = 0;
+  int width_ = 0;
+  int height_ = 0;
+  std::size_t index_count_ = 0;
+  std::size_t vertex_count_ = 0;
+  float center_[3] = {0, 0, 0};
+  float radius_ = 1.0F;
+  ViewConfig view_{};
+  // Per hand: axis, mid, chord, axis x chord, shift (3 each), half angle, cot half.
+  float hands_[2][17] = {};
+  int hand_mask_ = 0;
+  bool show_weights_ = false;
+};
+
+// Writes RGBA rows (top to bottom) as PNG (compression 1). false on I/O error.
+bool write_png(const std::string& path, int width, int height,
+               const std::vector<std::uint8_t>& rgba);
+
+}  // namespace twister::bridge
