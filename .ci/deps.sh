@@ -18,6 +18,7 @@ packages=(
   # host tools and display
   libfmt-dev libpng-dev libtinyobjloader-dev libglfw3-dev libepoxy-dev libegl-dev
   libgl1-mesa-dri xvfb xauth
+  libcairo2-dev fonts-dejavu-core  # twister figure8 draws its SVG/PNG with cairo, text in DejaVu Sans
 )
 
 missing=()

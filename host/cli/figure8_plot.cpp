@@ -1,118 +1,367 @@
 #include "figure8_plot.hpp"
 
-#include <png.h>
+#include <cairo-svg.h>
+#include <cairo.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
-#include <limits>
+#include <memory>
+#include <numbers>
 
 namespace twister::cli {
 
 namespace {
 
-constexpr int kCell = 200;  // pixels per cell
-constexpr int kLabel = 40;  // room for row/column labels
-constexpr double kPad = 0.06;
+// Layout in pixels. Cells are wider than tall because the bent line is.
+constexpr int kMargin = 24;
+constexpr int kTitleH = 108;     // title, subtitle, legend
+constexpr int kHeadingH = 34;    // panel heading
+constexpr int kColHeadH = 24;    // angle above each column
+constexpr int kRowLabelW = 110;  // method name left of each row
+constexpr int kCellW = 190;
+constexpr int kPlotH = 132;          // curve area at the top of a cell
+constexpr int kCellH = kPlotH + 22;  // plus one line of numbers
+constexpr int kPanelGap = 18;
+constexpr double kPlotPad = 8.0;
+constexpr const char* kFont = "DejaVu Sans";
 
+struct Rgb {
+  double r, g, b;
+};
+constexpr Rgb kInk{0.13, 0.13, 0.13};
+constexpr Rgb kMuted{0.40, 0.40, 0.40};
+constexpr Rgb kRest{0.78, 0.78, 0.78};  // the line before the warp
+constexpr Rgb kFrame{0.82, 0.82, 0.82};
+constexpr Rgb kAlarm{0.70, 0.08, 0.08};  // a non-zero crossing count
+
+Rgb colour(math::WarpMethod m) {
+  switch (m) {
+    case math::WarpMethod::twister:
+      return {0xc0 / 255.0, 0x39 / 255.0, 0x2b / 255.0};
+    case math::WarpMethod::rottran:
+      return {0x24 / 255.0, 0x71 / 255.0, 0xa3 / 255.0};
+    case math::WarpMethod::scodef:
+      return {0x1e / 255.0, 0x84 / 255.0, 0x49 / 255.0};
+  }
+  return kInk;
+}
+
+const char* method_note(math::WarpMethod m) {
+  switch (m) {
+    case math::WarpMethod::twister:
+      return "screw motion";
+    case math::WarpMethod::rottran:
+      return "rotate, translate";
+    case math::WarpMethod::scodef:
+      return "point constraints";
+  }
+  return "";
+}
+
+std::string degrees(double v, const char* fmt) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, fmt, std::abs(v));
+  // A typographic minus: the picture is read, not parsed.
+  return (v < 0 ? std::string("\u2212") : std::string()) + buf + "\u00b0";
+}
+
+enum class Align { left, centre };
+
+// Draws text and records it, so the SVG can carry every label as text as well.
+class Painter {
+ public:
+  Painter(cairo_t* cr, std::vector<std::string>& texts) : cr_(cr), texts_(texts) {}
+  cairo_t* cr() const { return cr_; }
+
+  // (x, y) is the baseline start (left) or the baseline centre (centre).
+  double text(double x, double y, const std::string& s, double size, bool bold, Rgb c,
+              Align align = Align::left) {
+    cairo_select_font_face(cr_, kFont, CAIRO_FONT_SLANT_NORMAL,
+                           bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr_, size);
+    cairo_text_extents_t ext;
+    cairo_text_extents(cr_, s.c_str(), &ext);
+    cairo_set_source_rgb(cr_, c.r, c.g, c.b);
+    cairo_move_to(cr_, align == Align::centre ? x - ext.x_advance / 2.0 : x, y);
+    cairo_show_text(cr_, s.c_str());
+    texts_.push_back(s);
+    return ext.x_advance;
+  }
+
+  void line(double x0, double y0, double x1, double y1, Rgb c, double width) {
+    cairo_set_source_rgb(cr_, c.r, c.g, c.b);
+    cairo_set_line_width(cr_, width);
+    cairo_move_to(cr_, x0, y0);
+    cairo_line_to(cr_, x1, y1);
+    cairo_stroke(cr_);
+  }
+
+  // Grab point at rest: a hollow ring; held by the hand: a dark dot.
+  void grab(double x, double y, bool held) {
+    cairo_new_sub_path(cr_);
+    cairo_arc(cr_, x, y, 3.5, 0.0, 2.0 * std::numbers::pi);
+    if (held) {
+      cairo_set_source_rgb(cr_, kInk.r, kInk.g, kInk.b);
+      cairo_fill_preserve(cr_);
+      cairo_set_source_rgb(cr_, 1.0, 1.0, 1.0);
+      cairo_set_line_width(cr_, 1.0);
+    } else {
+      cairo_set_source_rgb(cr_, 0.55, 0.55, 0.55);
+      cairo_set_line_width(cr_, 1.3);
+    }
+    cairo_stroke(cr_);
+  }
+
+ private:
+  cairo_t* cr_;
+  std::vector<std::string>& texts_;
+};
+
+std::vector<math::WarpMethod> methods_of(const Figure8Panel& p) {
+  std::vector<math::WarpMethod> out;
+  for (const auto& c : p.curves)
+    if (std::find(out.begin(), out.end(), c.method) == out.end()) out.push_back(c.method);
+  return out;
+}
+
+std::vector<int> angles_of(const Figure8Panel& p) {
+  std::vector<int> out;
+  for (const auto& c : p.curves)
+    if (std::find(out.begin(), out.end(), c.angle_deg) == out.end()) out.push_back(c.angle_deg);
+  return out;
+}
+
+// Rows and columns of the picture: the largest counts of any panel.
 struct Grid {
-  std::vector<math::WarpMethod> rows;
-  std::vector<int> cols;
-  glm::dvec2 lo{std::numeric_limits<double>::max()}, hi{-std::numeric_limits<double>::max()};
+  std::size_t rows = 0, cols = 0;
+  explicit Grid(const Figure8Picture& pic) {
+    for (const auto& panel : pic.panels) {
+      rows = std::max(rows, methods_of(panel).size());
+      cols = std::max(cols, angles_of(panel).size());
+    }
+  }
+};
 
-  explicit Grid(const std::vector<Figure8Curve>& curves) {
-    for (const auto& c : curves) {
-      if (std::find(rows.begin(), rows.end(), c.method) == rows.end()) rows.push_back(c.method);
-      if (std::find(cols.begin(), cols.end(), c.angle_deg) == cols.end())
-        cols.push_back(c.angle_deg);
+// The one scale shared by the cells of a panel. Panels differ in scale because the
+// small displacement bends the line further out of its rest place (r = 1).
+struct PanelScale {
+  glm::dvec2 mid{0.0};
+  double scale = 1.0;  // pixels per scene unit
+
+  explicit PanelScale(const Figure8Panel& panel) {
+    // The line before the warp is drawn too: x in [-1, 1] at y = 0.
+    glm::dvec2 lo(-1.0, 0.0), hi(1.0, 0.0);
+    for (const auto& c : panel.curves) {
       for (const auto& p : c.points) {
         lo = glm::min(lo, p);
         hi = glm::max(hi, p);
       }
     }
+    mid = 0.5 * (lo + hi);
+    const glm::dvec2 span = glm::max(hi - lo, glm::dvec2(1e-9));
+    scale = std::min((kCellW - 2 * kPlotPad) / span.x, (kPlotH - 2 * kPlotPad) / span.y);
   }
-  int row(math::WarpMethod m) const {
-    return static_cast<int>(std::find(rows.begin(), rows.end(), m) - rows.begin());
+  // Scene point -> pixel in the cell whose top-left corner is (x0, y0); y up in the scene.
+  glm::dvec2 map(glm::dvec2 p, double x0, double y0) const {
+    return {x0 + kCellW / 2.0 + (p.x - mid.x) * scale, y0 + kPlotH / 2.0 - (p.y - mid.y) * scale};
   }
-  int col(int a) const {
-    return static_cast<int>(std::find(cols.begin(), cols.end(), a) - cols.begin());
-  }
-  // Cell-local pixel position, y up in the curve, down in the image.
-  glm::dvec2 map(glm::dvec2 p, int r, int c) const {
-    const double span = std::max(hi.x - lo.x, hi.y - lo.y) * (1.0 + 2.0 * kPad);
-    const glm::dvec2 mid = 0.5 * (lo + hi);
-    const double s = kCell / span;
-    return {kLabel + c * kCell + kCell / 2.0 + (p.x - mid.x) * s,
-            kLabel + r * kCell + kCell / 2.0 - (p.y - mid.y) * s};
-  }
-  int width() const { return kLabel + static_cast<int>(cols.size()) * kCell; }
-  int height() const { return kLabel + static_cast<int>(rows.size()) * kCell; }
 };
 
-const char* colour(math::WarpMethod m) {
-  switch (m) {
-    case math::WarpMethod::twister:
-      return "#c0392b";
-    case math::WarpMethod::rottran:
-      return "#2471a3";
-    case math::WarpMethod::scodef:
-      return "#1e8449";
+void draw_legend(Painter& pt, double y) {
+  double x = kMargin;
+  for (const auto m :
+       {math::WarpMethod::twister, math::WarpMethod::rottran, math::WarpMethod::scodef}) {
+    pt.line(x, y - 4.5, x + 26, y - 4.5, colour(m), 2.5);
+    x += 32 + pt.text(x + 32, y, std::string(math::warp_method_name(m)), 13, true, colour(m));
+    x += 22;
   }
-  return "#000000";
+  pt.line(x, y - 4.5, x + 26, y - 4.5, kRest, 1.5);
+  x += 32 + pt.text(x + 32, y, "line before the warp", 13, false, kInk) + 22;
+  pt.grab(x + 5, y - 4.5, false);
+  x += 14 + pt.text(x + 14, y, "grab point at rest", 13, false, kInk) + 22;
+  pt.grab(x + 5, y - 4.5, true);
+  pt.text(x + 14, y, "grab point held by the hand", 13, false, kInk);
 }
 
-std::array<std::uint8_t, 3> rgb(math::WarpMethod m) {
-  unsigned v = 0;
-  std::sscanf(colour(m) + 1, "%x", &v);
-  return {static_cast<std::uint8_t>(v >> 16), static_cast<std::uint8_t>(v >> 8),
-          static_cast<std::uint8_t>(v)};
+void draw_cell(Painter& pt, const PanelScale& panel_scale, const Figure8Panel& panel,
+               const Figure8Curve& c, double x0, double y0) {
+  cairo_t* cr = pt.cr();
+  cairo_set_source_rgb(cr, kFrame.r, kFrame.g, kFrame.b);
+  cairo_set_line_width(cr, 1.0);
+  cairo_rectangle(cr, x0 + 0.5, y0 + 0.5, kCellW, kCellH);
+  cairo_stroke(cr);
+
+  const glm::dvec2 a = panel_scale.map({-1.0, 0.0}, x0, y0),
+                   b = panel_scale.map({1.0, 0.0}, x0, y0);
+  pt.line(a.x, a.y, b.x, b.y, kRest, 1.5);
+
+  const Rgb rgb = colour(c.method);
+  cairo_set_source_rgb(cr, rgb.r, rgb.g, rgb.b);
+  cairo_set_line_width(cr, 1.8);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  // The 2001 points lie about 0.2 px apart: points closer than kMinStepPx to the last
+  // drawn one are skipped (the drawn line stays within that distance of the curve),
+  // which keeps the SVG small. The last point is always drawn.
+  constexpr double kMinStepPx = 0.4;
+  glm::dvec2 last{0.0};
+  for (std::size_t i = 0; i < c.points.size(); ++i) {
+    const glm::dvec2 q = panel_scale.map(c.points[i], x0, y0);
+    if (i == 0) {
+      cairo_move_to(cr, q.x, q.y);
+    } else if (i + 1 == c.points.size() || glm::distance(q, last) >= kMinStepPx) {
+      cairo_line_to(cr, q.x, q.y);
+    } else {
+      continue;
+    }
+    last = q;
+  }
+  cairo_stroke(cr);
+
+  // The grabs sit at x = -0.5 and +0.5; both hands move by (0, lift, 0) (spec §9).
+  for (const double gx : {-0.5, 0.5}) {
+    const glm::dvec2 rest = panel_scale.map({gx, 0.0}, x0, y0);
+    const glm::dvec2 held = panel_scale.map({gx, panel.setup.lift}, x0, y0);
+    pt.grab(rest.x, rest.y, false);
+    pt.grab(held.x, held.y, true);
+  }
+
+  const double ty = y0 + kCellH - 7;
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%zu crossing%s", c.intersections,
+                c.intersections == 1 ? "" : "s");
+  const bool crossed = c.intersections > 0;
+  const double w = pt.text(x0 + 8, ty, buf, 12, crossed, crossed ? kAlarm : kMuted);
+  pt.text(x0 + 8 + w, ty, ", turn " + degrees(c.sharpest_turn_deg, "%.1f"), 12, false, kMuted);
+}
+
+void draw_panel(Painter& pt, const Figure8Panel& panel, double top) {
+  pt.text(kMargin, top + 22, panel.heading, 15, true, kInk);
+  const PanelScale panel_scale(panel);
+  const auto methods = methods_of(panel);
+  const auto angles = angles_of(panel);
+  const double grid_x = kMargin + kRowLabelW, grid_y = top + kHeadingH + kColHeadH;
+  for (std::size_t j = 0; j < angles.size(); ++j) {
+    pt.text(grid_x + static_cast<double>(j) * kCellW + kCellW / 2.0, grid_y - 7,
+            degrees(angles[j], "%.0f"), 14, true, kInk, Align::centre);
+  }
+  for (std::size_t i = 0; i < methods.size(); ++i) {
+    const double cy = grid_y + static_cast<double>(i) * kCellH + kPlotH / 2.0;
+    pt.text(kMargin, cy, std::string(math::warp_method_name(methods[i])), 16, true,
+            colour(methods[i]));
+    pt.text(kMargin, cy + 17, method_note(methods[i]), 11, false, kMuted);
+  }
+  for (const auto& c : panel.curves) {
+    const auto i = std::find(methods.begin(), methods.end(), c.method) - methods.begin();
+    const auto j = std::find(angles.begin(), angles.end(), c.angle_deg) - angles.begin();
+    draw_cell(pt, panel_scale, panel, c, grid_x + static_cast<double>(j) * kCellW,
+              grid_y + static_cast<double>(i) * kCellH);
+  }
+}
+
+// The one drawing routine behind both files.
+void draw(cairo_t* cr, const Figure8Picture& pic, std::vector<std::string>& texts) {
+  const Grid grid(pic);
+  cairo_set_source_rgb(cr, 1.0, 1.0, 1.0);
+  cairo_paint(cr);
+  cairo_set_antialias(cr, CAIRO_ANTIALIAS_GOOD);
+  Painter pt(cr, texts);
+  pt.text(kMargin, kMargin + 22, pic.title, 22, true, kInk);
+  pt.text(kMargin, kMargin + 48, pic.subtitle, 14, false, kInk);
+  draw_legend(pt, kMargin + 78);
+  double top = kMargin + kTitleH;
+  for (const auto& panel : pic.panels) {
+    draw_panel(pt, panel, top);
+    top += kHeadingH + kColHeadH + static_cast<double>(grid.rows) * kCellH + kPanelGap;
+  }
+}
+
+using SurfacePtr = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
+using ContextPtr = std::unique_ptr<cairo_t, decltype(&cairo_destroy)>;
+
+// Draws onto `surface`; false with a message when cairo reports an error.
+bool render(cairo_surface_t* surface, const Figure8Picture& pic, std::vector<std::string>& texts,
+            std::string& error) {
+  const ContextPtr cr(cairo_create(surface), &cairo_destroy);
+  draw(cr.get(), pic, texts);
+  cairo_status_t st = cairo_status(cr.get());
+  cairo_surface_flush(surface);
+  if (st == CAIRO_STATUS_SUCCESS) st = cairo_surface_status(surface);
+  if (st != CAIRO_STATUS_SUCCESS) error = std::string("cairo: ") + cairo_status_to_string(st);
+  return st == CAIRO_STATUS_SUCCESS;
+}
+
+std::string xml_escape(const std::string& s) {
+  std::string out;
+  for (const char ch : s) {
+    if (ch == '&')
+      out += "&amp;";
+    else if (ch == '<')
+      out += "&lt;";
+    else if (ch == '>')
+      out += "&gt;";
+    else
+      out += ch;
+  }
+  return out;
+}
+
+cairo_status_t append_to_string(void* closure, const unsigned char* data, unsigned int length) {
+  static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+  return CAIRO_STATUS_SUCCESS;
+}
+
+Figure8Size size_of(const Figure8Picture& pic) {
+  const Grid grid(pic);
+  return figure8_picture_size(pic.panels.size(), grid.rows, grid.cols);
 }
 
 }  // namespace
 
-bool write_figure8_svg(const std::string& path, const std::vector<Figure8Curve>& curves,
-                       const std::string& title, std::string& error) {
-  const Grid g(curves);
-  std::ofstream out(path);
+Figure8Size figure8_picture_size(std::size_t panels, std::size_t rows, std::size_t cols) {
+  const int p = static_cast<int>(panels), r = static_cast<int>(rows), c = static_cast<int>(cols);
+  const int panel_h = kHeadingH + kColHeadH + r * kCellH;
+  return {2 * kMargin + kRowLabelW + c * kCellW,
+          2 * kMargin + kTitleH + p * panel_h + std::max(0, p - 1) * kPanelGap};
+}
+
+bool write_figure8_svg(const std::string& path, const Figure8Picture& picture, std::string& error) {
+  const Figure8Size size = size_of(picture);
+  std::string svg;
+  std::vector<std::string> texts;
+  {
+    const SurfacePtr surface(
+        cairo_svg_surface_create_for_stream(&append_to_string, &svg, size.width, size.height),
+        &cairo_surface_destroy);
+    cairo_svg_surface_set_document_unit(surface.get(), CAIRO_SVG_UNIT_PX);
+    if (!render(surface.get(), picture, texts, error)) return false;
+    cairo_surface_finish(surface.get());
+    if (const cairo_status_t st = cairo_surface_status(surface.get()); st != CAIRO_STATUS_SUCCESS) {
+      error = std::string("cairo: ") + cairo_status_to_string(st);
+      return false;
+    }
+  }
+  // cairo draws text as glyph outlines; the labels go in as text too (search, screen readers).
+  const std::size_t open = svg.find("<svg");
+  const std::size_t end = open == std::string::npos ? open : svg.find('>', open);
+  if (end == std::string::npos) {
+    error = "cairo wrote no <svg> element";
+    return false;
+  }
+  std::string meta = "\n<title>" + xml_escape(picture.title) + "</title>\n<desc>";
+  for (const auto& t : texts) meta += xml_escape(t) + "\n";
+  meta += "</desc>";
+  svg.insert(end + 1, meta);
+  std::ofstream out(path, std::ios::binary);
   if (!out) {
     error = "cannot write '" + path + "'";
     return false;
   }
-  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << g.width() << "\" height=\""
-      << g.height() + 20 << "\" font-family=\"sans-serif\" font-size=\"13\">\n"
-      << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-      << "<text x=\"4\" y=\"" << g.height() + 15 << "\">" << title << "</text>\n";
-  for (std::size_t c = 0; c < g.cols.size(); ++c) {
-    out << "<text x=\"" << kLabel + static_cast<int>(c) * kCell + kCell / 2 - 14 << "\" y=\"25\">"
-        << g.cols[c] << "&#176;</text>\n";
-  }
-  for (std::size_t r = 0; r < g.rows.size(); ++r) {
-    const int y = kLabel + static_cast<int>(r) * kCell + kCell / 2;
-    out << "<text x=\"4\" y=\"" << y << "\" transform=\"rotate(-90 14 " << y << ")\">"
-        << math::warp_method_name(g.rows[r]) << "</text>\n";
-  }
-  for (const auto& cur : curves) {
-    const int r = g.row(cur.method), c = g.col(cur.angle_deg);
-    out << "<rect x=\"" << kLabel + c * kCell << "\" y=\"" << kLabel + r * kCell << "\" width=\""
-        << kCell << "\" height=\"" << kCell << "\" fill=\"none\" stroke=\"#cccccc\"/>\n";
-    out << "<polyline fill=\"none\" stroke=\"" << colour(cur.method)
-        << "\" stroke-width=\"1.5\" points=\"";
-    char buf[64];
-    for (const auto& p : cur.points) {
-      const glm::dvec2 q = g.map(p, r, c);
-      std::snprintf(buf, sizeof buf, "%.1f,%.1f ", q.x, q.y);
-      out << buf;
-    }
-    out << "\"/>\n<text x=\"" << kLabel + c * kCell + 4 << "\" y=\"" << kLabel + (r + 1) * kCell - 6
-        << "\" font-size=\"11\">" << cur.intersections << " x, "
-        << static_cast<int>(std::lround(cur.sharpest_turn_deg)) << "&#176;</text>\n";
-  }
-  out << "</svg>\n";
+  out << svg;
   out.close();
   if (!out) {
     error = "write to '" + path + "' failed";
@@ -121,65 +370,18 @@ bool write_figure8_svg(const std::string& path, const std::vector<Figure8Curve>&
   return true;
 }
 
-bool write_figure8_png(const std::string& path, const std::vector<Figure8Curve>& curves,
-                       std::string& error) {
-  const Grid g(curves);
-  const int w = g.width(), h = g.height();
-  std::vector<std::uint8_t> img(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3, 255);
-  const auto plot = [&](int x, int y, std::array<std::uint8_t, 3> c) {
-    if (x < 0 || y < 0 || x >= w || y >= h) return;
-    std::uint8_t* px = &img[(static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
-                             static_cast<std::size_t>(x)) *
-                            3];
-    px[0] = c[0];
-    px[1] = c[1];
-    px[2] = c[2];
-  };
-  for (int x = kLabel; x < w; x += kCell) {
-    for (int y = kLabel; y < h; ++y) plot(x, y, {200, 200, 200});
-  }
-  for (int y = kLabel; y < h; y += kCell) {
-    for (int x = kLabel; x < w; ++x) plot(x, y, {200, 200, 200});
-  }
-  for (const auto& cur : curves) {
-    const int r = g.row(cur.method), c = g.col(cur.angle_deg);
-    const auto col = rgb(cur.method);
-    for (std::size_t i = 0; i + 1 < cur.points.size(); ++i) {
-      const glm::dvec2 a = g.map(cur.points[i], r, c), b = g.map(cur.points[i + 1], r, c);
-      const int steps = std::max(1, static_cast<int>(std::ceil(glm::length(b - a) * 2.0)));
-      for (int s = 0; s <= steps; ++s) {
-        const glm::dvec2 p = a + (b - a) * (static_cast<double>(s) / steps);
-        const int px = static_cast<int>(std::lround(p.x)), py = static_cast<int>(std::lround(p.y));
-        plot(px, py, col);
-        plot(px + 1, py, col);
-        plot(px, py + 1, col);
-      }
-    }
-  }
-  FILE* f = std::fopen(path.c_str(), "wb");
-  if (f == nullptr) {
-    error = "cannot write '" + path + "'";
+bool write_figure8_png(const std::string& path, const Figure8Picture& picture, std::string& error) {
+  const Figure8Size size = size_of(picture);
+  const SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, size.width, size.height),
+                           &cairo_surface_destroy);
+  std::vector<std::string> texts;
+  if (!render(surface.get(), picture, texts, error)) return false;
+  if (const cairo_status_t st = cairo_surface_write_to_png(surface.get(), path.c_str());
+      st != CAIRO_STATUS_SUCCESS) {
+    error = "cannot write '" + path + "': " + cairo_status_to_string(st);
     return false;
   }
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-  png_infop info = png != nullptr ? png_create_info_struct(png) : nullptr;
-  if (png == nullptr || info == nullptr || setjmp(png_jmpbuf(png))) {
-    png_destroy_write_struct(&png, &info);
-    std::fclose(f);
-    error = "libpng failed writing '" + path + "'";
-    return false;
-  }
-  png_init_io(png, f);
-  png_set_IHDR(png, info, static_cast<png_uint_32>(w), static_cast<png_uint_32>(h), 8,
-               PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
-               PNG_FILTER_TYPE_DEFAULT);
-  png_write_info(png, info);
-  for (int y = 0; y < h; ++y) {
-    png_write_row(png, &img[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) * 3]);
-  }
-  png_write_end(png, nullptr);
-  png_destroy_write_struct(&png, &info);
-  return std::fclose(f) == 0;
+  return true;
 }
 
 }  // namespace twister::cli

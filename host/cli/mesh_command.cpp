@@ -21,8 +21,10 @@ struct Options {
 
 void run_mesh(const Options& o) {
   const bool grid = o.shape == "grid";
-  const std::size_t vertices = grid ? meshio::grid_vertices(o.n) : meshio::sphere_vertices(o.n, o.segments);
-  const std::size_t triangles = grid ? meshio::grid_triangles(o.n) : meshio::sphere_triangles(o.n, o.segments);
+  const std::size_t vertices =
+      grid ? meshio::grid_vertices(o.n) : meshio::sphere_vertices(o.n, o.segments);
+  const std::size_t triangles =
+      grid ? meshio::grid_triangles(o.n) : meshio::sphere_triangles(o.n, o.segments);
   meshio::MeshBuffer buffer(vertices, triangles);
   const Status s = grid ? meshio::make_grid(buffer.mesh(), o.n, o.size_m)
                         : meshio::make_sphere(buffer.mesh(), o.n, o.segments, o.size_m);

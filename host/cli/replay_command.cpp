@@ -5,12 +5,11 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <glm/mat3x3.hpp>
 #include <iterator>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <glm/mat3x3.hpp>
 
 #include "cli_exit.hpp"
 #include "twister/input/sculpt_session.hpp"
@@ -77,7 +76,8 @@ void to_world(mesh::Mesh& m, const math::Frame& pose) {
 void run_replay(const Options& o) {
   meshio::ObjLoad loaded = meshio::load_obj(o.mesh_in);
   if (!loaded.status.ok()) fail(kExitBadInput, o.mesh_in + ": " + loaded.message);
-  if (!loaded.message.empty() && !o.quiet) std::fprintf(stderr, "twister replay: %s\n", loaded.message.c_str());
+  if (!loaded.message.empty() && !o.quiet)
+    std::fprintf(stderr, "twister replay: %s\n", loaded.message.c_str());
   mesh::Mesh& mesh = loaded.buffer->mesh();
 
   ReadOnlyStorage storage(read_file(o.journal));
@@ -90,7 +90,8 @@ void run_replay(const Options& o) {
   std::vector<std::uint32_t> plan_indices(n);
   std::vector<input::VertexChange> changes(o.undo_changes);
   std::vector<input::UndoEntry> entries(std::max<std::size_t>(o.undo_entries, 1));
-  input::SculptStorage work{lx, ly, lz, math::WarpPlanStorage{plan_indices, w1, w2}, changes, entries};
+  input::SculptStorage work{lx,      ly,     lz, math::WarpPlanStorage{plan_indices, w1, w2},
+                            changes, entries};
   input::SculptSession session(input::SculptSessionConfig{}, mesh, work, nullptr);
 
   // Progress for long journals: a line per 10% of the file, on stderr.
@@ -100,7 +101,9 @@ void run_replay(const Options& o) {
   for (;;) {
     auto record = reader.next();
     if (!record.ok()) {
-      if (record.status().code() == StatusCode::unavailable || record.status().code() == StatusCode::data_loss) break;
+      if (record.status().code() == StatusCode::unavailable ||
+          record.status().code() == StatusCode::data_loss)
+        break;
       fail(kExitFailure, "reading '" + o.journal + "': " + record.status().name());
     }
     const Status s = session.apply_record(*record);
@@ -144,7 +147,8 @@ void add_replay_command(CLI::App& app) {
   auto options = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
       "replay", "Apply a station's stroke journal to a mesh (same or finer) and write the result");
-  cmd->add_option("journal", options->journal, "Journal file written by twister-station")->required();
+  cmd->add_option("journal", options->journal, "Journal file written by twister-station")
+      ->required();
   cmd->add_option("--mesh", options->mesh_in, "Initial mesh (OBJ)")->required();
   cmd->add_option("--out", options->mesh_out, "Output mesh (OBJ)")->required();
   cmd->add_option("--undo-changes", options->undo_changes,
@@ -154,7 +158,8 @@ void add_replay_command(CLI::App& app) {
                   "Undo history size in strokes (must match the station's)")
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--world", options->world, "Write world coordinates (apply the object pose)");
-  cmd->add_flag("--progress", options->progress, "Always print progress (default: journals > 64 KiB)");
+  cmd->add_flag("--progress", options->progress,
+                "Always print progress (default: journals > 64 KiB)");
   cmd->add_flag("-q,--quiet", options->quiet, "No progress or warnings on stderr");
   cmd->callback([options] { run_replay(*options); });
 }

@@ -1,13 +1,13 @@
 #include "twister/meshio/obj_file.hpp"
 
+#include <tiny_obj_loader.h>
+
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <limits>
 #include <sstream>
-
-#include <tiny_obj_loader.h>
 
 namespace twister::meshio {
 namespace {
@@ -26,14 +26,17 @@ std::string check_positions(std::string_view text) {
     int count = 0;
     std::size_t pos = 1;
     for (;;) {
-      while (pos < line.size() && (line[pos] == ' ' || line[pos] == '\t' || line[pos] == '\r')) ++pos;
+      while (pos < line.size() && (line[pos] == ' ' || line[pos] == '\t' || line[pos] == '\r'))
+        ++pos;
       if (pos >= line.size()) break;
       float value = 0.0f;
       const auto [next, ec] = std::from_chars(line.data() + pos, line.data() + line.size(), value);
-      const bool separated = next == line.data() + line.size() || *next == ' ' || *next == '\t' || *next == '\r';
+      const bool separated =
+          next == line.data() + line.size() || *next == ' ' || *next == '\t' || *next == '\r';
       if (ec != std::errc() || !separated || !std::isfinite(value)) {
         return "line " + std::to_string(line_no) + ": vertex coordinate '" +
-               std::string(line.substr(pos, static_cast<std::size_t>(next - line.data()) - pos + 1)) +
+               std::string(
+                   line.substr(pos, static_cast<std::size_t>(next - line.data()) - pos + 1)) +
                "' is not a finite number";
       }
       pos = static_cast<std::size_t>(next - line.data());

@@ -47,7 +47,8 @@ class FakeStorageWithStorage final : public ports::Storage {
   Result<std::size_t> do_read_at(std::uint64_t offset, std::span<std::byte> dest) override {
     if (!powered_) return StatusCode::io_error;
     if (offset >= size_) return std::size_t{0};
-    const std::size_t n = std::min<std::size_t>(dest.size(), size_ - static_cast<std::size_t>(offset));
+    const std::size_t n =
+        std::min<std::size_t>(dest.size(), size_ - static_cast<std::size_t>(offset));
     std::memcpy(dest.data(), data_.data() + offset, n);
     return n;
   }

@@ -47,8 +47,10 @@ TEST(MeshIo, BadFilesAreClearErrors) {
   const ObjLoad nan = parse_obj("v 1 0 0\nv 0 0 nan\nv 0 1 0\nf 1 2 3\n");
   EXPECT_EQ(nan.status.code(), StatusCode::invalid_argument);
   EXPECT_NE(nan.message.find("line 2"), std::string::npos) << nan.message;
-  EXPECT_EQ(parse_obj("v 1 0\nv 0 0 0\nv 0 1 0\nf 1 2 3\n").status.code(), StatusCode::invalid_argument);
-  EXPECT_EQ(parse_obj("v 1 0 0x\nv 0 0 0\nv 0 1 0\nf 1 2 3\n").status.code(), StatusCode::invalid_argument);
+  EXPECT_EQ(parse_obj("v 1 0\nv 0 0 0\nv 0 1 0\nf 1 2 3\n").status.code(),
+            StatusCode::invalid_argument);
+  EXPECT_EQ(parse_obj("v 1 0 0x\nv 0 0 0\nv 0 1 0\nf 1 2 3\n").status.code(),
+            StatusCode::invalid_argument);
   EXPECT_EQ(load_obj("/nonexistent/file.obj").status.code(), StatusCode::io_error);
 }
 

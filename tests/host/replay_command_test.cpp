@@ -2,15 +2,14 @@
 // replayed by the CLI onto the same mesh (bit-identical checksum) and onto a finer
 // one (same strokes), with progress output and clear errors.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
-
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "core/input/session_harness.hpp"
 #include "twister/meshio/mesh_generator.hpp"
@@ -80,17 +79,20 @@ TEST_F(ReplayCommand, SameMeshBitIdenticalAndFinerMeshSameStrokes) {
   ASSERT_TRUE(meshio::save_obj(dir_ / "initial.obj", initial.mesh(), message).ok());
   ASSERT_EQ(run("mesh grid -n 33 --size 1 --out " + (dir_ / "fine.obj").string()).exit_code, 0);
 
-  const CliRun same = run("replay " + (dir_ / "j.twj").string() + " --mesh " +
-                       (dir_ / "initial.obj").string() + " --out " + (dir_ / "out.obj").string());
+  const CliRun same =
+      run("replay " + (dir_ / "j.twj").string() + " --mesh " + (dir_ / "initial.obj").string() +
+          " --out " + (dir_ / "out.obj").string());
   ASSERT_EQ(same.exit_code, 0) << same.out;
   EXPECT_NE(same.out.find("replayed 6 records (strokes 5, moves 0, undos 1, redos 0)"),
-            std::string::npos) << same.out;
+            std::string::npos)
+      << same.out;
   const meshio::ObjLoad out = meshio::load_obj(dir_ / "out.obj");
   ASSERT_TRUE(out.status.ok()) << out.message;
   EXPECT_EQ(out.buffer->mesh().checksum(), live.mesh.checksum());
 
-  const CliRun fine = run("replay " + (dir_ / "j.twj").string() + " --mesh " +
-                       (dir_ / "fine.obj").string() + " --out " + (dir_ / "fine_out.obj").string());
+  const CliRun fine =
+      run("replay " + (dir_ / "j.twj").string() + " --mesh " + (dir_ / "fine.obj").string() +
+          " --out " + (dir_ / "fine_out.obj").string());
   ASSERT_EQ(fine.exit_code, 0) << fine.out;
   const meshio::ObjLoad f = meshio::load_obj(dir_ / "fine_out.obj");
   ASSERT_TRUE(f.status.ok());
@@ -116,7 +118,7 @@ TEST_F(ReplayCommand, LongJournalShowsProgressAndTornTailIsReported) {
   std::string message;
   ASSERT_TRUE(meshio::save_obj(dir_ / "initial.obj", initial.mesh(), message).ok());
   const CliRun r = run("replay " + (dir_ / "long.twj").string() + " --mesh " +
-                    (dir_ / "initial.obj").string() + " --out " + (dir_ / "out.obj").string());
+                       (dir_ / "initial.obj").string() + " --out " + (dir_ / "out.obj").string());
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("twister replay:  50% ("), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("torn_record tail"), std::string::npos) << r.out;
@@ -130,12 +132,13 @@ TEST_F(ReplayCommand, BadInputsExitTwo) {
   ASSERT_TRUE(meshio::make_grid(initial.mesh(), 3, 1.0f).ok());
   std::string message;
   ASSERT_TRUE(meshio::save_obj(dir_ / "ok.obj", initial.mesh(), message).ok());
-  const CliRun not_journal = run("replay " + (dir_ / "not_a_journal").string() + " --mesh " +
-                              (dir_ / "ok.obj").string() + " --out " + (dir_ / "o.obj").string());
+  const CliRun not_journal =
+      run("replay " + (dir_ / "not_a_journal").string() + " --mesh " + (dir_ / "ok.obj").string() +
+          " --out " + (dir_ / "o.obj").string());
   EXPECT_EQ(not_journal.exit_code, 2);
   EXPECT_NE(not_journal.out.find("not a Twister journal"), std::string::npos);
   const CliRun bad_mesh = run("replay " + (dir_ / "not_a_journal").string() + " --mesh " +
-                           (dir_ / "bad.obj").string() + " --out " + (dir_ / "o.obj").string());
+                              (dir_ / "bad.obj").string() + " --out " + (dir_ / "o.obj").string());
   EXPECT_EQ(bad_mesh.exit_code, 2);
   EXPECT_EQ(run("replay").exit_code, 2);
   EXPECT_FALSE(fs::exists(dir_ / "o.obj"));

@@ -6,8 +6,8 @@ namespace twister::input {
 
 ButtonDebouncer::ButtonDebouncer(const ButtonDebouncerConfig& config)
     : config_(config),
-      line_count_(static_cast<std::uint8_t>(
-          std::min<std::size_t>(config.line_count, kMaxButtonLines))) {}
+      line_count_(
+          static_cast<std::uint8_t>(std::min<std::size_t>(config.line_count, kMaxButtonLines))) {}
 
 Status ButtonDebouncer::feed(const ports::ButtonEdge& edge) {
   if (edge.line >= line_count_) return StatusCode::out_of_range;

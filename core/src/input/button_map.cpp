@@ -24,17 +24,25 @@ ButtonBinding ButtonMap::binding(std::uint8_t line) const {
   return lines_[line];
 }
 
-void ButtonMap::apply(const ButtonEvent& event,
-                      std::array<HandButtons, kHandCount>& levels) const {
+void ButtonMap::apply(const ButtonEvent& event, std::array<HandButtons, kHandCount>& levels) const {
   const ButtonBinding b = binding(event.line);
   if (b.hand >= kHandCount) return;
   HandButtons& h = levels[b.hand];
   switch (b.role) {
-    case ButtonRole::none: return;
-    case ButtonRole::grab: h.grab = event.pressed; return;
-    case ButtonRole::radius: h.radius = event.pressed; return;
-    case ButtonRole::freeze: h.freeze = event.pressed; return;
-    case ButtonRole::move_object: h.move_object = event.pressed; return;
+    case ButtonRole::none:
+      return;
+    case ButtonRole::grab:
+      h.grab = event.pressed;
+      return;
+    case ButtonRole::radius:
+      h.radius = event.pressed;
+      return;
+    case ButtonRole::freeze:
+      h.freeze = event.pressed;
+      return;
+    case ButtonRole::move_object:
+      h.move_object = event.pressed;
+      return;
   }
 }
 

@@ -1,7 +1,6 @@
 #include "twister/input/interaction_machine.hpp"
 
 #include <algorithm>
-
 #include <glm/geometric.hpp>
 
 #include "twister/base/assert.hpp"
@@ -10,33 +9,54 @@ namespace twister::input {
 
 const char* action_kind_name(ActionKind kind) {
   switch (kind) {
-    case ActionKind::grab_begin: return "grab_begin";
-    case ActionKind::freeze: return "freeze";
-    case ActionKind::commit: return "commit";
-    case ActionKind::cancel: return "cancel";
-    case ActionKind::tracking_lost: return "tracking_lost";
-    case ActionKind::tracking_resumed: return "tracking_resumed";
-    case ActionKind::move_begin: return "move_begin";
-    case ActionKind::move_commit: return "move_commit";
-    case ActionKind::move_cancel: return "move_cancel";
-    case ActionKind::radius_begin: return "radius_begin";
-    case ActionKind::radius_change: return "radius_change";
-    case ActionKind::radius_end: return "radius_end";
-    case ActionKind::refused: return "refused";
+    case ActionKind::grab_begin:
+      return "grab_begin";
+    case ActionKind::freeze:
+      return "freeze";
+    case ActionKind::commit:
+      return "commit";
+    case ActionKind::cancel:
+      return "cancel";
+    case ActionKind::tracking_lost:
+      return "tracking_lost";
+    case ActionKind::tracking_resumed:
+      return "tracking_resumed";
+    case ActionKind::move_begin:
+      return "move_begin";
+    case ActionKind::move_commit:
+      return "move_commit";
+    case ActionKind::move_cancel:
+      return "move_cancel";
+    case ActionKind::radius_begin:
+      return "radius_begin";
+    case ActionKind::radius_change:
+      return "radius_change";
+    case ActionKind::radius_end:
+      return "radius_end";
+    case ActionKind::refused:
+      return "refused";
   }
   return "unknown";
 }
 
 const char* reason_name(Reason reason) {
   switch (reason) {
-    case Reason::none: return "none";
-    case Reason::released: return "released";
-    case Reason::tracking_timeout: return "tracking_timeout";
-    case Reason::no_tracking: return "no_tracking";
-    case Reason::same_point: return "same_point";
-    case Reason::hand_busy: return "hand_busy";
-    case Reason::object_busy: return "object_busy";
-    case Reason::hands_too_close: return "hands_too_close";
+    case Reason::none:
+      return "none";
+    case Reason::released:
+      return "released";
+    case Reason::tracking_timeout:
+      return "tracking_timeout";
+    case Reason::no_tracking:
+      return "no_tracking";
+    case Reason::same_point:
+      return "same_point";
+    case Reason::hand_busy:
+      return "hand_busy";
+    case Reason::object_busy:
+      return "object_busy";
+    case Reason::hands_too_close:
+      return "hands_too_close";
   }
   return "unknown";
 }
@@ -168,8 +188,7 @@ void InteractionMachine::step_radius(const InteractionInputs& inputs, ActionList
   const bool both_held = a.buttons.radius && b.buttons.radius;
   // The radius is locked while a stroke or move is active: the stroke's weights
   // were computed with it.
-  const bool both_idle =
-      hands_[0].state == HandState::idle && hands_[1].state == HandState::idle;
+  const bool both_idle = hands_[0].state == HandState::idle && hands_[1].state == HandState::idle;
 
   if (!both_held || !both_idle) {
     if (radius_ == RadiusGesture::active) {

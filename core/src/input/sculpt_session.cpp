@@ -1,7 +1,6 @@
 #include "twister/input/sculpt_session.hpp"
 
 #include <bit>
-
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 
@@ -13,10 +12,14 @@ glm::dmat3 axes(const math::Frame& f) { return glm::dmat3(f.u, f.v, f.w); }
 
 SessionEventKind event_for(ActionKind kind) {
   switch (kind) {
-    case ActionKind::tracking_lost: return SessionEventKind::tracking_lost;
-    case ActionKind::tracking_resumed: return SessionEventKind::tracking_resumed;
-    case ActionKind::refused: return SessionEventKind::refused;
-    default: return SessionEventKind::radius_changed;
+    case ActionKind::tracking_lost:
+      return SessionEventKind::tracking_lost;
+    case ActionKind::tracking_resumed:
+      return SessionEventKind::tracking_resumed;
+    case ActionKind::refused:
+      return SessionEventKind::refused;
+    default:
+      return SessionEventKind::radius_changed;
   }
 }
 
@@ -24,20 +27,34 @@ SessionEventKind event_for(ActionKind kind) {
 
 const char* session_event_kind_name(SessionEventKind kind) {
   switch (kind) {
-    case SessionEventKind::grab_begin: return "grab_begin";
-    case SessionEventKind::committed: return "committed";
-    case SessionEventKind::cancelled: return "cancelled";
-    case SessionEventKind::tracking_lost: return "tracking_lost";
-    case SessionEventKind::tracking_resumed: return "tracking_resumed";
-    case SessionEventKind::refused: return "refused";
-    case SessionEventKind::radius_changed: return "radius_changed";
-    case SessionEventKind::move_begin: return "move_begin";
-    case SessionEventKind::move_committed: return "move_committed";
-    case SessionEventKind::move_cancelled: return "move_cancelled";
-    case SessionEventKind::undone: return "undone";
-    case SessionEventKind::redone: return "redone";
-    case SessionEventKind::journal_failed: return "journal_failed";
-    case SessionEventKind::history_overflow: return "history_overflow";
+    case SessionEventKind::grab_begin:
+      return "grab_begin";
+    case SessionEventKind::committed:
+      return "committed";
+    case SessionEventKind::cancelled:
+      return "cancelled";
+    case SessionEventKind::tracking_lost:
+      return "tracking_lost";
+    case SessionEventKind::tracking_resumed:
+      return "tracking_resumed";
+    case SessionEventKind::refused:
+      return "refused";
+    case SessionEventKind::radius_changed:
+      return "radius_changed";
+    case SessionEventKind::move_begin:
+      return "move_begin";
+    case SessionEventKind::move_committed:
+      return "move_committed";
+    case SessionEventKind::move_cancelled:
+      return "move_cancelled";
+    case SessionEventKind::undone:
+      return "undone";
+    case SessionEventKind::redone:
+      return "redone";
+    case SessionEventKind::journal_failed:
+      return "journal_failed";
+    case SessionEventKind::history_overflow:
+      return "history_overflow";
   }
   return "unknown";
 }
@@ -127,7 +144,8 @@ Status SculptSession::begin_segment(std::uint8_t hand_mask, SessionEvents& out) 
   std::array<math::Frame, 2> frames{};
   const std::size_t n = plan_frames(frames);
   stroke_radius_m_ = static_cast<double>(machine_.radius_m());
-  const Status s = plan_.build(rest(), std::span(frames).first(n), stroke_radius_m_, config_.method);
+  const Status s =
+      plan_.build(rest(), std::span(frames).first(n), stroke_radius_m_, config_.method);
   if (!s.ok()) {
     stroke_mask_ = 0;
     plan_.reset();
@@ -199,7 +217,8 @@ void SculptSession::commit_segment(std::uint8_t hand, Reason reason, SessionEven
 
 void SculptSession::end_hands(std::uint8_t mask, Status status, SessionEvents& out) {
   for (std::uint8_t h = 0; h < kHandCount; ++h) {
-    if ((mask & (1u << h)) != 0) out.push({SessionEventKind::cancelled, h, Reason::none, status, 0});
+    if ((mask & (1u << h)) != 0)
+      out.push({SessionEventKind::cancelled, h, Reason::none, status, 0});
   }
 }
 

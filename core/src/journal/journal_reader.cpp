@@ -31,12 +31,18 @@ Status read_exact(ports::Storage& storage, std::uint64_t offset, std::span<std::
 
 const char* tail_problem_name(TailProblem problem) {
   switch (problem) {
-    case TailProblem::none: return "none";
-    case TailProblem::torn_header: return "torn_header";
-    case TailProblem::torn_record: return "torn_record";
-    case TailProblem::bad_length: return "bad_length";
-    case TailProblem::bad_crc: return "bad_crc";
-    case TailProblem::bad_payload: return "bad_payload";
+    case TailProblem::none:
+      return "none";
+    case TailProblem::torn_header:
+      return "torn_header";
+    case TailProblem::torn_record:
+      return "torn_record";
+    case TailProblem::bad_length:
+      return "bad_length";
+    case TailProblem::bad_crc:
+      return "bad_crc";
+    case TailProblem::bad_payload:
+      return "bad_payload";
   }
   return "unknown";
 }
@@ -50,12 +56,14 @@ Status JournalReader::open() {
     opened_ = true;
     return OkStatus();
   }
-  const std::size_t header = static_cast<std::size_t>(std::min<std::uint64_t>(file_size_, kFileHeaderBytes));
+  const std::size_t header =
+      static_cast<std::size_t>(std::min<std::uint64_t>(file_size_, kFileHeaderBytes));
   TWISTER_TRY(read_exact(storage_, 0, std::span(buffer_).first(header)));
   // A file that is a prefix of a header is a header torn by a power cut at creation.
   std::array<std::byte, kFileHeaderBytes> expected{};
   std::memcpy(expected.data(), kFileMagic.data(), kFileMagic.size());
-  for (std::size_t i = 0; i < 4; ++i) expected[4 + i] = std::byte(static_cast<std::uint8_t>(kFileVersion >> (8 * i)));
+  for (std::size_t i = 0; i < 4; ++i)
+    expected[4 + i] = std::byte(static_cast<std::uint8_t>(kFileVersion >> (8 * i)));
   if (std::memcmp(buffer_.data(), expected.data(), header) != 0) return StatusCode::data_loss;
   opened_ = true;
   if (header < kFileHeaderBytes) {
@@ -84,15 +92,16 @@ Result<JournalRecord> JournalReader::next() {
   }
   const std::size_t total = kRecordHeaderBytes + payload + kRecordCrcBytes;
   if (left < total) return fail(TailProblem::torn_record);
-  TWISTER_TRY(read_exact(storage_, good_end_ + kRecordHeaderBytes,
-                         std::span(buffer_).subspan(kRecordHeaderBytes, payload + kRecordCrcBytes)));
+  TWISTER_TRY(
+      read_exact(storage_, good_end_ + kRecordHeaderBytes,
+                 std::span(buffer_).subspan(kRecordHeaderBytes, payload + kRecordCrcBytes)));
   const std::size_t body = kRecordHeaderBytes + payload;
   if (crc32(std::span(buffer_).first(body)) != load_u32(buffer_.data() + body)) {
     return fail(TailProblem::bad_crc);
   }
-  auto record = decode_payload(static_cast<std::uint8_t>(buffer_[4]),
-                               static_cast<std::uint8_t>(buffer_[5]),
-                               std::span<const std::byte>(buffer_).subspan(kRecordHeaderBytes, payload));
+  auto record =
+      decode_payload(static_cast<std::uint8_t>(buffer_[4]), static_cast<std::uint8_t>(buffer_[5]),
+                     std::span<const std::byte>(buffer_).subspan(kRecordHeaderBytes, payload));
   if (!record.ok()) return fail(TailProblem::bad_payload);
   good_end_ += total;
   return record;

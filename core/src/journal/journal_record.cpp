@@ -9,7 +9,7 @@ namespace twister::journal {
 namespace {
 
 constexpr std::uint8_t kMethodCount = 3;
-constexpr std::size_t kPoseBytes = 9 * 8;
+constexpr std::size_t kPoseBytes = std::size_t{9} * 8;
 constexpr std::size_t kStrokeFixedBytes = 4 + 1 + 1 + 2 + 8;
 constexpr std::size_t kMoveBytes = 4 + 1 + 2 * kPoseBytes;
 constexpr std::size_t kSequenceOnlyBytes = 4;
@@ -23,13 +23,22 @@ class Writer {
   void u16(std::uint16_t v) { uint(v, 2); }
   void u32(std::uint32_t v) { uint(v, 4); }
   void f64(double v) { uint(std::bit_cast<std::uint64_t>(v), 8); }
-  void vec(const glm::dvec3& v) { f64(v.x); f64(v.y); f64(v.z); }
-  void pose(const JournalPose& p) { vec(p.origin_m); vec(p.u); vec(p.v); }
+  void vec(const glm::dvec3& v) {
+    f64(v.x);
+    f64(v.y);
+    f64(v.z);
+  }
+  void pose(const JournalPose& p) {
+    vec(p.origin_m);
+    vec(p.u);
+    vec(p.v);
+  }
   std::size_t pos() const { return pos_; }
 
  private:
   void uint(std::uint64_t v, int bytes) {
-    for (int i = 0; i < bytes; ++i) out_[pos_++] = std::byte(static_cast<std::uint8_t>(v >> (8 * i)));
+    for (int i = 0; i < bytes; ++i)
+      out_[pos_++] = std::byte(static_cast<std::uint8_t>(v >> (8 * i)));
   }
   std::span<std::byte> out_;
   std::size_t pos_ = 0;
@@ -59,7 +68,8 @@ class Reader {
  private:
   std::uint64_t uint(int bytes) {
     std::uint64_t v = 0;
-    for (int i = 0; i < bytes; ++i) v |= std::uint64_t(static_cast<std::uint8_t>(in_[pos_++])) << (8 * i);
+    for (int i = 0; i < bytes; ++i)
+      v |= std::uint64_t(static_cast<std::uint8_t>(in_[pos_++])) << (8 * i);
     return v;
   }
   std::span<const std::byte> in_;
@@ -73,10 +83,13 @@ std::size_t stroke_bytes(std::uint8_t hand_mask) {
 
 std::size_t payload_bytes(const JournalRecord& r) {
   switch (r.type) {
-    case RecordType::stroke: return stroke_bytes(r.stroke.hand_mask);
-    case RecordType::object_move: return kMoveBytes;
+    case RecordType::stroke:
+      return stroke_bytes(r.stroke.hand_mask);
+    case RecordType::object_move:
+      return kMoveBytes;
     case RecordType::undo:
-    case RecordType::redo: return kSequenceOnlyBytes;
+    case RecordType::redo:
+      return kSequenceOnlyBytes;
   }
   return 0;
 }
@@ -153,7 +166,8 @@ Result<JournalRecord> decode_payload(std::uint8_t version, std::uint8_t type,
       }
       r.stroke.chain_step = in.u16();
       r.stroke.radius_m = in.f64();
-      if (!std::isfinite(r.stroke.radius_m) || r.stroke.radius_m <= 0.0) return StatusCode::data_loss;
+      if (!std::isfinite(r.stroke.radius_m) || r.stroke.radius_m <= 0.0)
+        return StatusCode::data_loss;
       for (std::size_t h = 0; h < 2; ++h) {
         if ((r.stroke.hand_mask & (1u << h)) == 0) continue;
         r.stroke.start[h] = in.pose();

@@ -12,6 +12,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -259,9 +260,7 @@ int run(const Options& opt, StationConfig cfg) {
   return flushed.ok() ? kExitOk : kExitFailure;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int station_main(int argc, char** argv) {
   CLI::App app{
       "twister-station: the Twister sculpting station (tracker + buttons -> strokes -> journal)"};
   Options opt;
@@ -305,4 +304,18 @@ int main(int argc, char** argv) {
     return kExitOk;
   }
   return run(opt, parsed.config);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Init-time code (config, loaders, std containers) may throw; nothing may escape.
+  try {
+    return station_main(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "twister-station: fatal: %s\n", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "twister-station: fatal: unknown exception\n");
+  }
+  return kExitFailure;
 }

@@ -199,7 +199,8 @@ RC_GTEST_PROP(InteractionMachineProperty, EveryGrabEndsInExactlyOneCommitOrCance
       if (*rc::gen::inRange(0, 6) == 0) h.buttons.radius = !h.buttons.radius;
       if (*rc::gen::inRange(0, 6) == 0) h.buttons.freeze = !h.buttons.freeze;
       if (*rc::gen::inRange(0, 5) == 0) h.pose_valid = !h.pose_valid;
-      h.position_m = glm::vec3(*rc::gen::inRange(-100, 100), *rc::gen::inRange(-100, 100), 0) * 0.01f;
+      h.position_m =
+          glm::vec3(*rc::gen::inRange(-100, 100), *rc::gen::inRange(-100, 100), 0) * 0.01f;
     }
     now += *rc::gen::inRange<ports::TimestampUs>(0, 2000);
     const ActionList out = m.step(in, now);

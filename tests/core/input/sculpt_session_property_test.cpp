@@ -6,9 +6,8 @@
 
 #include <array>
 #include <cmath>
-#include <random>
-
 #include <glm/common.hpp>
+#include <random>
 
 #include "allocation_counter.hpp"
 #include "session_harness.hpp"

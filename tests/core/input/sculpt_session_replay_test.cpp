@@ -1,12 +1,11 @@
 // Journal replay of SculptSession: bit-identical on the same mesh, same strokes on
 // a finer mesh, power loss at every byte of an append, chain checks.
-#include "twister/input/sculpt_session.hpp"
-
 #include <gtest/gtest.h>
 
 #include <numbers>
 
 #include "session_harness.hpp"
+#include "twister/input/sculpt_session.hpp"
 
 namespace twister::input {
 namespace {
@@ -187,8 +186,12 @@ void check_power_loss_at_every_byte(bool last_is_undo) {
   }
 }
 
-TEST(SculptSessionReplay, PowerLossAtEveryByteOfAStrokeAppend) { check_power_loss_at_every_byte(false); }
-TEST(SculptSessionReplay, PowerLossAtEveryByteOfAnUndoAppend) { check_power_loss_at_every_byte(true); }
+TEST(SculptSessionReplay, PowerLossAtEveryByteOfAStrokeAppend) {
+  check_power_loss_at_every_byte(false);
+}
+TEST(SculptSessionReplay, PowerLossAtEveryByteOfAnUndoAppend) {
+  check_power_loss_at_every_byte(true);
+}
 
 TEST(SculptSessionReplay, FreezeStepWithoutItsChainIsRejected) {
   Station s(17, test_config(), false);

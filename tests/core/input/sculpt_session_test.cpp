@@ -2,9 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include <numbers>
-
 #include <glm/geometric.hpp>
+#include <numbers>
 
 #include "session_harness.hpp"
 
@@ -82,7 +81,7 @@ TEST(SculptSession, UndoIsRefusedDuringAStroke) {
 // is the identity and a screw angle is at most 180 degrees).
 TEST(SculptSession, ThreeFrozen120DegreeStepsMakeA360DegreeTwist) {
   Station s;
-  const std::uint32_t half = nearest_vertex(s.mesh, {0.5f, 0, 0});       // weight 0.5
+  const std::uint32_t half = nearest_vertex(s.mesh, {0.5f, 0, 0});        // weight 0.5
   const std::uint32_t quarter = nearest_vertex(s.mesh, {0.6875f, 0, 0});  // ~0.25
   ASSERT_EQ(s.mesh.position(half), glm::vec3(0.5f, 0, 0));
   const glm::vec3 q0 = s.mesh.position(quarter);
@@ -222,6 +221,22 @@ TEST(SculptSession, MoveObjectRigidlyWhileTheOtherHandWarps) {
   ASSERT_TRUE(s.session->undo().ok());  // the warp
   ASSERT_TRUE(s.session->undo().ok());  // the move
   EXPECT_EQ(s.session->object_pose().origin, glm::dvec3(0.0));
+}
+
+TEST(SculptSession, ManyObjectMovesKeepTheObjectFrameOrthonormal) {
+  Station s(9);
+  for (int k = 0; k < 500; ++k) {
+    s.hand(0, z_turn({0.1 * (k % 7), 0.0, 0.0}, 0.0));
+    s.button(kMove0, true);
+    (void)s.tick();
+    const math::Frame f = z_turn({0.1 * (k % 5), 0.2, 0.01 * k}, 0.37 + 0.01 * k);
+    s.hand(0, math::frame_from_uv(f.origin, f.u, glm::normalize(f.v + glm::dvec3(0, 0, 0.3))));
+    (void)s.tick();
+    s.button(kMove0, false);
+    ASSERT_TRUE(has_event(s.tick(), SessionEventKind::move_committed));
+  }
+  EXPECT_TRUE(math::is_orthonormal(s.session->object_pose(), 1e-12));
+  EXPECT_EQ(s.session->next_sequence(), 500u);
 }
 
 TEST(SculptSession, RadiusGestureScalesTheNextStroke) {

@@ -73,7 +73,9 @@ struct Station {
   void button(std::uint8_t line, bool pressed) {
     EXPECT_TRUE(session->feed_button({line, pressed, now_us}).ok());
   }
-  void hand(std::uint8_t h, const math::Frame& f) { EXPECT_TRUE(session->set_hand(h, true, f).ok()); }
+  void hand(std::uint8_t h, const math::Frame& f) {
+    EXPECT_TRUE(session->set_hand(h, true, f).ok());
+  }
   void lose(std::uint8_t h) { (void)session->set_hand(h, false, {}); }
   SessionEvents tick(ports::TimestampUs dt_us = 10'000) {
     now_us += dt_us;

@@ -20,7 +20,8 @@ JournalRecord stroke(std::uint32_t seq) {
   return r;
 }
 
-std::vector<JournalRecord> read_all(test::FakeStorage& storage, JournalReader& reader, Status* end) {
+std::vector<JournalRecord> read_all(test::FakeStorage& storage, JournalReader& reader,
+                                    Status* end) {
   std::vector<JournalRecord> out;
   EXPECT_TRUE(reader.open().ok());
   for (;;) {

@@ -59,8 +59,9 @@ RC_GTEST_PROP(JournalRecordProperty, EncodeDecodeRoundTrips, ()) {
   std::uint32_t payload = 0;
   std::memcpy(&payload, buf.data(), 4);  // little-endian host in CI
   RC_ASSERT(*n == kRecordHeaderBytes + payload + kRecordCrcBytes);
-  const auto back = decode_payload(static_cast<std::uint8_t>(buf[4]), static_cast<std::uint8_t>(buf[5]),
-                                   std::span<const std::byte>(buf).subspan(kRecordHeaderBytes, payload));
+  const auto back =
+      decode_payload(static_cast<std::uint8_t>(buf[4]), static_cast<std::uint8_t>(buf[5]),
+                     std::span<const std::byte>(buf).subspan(kRecordHeaderBytes, payload));
   RC_ASSERT(back.ok());
   RC_ASSERT(*back == r);
 }
@@ -95,13 +96,16 @@ TEST(JournalRecord, RejectsInvalidPayloadsOnDecode) {
   EXPECT_EQ(decode_payload(2, 1, payload).status().code(), StatusCode::data_loss);  // version
   EXPECT_EQ(decode_payload(1, 9, payload).status().code(), StatusCode::data_loss);  // type
   EXPECT_EQ(decode_payload(1, 1, payload.first(payload.size() - 1)).status().code(),
-            StatusCode::data_loss);                                                // length
-  EXPECT_EQ(decode_payload(1, 3, payload).status().code(), StatusCode::data_loss);  // undo is 4 bytes
+            StatusCode::data_loss);  // length
+  EXPECT_EQ(decode_payload(1, 3, payload).status().code(),
+            StatusCode::data_loss);  // undo is 4 bytes
   std::array<std::byte, kMaxRecordBytes> bad = buf;
   bad[kRecordHeaderBytes + 8] = std::byte{0xff};  // radius high byte -> NaN/negative
   bad[kRecordHeaderBytes + 15] = std::byte{0xff};
-  EXPECT_EQ(decode_payload(1, 1, std::span<const std::byte>(bad).subspan(kRecordHeaderBytes, payload.size()))
-                .status().code(),
+  EXPECT_EQ(decode_payload(
+                1, 1, std::span<const std::byte>(bad).subspan(kRecordHeaderBytes, payload.size()))
+                .status()
+                .code(),
             StatusCode::data_loss);
 }
 

@@ -3,6 +3,7 @@
 
 #include <fcntl.h>
 #include <poll.h>
+#include <sys/ioctl.h>
 #include <stdlib.h>
 #include <termios.h>
 #include <unistd.h>
@@ -30,6 +31,25 @@ struct PtyPair {
     master = -1;
   }
   void write(const std::string& s) const { (void)!::write(master, s.data(), s.size()); }
+
+  // Waits (up to timeout_ms) until the slave side's input queue holds at least n
+  // bytes: the PTY hands written bytes to the line discipline asynchronously, so a
+  // test must not assume they are there when write() returns.
+  bool wait_slave_pending(int n, int timeout_ms = 5000) const {
+    const int fd = ::open(slave.c_str(), O_RDONLY | O_NOCTTY | O_NONBLOCK);
+    if (fd < 0) return false;
+    bool ok = false;
+    for (int waited = 0; waited <= timeout_ms; ++waited) {
+      int pending = 0;
+      if (::ioctl(fd, FIONREAD, &pending) == 0 && pending >= n) {
+        ok = true;
+        break;
+      }
+      ::usleep(1000);
+    }
+    ::close(fd);
+    return ok;
+  }
   std::string read_all(int wait_ms = 50) const {
     std::string out;
     pollfd p{master, POLLIN, 0};

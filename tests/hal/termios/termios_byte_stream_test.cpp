@@ -13,11 +13,12 @@
 namespace twister::hal {
 namespace {
 
-std::string read_for(TermiosByteStream& s, int ms) {
+// Reads until `want` bytes arrived or `ms` passed (generous: the machine may be busy).
+std::string read_for(TermiosByteStream& s, std::size_t want, int ms = 5000) {
   std::string out;
   const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(ms);
   std::array<std::byte, 256> buf{};
-  while (std::chrono::steady_clock::now() < end) {
+  while (out.size() < want && std::chrono::steady_clock::now() < end) {
     auto n = s.read(buf);
     if (!n.ok()) break;
     out.append(reinterpret_cast<const char*>(buf.data()), *n);
@@ -37,7 +38,7 @@ TEST(TermiosByteStream, RawBytesBothWays) {
   EXPECT_EQ(*n, 0u);
   const std::string binary("0\x01 \xff\r\n\x13\x11\x00\x19", 10);
   pty.write(binary);
-  EXPECT_EQ(read_for(s, 100), binary);  // no CR/LF mapping, 0xFF not doubled, ^S/^Q passed
+  EXPECT_EQ(read_for(s, binary.size()), binary);  // no CR/LF mapping, 0xFF not doubled, ^S/^Q passed
   const std::string cmd = "O1,2,11,1\r";
   auto w = s.write(std::as_bytes(std::span<const char>(cmd.data(), cmd.size())));
   ASSERT_TRUE(w.ok());
@@ -50,10 +51,11 @@ TEST(TermiosByteStream, DiscardInputDropsPendingBytes) {
   TermiosByteStream s({pty.slave, 19200, FlowControl::rts_cts});
   ASSERT_TRUE(s.reopen().ok());
   pty.write("stale bytes");
-  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_TRUE(pty.wait_slave_pending(11));
   s.discard_input();
   pty.write("fresh");
-  EXPECT_EQ(read_for(s, 50), "fresh");
+  EXPECT_EQ(read_for(s, 5), "fresh");
+  EXPECT_EQ(read_for(s, 1, 50), "");  // nothing stale behind it
 }
 
 TEST(TermiosByteStream, ConfigurationErrors) {
@@ -74,7 +76,7 @@ TEST(TermiosByteStream, HangUpIsDisconnected) {
   TermiosByteStream s({path, 115200, FlowControl::none});
   ASSERT_TRUE(s.reopen().ok());
   pty->write("last");
-  EXPECT_EQ(read_for(s, 30), "last");
+  EXPECT_EQ(read_for(s, 4), "last");
   pty.reset();  // the device side goes away
   std::array<std::byte, 16> buf{};
   auto n = s.read(buf);

@@ -99,10 +99,13 @@ Status to_status(const Result<T>& r) {
 #define TWISTER_CONCAT_(a, b) TWISTER_CONCAT_INNER_(a, b)
 
 // TWISTER_TRY_ASSIGN(lhs, expr): evaluates a Result; on error returns its Status,
-// otherwise assigns the value to lhs (which may be a declaration: `auto x`).
+// otherwise assigns the value to lhs (which may be a declaration: `auto x`, so it
+// cannot be parenthesised).
+// NOLINTBEGIN(bugprone-macro-parentheses)
 #define TWISTER_TRY_ASSIGN(lhs, expr) \
   TWISTER_TRY_ASSIGN_IMPL_(TWISTER_CONCAT_(twister_result_, __LINE__), lhs, expr)
 #define TWISTER_TRY_ASSIGN_IMPL_(tmp, lhs, expr) \
   auto tmp = (expr);                             \
   if (!tmp.ok()) return tmp.status();            \
   lhs = std::move(tmp).value()
+// NOLINTEND(bugprone-macro-parentheses)

@@ -28,9 +28,9 @@ struct ButtonEvent {
 struct ButtonDebouncerConfig {
   std::uint8_t line_count = 6;
   // Debounce interval per line in microseconds (0 = report at the next poll).
-  std::array<ports::TimestampUs, kMaxButtonLines> interval_us{
-      5000, 5000, 5000, 5000, 5000, 5000, 5000, 5000,
-      5000, 5000, 5000, 5000, 5000, 5000, 5000, 5000};
+  std::array<ports::TimestampUs, kMaxButtonLines> interval_us{5000, 5000, 5000, 5000, 5000, 5000,
+                                                              5000, 5000, 5000, 5000, 5000, 5000,
+                                                              5000, 5000, 5000, 5000};
 };
 
 class ButtonDebouncer {
@@ -52,8 +52,8 @@ class ButtonDebouncer {
 
  private:
   struct Line {
-    bool stable = false;        // last reported level
-    bool raw = false;           // latest raw level
+    bool stable = false;  // last reported level
+    bool raw = false;     // latest raw level
     ports::TimestampUs raw_since_us = 0;
   };
   ButtonDebouncerConfig config_;

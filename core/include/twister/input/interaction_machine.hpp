@@ -14,9 +14,8 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <span>
-
 #include <glm/vec3.hpp>
+#include <span>
 
 #include "twister/input/button_map.hpp"
 #include "twister/ports/clock.hpp"
@@ -36,10 +35,10 @@ enum class ActionKind : std::uint8_t {
   move_begin,        // start moving the object rigidly with `hand`
   move_commit,
   move_cancel,
-  radius_begin,      // both radius buttons held: radius follows the hand distance
-  radius_change,     // radius_m holds the new, clamped radius
+  radius_begin,   // both radius buttons held: radius follows the hand distance
+  radius_change,  // radius_m holds the new, clamped radius
   radius_end,
-  refused,           // a press was not accepted; `reason` says why
+  refused,  // a press was not accepted; `reason` says why
 };
 
 enum class Reason : std::uint8_t {

@@ -60,22 +60,22 @@ struct SculptStorage {
   std::span<float> live_x;
   std::span<float> live_y;
   std::span<float> live_z;
-  math::WarpPlanStorage plan;       // capacity = most vertices one stroke may move
+  math::WarpPlanStorage plan;  // capacity = most vertices one stroke may move
   std::span<VertexChange> undo_changes;
   std::span<UndoEntry> undo_entries;
 };
 
 enum class SessionEventKind : std::uint8_t {
-  grab_begin,        // hand started a stroke
-  committed,         // a stroke segment was applied to the mesh (sequence = its record);
-                     // reason released: `hand`'s grab ends here; none: freeze or a
-                     // hand joining, the stroke goes on
-  cancelled,         // `hand`'s grab ended without commit: reason tracking_timeout
-                     // (segment dropped, model as at its start) or a warp-plan error
-                     // (status) when the stroke could not go on
-  tracking_lost,     // hand lost tracking during a stroke or move; warp holds
+  grab_begin,     // hand started a stroke
+  committed,      // a stroke segment was applied to the mesh (sequence = its record);
+                  // reason released: `hand`'s grab ends here; none: freeze or a
+                  // hand joining, the stroke goes on
+  cancelled,      // `hand`'s grab ended without commit: reason tracking_timeout
+                  // (segment dropped, model as at its start) or a warp-plan error
+                  // (status) when the stroke could not go on
+  tracking_lost,  // hand lost tracking during a stroke or move; warp holds
   tracking_resumed,
-  refused,           // a press was refused (reason; status for a plan error)
+  refused,  // a press was refused (reason; status for a plan error)
   radius_changed,
   move_begin,
   move_committed,
@@ -112,8 +112,8 @@ class SessionEvents {
 // What a display needs for the live stroke (valid while active).
 struct LiveWarp {
   bool active = false;
-  std::uint8_t hand_mask = 0;  // session hands in the stroke (bit h)
-  const math::WarpPlan* plan = nullptr;  // indices, weights, screws, start/end frames
+  std::uint8_t hand_mask = 0;               // session hands in the stroke (bit h)
+  const math::WarpPlan* plan = nullptr;     // indices, weights, screws, start/end frames
   std::array<std::uint8_t, 2> plan_hand{};  // session hand -> plan hand index
   math::ConstVertexColumns positions;       // live_x/y/z: warped where plan->indices()
 };
@@ -235,9 +235,10 @@ struct SculptStorageArrays {
   std::array<UndoEntry, kUndoEntries> undo_entries{};
 
   SculptStorage spans() {
-    return SculptStorage{live_x, live_y, live_z,
-                         math::WarpPlanStorage{plan_indices, plan_weights1, plan_weights2},
-                         undo_changes, undo_entries};
+    return SculptStorage{
+        live_x,       live_y,
+        live_z,       math::WarpPlanStorage{plan_indices, plan_weights1, plan_weights2},
+        undo_changes, undo_entries};
   }
 };
 

@@ -10,9 +10,8 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <span>
-
 #include <glm/vec3.hpp>
+#include <span>
 
 #include "twister/base/result.hpp"
 #include "twister/math/frame.hpp"

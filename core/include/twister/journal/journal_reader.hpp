@@ -17,11 +17,11 @@ namespace twister::journal {
 
 enum class TailProblem : std::uint8_t {
   none = 0,
-  torn_header,   // the file ends inside a record header (or the file header)
-  torn_record,   // the file ends inside a record's payload or CRC
-  bad_length,    // payload length above kMaxPayloadBytes or reserved bits set
-  bad_crc,       // CRC mismatch
-  bad_payload,   // CRC fine but the content is invalid (version, type, fields)
+  torn_header,  // the file ends inside a record header (or the file header)
+  torn_record,  // the file ends inside a record's payload or CRC
+  bad_length,   // payload length above kMaxPayloadBytes or reserved bits set
+  bad_crc,      // CRC mismatch
+  bad_payload,  // CRC fine but the content is invalid (version, type, fields)
 };
 const char* tail_problem_name(TailProblem problem);
 

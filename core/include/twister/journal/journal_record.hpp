@@ -11,16 +11,15 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <span>
-
 #include <glm/vec3.hpp>
+#include <span>
 
 #include "twister/base/result.hpp"
 
 namespace twister::journal {
 
-inline constexpr std::array<std::byte, 4> kFileMagic{std::byte{'T'}, std::byte{'W'},
-                                                    std::byte{'J'}, std::byte{'L'}};
+inline constexpr std::array<std::byte, 4> kFileMagic{std::byte{'T'}, std::byte{'W'}, std::byte{'J'},
+                                                     std::byte{'L'}};
 inline constexpr std::uint32_t kFileVersion = 1;
 inline constexpr std::size_t kFileHeaderBytes = 8;
 inline constexpr std::uint8_t kRecordVersion = 1;
@@ -45,9 +44,9 @@ struct JournalPose {
 };
 
 struct StrokeRecord {
-  std::uint8_t method = 0;      // math::WarpMethod as a number
-  std::uint8_t hand_mask = 0;   // bit h set: hand h took part (1, 2 or 3)
-  std::uint16_t chain_step = 0; // 0: new selection; k > 0: k-th freeze step, same weights
+  std::uint8_t method = 0;       // math::WarpMethod as a number
+  std::uint8_t hand_mask = 0;    // bit h set: hand h took part (1, 2 or 3)
+  std::uint16_t chain_step = 0;  // 0: new selection; k > 0: k-th freeze step, same weights
   double radius_m = 0.0;
   std::array<JournalPose, 2> start{};  // per hand, meaningful where hand_mask says
   std::array<JournalPose, 2> end{};

@@ -13,8 +13,11 @@ namespace twister::meshio {
 class MeshBuffer {
  public:
   MeshBuffer(std::size_t vertex_capacity, std::size_t triangle_capacity)
-      : x_(vertex_capacity), y_(vertex_capacity), z_(vertex_capacity),
-        indices_(3 * triangle_capacity), mesh_(x_, y_, z_, indices_) {}
+      : x_(vertex_capacity),
+        y_(vertex_capacity),
+        z_(vertex_capacity),
+        indices_(3 * triangle_capacity),
+        mesh_(x_, y_, z_, indices_) {}
   MeshBuffer(const MeshBuffer&) = delete;
   MeshBuffer& operator=(const MeshBuffer&) = delete;
 

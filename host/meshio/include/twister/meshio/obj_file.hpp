@@ -10,8 +10,8 @@
 #include <string_view>
 
 #include "twister/base/status.hpp"
-#include "twister/meshio/mesh_buffer.hpp"
 #include "twister/mesh/mesh.hpp"
+#include "twister/meshio/mesh_buffer.hpp"
 
 namespace twister::meshio {
 
