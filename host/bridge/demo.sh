@@ -8,7 +8,7 @@
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 build="${1:-$here/../../build}"
-out="${2:-$build/demo}"
+out="${2:-$build/bridge-demo}"
 station="$build/bin/twister-station"
 bridge="$build/bin/twister-bridge"
 for exe in "$station" "$bridge"; do
