@@ -31,19 +31,20 @@ class CountingStorage final : public ports::Storage {
   }
   Status do_append(std::span<const std::byte> src) override {
     size_ += src.size();
-    return OkStatus();
+    return ok_status();
   }
-  Status do_sync() override { return OkStatus(); }
+  Status do_sync() override { return ok_status(); }
   Status do_truncate(std::uint64_t length) override {
     size_ = length;
-    return OkStatus();
+    return ok_status();
   }
   std::uint64_t size_ = 0;
 };
 
 struct Rig {
   explicit Rig(std::size_t rings)
-      : buffer(meshio::sphere_vertices(rings, 2 * rings), meshio::sphere_triangles(rings, 2 * rings)),
+      : buffer(meshio::sphere_vertices(rings, 2 * rings),
+               meshio::sphere_triangles(rings, 2 * rings)),
         writer(storage) {
     (void)meshio::make_sphere(buffer.mesh(), rings, 2 * rings, 0.5f);
     const std::size_t n = buffer.mesh().vertex_count();
@@ -133,7 +134,8 @@ void SessionStroke(benchmark::State& state) {
     (void)rig.session->step(++rig.now);
     rig.release();
   }
-  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(rig.buffer.mesh().vertex_count()));
+  state.SetItemsProcessed(state.iterations() *
+                          static_cast<std::int64_t>(rig.buffer.mesh().vertex_count()));
 }
 
 BENCHMARK(PlanUpdate)->Arg(30'000)->Arg(100'000)->Unit(benchmark::kMicrosecond);

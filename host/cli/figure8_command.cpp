@@ -70,8 +70,7 @@ void run_figure8(const Figure8Options& opt) {
       {}};
   picture.panels.push_back(Figure8Panel{
       panel_heading("A. Large displacement, the balls touch", paper_like), paper_like, {}});
-  picture.panels.push_back(
-      Figure8Panel{panel_heading("B. Small displacement", small), small, {}});
+  picture.panels.push_back(Figure8Panel{panel_heading("B. Small displacement", small), small, {}});
   picture.panels[0].curves = run_table(paper_like);
   std::printf("\n");
   picture.panels[1].curves = run_table(small);

@@ -66,7 +66,7 @@ Status run_figure8_curve(const Figure8Setup& setup, int angle_deg, math::WarpMet
   for (std::size_t i = 0; i < n; ++i) out.points[i] = glm::dvec2(ox[i], oy[i]);
   out.intersections = count_self_intersections(out.points);
   out.sharpest_turn_deg = sharpest_turn_deg(out.points);
-  return OkStatus();
+  return ok_status();
 }
 
 std::size_t count_self_intersections(const std::vector<glm::dvec2>& line) {

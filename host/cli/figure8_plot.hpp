@@ -40,9 +40,7 @@ Figure8Size figure8_picture_size(std::size_t panels, std::size_t rows, std::size
 
 // Writes the picture. The SVG draws the labels as glyph outlines (cairo) and also
 // carries them as text in its <title> and <desc> elements, so it is searchable.
-bool write_figure8_svg(const std::string& path, const Figure8Picture& picture,
-                       std::string& error);
-bool write_figure8_png(const std::string& path, const Figure8Picture& picture,
-                       std::string& error);
+bool write_figure8_svg(const std::string& path, const Figure8Picture& picture, std::string& error);
+bool write_figure8_png(const std::string& path, const Figure8Picture& picture, std::string& error);
 
 }  // namespace twister::cli

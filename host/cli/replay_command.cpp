@@ -34,7 +34,7 @@ class ReadOnlyStorage final : public ports::Storage {
     return n;
   }
   Status do_append(std::span<const std::byte>) override { return StatusCode::not_supported; }
-  Status do_sync() override { return OkStatus(); }
+  Status do_sync() override { return ok_status(); }
   Status do_truncate(std::uint64_t) override { return StatusCode::not_supported; }
 
   std::vector<std::byte> bytes_;

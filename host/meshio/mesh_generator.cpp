@@ -26,7 +26,7 @@ Status make_grid(mesh::Mesh& mesh, std::size_t n, float half_size_m) {
       (void)mesh.add_triangle(a + 1, a + nn + 1, a + nn);
     }
   }
-  return OkStatus();
+  return ok_status();
 }
 
 Status make_sphere(mesh::Mesh& mesh, std::size_t rings, std::size_t segments, float radius_m) {
@@ -65,7 +65,7 @@ Status make_sphere(mesh::Mesh& mesh, std::size_t rings, std::size_t segments, fl
       (void)mesh.add_triangle(b, c, d);
     }
   }
-  return OkStatus();
+  return ok_status();
 }
 
 }  // namespace twister::meshio

@@ -170,7 +170,7 @@ Status save_obj(const std::filesystem::path& path, const mesh::Mesh& mesh, std::
     message = "cannot rename " + tmp.string() + " to " + path.string() + ": " + ec.message();
     return StatusCode::io_error;
   }
-  return OkStatus();
+  return ok_status();
 }
 
 }  // namespace twister::meshio

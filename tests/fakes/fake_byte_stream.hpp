@@ -68,7 +68,7 @@ class FakeByteStreamWithStorage final : public ports::ByteStream {
     if (!plugged_) return StatusCode::unavailable;
     connected_ = true;
     rx_len_ = rx_pos_ = 0;
-    return OkStatus();
+    return ok_status();
   }
   void do_discard_input() override { rx_len_ = rx_pos_ = 0; }
 

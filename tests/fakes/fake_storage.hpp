@@ -65,7 +65,7 @@ class FakeStorageWithStorage final : public ports::Storage {
       return StatusCode::io_error;
     }
     if (n < src.size()) return StatusCode::io_error;  // disk full
-    return OkStatus();
+    return ok_status();
   }
   Status do_sync() override {
     if (!powered_) return StatusCode::io_error;
@@ -75,12 +75,12 @@ class FakeStorageWithStorage final : public ports::Storage {
     }
     ++sync_count_;
     synced_size_ = size_;
-    return OkStatus();
+    return ok_status();
   }
   Status do_truncate(std::uint64_t length) override {
     if (!powered_) return StatusCode::io_error;
     size_ = std::min<std::size_t>(size_, static_cast<std::size_t>(length));
-    return OkStatus();
+    return ok_status();
   }
 
   std::array<std::byte, kCapacity> data_{};

@@ -3,6 +3,8 @@
 // method's curves and text, the SVG carries every label of both panels, and a bad
 // output path is a clear failure.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -10,9 +12,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "figure8_plot.hpp"
 #include "figure8_test_image.hpp"

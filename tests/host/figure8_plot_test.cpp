@@ -3,12 +3,11 @@
 #include "figure8_plot.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <string>
-
-#include <unistd.h>
 
 #include "figure8_test_image.hpp"
 

@@ -23,9 +23,9 @@ struct LoadedPng {
 
   // 0xRRGGBB of a pixel (alpha ignored: the picture is opaque).
   std::uint32_t pixel(int x, int y) const {
-    const unsigned char* row = cairo_image_surface_get_data(surface.get()) +
-                               static_cast<std::ptrdiff_t>(y) *
-                                   cairo_image_surface_get_stride(surface.get());
+    const unsigned char* row =
+        cairo_image_surface_get_data(surface.get()) +
+        static_cast<std::ptrdiff_t>(y) * cairo_image_surface_get_stride(surface.get());
     std::uint32_t v;
     std::memcpy(&v, row + 4 * x, sizeof v);
     return v & 0xffffffu;

@@ -41,7 +41,7 @@ class DeviceByteStream final : public ports::ByteStream {
     if (device_.hung_up(clock_.now_us())) return StatusCode::unavailable;
     open_ = true;
     buf_.clear();
-    return OkStatus();
+    return ok_status();
   }
   void do_discard_input() override {
     device_.advance(clock_.now_us(), buf_);

@@ -16,7 +16,7 @@ Status ButtonDebouncer::feed(const ports::ButtonEdge& edge) {
   // bounce that went down and up between two polls is still a bounce.
   line.raw = edge.pressed;
   line.raw_since_us = edge.time_us;
-  return OkStatus();
+  return ok_status();
 }
 
 Result<ButtonEvent> ButtonDebouncer::poll(ports::TimestampUs now_us) {

@@ -16,7 +16,7 @@ ButtonMap ButtonMap::paper_default() {
 Status ButtonMap::bind(std::uint8_t line, std::uint8_t hand, ButtonRole role) {
   if (line >= kMaxButtonLines || hand >= kHandCount) return StatusCode::out_of_range;
   lines_[line] = ButtonBinding{hand, role};
-  return OkStatus();
+  return ok_status();
 }
 
 ButtonBinding ButtonMap::binding(std::uint8_t line) const {

@@ -88,7 +88,7 @@ Status SculptSession::set_hand(std::uint8_t hand, bool valid, const math::Frame&
   if (hand >= kHandCount) return StatusCode::out_of_range;
   if (!valid) {
     hands_[hand].valid = false;
-    return OkStatus();
+    return ok_status();
   }
   if (!math::is_orthonormal(pose_in_world)) {
     hands_[hand].valid = false;
@@ -98,7 +98,7 @@ Status SculptSession::set_hand(std::uint8_t hand, bool valid, const math::Frame&
   // W is rebuilt from U and V so that the journal (which stores O, U, V) replays
   // exactly the frame used live.
   hands_[hand].world = math::frame_from_uv(pose_in_world.origin, pose_in_world.u, pose_in_world.v);
-  return OkStatus();
+  return ok_status();
 }
 
 bool SculptSession::busy() const { return stroke_mask_ != 0 || moving_; }
@@ -192,7 +192,7 @@ Status SculptSession::commit_plan(const journal::JournalRecord& record, bool jou
     journal::JournalRecord copy = record;
     journal_append(copy, out);
   }
-  return OkStatus();
+  return ok_status();
 }
 
 void SculptSession::commit_segment(std::uint8_t hand, Reason reason, SessionEvents& out) {
@@ -226,7 +226,7 @@ void SculptSession::restart_without(std::uint8_t hand, bool commit, SessionEvent
   if (commit) {
     commit_segment(hand, Reason::released, out);
   } else {
-    out.push({SessionEventKind::cancelled, hand, Reason::tracking_timeout, OkStatus(), 0});
+    out.push({SessionEventKind::cancelled, hand, Reason::tracking_timeout, ok_status(), 0});
   }
   const auto remaining = static_cast<std::uint8_t>(stroke_mask_ & ~(1u << hand));
   stroke_mask_ = 0;
@@ -300,7 +300,7 @@ void SculptSession::apply_action(const Action& a, ports::TimestampUs now_us, Ses
       move_hand_ = a.hand;
       move_hand_start_ = hands_[a.hand].world;
       move_object_start_ = object_;
-      out.push({SessionEventKind::move_begin, a.hand, Reason::none, OkStatus(), 0});
+      out.push({SessionEventKind::move_begin, a.hand, Reason::none, ok_status(), 0});
       return;
     case ActionKind::move_commit: {
       if (!moving_) return;
@@ -316,14 +316,14 @@ void SculptSession::apply_action(const Action& a, ports::TimestampUs now_us, Ses
       history_.end_entry().ignore();  // an object-only entry always fits
       const std::uint32_t sequence = next_sequence_;
       journal_append(r, &out);
-      out.push({SessionEventKind::move_committed, a.hand, Reason::released, OkStatus(), sequence});
+      out.push({SessionEventKind::move_committed, a.hand, Reason::released, ok_status(), sequence});
       return;
     }
     case ActionKind::move_cancel:
       if (!moving_) return;
       moving_ = false;
       object_ = move_object_start_;
-      out.push({SessionEventKind::move_cancelled, a.hand, a.reason, OkStatus(), 0});
+      out.push({SessionEventKind::move_cancelled, a.hand, a.reason, ok_status(), 0});
       return;
     case ActionKind::radius_begin:
     case ActionKind::radius_end:
@@ -332,7 +332,7 @@ void SculptSession::apply_action(const Action& a, ports::TimestampUs now_us, Ses
     case ActionKind::tracking_lost:
     case ActionKind::tracking_resumed:
     case ActionKind::refused:
-      out.push({event_for(a.kind), a.hand, a.reason, OkStatus(), 0});
+      out.push({event_for(a.kind), a.hand, a.reason, ok_status(), 0});
       return;
   }
 }

@@ -21,7 +21,7 @@ Status SculptSession::undo() {
   r.type = journal::RecordType::undo;
   journal_append(r, nullptr);
   replay_chain_open_ = false;
-  return journal_ == nullptr || journal_->healthy() ? OkStatus() : Status(StatusCode::io_error);
+  return journal_ == nullptr || journal_->healthy() ? ok_status() : Status(StatusCode::io_error);
 }
 
 Status SculptSession::redo() {
@@ -32,7 +32,7 @@ Status SculptSession::redo() {
   r.type = journal::RecordType::redo;
   journal_append(r, nullptr);
   replay_chain_open_ = false;
-  return journal_ == nullptr || journal_->healthy() ? OkStatus() : Status(StatusCode::io_error);
+  return journal_ == nullptr || journal_->healthy() ? ok_status() : Status(StatusCode::io_error);
 }
 
 Result<std::size_t> SculptSession::replay(journal::JournalReader& reader) {
@@ -105,7 +105,7 @@ Status SculptSession::apply_record(const journal::JournalRecord& record) {
     }
   }
   next_sequence_ = record.sequence + 1;
-  return OkStatus();
+  return ok_status();
 }
 
 }  // namespace twister::input

@@ -64,7 +64,7 @@ Status UndoHistory::record(std::uint32_t index, glm::vec3 before, glm::vec3 afte
     drop_oldest();
   }
   changes_[open_entry_.first_change + open_entry_.change_count++] = {index, before, after};
-  return OkStatus();
+  return ok_status();
 }
 
 void UndoHistory::record_object(const math::Frame& before, const math::Frame& after) {
@@ -84,7 +84,7 @@ Status UndoHistory::end_entry() {
   }
   entries_[entry_count_++] = open_entry_;
   undo_count_ = entry_count_;
-  return OkStatus();
+  return ok_status();
 }
 
 Result<UndoStep> UndoHistory::undo(mesh::Mesh& mesh) {

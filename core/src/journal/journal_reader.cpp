@@ -24,7 +24,7 @@ Status read_exact(ports::Storage& storage, std::uint64_t offset, std::span<std::
     if (n == 0) return StatusCode::io_error;
     done += n;
   }
-  return OkStatus();
+  return ok_status();
 }
 
 }  // namespace
@@ -54,7 +54,7 @@ Status JournalReader::open() {
   TWISTER_TRY_ASSIGN(file_size_, storage_.size());
   if (file_size_ == 0) {
     opened_ = true;
-    return OkStatus();
+    return ok_status();
   }
   const std::size_t header =
       static_cast<std::size_t>(std::min<std::uint64_t>(file_size_, kFileHeaderBytes));
@@ -68,10 +68,10 @@ Status JournalReader::open() {
   opened_ = true;
   if (header < kFileHeaderBytes) {
     problem_ = TailProblem::torn_header;
-    return OkStatus();
+    return ok_status();
   }
   good_end_ = kFileHeaderBytes;
-  return OkStatus();
+  return ok_status();
 }
 
 Result<JournalRecord> JournalReader::fail(TailProblem problem) {
@@ -109,12 +109,12 @@ Result<JournalRecord> JournalReader::next() {
 
 Status JournalReader::truncate_tail() {
   if (!opened_) return StatusCode::failed_precondition;
-  if (problem_ == TailProblem::none) return OkStatus();
+  if (problem_ == TailProblem::none) return ok_status();
   TWISTER_TRY(storage_.truncate(good_end_));
   TWISTER_TRY(storage_.sync());
   file_size_ = good_end_;
   problem_ = TailProblem::none;
-  return OkStatus();
+  return ok_status();
 }
 
 }  // namespace twister::journal

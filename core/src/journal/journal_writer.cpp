@@ -25,7 +25,7 @@ Status JournalWriter::open() {
     }
   }
   opened_ = true;
-  return OkStatus();
+  return ok_status();
 }
 
 Status JournalWriter::append(const JournalRecord& record) {
@@ -35,7 +35,7 @@ Status JournalWriter::append(const JournalRecord& record) {
   if (status.ok()) status = storage_.sync();
   if (status.ok()) {
     size_ += n;
-    return OkStatus();
+    return ok_status();
   }
   // Leave no torn record behind a later good one: cut back to the last good end.
   if (!storage_.truncate(size_).ok() || !storage_.sync().ok()) broken_ = true;

@@ -82,7 +82,7 @@ Status decode_payload(std::span<const std::byte> payload, LinkMessage& out) {
   }
   out.type = static_cast<MessageType>(type);
   if (!internal::read_body(r, out)) return StatusCode::invalid_argument;
-  return OkStatus();
+  return ok_status();
 }
 
 void LinkDecoder::reset() {

@@ -29,7 +29,7 @@ Status StationLink::start(const input::SculptSession& session) {
   version_ = 1;
   last_sequence_ = session.next_sequence();
   started_ = true;
-  return OkStatus();
+  return ok_status();
 }
 
 void StationLink::poll(const input::SculptSession& session, ports::TimestampUs now_us) {

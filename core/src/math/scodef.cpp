@@ -62,7 +62,7 @@ Status ScodefSystem::build(std::span<const Frame> start, double radius) {
     }
   }
   built_ = true;
-  return OkStatus();
+  return ok_status();
 }
 
 Status ScodefSystem::solve(std::span<const Frame> end) {
@@ -84,7 +84,7 @@ Status ScodefSystem::solve(std::span<const Frame> end) {
     for (std::size_t j = i + 1; j < count_; ++j) acc -= lu_[i][j] * coeffs_[j];
     coeffs_[i] = acc / lu_[i][i];
   }
-  return OkStatus();
+  return ok_status();
 }
 
 glm::dvec3 ScodefSystem::displacement(glm::dvec3 p) const {

@@ -66,7 +66,7 @@ Status WarpPlan::check_frames(std::span<const Frame> frames) const {
   for (const Frame& f : frames) {
     if (!is_orthonormal(f)) return StatusCode::invalid_argument;
   }
-  return OkStatus();
+  return ok_status();
 }
 
 double WarpPlan::weight_of(std::size_t hand, glm::dvec3 p) const {
@@ -118,7 +118,7 @@ Status WarpPlan::build(ConstVertexColumns rest, std::span<const Frame> start, do
   for (std::size_t h = 0; h < hands_; ++h) screws_[h] = compute_screw(start_[h], end_[h]);
   if (method == WarpMethod::scodef) TWISTER_TRY(scodef_.solve(start));
   set_kernel_hands();
-  return OkStatus();
+  return ok_status();
 }
 
 Status WarpPlan::update(std::span<const Frame> end) {
@@ -132,7 +132,7 @@ Status WarpPlan::update(std::span<const Frame> end) {
     end_[h] = end[h];
   }
   set_kernel_hands();
-  return OkStatus();
+  return ok_status();
 }
 
 Status WarpPlan::rebase(std::span<const Frame> start) {
@@ -154,7 +154,7 @@ Status WarpPlan::rebase(std::span<const Frame> start) {
     screws_[h] = compute_screw(start_[h], end_[h]);
   }
   set_kernel_hands();
-  return OkStatus();
+  return ok_status();
 }
 
 void WarpPlan::set_kernel_hands() {
@@ -178,7 +178,7 @@ Status WarpPlan::apply(ConstVertexColumns rest, VertexColumns out) const {
       out.size() != rest_size_) {
     return StatusCode::invalid_argument;
   }
-  if (count_ == 0) return OkStatus();
+  if (count_ == 0) return ok_status();
   if (method_ == WarpMethod::scodef) {
     // Not the hot path (a comparison method): evaluated per point in double.
     for (std::size_t i = 0; i < count_; ++i) {
@@ -189,7 +189,7 @@ Status WarpPlan::apply(ConstVertexColumns rest, VertexColumns out) const {
       out.y[v] = static_cast<float>(q.y);
       out.z[v] = static_cast<float>(q.z);
     }
-    return OkStatus();
+    return ok_status();
   }
   const auto run = [this](const KernelSpan& s) {
     const bool two = hands_ == 2;
@@ -206,7 +206,7 @@ Status WarpPlan::apply(ConstVertexColumns rest, VertexColumns out) const {
     run(KernelSpan{rest.x.data() + first, rest.y.data() + first, rest.z.data() + first,
                    weights1_.data(), weights2_.data(), out.x.data() + first, out.y.data() + first,
                    out.z.data() + first, count_});
-    return OkStatus();
+    return ok_status();
   }
   float gx[kGatherChunk];
   float gy[kGatherChunk];
@@ -230,7 +230,7 @@ Status WarpPlan::apply(ConstVertexColumns rest, VertexColumns out) const {
       out.z[v] = rz[i];
     }
   }
-  return OkStatus();
+  return ok_status();
 }
 
 glm::dvec3 WarpPlan::warp_point(glm::dvec3 p) const {

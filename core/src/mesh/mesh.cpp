@@ -74,7 +74,7 @@ Status Mesh::copy_from(const Mesh& other) {
   std::copy_n(other.indices_.begin(), 3 * other.triangle_count_, indices_.begin());
   vertex_count_ = other.vertex_count_;
   triangle_count_ = other.triangle_count_;
-  return OkStatus();
+  return ok_status();
 }
 
 std::uint64_t Mesh::checksum() const {

@@ -46,8 +46,8 @@ Status Station::start() {
   TWISTER_TRY(writer_.open());
   started_ = true;
   push_event({StationEventKind::journal_recovered, 0, static_cast<std::uint32_t>(applied), cut,
-              OkStatus(), clock_.now_us()});
-  return OkStatus();
+              ok_status(), clock_.now_us()});
+  return ok_status();
 }
 
 bool Station::hand_valid(std::uint8_t hand, ports::TimestampUs now_us) const {
@@ -99,7 +99,7 @@ void Station::drain_tracker(ports::TimestampUs now_us) {
       for (auto& h : hands_) h.has_pose = false;
     }
     push_event({streaming ? StationEventKind::tracker_streaming : StationEventKind::tracker_lost, 0,
-                0, session_.counters().streams_started, OkStatus(), now_us});
+                0, session_.counters().streams_started, ok_status(), now_us});
   }
 }
 
@@ -135,19 +135,19 @@ Status Station::poll() {
   const input::SessionEvents events = sculpt_.step(now_us);
   counters_.session_events_dropped += events.dropped();
   for (const input::SessionEvent& e : events.items()) report(e, now_us);
-  return OkStatus();
+  return ok_status();
 }
 
 void Station::report(const input::SessionEvent& e, ports::TimestampUs now_us) {
   using K = input::SessionEventKind;
   switch (e.kind) {
     case K::grab_begin:
-      push_event({StationEventKind::stroke_begin, e.hand, 0, 0, OkStatus(), now_us});
+      push_event({StationEventKind::stroke_begin, e.hand, 0, 0, ok_status(), now_us});
       break;
     case K::committed:
       ++counters_.strokes_committed;
       push_event({StationEventKind::stroke_committed, e.hand, e.sequence,
-                  static_cast<std::uint64_t>(e.reason), OkStatus(), now_us});
+                  static_cast<std::uint64_t>(e.reason), ok_status(), now_us});
       break;
     case K::cancelled:
       ++counters_.strokes_cancelled;

@@ -84,7 +84,7 @@ Status validate(const FastrakConfig& config) {
       return StatusCode::invalid_argument;
     }
   }
-  return any ? OkStatus() : Status(StatusCode::invalid_argument);
+  return any ? ok_status() : Status(StatusCode::invalid_argument);
 }
 
 }  // namespace twister::tracker

@@ -64,7 +64,7 @@ Status GpiodButtonSource::open(const GpiodButtonConfig& config) {
   }
   next_line_ = 0;
   last_errno_ = 0;
-  return OkStatus();
+  return ok_status();
 }
 
 Result<ports::ButtonEdge> GpiodButtonSource::do_poll() {

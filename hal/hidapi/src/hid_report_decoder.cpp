@@ -10,7 +10,7 @@ Status HidReportDecoder::configure(std::span<const HidButtonBitMap> bits) {
   count_ = bits.size();
   for (std::size_t i = 0; i < count_; ++i) bits_[i] = bits[i];
   pressed_.fill(false);
-  return OkStatus();
+  return ok_status();
 }
 
 std::size_t HidReportDecoder::decode(std::span<const std::uint8_t> report,

@@ -32,7 +32,7 @@ Status HidapiButtonSource::open(const HidapiButtonConfig& config) {
     close();
     return StatusCode::io_error;
   }
-  return OkStatus();
+  return ok_status();
 }
 
 Result<ports::ButtonEdge> HidapiButtonSource::do_poll() {

@@ -25,7 +25,7 @@ Status LibusbByteStream::init() {
       (config_.endpoint_out & LIBUSB_ENDPOINT_IN) != 0) {
     return StatusCode::invalid_argument;
   }
-  if (ctx_ != nullptr) return OkStatus();
+  if (ctx_ != nullptr) return ok_status();
   if (const int rc = libusb_init(&ctx_); rc != 0) {
     ctx_ = nullptr;
     last_error_ = rc;
@@ -43,7 +43,7 @@ Status LibusbByteStream::init() {
     hotplug_ = rc == LIBUSB_SUCCESS;
     if (!hotplug_) last_error_ = rc;
   }
-  return OkStatus();
+  return ok_status();
 }
 
 int LibusbCallbacks::on_hotplug(libusb_context*, libusb_device*, libusb_hotplug_event event,
@@ -138,7 +138,7 @@ Status LibusbByteStream::do_reopen() {
                             this, 0);
   if (const int rc = libusb_submit_transfer(in_transfer_); rc != 0) return gone(rc);
   in_flight_ = true;
-  return OkStatus();
+  return ok_status();
 }
 
 Result<std::size_t> LibusbByteStream::do_read(std::span<std::byte> dest) {

@@ -78,7 +78,7 @@ SocketLink::~SocketLink() {
 Status SocketLink::open() {
   const Address a = parse(config_.address);
   if (!a.ok) return StatusCode::invalid_argument;
-  if (!config_.server) return OkStatus();
+  if (!config_.server) return ok_status();
   if (a.family == AF_UNIX) ::unlink(reinterpret_cast<const sockaddr_un*>(&a.storage)->sun_path);
   listen_fd_ = ::socket(a.family, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
   if (listen_fd_ < 0) {
@@ -94,7 +94,7 @@ Status SocketLink::open() {
     listen_fd_ = -1;
     return StatusCode::io_error;
   }
-  return OkStatus();
+  return ok_status();
 }
 
 void SocketLink::drop_peer() {

@@ -47,7 +47,7 @@ Status PosixFileStorage::open(const PosixFileStorageConfig& config) {
   fd_ = fd;
   last_errno_ = 0;
   if (!existed) sync_parent_directory(config.path);
-  return OkStatus();
+  return ok_status();
 }
 
 void PosixFileStorage::close() {
@@ -92,20 +92,20 @@ Status PosixFileStorage::do_append(std::span<const std::byte> src) {
     }
     done += static_cast<std::size_t>(n);
   }
-  return OkStatus();
+  return ok_status();
 }
 
 Status PosixFileStorage::do_sync() {
   if (fd_ < 0) return StatusCode::failed_precondition;
   if (::fsync(fd_) != 0) return fail(errno);
-  return OkStatus();
+  return ok_status();
 }
 
 Status PosixFileStorage::do_truncate(std::uint64_t length) {
   if (fd_ < 0) return StatusCode::failed_precondition;
   if (length > static_cast<std::uint64_t>(LLONG_MAX)) return StatusCode::out_of_range;
   if (::ftruncate(fd_, static_cast<off_t>(length)) != 0) return fail(errno);
-  return OkStatus();
+  return ok_status();
 }
 
 }  // namespace twister::hal

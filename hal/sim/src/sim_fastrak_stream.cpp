@@ -49,7 +49,7 @@ Status SimFastrakStream::do_reopen() {
   connected_ = true;
   pending_.clear();
   pending_pos_ = 0;
-  return OkStatus();
+  return ok_status();
 }
 
 void SimFastrakStream::do_discard_input() {

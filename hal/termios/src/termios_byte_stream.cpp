@@ -101,7 +101,7 @@ Status TermiosByteStream::do_reopen() {
   ::tcflush(fd, TCIOFLUSH);  // stale input from before the (re)open
   fd_ = fd;
   last_errno_ = 0;
-  return OkStatus();
+  return ok_status();
 }
 
 Result<std::size_t> TermiosByteStream::do_read(std::span<std::byte> dest) {

@@ -17,7 +17,7 @@ Result<int> quarter(int x) {
 
 Status check_even(int x) {
   TWISTER_TRY(half(x));
-  return OkStatus();
+  return ok_status();
 }
 
 TEST(Result, HoldsValueOrStatus) {
@@ -36,7 +36,7 @@ TEST(Result, TryAssignPropagatesErrors) {
 
 TEST(Status, NamesEveryCode) {
   EXPECT_STREQ(Status(StatusCode::data_loss).name(), "data_loss");
-  EXPECT_STREQ(OkStatus().name(), "ok");
+  EXPECT_STREQ(ok_status().name(), "ok");
 }
 
 }  // namespace

@@ -38,7 +38,8 @@ TEST(TermiosByteStream, RawBytesBothWays) {
   EXPECT_EQ(*n, 0u);
   const std::string binary("0\x01 \xff\r\n\x13\x11\x00\x19", 10);
   pty.write(binary);
-  EXPECT_EQ(read_for(s, binary.size()), binary);  // no CR/LF mapping, 0xFF not doubled, ^S/^Q passed
+  EXPECT_EQ(read_for(s, binary.size()),
+            binary);  // no CR/LF mapping, 0xFF not doubled, ^S/^Q passed
   const std::string cmd = "O1,2,11,1\r";
   auto w = s.write(std::as_bytes(std::span<const char>(cmd.data(), cmd.size())));
   ASSERT_TRUE(w.ok());

@@ -64,7 +64,7 @@ class [[nodiscard]] Status {
   StatusCode code_ = StatusCode::ok;
 };
 
-constexpr Status OkStatus() { return Status(); }
+constexpr Status ok_status() { return Status(); }
 
 }  // namespace twister
 
