@@ -1,8 +1,10 @@
 #include "mesh_command.hpp"
 
 #include <cstdio>
+#include <glm/vec3.hpp>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cli_exit.hpp"
 #include "twister/meshio/mesh_generator.hpp"
@@ -14,9 +16,10 @@ namespace {
 struct Options {
   std::string shape;
   std::string out;
-  std::size_t n = 33;         // grid: vertices per side; sphere: rings
-  std::size_t segments = 32;  // sphere only
-  float size_m = 1.0f;        // grid: half size; sphere: radius
+  std::size_t n = 33;                             // grid: vertices per side; sphere: rings
+  std::size_t segments = 32;                      // sphere only
+  float size_m = 1.0f;                            // grid: half size; sphere: radius
+  std::vector<float> center_m{0.0f, 0.0f, 0.0f};  // translation of the whole mesh
 };
 
 void run_mesh(const Options& o) {
@@ -31,6 +34,11 @@ void run_mesh(const Options& o) {
   if (!s.ok()) {
     std::fprintf(stderr, "twister mesh: cannot make that %s: %s\n", o.shape.c_str(), s.name());
     throw Exit{kExitBadInput};
+  }
+  // Placed where a scene needs it (e.g. in front of the simulated transmitter).
+  const glm::vec3 center(o.center_m[0], o.center_m[1], o.center_m[2]);
+  for (std::uint32_t i = 0; i < buffer.mesh().vertex_count(); ++i) {
+    buffer.mesh().set_position(i, buffer.mesh().position(i) + center);
   }
   std::string message;
   if (!meshio::save_obj(o.out, buffer.mesh(), message).ok()) {
@@ -56,6 +64,9 @@ void add_mesh_command(CLI::App& app) {
       ->check(CLI::Range(std::size_t{3}, std::size_t{4096}));
   cmd->add_option("--size", options->size_m, "grid half size / sphere radius (m)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--center", options->center_m, "centre of the mesh: X Y Z (m, default 0 0 0)")
+      ->expected(3)
+      ->check(CLI::Number);
   cmd->callback([options] { run_mesh(*options); });
 }
 

@@ -6,10 +6,11 @@
 set -euo pipefail
 build="$1"
 work="$2"
-here="$(cd "$(dirname "$0")/../../host/bridge" && pwd)"
+here="$(cd "$(dirname "$0")" && pwd)"
 rm -rf "$work"
 mkdir -p "$work"
-python3 "$here/demo/make_sphere.py" "$work/sphere.obj"
+"$build/bin/twister" mesh sphere -n 80 --segments 128 --size 0.30 --center 0.55 0 0.10 \
+  --out "$work/sphere.obj" > /dev/null
 cat > "$work/station.toml" <<TOML
 [station]
 journal = "$work/journal.bin"
@@ -22,7 +23,7 @@ left_station = 1
 right_station = 2
 
 [tracker.sim]
-scenario_file = "$here/demo/two_hands.scn"
+scenario_file = "$here/bridge_link_loss.scn"
 time = "real"
 
 [buttons]

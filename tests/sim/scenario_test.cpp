@@ -43,5 +43,52 @@ TEST(Scenario, ErrorsNameTheLine) {
   EXPECT_FALSE(parse_scenario("bogus\n", sc, err));
 }
 
+TEST(Scenario, ButtonLinesParseSortedByTimeAndLeaveKeysAlone) {
+  Scenario sc;
+  std::string err;
+  ASSERT_TRUE(
+      parse_scenario("key 0 1 10 -8 5 0 0 0 1\n"
+                     "button 2.5 3 1   # hand 1 grab\n"
+                     "button 2.5 0 1\n"
+                     "button 4 3 0\n"
+                     "button 1 15 1\n",
+                     sc, err))
+      << err;
+  ASSERT_EQ(sc.buttons.size(), 4u);
+  EXPECT_DOUBLE_EQ(sc.buttons[0].t_s, 1.0);
+  EXPECT_EQ(sc.buttons[0].line, 15);
+  // Equal times keep file order.
+  EXPECT_EQ(sc.buttons[1].line, 3);
+  EXPECT_TRUE(sc.buttons[1].pressed);
+  EXPECT_EQ(sc.buttons[2].line, 0);
+  EXPECT_DOUBLE_EQ(sc.buttons[3].t_s, 4.0);
+  EXPECT_FALSE(sc.buttons[3].pressed);
+  // The stylus column of key lines is unchanged.
+  EXPECT_TRUE(sample(sc, 1, 0.0).button);
+  // A file without button lines has none.
+  ASSERT_TRUE(parse_scenario("seed 2\n", sc, err));
+  EXPECT_TRUE(sc.buttons.empty());
+}
+
+TEST(Scenario, MalformedButtonLinesNameTheLine) {
+  Scenario sc;
+  std::string err;
+  EXPECT_FALSE(parse_scenario("seed 1\nbutton 1 3\n", sc, err));
+  EXPECT_EQ(err, "line 2: button needs: t line 0|1");
+  EXPECT_FALSE(parse_scenario("button x 3 1\n", sc, err));
+  EXPECT_EQ(err, "line 1: button needs: t line 0|1");
+  EXPECT_FALSE(parse_scenario("\n\nbutton 1 16 1\n", sc, err));
+  EXPECT_EQ(err, "line 3: button line must be 0..15");
+  EXPECT_FALSE(parse_scenario("button 1 -1 1\n", sc, err));
+  EXPECT_EQ(err, "line 1: button line must be 0..15");
+  EXPECT_FALSE(parse_scenario("button 1 2 2\n", sc, err));
+  EXPECT_EQ(err, "line 1: button level must be 0 or 1");
+  EXPECT_FALSE(parse_scenario("button -1 2 1\n", sc, err));
+  EXPECT_EQ(err, "line 1: button time must be >= 0");
+  EXPECT_FALSE(parse_scenario("button nan 2 1\n", sc, err));
+  EXPECT_FALSE(parse_scenario("button 1 2 1 7\n", sc, err));
+  EXPECT_EQ(err, "line 1: unexpected '7'");
+}
+
 }  // namespace
 }  // namespace twister::sim

@@ -8,6 +8,7 @@
 
 #include "twister/hal/builtin_scenarios.hpp"
 #include "twister/hal/monotonic_clock.hpp"
+#include "twister/hal/sim_button_source.hpp"
 #include "twister/hal/sim_fastrak_stream.hpp"
 #ifdef TWISTER_HAVE_HAL_GPIOD
 #include "twister/hal/gpiod_button_source.hpp"
@@ -71,6 +72,13 @@ bool make_sim_tracker(const StationConfig& config, Backends& out, std::string& e
   }
   sim::FastrakDeviceConfig device{};
   device.baud = static_cast<int>(config.tracker.serial.baud);
+  // Scenario time 0 for both: the device powers up at this instant.
+  const ports::TimestampUs start_us = out.clock->now_us();
+  if (config.buttons.backend == ButtonBackend::sim) {
+    out.buttons_name = "sim (" + std::to_string(scenario.buttons.size()) + " scripted events)";
+    out.buttons =
+        std::make_unique<SimButtonSource>(*out.clock, scenario.buttons, start_us, std::uint8_t{6});
+  }
   out.tracker = std::make_unique<SimFastrakStream>(*out.clock, device, std::move(scenario));
   return true;
 }
@@ -97,6 +105,7 @@ bool tracker_backend_built(TrackerBackend b) {
 bool button_backend_built(ButtonBackend b) {
   switch (b) {
     case ButtonBackend::stylus:
+    case ButtonBackend::sim:
       return true;
 #ifdef TWISTER_HAVE_HAL_GPIOD
     case ButtonBackend::gpiod:
@@ -171,6 +180,13 @@ bool make_backends(const StationConfig& config, Backends& out, std::string& erro
     }
   }
   switch (config.buttons.backend) {
+    case ButtonBackend::sim:
+      // Built with the simulated tracker (same scenario, same clock).
+      if (!out.buttons) {
+        error = "button backend \"sim\" needs tracker backend \"sim\"";
+        return false;
+      }
+      break;
     case ButtonBackend::stylus:
       out.buttons = std::make_unique<NoButtonSource>();
       out.buttons_name = "stylus of receiver 1";

@@ -138,6 +138,17 @@ bool parse_scenario(std::string_view text, Scenario& out, std::string& error) {
       else
         return fail("unknown fault kind '" + kind + "'");
       sc.faults.push_back(f);
+    } else if (word == "button") {
+      ButtonEvent b;
+      int level = 0;
+      if (!(ls >> b.t_s >> b.line >> level)) return fail("button needs: t line 0|1");
+      if (!finite(b.t_s) || b.t_s < 0) return fail("button time must be >= 0");
+      if (b.line < 0 || b.line >= kMaxScenarioButtonLines) {
+        return fail("button line must be 0.." + std::to_string(kMaxScenarioButtonLines - 1));
+      }
+      if (level != 0 && level != 1) return fail("button level must be 0 or 1");
+      b.pressed = level == 1;
+      sc.buttons.push_back(b);
     } else {
       return fail("unknown keyword '" + word + "'");
     }
@@ -146,6 +157,8 @@ bool parse_scenario(std::string_view text, Scenario& out, std::string& error) {
   }
   std::stable_sort(sc.faults.begin(), sc.faults.end(),
                    [](const Fault& a, const Fault& b) { return a.t_s < b.t_s; });
+  std::stable_sort(sc.buttons.begin(), sc.buttons.end(),
+                   [](const ButtonEvent& a, const ButtonEvent& b) { return a.t_s < b.t_s; });
   out = std::move(sc);
   return true;
 }

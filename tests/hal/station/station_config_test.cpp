@@ -114,8 +114,8 @@ backend = "gpio"
                    "\"xonxoff\", got \"hardware\"\n"),
             std::string::npos)
       << m;
-  EXPECT_NE(m.find("t.toml:12: buttons.backend: expected one of \"gpiod\" \"hidapi\" \"stylus\", "
-                   "got \"gpio\"\n"),
+  EXPECT_NE(m.find("t.toml:12: buttons.backend: expected one of \"gpiod\" \"hidapi\" \"stylus\" "
+                   "\"sim\", got \"gpio\"\n"),
             std::string::npos)
       << m;
   EXPECT_EQ(r.errors.size(), 4u) << m;
@@ -147,6 +147,36 @@ TEST(StationConfigTest, SameReceiverForBothHandsIsRefused) {
   EXPECT_EQ(r.errors[0].to_string(),
             "t.toml:7: tracker.right_station: expected a receiver "
             "different from tracker.left_station (both are 1)");
+}
+
+TEST(StationConfigTest, SimButtonsAreAcceptedWithTheSimTrackerOnly) {
+  const auto ok = parse(R"([station]
+journal = "/tmp/j"
+mesh = "m.obj"
+[tracker]
+backend = "sim"
+[buttons]
+backend = "sim"
+)");
+  EXPECT_TRUE(ok.errors.empty()) << messages(ok);
+  EXPECT_EQ(ok.config.buttons.backend, ButtonBackend::sim);
+  EXPECT_STREQ(to_string(ButtonBackend::sim), "sim");
+  const auto bad = parse(R"([station]
+journal = "/tmp/j"
+mesh = "m.obj"
+[tracker]
+backend = "serial"
+[tracker.serial]
+device = "/dev/ttyUSB0"
+[buttons]
+backend = "sim"
+)");
+  const std::string m = messages(bad);
+  EXPECT_NE(m.find("t.toml:9: buttons.backend: \"sim\" plays the simulator scenario's button "
+                   "lines and needs tracker.backend = \"sim\"\n"),
+            std::string::npos)
+      << m;
+  EXPECT_EQ(bad.errors.size(), 1u) << m;
 }
 
 TEST(StationConfigTest, GpiodLineListIsChecked) {

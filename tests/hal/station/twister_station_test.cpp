@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -112,6 +113,58 @@ TEST(TwisterStationTest, SimConfigRunsAScriptedStrokeIntoTheJournal) {
   EXPECT_NE(replay_out.find("checksum " + checksum), std::string::npos)
       << replay_out << again.output;
   ::unlink((journal + ".obj").c_str());
+  ::unlink(journal.c_str());
+}
+
+// [buttons] backend = "sim": the scenario's button lines press hand 0's and hand 1's
+// grab together; the journal holds a single stroke made by both hands.
+TEST(TwisterStationTest, SimButtonsLetBothHandsGrabTogetherIntoOneTwoHandStroke) {
+  const std::string journal = temp_path("two_hands.bin");
+  ::unlink(journal.c_str());
+  const std::string cfg = write_file(
+      "two_hands.toml", "[station]\njournal = \"" + journal + "\"\nmesh = \"" + TWISTER_DEPLOY_DIR +
+                            "/sim_sphere.obj\"\n[tracker]\nbackend = \"sim\"\n"
+                            "[tracker.sim]\nscenario_file = \"" TWISTER_SCENARIO_DIR
+                            "/sim_two_hands.scn\"\ntime = \"virtual\"\n"
+                            "[buttons]\nbackend = \"sim\"\n");
+  const auto r = run("--config " + cfg);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("buttons sim (4 scripted events)"), std::string::npos) << r.output;
+  const auto records = read_journal(journal);
+  // Exactly one two-hand stroke. Releasing both grabs at the same instant also
+  // leaves the core's hand-set-change tail: the hand released second "continues" for
+  // zero time and commits a one-hand segment without motion (docs/interaction.md:
+  // a hand releasing commits the segment and the other continues in a new one).
+  ASSERT_FALSE(records.empty()) << r.output;
+  int two_hand = 0;
+  for (const auto& rec : records) {
+    if (rec.type == twister::journal::RecordType::stroke && rec.stroke.hand_mask == 3) {
+      ++two_hand;
+      continue;
+    }
+    for (int h = 0; h < 2; ++h) {
+      if ((rec.stroke.hand_mask & (1 << h)) == 0) continue;
+      EXPECT_EQ(rec.stroke.start[h], rec.stroke.end[h]) << "record " << rec.sequence << " moved";
+    }
+  }
+  EXPECT_EQ(two_hand, 1) << r.output;
+  EXPECT_LE(records.size(), 2u) << r.output;
+  const auto& s = records[0].stroke;
+  EXPECT_EQ(records[0].type, twister::journal::RecordType::stroke);
+  EXPECT_EQ(s.hand_mask, 3) << r.output;
+  EXPECT_EQ(s.chain_step, 0);
+  // Hand 0 grabbed the -Y side and pulled to -Y; hand 1 the +Y side, pulled to +Y.
+  EXPECT_NEAR(s.start[0].origin_m.y, -11.02 * kInch, 0.2 * kInch);
+  EXPECT_NEAR(s.end[0].origin_m.y, -13.00 * kInch, 0.2 * kInch);
+  EXPECT_NEAR(s.start[1].origin_m.y, -3.15 * kInch, 0.2 * kInch);
+  EXPECT_NEAR(s.end[1].origin_m.y, -1.20 * kInch, 0.2 * kInch);
+  // Twisted in opposite senses (roll +40 and -40 degrees about the tracker's x axis):
+  // each hand's V axis left the x-y plane by sin(40 deg), on opposite sides.
+  EXPECT_NEAR(s.start[0].v.z, 0.0, 0.02);
+  EXPECT_NEAR(s.start[1].v.z, 0.0, 0.02);
+  EXPECT_NEAR(std::abs(s.end[0].v.z), std::sin(40.0 * 3.14159265358979 / 180.0), 0.03);
+  EXPECT_NEAR(s.end[1].v.z, -s.end[0].v.z, 0.03);
+  ::unlink(cfg.c_str());
   ::unlink(journal.c_str());
 }
 

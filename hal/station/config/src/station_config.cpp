@@ -159,10 +159,17 @@ void read_buttons(ConfigReader& root, StationConfig& cfg) {
   ConfigReader b = root.table("buttons", true);
   ButtonsConfig& bc = cfg.buttons;
   std::string backend;
-  if (b.string("backend", b.present(), backend, {"gpiod", "hidapi", "stylus"})) {
+  if (b.string("backend", b.present(), backend, {"gpiod", "hidapi", "stylus", "sim"})) {
     bc.backend = backend == "gpiod"    ? ButtonBackend::gpiod
                  : backend == "hidapi" ? ButtonBackend::hidapi
+                 : backend == "sim"    ? ButtonBackend::sim
                                        : ButtonBackend::stylus;
+    // The scripted buttons are the simulator scenario's `button` lines.
+    if (bc.backend == ButtonBackend::sim && cfg.tracker.backend != TrackerBackend::sim) {
+      b.error(b.node("backend"), "backend",
+              "\"sim\" plays the simulator scenario's button lines and needs "
+              "tracker.backend = \"sim\"");
+    }
   }
   read_u(b, "debounce_ms", false, 0, 200, bc.debounce_ms);
   read_gpiod(b, bc, b.present() && backend == "gpiod");
@@ -214,6 +221,8 @@ const char* to_string(ButtonBackend b) {
       return "hidapi";
     case ButtonBackend::stylus:
       return "stylus";
+    case ButtonBackend::sim:
+      return "sim";
   }
   return "?";
 }

@@ -45,6 +45,16 @@ struct Fault {
   double amount = 0.0;
 };
 
+// A scripted level change of a button line (0-based, the station's ButtonMap line:
+// by default 0-2 hand 0 grab/radius/move, 3-5 hand 1 grab/radius/freeze). Played by
+// hal::SimButtonSource, not by the Fastrak model (those lines are not on the tracker).
+inline constexpr int kMaxScenarioButtonLines = 16;
+struct ButtonEvent {
+  double t_s = 0.0;
+  int line = 0;  // 0..kMaxScenarioButtonLines-1
+  bool pressed = false;
+};
+
 struct StationTrack {
   std::vector<KeyFrame> keys;  // sorted by time
   Circle circle;
@@ -55,7 +65,8 @@ struct Scenario {
   int receivers = 2;        // receivers plugged in (stations 1..receivers)
   double duration_s = 0.0;  // 0 = run until stopped
   std::array<StationTrack, 4> stations;
-  std::vector<Fault> faults;  // sorted by time
+  std::vector<Fault> faults;         // sorted by time
+  std::vector<ButtonEvent> buttons;  // sorted by time (stable: file order at equal times)
 };
 
 // Sample of one station at a time.
