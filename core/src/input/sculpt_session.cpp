@@ -195,7 +195,8 @@ Status SculptSession::commit_plan(const journal::JournalRecord& record, bool jou
   return ok_status();
 }
 
-void SculptSession::commit_segment(std::uint8_t hand, Reason reason, SessionEvents& out) {
+SessionEvent SculptSession::commit_segment(std::uint8_t hand, Reason reason,
+                                          SessionEvents& out) {
   update_plan().ignore();  // on error the previous update stays in force
   journal::JournalRecord r;
   r.type = journal::RecordType::stroke;
@@ -212,7 +213,9 @@ void SculptSession::commit_segment(std::uint8_t hand, Reason reason, SessionEven
   }
   const std::uint32_t sequence = next_sequence_;
   const Status s = commit_plan(r, true, &out);
-  out.push({SessionEventKind::committed, hand, reason, s, sequence});
+  const SessionEvent committed{SessionEventKind::committed, hand, reason, s, sequence};
+  out.push(committed);
+  return committed;
 }
 
 void SculptSession::end_hands(std::uint8_t mask, Status status, SessionEvents& out) {
@@ -223,12 +226,21 @@ void SculptSession::end_hands(std::uint8_t mask, Status status, SessionEvents& o
 }
 
 void SculptSession::restart_without(std::uint8_t hand, bool commit, SessionEvents& out) {
+  auto remaining = static_cast<std::uint8_t>(stroke_mask_ & ~(1u << hand));
   if (commit) {
-    commit_segment(hand, Reason::released, out);
+    SessionEvent committed = commit_segment(hand, Reason::released, out);
+    // The other hands of this segment released in the same step end with this very
+    // commit (their own commit actions then find nothing open).
+    const auto together = static_cast<std::uint8_t>(remaining & releasing_mask_);
+    for (std::uint8_t h = 0; h < kHandCount; ++h) {
+      if ((together & (1u << h)) == 0) continue;
+      committed.hand = h;
+      out.push(committed);
+    }
+    remaining = static_cast<std::uint8_t>(remaining & ~together);
   } else {
     out.push({SessionEventKind::cancelled, hand, Reason::tracking_timeout, ok_status(), 0});
   }
-  const auto remaining = static_cast<std::uint8_t>(stroke_mask_ & ~(1u << hand));
   stroke_mask_ = 0;
   plan_.reset();
   if (remaining == 0) return;
@@ -349,6 +361,10 @@ SessionEvents SculptSession::step(ports::TimestampUs now_us) {
     inputs.hands[h].buttons = buttons_[h];
   }
   const ActionList actions = machine_.step(inputs, now_us);
+  releasing_mask_ = 0;
+  for (const Action& a : actions.items()) {
+    if (a.kind == ActionKind::commit) releasing_mask_ |= static_cast<std::uint8_t>(1u << a.hand);
+  }
   for (const Action& a : actions.items()) apply_action(a, now_us, out);
   if (moving_ && hands_[move_hand_].valid) object_ = moved_object();
   if (stroke_mask_ != 0) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <glm/geometric.hpp>
 #include <numbers>
 
@@ -197,6 +198,36 @@ TEST(SculptSession, TwoHandsTogetherAndSecondGrabAtSamePointRefused) {
   (void)s.tick();
   EXPECT_NEAR(s.mesh.position(nearest_vertex(s.mesh, {-0.5f, 0, 0})).z, 0.2f, 1e-4f);
   EXPECT_NEAR(s.mesh.position(nearest_vertex(s.mesh, {0.5f, 0, 0})).z, -0.2f, 1e-4f);
+}
+
+// Both hands letting go in the same step end with one two-hand commit: neither hand
+// "continues" for no time into a second, motionless record.
+TEST(SculptSession, ReleasingBothHandsTogetherIsOneCommit) {
+  Station s;
+  s.hand(0, math::identity_frame({-0.5, 0, 0}));
+  s.hand(1, math::identity_frame({0.5, 0, 0}));
+  s.button(kGrab0, true);
+  s.button(kGrab1, true);
+  (void)s.tick();
+  s.hand(0, math::identity_frame({-0.5, 0, 0.2}));
+  s.hand(1, math::identity_frame({0.5, 0, -0.2}));
+  (void)s.tick();
+  s.button(kGrab0, false);
+  s.button(kGrab1, false);
+  const SessionEvents done = s.tick();
+  std::array<int, 2> commits{};
+  std::uint32_t sequence = 99;
+  for (const SessionEvent& e : done.items()) {
+    if (e.kind != SessionEventKind::committed) continue;
+    ++commits[e.hand];
+    EXPECT_EQ(e.reason, Reason::released);
+    if (sequence == 99) sequence = e.sequence;
+    EXPECT_EQ(e.sequence, sequence);  // the same record for both hands
+  }
+  EXPECT_EQ(commits[0], 1);
+  EXPECT_EQ(commits[1], 1);
+  EXPECT_EQ(s.session->next_sequence(), 1u);  // exactly one journal record
+  EXPECT_FALSE(s.session->busy());
 }
 
 TEST(SculptSession, MoveObjectRigidlyWhileTheOtherHandWarps) {

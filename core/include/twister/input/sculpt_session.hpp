@@ -177,8 +177,8 @@ class SculptSession {
   void apply_action(const Action& action, ports::TimestampUs now_us, SessionEvents& out);
   Status begin_segment(std::uint8_t hand_mask, SessionEvents& out);
   // Commits the open segment; the committed event names `hand` and `reason`
-  // (released: the hand's grab ends; none: the stroke continues).
-  void commit_segment(std::uint8_t hand, Reason reason, SessionEvents& out);
+  // (released: the hand's grab ends; none: the stroke continues). Returns that event.
+  SessionEvent commit_segment(std::uint8_t hand, Reason reason, SessionEvents& out);
   // Reports the grabs of `mask` as ended (cancelled with `status`).
   void end_hands(std::uint8_t mask, Status status, SessionEvents& out);
   void restart_without(std::uint8_t hand, bool commit, SessionEvents& out);
@@ -214,6 +214,9 @@ class SculptSession {
   math::Frame move_hand_start_{};  // world
   math::Frame move_object_start_{};
   std::uint32_t next_sequence_ = 0;
+  // Hands whose grab the machine ends with a commit in the current step: released
+  // together, they share one commit instead of one hand "continuing" for no time.
+  std::uint8_t releasing_mask_ = 0;
   bool replay_chain_open_ = false;  // replay: a stroke chain may continue (freeze)
   std::uint16_t replay_chain_step_ = 0;
   ReplayStats replay_stats_{};
