@@ -8,8 +8,6 @@
 namespace twister::tracker {
 namespace {
 
-constexpr char kCtrlY = 0x19;
-
 // Appends text to a fixed buffer; false when it does not fit.
 bool append(std::array<char, 1024>& buf, std::size_t& len, const char* text) {
   const std::size_t n = std::strlen(text);

@@ -24,11 +24,11 @@ using tracker::Format;
 using tracker::Item;
 using tracker::OutputList;
 using tracker::Units;
+using tracker::kCtrlY;
+using tracker::kCtrlK;
+using tracker::kCtrlS;
+using tracker::kCtrlQ;
 
-constexpr char kCtrlY = 0x19;
-constexpr char kCtrlK = 0x0B;
-constexpr char kCtrlS = 0x13;
-constexpr char kCtrlQ = 0x11;
 
 // Cycle k starts at k * 1e6 / 120 us (8333.33 us).
 ports::TimestampUs cycle_time(std::int64_t k) { return (k * 25'000) / 3; }

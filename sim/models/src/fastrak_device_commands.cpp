@@ -19,8 +19,8 @@ using tracker::Format;
 using tracker::Item;
 using tracker::OutputList;
 using tracker::Units;
+using tracker::kCtrlY;
 
-constexpr char kCtrlY = 0x19;
 
 // Splits "1,2,,3" into fields; empty fields are kept as "".
 std::vector<std::string> split(const std::string& s) {
