@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 
+#include "fakes/fake_button_source.hpp"
 #include "fakes/fake_byte_stream.hpp"
 #include "fakes/fake_clock.hpp"
 #include "fakes/fake_storage.hpp"
@@ -70,29 +71,6 @@ class FastrakResponder {
   tracker::FastrakConfig config_;
   std::size_t seen_ = 0;
   bool streaming_ = false;
-};
-
-class ScriptedButtons final : public ports::ButtonSource {
- public:
-  void press(std::uint8_t line, bool pressed, ports::TimestampUs t) {
-    queue_.push_back({line, pressed, t});
-  }
-  void fail(bool f) { failing_ = f; }
-
- private:
-  Result<ports::ButtonEdge> do_poll() override {
-    if (failing_) return StatusCode::io_error;
-    if (pos_ == queue_.size()) return StatusCode::unavailable;
-    return queue_[pos_++];
-  }
-  std::uint8_t do_line_count() const override { return 6; }
-  std::vector<ports::ButtonEdge> queue_ = [] {
-    std::vector<ports::ButtonEdge> q;
-    q.reserve(256);  // pushes inside no-allocation scopes must not grow it
-    return q;
-  }();
-  std::size_t pos_ = 0;
-  bool failing_ = false;
 };
 
 StationConfig test_config() {
@@ -203,7 +181,7 @@ class StationTest : public ::testing::Test {
   test::FakeByteStream stream_;
   test::FakeClock clock_{1'000'000};
   test::FakeStorageWithStorage<> storage_;
-  ScriptedButtons buttons_;
+  test::FakeButtonSource buttons_;
   FastrakResponder responder_;
   std::unique_ptr<TestMesh> mesh_;
   std::unique_ptr<TestWork> work_ = std::make_unique<TestWork>();
