@@ -90,7 +90,8 @@ TEST_F(Figure8Plot, SvgHasTheSizeAndCarriesEveryLabel) {
                             "\n0\u00b0", "\n45\u00b0", "\n90\u00b0", "twister", "rottran"}) {
     EXPECT_NE(desc.find(label), std::string::npos) << label;
   }
-  for (const auto& c : small_picture().panels[0].curves) {
+  const Figure8Picture expected = small_picture();  // a temporary would die before the loop
+  for (const auto& c : expected.panels[0].curves) {
     char cell[64];
     std::snprintf(cell, sizeof cell, "\n%zu crossings\n, turn %.1f\u00b0\n", c.intersections,
                   c.sharpest_turn_deg);
