@@ -45,7 +45,7 @@ void UndoHistory::drop_oldest() {
 }
 
 void UndoHistory::begin_entry() {
-  entry_count_ = undo_count_;  // a new commit ends the redo branch
+  entry_count_ = undo_count_;  // another commit ends the redo branch
   if (entry_count_ == entries_.size()) drop_oldest();
   open_ = true;
   overflow_ = false;

@@ -113,7 +113,7 @@ void StationLink::track_mesh(const mesh::Mesh& mesh) {
     shadow_.clear();
   }
   if (full_active_) {
-    full_phase_ = FullPhase::begin;  // restart from the new shadow
+    full_phase_ = FullPhase::begin;  // restart from the fresh shadow
     full_next_ = 0;
   } else if (!sent && connected_) {
     full_wanted_ = true;

@@ -107,7 +107,7 @@ void write_extended(std::byte* p, float value) {
   if (a > 0.0) {
     e = static_cast<int>(std::floor(std::log10(a)));
     m = std::llround(scale(1, 5 - e) * a);
-    if (m >= 1000000) {  // rounding carried into a new digit
+    if (m >= 1000000) {  // rounding carried into an extra digit
       ++e;
       m = std::llround(scale(1, 5 - e) * a);
     }

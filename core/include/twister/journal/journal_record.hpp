@@ -46,7 +46,7 @@ struct JournalPose {
 struct StrokeRecord {
   std::uint8_t method = 0;       // math::WarpMethod as a number
   std::uint8_t hand_mask = 0;    // bit h set: hand h took part (1, 2 or 3)
-  std::uint16_t chain_step = 0;  // 0: new selection; k > 0: k-th freeze step, same weights
+  std::uint16_t chain_step = 0;  // 0: first selection; k > 0: k-th freeze step, same weights
   double radius_m = 0.0;
   std::array<JournalPose, 2> start{};  // per hand, meaningful where hand_mask says
   std::array<JournalPose, 2> end{};

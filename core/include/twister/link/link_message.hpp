@@ -26,7 +26,7 @@ enum class MessageType : std::uint8_t {
   mesh_begin = 2,      // starts a full mesh (full=1) or a commit's change set
   vertices = 3,        // positions of (index, xyz) vertices: chunk of a mesh/commit
   triangles = 4,       // a run of triangles starting at `first`
-  mesh_end = 5,        // ends the set: new version and the mesh checksum
+  mesh_end = 5,        // ends the set: next version and the mesh checksum
   live_warp = 6,       // the live stroke's screws (display warps in its shader)
   resend_request = 7,  // bridge -> station: send the full mesh
   status = 8,          // station counters (for the display's status line)
@@ -79,7 +79,7 @@ struct LiveHand {
 
 struct LiveWarp {
   std::uint32_t mesh_version = 0;  // the rest mesh the warp applies to
-  std::uint32_t stroke = 0;        // changes when a new grab/segment starts
+  std::uint32_t stroke = 0;        // changes when another grab/segment starts
   bool active = false;             // false: no stroke (display shows the rest mesh)
   std::uint8_t method = 0;         // math::WarpMethod
   std::uint8_t hand_mask = 0;      // bit h: hands[h] is used
