@@ -15,9 +15,10 @@ packages=(
   # hal backends and the station
   libusb-1.0-0-dev libgpiod-dev libhidapi-dev libsystemd-dev libtomlplusplus-dev
   libcli11-dev umockdev libumockdev-dev
+  systemd  # systemd-analyze checks the deployment unit (tests/hal/station)
   # host tools and display
-  libfmt-dev libpng-dev libtinyobjloader-dev libglfw3-dev libepoxy-dev libegl-dev
-  libgl1-mesa-dri xvfb xauth
+  libpng-dev libtinyobjloader-dev libglfw3-dev libepoxy-dev libegl-dev
+  libgl1-mesa-dri xvfb xauth  # xvfb: the bridge's window path is tested on a virtual X server
   libcairo2-dev fonts-dejavu-core  # twister figure8 draws its SVG/PNG with cairo, text in DejaVu Sans
 )
 

@@ -7,6 +7,7 @@
 # mesh, the live warp (weights in red/green) and the committed mesh, then exports
 # the final mesh. Usage: host/bridge/demo.sh [BUILD_DIR] [OUT_DIR]
 set -euo pipefail
+bridge_args=()
 here="$(cd "$(dirname "$0")" && pwd)"
 build="${1:-$here/../../build}"
 out="${2:-$build/bridge-demo}"
@@ -54,9 +55,17 @@ sock="$out/link.sock"
 station_pid=$!
 trap 'kill "$station_pid" 2>/dev/null || true' EXIT
 for _ in $(seq 100); do [[ -S "$sock" ]] && break; sleep 0.05; done
-export EGL_PLATFORM=surfaceless
-unset DISPLAY WAYLAND_DISPLAY
-"$bridge" --connect "unix:$sock" --offscreen --size 960x720 --azimuth 25 --elevation 35 --snapshots "$out/pictures" \
+# TWISTER_BRIDGE_MODE=window runs the bridge in a GLFW window on a virtual X server
+# (xvfb-run) instead: the same pictures through the windowed path.
+if [[ "${TWISTER_BRIDGE_MODE:-offscreen}" == window ]]; then
+  display=(xvfb-run -a -s "-screen 0 1280x1024x24 -nolisten tcp")
+else
+  export EGL_PLATFORM=surfaceless
+  unset DISPLAY WAYLAND_DISPLAY
+  display=(env)
+  bridge_args=(--offscreen)
+fi
+"${display[@]}" "$bridge" --connect "unix:$sock" "${bridge_args[@]}" --size 960x720 --azimuth 25 --elevation 35 --snapshots "$out/pictures" \
   --export "$out/final.obj" --exit-on-disconnect --timeout 50 2> "$out/bridge.log" \
   > "$out/pictures.txt" && bridge_rc=0 || bridge_rc=$?
 wait "$station_pid" && station_rc=0 || station_rc=$?
