@@ -1,12 +1,12 @@
 # Twister Station: thin wrapper over the CMake presets (the PX4 convention).
 #   make demo   - install deps, build, run the simulated station demo (headless-safe)
 #   make test   - install deps, build, run the whole test suite (what CI runs)
-# Other targets: deps build bench asan fuzz fuzz-long lint format clean
+# Other targets: deps build bench asan fuzz lint format clean
 
 JOBS ?= $(shell nproc)
 FUZZ_SECONDS ?= 600
 
-.PHONY: all deps build test test-only fuzz-smoke demo bench asan fuzz fuzz-long lint format clean
+.PHONY: all deps build test test-only fuzz-smoke demo bench asan fuzz lint format clean
 
 all: build
 

@@ -45,18 +45,23 @@ function(twister_core_library part)
   add_dependencies(${target} twister_core_portability)
 endfunction()
 
-# twister_add_test(<name> SOURCES ... [LIBS ...] [LABELS ...])
-# One GoogleTest executable; each test case becomes a CTest test carrying LABELS.
+# twister_add_test(<name> SOURCES ... [LIBS ...] [LABELS ...] [ENVIRONMENT ...])
+# One GoogleTest executable; each test case becomes a CTest test carrying LABELS
+# (and ENVIRONMENT, e.g. an LD_PRELOAD of a device emulator).
 function(twister_add_test name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS;LABELS;ENVIRONMENT" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} twister_test_support GTest::gmock GTest::gtest_main)
   twister_warnings(${name} TEST)
+  set(properties LABELS "${ARG_LABELS}")
+  if(ARG_ENVIRONMENT)
+    list(APPEND properties ENVIRONMENT "${ARG_ENVIRONMENT}")
+  endif()
   gtest_discover_tests(${name}
     DISCOVERY_MODE PRE_TEST
     TEST_PREFIX "${name}."
-    PROPERTIES LABELS "${ARG_LABELS}")
+    PROPERTIES ${properties})
 endfunction()
 
 # twister_add_fuzzer(<name> SOURCES ... [LIBS ...])
