@@ -3,9 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <sstream>
 
 namespace twister::sim {
+namespace {
+constexpr FaultKind kFaultKinds[] = {FaultKind::noise, FaultKind::drop,   FaultKind::truncate,
+                                     FaultKind::stall, FaultKind::hangup, FaultKind::wrong_baud};
+}  // namespace
 
 const char* fault_kind_name(FaultKind k) {
   switch (k) {
@@ -123,20 +128,10 @@ bool parse_scenario(std::string_view text, Scenario& out, std::string& error) {
       if (!finite(f.t_s) || f.t_s < 0 || !finite(f.amount) || f.amount < 0) {
         return fail("fault time and amount must be >= 0");
       }
-      if (kind == "noise")
-        f.kind = FaultKind::noise;
-      else if (kind == "drop")
-        f.kind = FaultKind::drop;
-      else if (kind == "truncate")
-        f.kind = FaultKind::truncate;
-      else if (kind == "stall")
-        f.kind = FaultKind::stall;
-      else if (kind == "hangup")
-        f.kind = FaultKind::hangup;
-      else if (kind == "wrongbaud")
-        f.kind = FaultKind::wrong_baud;
-      else
-        return fail("unknown fault kind '" + kind + "'");
+      const auto* named = std::find_if(std::begin(kFaultKinds), std::end(kFaultKinds),
+                                       [&](FaultKind k) { return kind == fault_kind_name(k); });
+      if (named == std::end(kFaultKinds)) return fail("unknown fault kind '" + kind + "'");
+      f.kind = *named;
       sc.faults.push_back(f);
     } else if (word == "button") {
       ButtonEvent b;

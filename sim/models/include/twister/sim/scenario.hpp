@@ -37,6 +37,7 @@ enum class FaultKind : std::uint8_t {
   hangup,      // the line hangs up for `amount` seconds, then the unit powers up again
   wrong_baud,  // for `amount` seconds both directions are garbled (baud mismatch)
 };
+// The kind's keyword in the scenario text (parse_scenario reads these names).
 const char* fault_kind_name(FaultKind k);
 
 struct Fault {
