@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <iterator>
 #include <sstream>
 
@@ -155,6 +156,21 @@ bool parse_scenario(std::string_view text, Scenario& out, std::string& error) {
   std::stable_sort(sc.buttons.begin(), sc.buttons.end(),
                    [](const ButtonEvent& a, const ButtonEvent& b) { return a.t_s < b.t_s; });
   out = std::move(sc);
+  return true;
+}
+
+bool load_scenario_file(const std::string& path, Scenario& out, std::string& error) {
+  std::ifstream in(path);
+  if (!in) {
+    error = "cannot read scenario file " + path;
+    return false;
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  if (!parse_scenario(text.str(), out, error)) {
+    error = path + ": " + error;
+    return false;
+  }
   return true;
 }
 

@@ -84,4 +84,8 @@ HandSample sample(const Scenario& scenario, int station, double t_s);
 // "line N: message".
 bool parse_scenario(std::string_view text, Scenario& out, std::string& error);
 
+// Reads and parses a scenario file. On error returns false and sets `error` to
+// "cannot read scenario file PATH" or "PATH: line N: message".
+bool load_scenario_file(const std::string& path, Scenario& out, std::string& error);
+
 }  // namespace twister::sim
