@@ -27,7 +27,6 @@ int run(int argc, char** argv) {
                  "serve on this real serial device (HIL) instead of a PTY");
   app.add_option("--baud", dev.baud, "modelled line rate (bits/s, 10 bits per byte)")
       ->check(CLI::Range(300, 4000000));
-  serve.baud = dev.baud;
   app.add_option("--reset-time", reset_s, "seconds a ^Y or power-up takes (real unit: 10-20)")
       ->check(CLI::Range(0.0, 60.0));
   app.add_flag("--continuous", dev.start_continuous, "power up in continuous mode");
