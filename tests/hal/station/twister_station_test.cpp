@@ -29,16 +29,20 @@ struct RunResult {
   std::string output;  // stdout + stderr
 };
 
-RunResult run(const std::string& args) {
-  const std::string cmd = std::string(TWISTER_STATION_BIN) + " " + args + " 2>&1";
+// Runs a shell command line; exit_code is -1 when it could not start or did not exit.
+RunResult run_command(const std::string& cmd) {
   RunResult r;
-  FILE* p = ::popen(cmd.c_str(), "r");
+  FILE* p = ::popen((cmd + " 2>&1").c_str(), "r");
   if (p == nullptr) return r;
   std::array<char, 512> buf{};
   while (std::fgets(buf.data(), buf.size(), p) != nullptr) r.output += buf.data();
   const int status = ::pclose(p);
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+RunResult run(const std::string& args) {
+  return run_command(std::string(TWISTER_STATION_BIN) + " " + args);
 }
 
 std::string temp_path(const char* name) {
@@ -101,17 +105,11 @@ TEST(TwisterStationTest, SimConfigRunsAScriptedStrokeIntoTheJournal) {
   ASSERT_NE(at, std::string::npos) << again.output;
   const std::string checksum = again.output.substr(at + final_line.size(), 16);
   // `twister replay` rebuilds the very same model from the journal and the OBJ.
-  const std::string replay_cmd = std::string(TWISTER_CLI_BIN) + " replay " + journal + " --mesh " +
-                                 TWISTER_DEPLOY_DIR + "/sim_sphere.obj --out " + journal +
-                                 ".obj 2>&1";
-  FILE* p = ::popen(replay_cmd.c_str(), "r");
-  ASSERT_NE(p, nullptr);
-  std::string replay_out;
-  std::array<char, 256> buf{};
-  while (std::fgets(buf.data(), buf.size(), p) != nullptr) replay_out += buf.data();
-  EXPECT_EQ(::pclose(p), 0) << replay_out;
-  EXPECT_NE(replay_out.find("checksum " + checksum), std::string::npos)
-      << replay_out << again.output;
+  const auto replay = run_command(std::string(TWISTER_CLI_BIN) + " replay " + journal + " --mesh " +
+                                  TWISTER_DEPLOY_DIR + "/sim_sphere.obj --out " + journal + ".obj");
+  EXPECT_EQ(replay.exit_code, 0) << replay.output;
+  EXPECT_NE(replay.output.find("checksum " + checksum), std::string::npos)
+      << replay.output << again.output;
   ::unlink((journal + ".obj").c_str());
   ::unlink(journal.c_str());
 }
