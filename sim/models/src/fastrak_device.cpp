@@ -19,11 +19,11 @@
 namespace twister::sim {
 namespace {
 
-using tracker::Units;
-using tracker::kCtrlY;
 using tracker::kCtrlK;
-using tracker::kCtrlS;
 using tracker::kCtrlQ;
+using tracker::kCtrlS;
+using tracker::kCtrlY;
+using tracker::Units;
 
 // Cycle k starts at k * 1e6 / 120 us (8333.33 us).
 ports::TimestampUs cycle_time(std::int64_t k) { return (k * 25'000) / 3; }

@@ -17,9 +17,9 @@ namespace {
 
 using tracker::Format;
 using tracker::Item;
+using tracker::kCtrlY;
 using tracker::OutputList;
 using tracker::Units;
-using tracker::kCtrlY;
 
 // Splits "1,2,,3" into fields; empty fields are kept as "".
 std::vector<std::string> split(const std::string& s) {
