@@ -66,13 +66,15 @@ std::vector<twister::journal::JournalRecord> read_journal(const std::string& pat
   return out;
 }
 
+// [station] with this journal and the deploy folder's sphere.
+std::string station_section(const std::string& journal) {
+  return "[station]\njournal = \"" + journal + "\"\nmesh = \"" + TWISTER_DEPLOY_DIR +
+         "/sim_sphere.obj\"\n";
+}
+
 std::string sim_config(const std::string& journal, const char* scenario, const char* time) {
-  return "[station]\njournal = \"" + journal + "\"\nmesh = \"" + std::string(TWISTER_DEPLOY_DIR) +
-         "/sim_sphere.obj\"\n[tracker]\nbackend = \"sim\"\n"
-         "[tracker.sim]\nscenario = \"" +
-         scenario + "\"\ntime = \"" + time +
-         "\"\n"
-         "[buttons]\nbackend = \"stylus\"\n";
+  return station_section(journal) + "[tracker]\nbackend = \"sim\"\n[tracker.sim]\nscenario = \"" +
+         scenario + "\"\ntime = \"" + time + "\"\n[buttons]\nbackend = \"stylus\"\n";
 }
 
 TEST(TwisterStationTest, SimConfigRunsAScriptedStrokeIntoTheJournal) {
@@ -119,12 +121,12 @@ TEST(TwisterStationTest, SimConfigRunsAScriptedStrokeIntoTheJournal) {
 TEST(TwisterStationTest, SimButtonsLetBothHandsGrabTogetherIntoOneTwoHandStroke) {
   const std::string journal = temp_path("two_hands.bin");
   ::unlink(journal.c_str());
-  const std::string cfg = write_file(
-      "two_hands.toml", "[station]\njournal = \"" + journal + "\"\nmesh = \"" + TWISTER_DEPLOY_DIR +
-                            "/sim_sphere.obj\"\n[tracker]\nbackend = \"sim\"\n"
-                            "[tracker.sim]\nscenario_file = \"" TWISTER_SCENARIO_DIR
-                            "/sim_two_hands.scn\"\ntime = \"virtual\"\n"
-                            "[buttons]\nbackend = \"sim\"\n");
+  const std::string cfg =
+      write_file("two_hands.toml", station_section(journal) +
+                                       "[tracker]\nbackend = \"sim\"\n"
+                                       "[tracker.sim]\nscenario_file = \"" TWISTER_SCENARIO_DIR
+                                       "/sim_two_hands.scn\"\ntime = \"virtual\"\n"
+                                       "[buttons]\nbackend = \"sim\"\n");
   const auto r = run("--config " + cfg);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("buttons sim (4 scripted events)"), std::string::npos) << r.output;
@@ -191,13 +193,13 @@ RunResult run_against_pty(const char* scenario, const std::string& journal, doub
     ::pclose(sim);
     return r;
   }
-  const std::string cfg = write_file(
-      "pty.toml", "[station]\njournal = \"" + journal + "\"\nmesh = \"" + TWISTER_DEPLOY_DIR +
-                      "/sim_sphere.obj\"\n[tracker]\nbackend = \"serial\"\n"
-                      "reconnect_interval_ms = 200\n[tracker.serial]\ndevice = \"" +
-                      link +
-                      "\"\n"
-                      "[buttons]\nbackend = \"stylus\"\n[systemd]\nnotify = false\n");
+  const std::string cfg =
+      write_file("pty.toml", station_section(journal) +
+                                 "[tracker]\nbackend = \"serial\"\n"
+                                 "reconnect_interval_ms = 200\n[tracker.serial]\ndevice = \"" +
+                                 link +
+                                 "\"\n"
+                                 "[buttons]\nbackend = \"stylus\"\n[systemd]\nnotify = false\n");
   r = run("--config " + cfg + " --duration " + std::to_string(seconds));
   ::pclose(sim);  // twister-sim stops at the end of its scenario
   ::unlink(cfg.c_str());
