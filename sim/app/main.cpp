@@ -3,8 +3,6 @@
 #include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 #include "device_server.hpp"
 #include "twister/sim/fastrak_device.hpp"
@@ -29,7 +27,6 @@ int run(int argc, char** argv) {
                  "serve on this real serial device (HIL) instead of a PTY");
   app.add_option("--baud", dev.baud, "modelled line rate (bits/s, 10 bits per byte)")
       ->check(CLI::Range(300, 4000000));
-  serve.baud = dev.baud;
   app.add_option("--reset-time", reset_s, "seconds a ^Y or power-up takes (real unit: 10-20)")
       ->check(CLI::Range(0.0, 60.0));
   app.add_flag("--continuous", dev.start_continuous, "power up in continuous mode");
@@ -47,19 +44,10 @@ int run(int argc, char** argv) {
   if (binary) dev.start_format = twister::tracker::Format::binary;
 
   twister::sim::Scenario scenario;
-  if (!scenario_path.empty()) {
-    std::ifstream in(scenario_path);
-    if (!in) {
-      std::fprintf(stderr, "twister-sim: cannot read %s\n", scenario_path.c_str());
-      return 2;
-    }
-    std::stringstream ss;
-    ss << in.rdbuf();
-    std::string error;
-    if (!twister::sim::parse_scenario(ss.str(), scenario, error)) {
-      std::fprintf(stderr, "twister-sim: %s: %s\n", scenario_path.c_str(), error.c_str());
-      return 2;
-    }
+  if (std::string error;
+      !scenario_path.empty() && !twister::sim::load_scenario_file(scenario_path, scenario, error)) {
+    std::fprintf(stderr, "twister-sim: %s\n", error.c_str());
+    return 2;
   }
   if (duration_s == 0.0) duration_s = scenario.duration_s;
 

@@ -3,14 +3,12 @@
 // the master side), and PTY mode's printed path and link.
 #include "device_server.hpp"
 
-#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <poll.h>
-#include <stdlib.h>
-#include <termios.h>
 #include <unistd.h>
 
 #include <string>
+
+#include "support/pty_pair.hpp"
 
 namespace twister::sim {
 namespace {
@@ -28,20 +26,16 @@ std::string pump(DeviceServer& server, int master, int ms) {
 }
 
 TEST(DeviceServer, HilModeServesARealTtyPath) {
-  const int master = ::posix_openpt(O_RDWR | O_NOCTTY | O_NONBLOCK);
-  ASSERT_GE(master, 0);
-  ASSERT_EQ(::grantpt(master), 0);
-  ASSERT_EQ(::unlockpt(master), 0);
-  termios tio{};
-  ::tcgetattr(master, &tio);
-  ::cfmakeraw(&tio);
-  ::tcsetattr(master, TCSANOW, &tio);
+  const ::twister::test::PtyPair pty;
+  ASSERT_GE(pty.master, 0);
+  ASSERT_FALSE(pty.slave.empty());  // grantpt, unlockpt and ptsname succeeded
+  const int master = pty.master;
   Scenario sc;
   FastrakDeviceConfig dev;
   dev.reset_time_us = 0;
   FastrakDevice device(dev, sc, 0);
   ServeOptions opts;
-  opts.device = ::ptsname(master);
+  opts.device = pty.slave;
   DeviceServer server(device, opts);
   std::string err;
   ASSERT_TRUE(server.start(err)) << err;
@@ -56,7 +50,6 @@ TEST(DeviceServer, HilModeServesARealTtyPath) {
   ASSERT_EQ(records.size(), 94u);
   EXPECT_EQ(records.substr(0, 3), "01 ");
   EXPECT_EQ(records.substr(47, 3), "02 ");
-  ::close(master);
 }
 
 TEST(DeviceServer, PtyModeLinksTheSlave) {

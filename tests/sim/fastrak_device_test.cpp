@@ -1,6 +1,7 @@
-// The Fastrak device model driven by the real FastrakSession in virtual time: rates
-// per active station, bandwidth drops, command replies, stylus e-mode, and each fault
-// kind with the session recovering by itself.
+// The Fastrak device model driven by the real FastrakSession in virtual time, through
+// hal::SimFastrakStream (the PTY path is covered by the termios and acceptance tests):
+// rates per active station, bandwidth drops, command replies, stylus e-mode, and each
+// fault kind with the session recovering by itself.
 #include "twister/sim/fastrak_device.hpp"
 
 #include <gtest/gtest.h>
@@ -9,8 +10,8 @@
 #include <ostream>
 #include <string>
 
-#include "device_byte_stream.hpp"
 #include "fakes/fake_clock.hpp"
+#include "twister/hal/sim_fastrak_stream.hpp"
 #include "twister/tracker/fastrak_parser.hpp"
 #include "twister/tracker/fastrak_session.hpp"
 #include "twister/tracker/pose_conversion.hpp"
@@ -45,15 +46,16 @@ Scenario scenario(const std::string& text) {
   return sc;
 }
 
+// The model behind hal::SimFastrakStream (the station's in-process simulator port).
 struct SimRig {
   ::twister::test::FakeClock clock{0};
-  FastrakDevice device;
-  test::DeviceByteStream stream{device, clock};
+  hal::SimFastrakStream stream;
+  const FastrakDevice& device;
   tracker::FastrakSession session;
   std::vector<std::pair<double, tracker::FastrakPose>> poses;
 
   SimRig(const Scenario& sc, const tracker::FastrakSessionConfig& cfg, FastrakDeviceConfig dev = {})
-      : device(dev, sc, 0), session(stream, clock, cfg) {}
+      : stream(clock, dev, sc), device(stream.device()), session(stream, clock, cfg) {}
 
   void run(double seconds, std::int64_t step_us = 1'000) {
     const auto end = clock.now_us() + static_cast<std::int64_t>(seconds * 1e6);

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "device_server.hpp"
+#include "twister/hal/monotonic_clock.hpp"
 #include "twister/hal/termios_byte_stream.hpp"
 #include "twister/sim/fastrak_device.hpp"
 #include "twister/tracker/fastrak_session.hpp"
@@ -24,14 +25,6 @@ namespace {
 using tracker::Format;
 using tracker::Item;
 using tracker::OutputList;
-
-class SteadyClock final : public ports::Clock {
-  ports::TimestampUs do_now_us() override {
-    return std::chrono::duration_cast<std::chrono::microseconds>(
-               std::chrono::steady_clock::now().time_since_epoch())
-        .count();
-  }
-};
 
 struct FaultCase {
   const char* name;
@@ -96,7 +89,7 @@ TEST_P(FastrakPtyAcceptance, SessionRecoversAndNoInvalidPoseReachesTheConsumer) 
   cfg.command_pause_us = 5'000;
   cfg.backoff_initial_us = 100'000;
   hal::TermiosByteStream port({opts.link, 115200, hal::FlowControl::none});
-  SteadyClock clock;
+  hal::MonotonicClock clock;
   tracker::FastrakSession session(port, clock, cfg);
   tracker::PoseConversion conv;
   conv.format = fc.format;

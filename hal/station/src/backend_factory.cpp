@@ -3,8 +3,6 @@
 #include "backend_factory.hpp"
 
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 #include "twister/hal/builtin_scenarios.hpp"
 #include "twister/hal/monotonic_clock.hpp"
@@ -35,25 +33,11 @@ class NoButtonSource final : public ports::ButtonSource {
 bool make_sim_tracker(const StationConfig& config, Backends& out, std::string& error) {
   const SimTrackerConfig& s = config.tracker.sim;
   sim::Scenario scenario;
-  std::string parse_error;
   if (!s.scenario_file.empty()) {
-    std::ifstream in(s.scenario_file);
-    if (!in) {
-      error = "cannot read scenario file " + s.scenario_file;
-      return false;
-    }
-    std::stringstream text;
-    text << in.rdbuf();
-    if (!sim::parse_scenario(text.str(), scenario, parse_error)) {
-      error = s.scenario_file + ": " + parse_error;
-      return false;
-    }
+    if (!sim::load_scenario_file(s.scenario_file, scenario, error)) return false;
     out.tracker_name = "sim " + s.scenario_file;
   } else {
-    if (!load_builtin_scenario(s.scenario, scenario, parse_error)) {
-      error = parse_error;
-      return false;
-    }
+    if (!load_builtin_scenario(s.scenario, scenario, error)) return false;
     out.tracker_name = "sim " + s.scenario;
   }
   if (s.unplug_at_ms > 0) {

@@ -10,7 +10,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
@@ -20,15 +19,11 @@
 namespace twister::sim {
 namespace {
 
-using tracker::Format;
-using tracker::Item;
-using tracker::OutputList;
-using tracker::Units;
-using tracker::kCtrlY;
 using tracker::kCtrlK;
-using tracker::kCtrlS;
 using tracker::kCtrlQ;
-
+using tracker::kCtrlS;
+using tracker::kCtrlY;
+using tracker::Units;
 
 // Cycle k starts at k * 1e6 / 120 us (8333.33 us).
 ports::TimestampUs cycle_time(std::int64_t k) { return (k * 25'000) / 3; }
@@ -135,7 +130,7 @@ void FastrakDevice::queue(const std::string& bytes, ports::TimestampUs now) {
   line_.push_back({line_free_at_, bytes});
 }
 
-void FastrakDevice::queue_record(int station, ports::TimestampUs at, bool polled) {
+void FastrakDevice::queue_record(int station, ports::TimestampUs at) {
   const double t = scenario_time_s(at);
   const HandSample h = sample(scenario_, station, t);
   tracker::FastrakPose pose;
@@ -172,7 +167,6 @@ void FastrakDevice::queue_record(int station, ports::TimestampUs at, bool polled
     bytes.resize(1 + rng_() % (bytes.size() - 2));
   }
   ++counters_.records;
-  (void)polled;
   queue(bytes, at);
 }
 
@@ -256,8 +250,7 @@ void FastrakDevice::receive(const std::byte* data, std::size_t size, ports::Time
 }
 
 void FastrakDevice::advance(ports::TimestampUs now, std::vector<std::byte>& out) {
-  apply_faults(now);
-  if (hung_up(now)) {
+  if (hung_up(now)) {  // applies the faults due by now
     line_.clear();
     return;
   }
@@ -277,7 +270,7 @@ void FastrakDevice::advance(ports::TimestampUs now, std::vector<std::byte>& out)
       ++counters_.dropped_solutions;  // the previous record is still on the wire
       continue;
     }
-    queue_record(station, t, false);
+    queue_record(station, t);
   }
   if (stalled) return;
   while (!line_.empty() && line_.front().ready <= now) {

@@ -17,10 +17,9 @@ namespace {
 
 using tracker::Format;
 using tracker::Item;
+using tracker::kCtrlY;
 using tracker::OutputList;
 using tracker::Units;
-using tracker::kCtrlY;
-
 
 // Splits "1,2,,3" into fields; empty fields are kept as "".
 std::vector<std::string> split(const std::string& s) {
@@ -51,7 +50,7 @@ void FastrakDevice::execute(char command, const std::string& args, ports::Timest
   const std::string echo = std::string(1, command) + args;
   switch (command) {
     case 'P':
-      for (int s : active_stations()) queue_record(s, now, true);
+      for (int s : active_stations()) queue_record(s, now);
       return;
     case 'C':
       continuous_ = true;

@@ -3,9 +3,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 
 namespace twister::sim {
+namespace {
+constexpr FaultKind kFaultKinds[] = {FaultKind::noise, FaultKind::drop,   FaultKind::truncate,
+                                     FaultKind::stall, FaultKind::hangup, FaultKind::wrong_baud};
+}  // namespace
 
 const char* fault_kind_name(FaultKind k) {
   switch (k) {
@@ -123,20 +129,10 @@ bool parse_scenario(std::string_view text, Scenario& out, std::string& error) {
       if (!finite(f.t_s) || f.t_s < 0 || !finite(f.amount) || f.amount < 0) {
         return fail("fault time and amount must be >= 0");
       }
-      if (kind == "noise")
-        f.kind = FaultKind::noise;
-      else if (kind == "drop")
-        f.kind = FaultKind::drop;
-      else if (kind == "truncate")
-        f.kind = FaultKind::truncate;
-      else if (kind == "stall")
-        f.kind = FaultKind::stall;
-      else if (kind == "hangup")
-        f.kind = FaultKind::hangup;
-      else if (kind == "wrongbaud")
-        f.kind = FaultKind::wrong_baud;
-      else
-        return fail("unknown fault kind '" + kind + "'");
+      const auto* named = std::find_if(std::begin(kFaultKinds), std::end(kFaultKinds),
+                                       [&](FaultKind k) { return kind == fault_kind_name(k); });
+      if (named == std::end(kFaultKinds)) return fail("unknown fault kind '" + kind + "'");
+      f.kind = *named;
       sc.faults.push_back(f);
     } else if (word == "button") {
       ButtonEvent b;
@@ -160,6 +156,21 @@ bool parse_scenario(std::string_view text, Scenario& out, std::string& error) {
   std::stable_sort(sc.buttons.begin(), sc.buttons.end(),
                    [](const ButtonEvent& a, const ButtonEvent& b) { return a.t_s < b.t_s; });
   out = std::move(sc);
+  return true;
+}
+
+bool load_scenario_file(const std::string& path, Scenario& out, std::string& error) {
+  std::ifstream in(path);
+  if (!in) {
+    error = "cannot read scenario file " + path;
+    return false;
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  if (!parse_scenario(text.str(), out, error)) {
+    error = path + ": " + error;
+    return false;
+  }
   return true;
 }
 

@@ -1,12 +1,15 @@
 // Malformed configs give the messages documented in docs/hardware.md ("Config errors").
 #include "twister/hal/station_config.hpp"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <string>
 
 namespace twister::hal {
 namespace {
+
+using ::testing::HasSubstr;
 
 constexpr const char* kValidSerial = R"(
 [station]
@@ -103,40 +106,29 @@ flow_control = "hardware"
 backend = "gpio"
 )");
   const std::string m = messages(r);
-  EXPECT_NE(m.find("t.toml:6: tracker.left_station: expected an integer from 1 to 4, got 7\n"),
-            std::string::npos)
-      << m;
-  EXPECT_NE(m.find("t.toml:9: tracker.serial.baud: expected one of 2400 4800 9600 19200 38400 "
-                   "57600 115200, got 12345\n"),
-            std::string::npos)
-      << m;
-  EXPECT_NE(m.find("t.toml:10: tracker.serial.flow_control: expected one of \"none\" \"rtscts\" "
-                   "\"xonxoff\", got \"hardware\"\n"),
-            std::string::npos)
-      << m;
-  EXPECT_NE(m.find("t.toml:12: buttons.backend: expected one of \"gpiod\" \"hidapi\" \"stylus\" "
-                   "\"sim\", got \"gpio\"\n"),
-            std::string::npos)
-      << m;
+  EXPECT_THAT(
+      m, HasSubstr("t.toml:6: tracker.left_station: expected an integer from 1 to 4, got 7\n"));
+  EXPECT_THAT(m,
+              HasSubstr("t.toml:9: tracker.serial.baud: expected one of 2400 4800 9600 19200 38400 "
+                        "57600 115200, got 12345\n"));
+  EXPECT_THAT(
+      m, HasSubstr("t.toml:10: tracker.serial.flow_control: expected one of \"none\" \"rtscts\" "
+                   "\"xonxoff\", got \"hardware\"\n"));
+  EXPECT_THAT(
+      m, HasSubstr("t.toml:12: buttons.backend: expected one of \"gpiod\" \"hidapi\" \"stylus\" "
+                   "\"sim\", got \"gpio\"\n"));
   EXPECT_EQ(r.errors.size(), 4u) << m;
 }
 
 TEST(StationConfigTest, MissingRequiredKeysAndSections) {
   const auto r = parse("[station]\n[tracker]\nbackend = \"serial\"\n");
   const std::string m = messages(r);
-  EXPECT_NE(m.find("t.toml:1: station.journal: missing required key; expected a string\n"),
-            std::string::npos)
-      << m;
-  EXPECT_NE(m.find("t.toml:1: station.mesh: missing required key; expected a string\n"),
-            std::string::npos)
-      << m;
-  EXPECT_NE(m.find("t.toml:2: tracker.serial: missing required key; expected a table "
-                   "[tracker.serial]\n"),
-            std::string::npos)
-      << m;
-  EXPECT_NE(m.find("t.toml:1: buttons: missing required key; expected a table [buttons]\n"),
-            std::string::npos)
-      << m;
+  EXPECT_THAT(m, HasSubstr("t.toml:1: station.journal: missing required key; expected a string\n"));
+  EXPECT_THAT(m, HasSubstr("t.toml:1: station.mesh: missing required key; expected a string\n"));
+  EXPECT_THAT(m, HasSubstr("t.toml:2: tracker.serial: missing required key; expected a table "
+                           "[tracker.serial]\n"));
+  EXPECT_THAT(m,
+              HasSubstr("t.toml:1: buttons: missing required key; expected a table [buttons]\n"));
 }
 
 TEST(StationConfigTest, SameReceiverForBothHandsIsRefused) {
@@ -172,10 +164,9 @@ device = "/dev/ttyUSB0"
 backend = "sim"
 )");
   const std::string m = messages(bad);
-  EXPECT_NE(m.find("t.toml:9: buttons.backend: \"sim\" plays the simulator scenario's button "
-                   "lines and needs tracker.backend = \"sim\"\n"),
-            std::string::npos)
-      << m;
+  EXPECT_THAT(m,
+              HasSubstr("t.toml:9: buttons.backend: \"sim\" plays the simulator scenario's button "
+                        "lines and needs tracker.backend = \"sim\"\n"));
   EXPECT_EQ(bad.errors.size(), 1u) << m;
 }
 
@@ -192,16 +183,13 @@ lines = [3, -1, 3]
 bias = "up"
 )");
   const std::string m = messages(r);
-  EXPECT_NE(m.find("t.toml:9: buttons.gpiod.lines: expected line offsets from 0 to 1023, got -1\n"),
-            std::string::npos)
-      << m;
-  EXPECT_NE(m.find("t.toml:9: buttons.gpiod.lines: expected each line offset once, got 3 twice\n"),
-            std::string::npos)
-      << m;
-  EXPECT_NE(m.find("t.toml:10: buttons.gpiod.bias: expected one of \"as-is\" \"disable\" "
-                   "\"pull-up\" \"pull-down\", got \"up\"\n"),
-            std::string::npos)
-      << m;
+  EXPECT_THAT(
+      m,
+      HasSubstr("t.toml:9: buttons.gpiod.lines: expected line offsets from 0 to 1023, got -1\n"));
+  EXPECT_THAT(
+      m, HasSubstr("t.toml:9: buttons.gpiod.lines: expected each line offset once, got 3 twice\n"));
+  EXPECT_THAT(m, HasSubstr("t.toml:10: buttons.gpiod.bias: expected one of \"as-is\" \"disable\" "
+                           "\"pull-up\" \"pull-down\", got \"up\"\n"));
   EXPECT_EQ(r.errors.size(), 3u) << m;
 }
 
@@ -218,22 +206,17 @@ vendor_id = 0x05f3
 buttons = [ { byte = 1, mask = 0 }, 5, { byte = 2, mask = 1, bit = 3 } ]
 )");
   const std::string m = messages(r);
-  EXPECT_NE(m.find("t.toml:8: buttons.hidapi.product_id: missing required key; expected an "
-                   "integer from 0 to 65535\n"),
-            std::string::npos)
-      << m;
-  EXPECT_NE(m.find("t.toml:10: buttons.hidapi.buttons[0].mask: expected an integer from 1 to 255, "
-                   "got 0\n"),
-            std::string::npos)
-      << m;
-  EXPECT_NE(m.find("t.toml:10: buttons.hidapi.buttons[1]: expected an inline table { byte = N, "
-                   "mask = M }, got an integer\n"),
-            std::string::npos)
-      << m;
-  EXPECT_NE(m.find("t.toml:10: buttons.hidapi.buttons[2].bit: unknown key (allowed here: byte, "
-                   "mask)\n"),
-            std::string::npos)
-      << m;
+  EXPECT_THAT(m, HasSubstr("t.toml:8: buttons.hidapi.product_id: missing required key; expected an "
+                           "integer from 0 to 65535\n"));
+  EXPECT_THAT(
+      m, HasSubstr("t.toml:10: buttons.hidapi.buttons[0].mask: expected an integer from 1 to 255, "
+                   "got 0\n"));
+  EXPECT_THAT(
+      m, HasSubstr("t.toml:10: buttons.hidapi.buttons[1]: expected an inline table { byte = N, "
+                   "mask = M }, got an integer\n"));
+  EXPECT_THAT(
+      m, HasSubstr("t.toml:10: buttons.hidapi.buttons[2].bit: unknown key (allowed here: byte, "
+                   "mask)\n"));
   EXPECT_EQ(r.errors.size(), 4u) << m;
 }
 

@@ -29,16 +29,20 @@ struct RunResult {
   std::string output;  // stdout + stderr
 };
 
-RunResult run(const std::string& args) {
-  const std::string cmd = std::string(TWISTER_STATION_BIN) + " " + args + " 2>&1";
+// Runs a shell command line; exit_code is -1 when it could not start or did not exit.
+RunResult run_command(const std::string& cmd) {
   RunResult r;
-  FILE* p = ::popen(cmd.c_str(), "r");
+  FILE* p = ::popen((cmd + " 2>&1").c_str(), "r");
   if (p == nullptr) return r;
   std::array<char, 512> buf{};
   while (std::fgets(buf.data(), buf.size(), p) != nullptr) r.output += buf.data();
   const int status = ::pclose(p);
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+RunResult run(const std::string& args) {
+  return run_command(std::string(TWISTER_STATION_BIN) + " " + args);
 }
 
 std::string temp_path(const char* name) {
@@ -62,13 +66,15 @@ std::vector<twister::journal::JournalRecord> read_journal(const std::string& pat
   return out;
 }
 
+// [station] with this journal and the deploy folder's sphere.
+std::string station_section(const std::string& journal) {
+  return "[station]\njournal = \"" + journal + "\"\nmesh = \"" + TWISTER_DEPLOY_DIR +
+         "/sim_sphere.obj\"\n";
+}
+
 std::string sim_config(const std::string& journal, const char* scenario, const char* time) {
-  return "[station]\njournal = \"" + journal + "\"\nmesh = \"" + std::string(TWISTER_DEPLOY_DIR) +
-         "/sim_sphere.obj\"\n[tracker]\nbackend = \"sim\"\n"
-         "[tracker.sim]\nscenario = \"" +
-         scenario + "\"\ntime = \"" + time +
-         "\"\n"
-         "[buttons]\nbackend = \"stylus\"\n";
+  return station_section(journal) + "[tracker]\nbackend = \"sim\"\n[tracker.sim]\nscenario = \"" +
+         scenario + "\"\ntime = \"" + time + "\"\n[buttons]\nbackend = \"stylus\"\n";
 }
 
 TEST(TwisterStationTest, SimConfigRunsAScriptedStrokeIntoTheJournal) {
@@ -101,17 +107,11 @@ TEST(TwisterStationTest, SimConfigRunsAScriptedStrokeIntoTheJournal) {
   ASSERT_NE(at, std::string::npos) << again.output;
   const std::string checksum = again.output.substr(at + final_line.size(), 16);
   // `twister replay` rebuilds the very same model from the journal and the OBJ.
-  const std::string replay_cmd = std::string(TWISTER_CLI_BIN) + " replay " + journal + " --mesh " +
-                                 TWISTER_DEPLOY_DIR + "/sim_sphere.obj --out " + journal +
-                                 ".obj 2>&1";
-  FILE* p = ::popen(replay_cmd.c_str(), "r");
-  ASSERT_NE(p, nullptr);
-  std::string replay_out;
-  std::array<char, 256> buf{};
-  while (std::fgets(buf.data(), buf.size(), p) != nullptr) replay_out += buf.data();
-  EXPECT_EQ(::pclose(p), 0) << replay_out;
-  EXPECT_NE(replay_out.find("checksum " + checksum), std::string::npos)
-      << replay_out << again.output;
+  const auto replay = run_command(std::string(TWISTER_CLI_BIN) + " replay " + journal + " --mesh " +
+                                  TWISTER_DEPLOY_DIR + "/sim_sphere.obj --out " + journal + ".obj");
+  EXPECT_EQ(replay.exit_code, 0) << replay.output;
+  EXPECT_NE(replay.output.find("checksum " + checksum), std::string::npos)
+      << replay.output << again.output;
   ::unlink((journal + ".obj").c_str());
   ::unlink(journal.c_str());
 }
@@ -121,12 +121,12 @@ TEST(TwisterStationTest, SimConfigRunsAScriptedStrokeIntoTheJournal) {
 TEST(TwisterStationTest, SimButtonsLetBothHandsGrabTogetherIntoOneTwoHandStroke) {
   const std::string journal = temp_path("two_hands.bin");
   ::unlink(journal.c_str());
-  const std::string cfg = write_file(
-      "two_hands.toml", "[station]\njournal = \"" + journal + "\"\nmesh = \"" + TWISTER_DEPLOY_DIR +
-                            "/sim_sphere.obj\"\n[tracker]\nbackend = \"sim\"\n"
-                            "[tracker.sim]\nscenario_file = \"" TWISTER_SCENARIO_DIR
-                            "/sim_two_hands.scn\"\ntime = \"virtual\"\n"
-                            "[buttons]\nbackend = \"sim\"\n");
+  const std::string cfg =
+      write_file("two_hands.toml", station_section(journal) +
+                                       "[tracker]\nbackend = \"sim\"\n"
+                                       "[tracker.sim]\nscenario_file = \"" TWISTER_SCENARIO_DIR
+                                       "/sim_two_hands.scn\"\ntime = \"virtual\"\n"
+                                       "[buttons]\nbackend = \"sim\"\n");
   const auto r = run("--config " + cfg);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("buttons sim (4 scripted events)"), std::string::npos) << r.output;
@@ -193,13 +193,13 @@ RunResult run_against_pty(const char* scenario, const std::string& journal, doub
     ::pclose(sim);
     return r;
   }
-  const std::string cfg = write_file(
-      "pty.toml", "[station]\njournal = \"" + journal + "\"\nmesh = \"" + TWISTER_DEPLOY_DIR +
-                      "/sim_sphere.obj\"\n[tracker]\nbackend = \"serial\"\n"
-                      "reconnect_interval_ms = 200\n[tracker.serial]\ndevice = \"" +
-                      link +
-                      "\"\n"
-                      "[buttons]\nbackend = \"stylus\"\n[systemd]\nnotify = false\n");
+  const std::string cfg =
+      write_file("pty.toml", station_section(journal) +
+                                 "[tracker]\nbackend = \"serial\"\n"
+                                 "reconnect_interval_ms = 200\n[tracker.serial]\ndevice = \"" +
+                                 link +
+                                 "\"\n"
+                                 "[buttons]\nbackend = \"stylus\"\n[systemd]\nnotify = false\n");
   r = run("--config " + cfg + " --duration " + std::to_string(seconds));
   ::pclose(sim);  // twister-sim stops at the end of its scenario
   ::unlink(cfg.c_str());

@@ -8,7 +8,7 @@
 #include <chrono>
 #include <thread>
 
-#include "pty_pair.hpp"
+#include "support/pty_pair.hpp"
 
 namespace twister::hal {
 namespace {

@@ -8,7 +8,7 @@
 #include <chrono>
 #include <thread>
 
-#include "pty_pair.hpp"
+#include "support/pty_pair.hpp"
 #include "twister/hal/termios_byte_stream.hpp"
 
 namespace twister::hal {

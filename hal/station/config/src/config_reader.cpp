@@ -46,24 +46,15 @@ std::string ConfigReader::name(std::string_view key) const {
 }
 
 void ConfigReader::error(const toml::node* at, std::string_view key, std::string message) {
-  std::uint32_t line = 1;
-  if (at != nullptr) {
-    line = at->source().begin.line;
-  } else if (table_ != nullptr) {
-    line = table_->source().begin.line;
-  }
-  if (line == 0) line = 1;
+  if (at == nullptr) at = table_;
+  const std::uint32_t line = at != nullptr ? line_of(at->source()) : 1;
   errors_.push_back({std::string(file_), line, name(key), std::move(message)});
-}
-
-bool ConfigReader::has(std::string_view key) const {
-  return table_ != nullptr && table_->get(key) != nullptr;
 }
 
 const toml::node* ConfigReader::lookup(std::string_view key, bool required,
                                        std::string_view expected) {
   known_.emplace_back(key);
-  const toml::node* node = table_ != nullptr ? table_->get(key) : nullptr;
+  const toml::node* node = this->node(key);
   if (node == nullptr && required) {
     error(nullptr, key, "missing required key; expected " + std::string(expected));
   }
@@ -150,8 +141,8 @@ void ConfigReader::finish() {
     if (std::find(known_.begin(), known_.end(), k.str()) != known_.end()) continue;
     std::string allowed;
     for (const auto& kn : known_) allowed += (allowed.empty() ? "" : ", ") + kn;
-    errors_.push_back({std::string(file_), k.source().begin.line == 0 ? 1u : k.source().begin.line,
-                       name(k.str()), "unknown key (allowed here: " + allowed + ")"});
+    errors_.push_back({std::string(file_), line_of(k.source()), name(k.str()),
+                       "unknown key (allowed here: " + allowed + ")"});
   }
 }
 

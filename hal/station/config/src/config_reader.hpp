@@ -27,7 +27,7 @@ class ConfigReader {
       : table_(table), prefix_(std::move(prefix)), file_(file), errors_(errors) {}
 
   bool present() const { return table_ != nullptr; }
-  bool has(std::string_view key) const;
+  bool has(std::string_view key) const { return node(key) != nullptr; }
   // The node under key (nullptr when missing), to point an error at its line.
   const toml::node* node(std::string_view key) const {
     return table_ != nullptr ? table_->get(key) : nullptr;
@@ -69,5 +69,9 @@ class ConfigReader {
 
 std::string type_name(const toml::node& node);
 std::string describe(const toml::node& node);
+// The 1-based line a source region starts on (toml++ reports 0 when unknown: line 1).
+inline std::uint32_t line_of(const toml::source_region& region) {
+  return region.begin.line == 0 ? 1u : region.begin.line;
+}
 
 }  // namespace twister::hal::internal

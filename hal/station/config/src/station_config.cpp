@@ -248,8 +248,7 @@ ConfigParseResult parse_station_config(std::string_view text, std::string_view f
   toml::parse_result parsed = toml::parse(text, file_name);
   if (!parsed) {
     const toml::parse_error& err = parsed.error();
-    const std::uint32_t err_line = err.source().begin.line == 0 ? 1u : err.source().begin.line;
-    out.errors.push_back({std::string(file_name), err_line, "",
+    out.errors.push_back({std::string(file_name), internal::line_of(err.source()), "",
                           "TOML syntax error: " + std::string(err.description())});
     return out;
   }

@@ -63,7 +63,7 @@ class FastrakDevice {
   void apply_faults(ports::TimestampUs now);
   void execute(char command, const std::string& args, ports::TimestampUs now);
   void queue(const std::string& bytes, ports::TimestampUs now);
-  void queue_record(int station, ports::TimestampUs at, bool polled);
+  void queue_record(int station, ports::TimestampUs at);
   void send_error(const std::string& input, int code, ports::TimestampUs now);
   std::vector<int> active_stations() const;
   bool in_window(ports::TimestampUs now, FaultKind kind) const;

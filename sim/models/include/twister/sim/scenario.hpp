@@ -37,6 +37,7 @@ enum class FaultKind : std::uint8_t {
   hangup,      // the line hangs up for `amount` seconds, then the unit powers up again
   wrong_baud,  // for `amount` seconds both directions are garbled (baud mismatch)
 };
+// The kind's keyword in the scenario text (parse_scenario reads these names).
 const char* fault_kind_name(FaultKind k);
 
 struct Fault {
@@ -82,5 +83,9 @@ HandSample sample(const Scenario& scenario, int station, double t_s);
 // Parses the text format. On error returns false and sets `error` to
 // "line N: message".
 bool parse_scenario(std::string_view text, Scenario& out, std::string& error);
+
+// Reads and parses a scenario file. On error returns false and sets `error` to
+// "cannot read scenario file PATH" or "PATH: line N: message".
+bool load_scenario_file(const std::string& path, Scenario& out, std::string& error);
 
 }  // namespace twister::sim

@@ -1,4 +1,5 @@
-// Test helper: a PTY pair whose master side plays the device.
+// Test helper: a PTY pair (raw master) whose master side plays the device or the host
+// (termios backend tests, twister-sim's HIL mode).
 #pragma once
 
 #include <fcntl.h>
@@ -10,7 +11,7 @@
 
 #include <string>
 
-namespace twister::hal::test {
+namespace twister::test {
 
 struct PtyPair {
   int master = -1;
@@ -63,4 +64,4 @@ struct PtyPair {
   }
 };
 
-}  // namespace twister::hal::test
+}  // namespace twister::test
