@@ -109,6 +109,8 @@ bool SocketLink::ensure_peer() {
     for (;;) {
       const int fd = ::accept4(listen_fd_, nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC);
       if (fd < 0) break;
+      // The station sends the live frames: its side needs TCP_NODELAY most.
+      tune(fd, parse(config_.address).family);
       drop_peer();
       peer_fd_ = fd;
       ++connects_;
