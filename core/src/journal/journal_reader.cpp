@@ -3,16 +3,14 @@
 #include <algorithm>
 #include <cstring>
 
+#include "twister/base/internal/byte_cursor.hpp"
 #include "twister/journal/crc32.hpp"
 
 namespace twister::journal {
 namespace {
 
-std::uint32_t load_u32(const std::byte* p) {
-  return std::uint32_t(static_cast<std::uint8_t>(p[0])) |
-         std::uint32_t(static_cast<std::uint8_t>(p[1])) << 8 |
-         std::uint32_t(static_cast<std::uint8_t>(p[2])) << 16 |
-         std::uint32_t(static_cast<std::uint8_t>(p[3])) << 24;
+std::uint32_t load_u32(std::span<const std::byte> bytes) {
+  return twister::internal::ByteReader(bytes).u32();
 }
 
 // Reads exactly dest.size() bytes at offset; a short read is an io_error here
@@ -86,7 +84,7 @@ Result<JournalRecord> JournalReader::next() {
   const std::uint64_t left = file_size_ - good_end_;
   if (left < kRecordHeaderBytes) return fail(TailProblem::torn_header);
   TWISTER_TRY(read_exact(storage_, good_end_, std::span(buffer_).first(kRecordHeaderBytes)));
-  const std::uint32_t payload = load_u32(buffer_.data());
+  const std::uint32_t payload = load_u32(buffer_);
   if (payload > kMaxPayloadBytes || buffer_[6] != std::byte{0} || buffer_[7] != std::byte{0}) {
     return fail(TailProblem::bad_length);
   }
@@ -96,7 +94,7 @@ Result<JournalRecord> JournalReader::next() {
       read_exact(storage_, good_end_ + kRecordHeaderBytes,
                  std::span(buffer_).subspan(kRecordHeaderBytes, payload + kRecordCrcBytes)));
   const std::size_t body = kRecordHeaderBytes + payload;
-  if (crc32(std::span(buffer_).first(body)) != load_u32(buffer_.data() + body)) {
+  if (crc32(std::span(buffer_).first(body)) != load_u32(std::span(buffer_).subspan(body))) {
     return fail(TailProblem::bad_crc);
   }
   auto record =
