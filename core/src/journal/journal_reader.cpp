@@ -58,11 +58,7 @@ Status JournalReader::open() {
       static_cast<std::size_t>(std::min<std::uint64_t>(file_size_, kFileHeaderBytes));
   TWISTER_TRY(read_exact(storage_, 0, std::span(buffer_).first(header)));
   // A file that is a prefix of a header is a header torn by a power cut at creation.
-  std::array<std::byte, kFileHeaderBytes> expected{};
-  std::memcpy(expected.data(), kFileMagic.data(), kFileMagic.size());
-  for (std::size_t i = 0; i < 4; ++i)
-    expected[4 + i] = std::byte(static_cast<std::uint8_t>(kFileVersion >> (8 * i)));
-  if (std::memcmp(buffer_.data(), expected.data(), header) != 0) return StatusCode::data_loss;
+  if (std::memcmp(buffer_.data(), kFileHeader.data(), header) != 0) return StatusCode::data_loss;
   opened_ = true;
   if (header < kFileHeaderBytes) {
     problem_ = TailProblem::torn_header;
