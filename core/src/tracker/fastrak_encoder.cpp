@@ -3,18 +3,18 @@
 #include "twister/tracker/fastrak_encoder.hpp"
 
 #include "fastrak_fields.hpp"
+#include "twister/base/internal/byte_cursor.hpp"
 
 namespace twister::tracker {
 namespace {
 
 void put_values(std::byte* p, Format format, int decimals, const float* v, std::size_t n) {
-  for (std::size_t i = 0; i < n; ++i) {
-    if (format == Format::binary) {
-      internal::write_f32_le(p + 4 * i, v[i]);
-    } else {
-      internal::write_fixed(p + 7 * i, 7, decimals, v[i]);
-    }
+  if (format == Format::binary) {
+    twister::internal::ByteWriter w({p, 4 * n});
+    for (std::size_t i = 0; i < n; ++i) w.f32(v[i]);
+    return;
   }
+  for (std::size_t i = 0; i < n; ++i) internal::write_fixed(p + 7 * i, 7, decimals, v[i]);
 }
 
 void put_extended(std::byte* p, Format format, const float* v, std::size_t n) {

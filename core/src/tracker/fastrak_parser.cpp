@@ -9,6 +9,7 @@
 
 #include "fastrak_fields.hpp"
 #include "fastrak_plausibility.hpp"
+#include "twister/base/internal/byte_cursor.hpp"
 
 namespace twister::tracker {
 
@@ -37,7 +38,8 @@ namespace {
 
 bool read_values(const std::byte* p, Format format, int decimals, std::size_t n, float* out) {
   if (format == Format::binary) {
-    for (std::size_t i = 0; i < n; ++i) out[i] = internal::read_f32_le(p + 4 * i);
+    twister::internal::ByteReader r({p, 4 * n});
+    for (std::size_t i = 0; i < n; ++i) out[i] = r.f32();
     return true;
   }
   for (std::size_t i = 0; i < n; ++i) {
