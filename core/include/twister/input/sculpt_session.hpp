@@ -174,8 +174,8 @@ class SculptSession {
     math::Frame world{};  // last valid pose
   };
 
-  void apply_action(const Action& action, ports::TimestampUs now_us, SessionEvents& out);
-  Status begin_segment(std::uint8_t hand_mask, SessionEvents& out);
+  void apply_action(const Action& action, SessionEvents& out);
+  Status begin_segment(std::uint8_t hand_mask);
   // Commits the open segment; the committed event names `hand` and `reason`
   // (released: the hand's grab ends; none: the stroke continues). Returns that event.
   SessionEvent commit_segment(std::uint8_t hand, Reason reason, SessionEvents& out);
