@@ -185,6 +185,8 @@ class SculptSession {
   Status update_plan();
   Status commit_plan(const journal::JournalRecord& record, bool journaled, SessionEvents* out);
   void journal_append(journal::JournalRecord& record, SessionEvents* out);
+  // undo() (type undo) or redo() (type redo): the step on the mesh, then its record.
+  Status step_history(journal::RecordType type);
   math::Frame to_object(const math::Frame& world) const;
   math::Frame moved_object() const;
   std::size_t plan_frames(std::array<math::Frame, 2>& frames) const;
