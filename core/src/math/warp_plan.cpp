@@ -23,6 +23,12 @@ void put(float (&f)[3], double (&d)[3], glm::dvec3 v) {
   f[2] = static_cast<float>(v.z);
 }
 
+// Two grabs this close leave the squash undefined (§5).
+bool coincident_grabs(std::span<const Frame> start, double radius) {
+  return start.size() == 2 &&
+         glm::length(start[1].origin - start[0].origin) <= kCoincidentGrabFraction * radius;
+}
+
 // Fills `h` in place: returning the struct by value was miscompiled by GCC 12.2 at
 // -O2 (IPA mod/ref dropped the stores into the member array); in-place is immune.
 void fill_kernel_hand(KernelHand& h, const Screw& s, const Frame& start, const Frame& end,
@@ -84,10 +90,7 @@ Status WarpPlan::build(ConstVertexColumns rest, std::span<const Frame> start, do
   for (const Frame& f : start) {
     if (!is_orthonormal(f)) return StatusCode::invalid_argument;
   }
-  if (start.size() == 2 &&
-      glm::length(start[1].origin - start[0].origin) <= kCoincidentGrabFraction * radius) {
-    return StatusCode::invalid_argument;  // squash undefined (§5)
-  }
+  if (coincident_grabs(start, radius)) return StatusCode::invalid_argument;
   if (method == WarpMethod::scodef) TWISTER_TRY(scodef_.build(start, radius));
 
   radius_ = radius;
@@ -138,10 +141,7 @@ Status WarpPlan::update(std::span<const Frame> end) {
 Status WarpPlan::rebase(std::span<const Frame> start) {
   if (!built()) return StatusCode::failed_precondition;
   TWISTER_TRY(check_frames(start));
-  if (start.size() == 2 &&
-      glm::length(start[1].origin - start[0].origin) <= kCoincidentGrabFraction * radius_) {
-    return StatusCode::invalid_argument;
-  }
+  if (coincident_grabs(start, radius_)) return StatusCode::invalid_argument;
   if (method_ == WarpMethod::scodef) {
     ScodefSystem fresh;
     TWISTER_TRY(fresh.build(start, radius_));
