@@ -78,13 +78,13 @@ RC_GTEST_PROP(WarpKernelsTest, SimdAgreesWithScalarAndDouble, ()) {
 
 TEST(WarpKernelsTest, ZeroWeightLeavesPointsBitExact) {
   KernelHand h;
-  h.axis[0] = 0.0f;
-  h.axis[1] = 1.0f;
-  h.axis[2] = 0.0f;
-  h.half_angle = 1.2f;
-  h.cot_half = 0.4f;
-  h.chord[0] = 3.0f;
-  h.shift[2] = 2.0f;
+  h.axis[0] = 0.0;
+  h.axis[1] = 1.0;
+  h.axis[2] = 0.0;
+  h.half_angle = 1.2;
+  h.cot_half = 0.4;
+  h.chord[0] = 3.0;
+  h.shift[2] = 2.0;
   const std::array<float, 4> x{1.5f, -2.0f, 1e6f, 0.1f};
   const std::array<float, 4> w{0.0f, 0.0f, 0.0f, 0.0f};
   std::array<float, 4> ox{}, oy{}, oz{};
