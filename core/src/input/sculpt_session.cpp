@@ -376,10 +376,6 @@ LiveWarp SculptSession::live() const {
   w.active = stroke_mask_ != 0;
   w.hand_mask = stroke_mask_;
   w.plan = &plan_;
-  std::uint8_t i = 0;
-  for (std::uint8_t h = 0; h < kHandCount; ++h) {
-    if ((stroke_mask_ & (1u << h)) != 0) w.plan_hand[h] = i++;
-  }
   const std::size_t n = mesh_.vertex_count();
   w.positions = {storage_.live_x.first(n), storage_.live_y.first(n), storage_.live_z.first(n)};
   return w;

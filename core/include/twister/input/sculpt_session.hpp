@@ -112,10 +112,9 @@ class SessionEvents {
 // What a display needs for the live stroke (valid while active).
 struct LiveWarp {
   bool active = false;
-  std::uint8_t hand_mask = 0;               // session hands in the stroke (bit h)
-  const math::WarpPlan* plan = nullptr;     // indices, weights, screws, start/end frames
-  std::array<std::uint8_t, 2> plan_hand{};  // session hand -> plan hand index
-  math::ConstVertexColumns positions;       // live_x/y/z: warped where plan->indices()
+  std::uint8_t hand_mask = 0;            // session hands in the stroke (bit h)
+  const math::WarpPlan* plan = nullptr;  // indices, weights, screws, start/end frames
+  math::ConstVertexColumns positions;    // live_x/y/z: warped where plan->indices()
 };
 
 struct ReplayStats {
