@@ -14,6 +14,7 @@
 namespace twister::math {
 namespace {
 
+using test::Columns;
 using test::gen_end_frame;
 using test::gen_frame;
 using test::gen_point;
@@ -21,12 +22,6 @@ using test::gen_real;
 using test::gen_unit;
 
 WarpPlanWithStorage<1024> g_plan;
-
-struct Columns {
-  explicit Columns(std::size_t n) : x(n), y(n), z(n) {}
-  std::vector<float> x, y, z;
-  VertexColumns cols() { return {x, y, z}; }
-};
 
 // The vectorised kernel agrees with the scalar reference, and both with the double
 // per-point warp, to 1e-5 of the scene scale (the scene spans [-extent, extent]).
