@@ -37,20 +37,14 @@ class FakeByteStreamWithStorage final : public ports::ByteStream {
     rx_len_ = 0;
     rx_pos_ = 0;
   }
-  void plug() { plugged_ = true; }
   void set_present(bool present) { plugged_ = present; }
   bool connected() const { return connected_; }
   int reopen_count() const { return reopen_count_; }
-  std::size_t rx_pending() const { return rx_len_ - rx_pos_; }
-
-  // Limits how many bytes one read() hands out (0 = no limit), to test splitting.
-  void set_read_chunk(std::size_t n) { read_chunk_ = n; }
 
  private:
   Result<std::size_t> do_read(std::span<std::byte> dest) override {
     if (!connected_) return StatusCode::io_error;
-    std::size_t n = std::min(dest.size(), rx_len_ - rx_pos_);
-    if (read_chunk_ != 0) n = std::min(n, read_chunk_);
+    const std::size_t n = std::min(dest.size(), rx_len_ - rx_pos_);
     std::memcpy(dest.data(), rx_.data() + rx_pos_, n);
     rx_pos_ += n;
     if (rx_pos_ == rx_len_) rx_pos_ = rx_len_ = 0;
@@ -77,7 +71,6 @@ class FakeByteStreamWithStorage final : public ports::ByteStream {
   std::size_t rx_len_ = 0;
   std::size_t rx_pos_ = 0;
   std::size_t tx_len_ = 0;
-  std::size_t read_chunk_ = 0;
   bool connected_ = true;
   bool plugged_ = true;
   int reopen_count_ = 0;

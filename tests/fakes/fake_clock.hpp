@@ -9,7 +9,6 @@ class FakeClock final : public ports::Clock {
  public:
   explicit FakeClock(ports::TimestampUs start_us = 0) : now_us_(start_us) {}
   void advance_us(ports::TimestampUs delta_us) { now_us_ += delta_us; }
-  void set_us(ports::TimestampUs t_us) { now_us_ = t_us; }
 
  private:
   ports::TimestampUs do_now_us() override { return now_us_; }

@@ -138,8 +138,7 @@ std::size_t SculptSession::plan_frames(std::array<math::Frame, 2>& frames) const
   return n;
 }
 
-Status SculptSession::begin_segment(std::uint8_t hand_mask, SessionEvents& out) {
-  (void)out;
+Status SculptSession::begin_segment(std::uint8_t hand_mask) {
   stroke_mask_ = hand_mask;
   std::array<math::Frame, 2> frames{};
   const std::size_t n = plan_frames(frames);
@@ -195,8 +194,7 @@ Status SculptSession::commit_plan(const journal::JournalRecord& record, bool jou
   return ok_status();
 }
 
-SessionEvent SculptSession::commit_segment(std::uint8_t hand, Reason reason,
-                                          SessionEvents& out) {
+SessionEvent SculptSession::commit_segment(std::uint8_t hand, Reason reason, SessionEvents& out) {
   update_plan().ignore();  // on error the previous update stays in force
   journal::JournalRecord r;
   r.type = journal::RecordType::stroke;
@@ -244,14 +242,13 @@ void SculptSession::restart_without(std::uint8_t hand, bool commit, SessionEvent
   stroke_mask_ = 0;
   plan_.reset();
   if (remaining == 0) return;
-  const Status s = begin_segment(remaining, out);
+  const Status s = begin_segment(remaining);
   if (!s.ok()) {
     end_hands(remaining, s, out);
   }
 }
 
-void SculptSession::apply_action(const Action& a, ports::TimestampUs now_us, SessionEvents& out) {
-  (void)now_us;
+void SculptSession::apply_action(const Action& a, SessionEvents& out) {
   const auto bit = static_cast<std::uint8_t>(1u << a.hand);
   switch (a.kind) {
     case ActionKind::grab_begin: {
@@ -265,14 +262,14 @@ void SculptSession::apply_action(const Action& a, ports::TimestampUs now_us, Ses
         stroke_mask_ = 0;
         plan_.reset();
       }
-      const Status s = begin_segment(mask, out);
+      const Status s = begin_segment(mask);
       if (s.ok()) {
         out.push({SessionEventKind::grab_begin, a.hand, Reason::none, s, 0});
       } else {
         out.push({SessionEventKind::refused, a.hand, Reason::none, s, 0});
         const auto previous = static_cast<std::uint8_t>(mask & ~bit);
         if (previous != 0) {
-          const Status again = begin_segment(previous, out);
+          const Status again = begin_segment(previous);
           if (!again.ok()) end_hands(previous, again, out);
         }
       }
@@ -365,7 +362,7 @@ SessionEvents SculptSession::step(ports::TimestampUs now_us) {
   for (const Action& a : actions.items()) {
     if (a.kind == ActionKind::commit) releasing_mask_ |= static_cast<std::uint8_t>(1u << a.hand);
   }
-  for (const Action& a : actions.items()) apply_action(a, now_us, out);
+  for (const Action& a : actions.items()) apply_action(a, out);
   if (moving_ && hands_[move_hand_].valid) object_ = moved_object();
   if (stroke_mask_ != 0) {
     update_plan().ignore();
@@ -379,10 +376,6 @@ LiveWarp SculptSession::live() const {
   w.active = stroke_mask_ != 0;
   w.hand_mask = stroke_mask_;
   w.plan = &plan_;
-  std::uint8_t i = 0;
-  for (std::uint8_t h = 0; h < kHandCount; ++h) {
-    if ((stroke_mask_ & (1u << h)) != 0) w.plan_hand[h] = i++;
-  }
   const std::size_t n = mesh_.vertex_count();
   w.positions = {storage_.live_x.first(n), storage_.live_y.first(n), storage_.live_z.first(n)};
   return w;

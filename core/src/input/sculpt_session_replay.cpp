@@ -13,23 +13,17 @@ math::Frame from_journal(const journal::JournalPose& p) {
 
 }  // namespace
 
-Status SculptSession::undo() {
-  if (busy()) return StatusCode::failed_precondition;
-  TWISTER_TRY_ASSIGN(const UndoStep step, history_.undo(mesh_));
-  if (step.object_move) object_ = step.object_pose;
-  journal::JournalRecord r;
-  r.type = journal::RecordType::undo;
-  journal_append(r, nullptr);
-  replay_chain_open_ = false;
-  return journal_ == nullptr || journal_->healthy() ? ok_status() : Status(StatusCode::io_error);
-}
+Status SculptSession::undo() { return step_history(journal::RecordType::undo); }
 
-Status SculptSession::redo() {
+Status SculptSession::redo() { return step_history(journal::RecordType::redo); }
+
+Status SculptSession::step_history(journal::RecordType type) {
   if (busy()) return StatusCode::failed_precondition;
-  TWISTER_TRY_ASSIGN(const UndoStep step, history_.redo(mesh_));
+  TWISTER_TRY_ASSIGN(const UndoStep step, type == journal::RecordType::undo ? history_.undo(mesh_)
+                                                                            : history_.redo(mesh_));
   if (step.object_move) object_ = step.object_pose;
   journal::JournalRecord r;
-  r.type = journal::RecordType::redo;
+  r.type = type;
   journal_append(r, nullptr);
   replay_chain_open_ = false;
   return journal_ == nullptr || journal_->healthy() ? ok_status() : Status(StatusCode::io_error);

@@ -3,16 +3,14 @@
 #include <algorithm>
 #include <cstring>
 
+#include "twister/base/internal/byte_cursor.hpp"
 #include "twister/journal/crc32.hpp"
 
 namespace twister::journal {
 namespace {
 
-std::uint32_t load_u32(const std::byte* p) {
-  return std::uint32_t(static_cast<std::uint8_t>(p[0])) |
-         std::uint32_t(static_cast<std::uint8_t>(p[1])) << 8 |
-         std::uint32_t(static_cast<std::uint8_t>(p[2])) << 16 |
-         std::uint32_t(static_cast<std::uint8_t>(p[3])) << 24;
+std::uint32_t load_u32(std::span<const std::byte> bytes) {
+  return twister::internal::ByteReader(bytes).u32();
 }
 
 // Reads exactly dest.size() bytes at offset; a short read is an io_error here
@@ -60,11 +58,7 @@ Status JournalReader::open() {
       static_cast<std::size_t>(std::min<std::uint64_t>(file_size_, kFileHeaderBytes));
   TWISTER_TRY(read_exact(storage_, 0, std::span(buffer_).first(header)));
   // A file that is a prefix of a header is a header torn by a power cut at creation.
-  std::array<std::byte, kFileHeaderBytes> expected{};
-  std::memcpy(expected.data(), kFileMagic.data(), kFileMagic.size());
-  for (std::size_t i = 0; i < 4; ++i)
-    expected[4 + i] = std::byte(static_cast<std::uint8_t>(kFileVersion >> (8 * i)));
-  if (std::memcmp(buffer_.data(), expected.data(), header) != 0) return StatusCode::data_loss;
+  if (std::memcmp(buffer_.data(), kFileHeader.data(), header) != 0) return StatusCode::data_loss;
   opened_ = true;
   if (header < kFileHeaderBytes) {
     problem_ = TailProblem::torn_header;
@@ -86,7 +80,7 @@ Result<JournalRecord> JournalReader::next() {
   const std::uint64_t left = file_size_ - good_end_;
   if (left < kRecordHeaderBytes) return fail(TailProblem::torn_header);
   TWISTER_TRY(read_exact(storage_, good_end_, std::span(buffer_).first(kRecordHeaderBytes)));
-  const std::uint32_t payload = load_u32(buffer_.data());
+  const std::uint32_t payload = load_u32(buffer_);
   if (payload > kMaxPayloadBytes || buffer_[6] != std::byte{0} || buffer_[7] != std::byte{0}) {
     return fail(TailProblem::bad_length);
   }
@@ -96,7 +90,7 @@ Result<JournalRecord> JournalReader::next() {
       read_exact(storage_, good_end_ + kRecordHeaderBytes,
                  std::span(buffer_).subspan(kRecordHeaderBytes, payload + kRecordCrcBytes)));
   const std::size_t body = kRecordHeaderBytes + payload;
-  if (crc32(std::span(buffer_).first(body)) != load_u32(buffer_.data() + body)) {
+  if (crc32(std::span(buffer_).first(body)) != load_u32(std::span(buffer_).subspan(body))) {
     return fail(TailProblem::bad_crc);
   }
   auto record =

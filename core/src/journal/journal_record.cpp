@@ -3,6 +3,7 @@
 #include <bit>
 #include <cmath>
 
+#include "twister/base/internal/byte_cursor.hpp"
 #include "twister/journal/crc32.hpp"
 
 namespace twister::journal {
@@ -15,66 +16,22 @@ constexpr std::size_t kMoveBytes = 4 + 1 + 2 * kPoseBytes;
 constexpr std::size_t kSequenceOnlyBytes = 4;
 static_assert(kStrokeFixedBytes + 4 * kPoseBytes <= kMaxPayloadBytes);
 
-// Little-endian writer over a span that is known to be large enough.
-class Writer {
- public:
-  explicit Writer(std::span<std::byte> out) : out_(out) {}
-  void u8(std::uint8_t v) { out_[pos_++] = std::byte{v}; }
-  void u16(std::uint16_t v) { uint(v, 2); }
-  void u32(std::uint32_t v) { uint(v, 4); }
-  void f64(double v) { uint(std::bit_cast<std::uint64_t>(v), 8); }
-  void vec(const glm::dvec3& v) {
-    f64(v.x);
-    f64(v.y);
-    f64(v.z);
-  }
-  void pose(const JournalPose& p) {
-    vec(p.origin_m);
-    vec(p.u);
-    vec(p.v);
-  }
-  std::size_t pos() const { return pos_; }
+using twister::internal::ByteReader;
+using twister::internal::ByteWriter;
 
- private:
-  void uint(std::uint64_t v, int bytes) {
-    for (int i = 0; i < bytes; ++i)
-      out_[pos_++] = std::byte(static_cast<std::uint8_t>(v >> (8 * i)));
-  }
-  std::span<std::byte> out_;
-  std::size_t pos_ = 0;
-};
+void write_pose(ByteWriter& w, const JournalPose& p) {
+  w.vec(p.origin_m);
+  w.vec(p.u);
+  w.vec(p.v);
+}
 
-// Little-endian reader over a span whose length was checked against the type.
-class Reader {
- public:
-  explicit Reader(std::span<const std::byte> in) : in_(in) {}
-  std::uint8_t u8() { return static_cast<std::uint8_t>(uint(1)); }
-  std::uint16_t u16() { return static_cast<std::uint16_t>(uint(2)); }
-  std::uint32_t u32() { return static_cast<std::uint32_t>(uint(4)); }
-  double f64() { return std::bit_cast<double>(uint(8)); }
-  glm::dvec3 vec() {
-    const double x = f64();
-    const double y = f64();
-    return {x, y, f64()};
-  }
-  JournalPose pose() {
-    JournalPose p;
-    p.origin_m = vec();
-    p.u = vec();
-    p.v = vec();
-    return p;
-  }
-
- private:
-  std::uint64_t uint(int bytes) {
-    std::uint64_t v = 0;
-    for (int i = 0; i < bytes; ++i)
-      v |= std::uint64_t(static_cast<std::uint8_t>(in_[pos_++])) << (8 * i);
-    return v;
-  }
-  std::span<const std::byte> in_;
-  std::size_t pos_ = 0;
-};
+JournalPose read_pose(ByteReader& r) {
+  JournalPose p;
+  p.origin_m = r.vec();
+  p.u = r.vec();
+  p.v = r.vec();
+  return p;
+}
 
 std::size_t stroke_bytes(std::uint8_t hand_mask) {
   const auto hands = static_cast<std::size_t>(std::popcount(static_cast<unsigned>(hand_mask)));
@@ -116,7 +73,7 @@ Result<std::size_t> encode_record(const JournalRecord& r, std::span<std::byte> o
   const std::size_t total = kRecordHeaderBytes + payload + kRecordCrcBytes;
   if (out.size() < total) return StatusCode::resource_exhausted;
 
-  Writer w(out);
+  ByteWriter w(out);
   w.u32(static_cast<std::uint32_t>(payload));
   w.u8(kRecordVersion);
   w.u8(static_cast<std::uint8_t>(r.type));
@@ -130,20 +87,20 @@ Result<std::size_t> encode_record(const JournalRecord& r, std::span<std::byte> o
       w.f64(r.stroke.radius_m);
       for (std::size_t h = 0; h < 2; ++h) {
         if ((r.stroke.hand_mask & (1u << h)) == 0) continue;
-        w.pose(r.stroke.start[h]);
-        w.pose(r.stroke.end[h]);
+        write_pose(w, r.stroke.start[h]);
+        write_pose(w, r.stroke.end[h]);
       }
       break;
     case RecordType::object_move:
       w.u8(r.move.hand);
-      w.pose(r.move.object_before);
-      w.pose(r.move.object_after);
+      write_pose(w, r.move.object_before);
+      write_pose(w, r.move.object_after);
       break;
     case RecordType::undo:
     case RecordType::redo:
       break;
   }
-  w.u32(crc32(out.first(w.pos())));
+  w.u32(crc32(out.first(w.size())));
   return total;
 }
 
@@ -152,7 +109,7 @@ Result<JournalRecord> decode_payload(std::uint8_t version, std::uint8_t type,
   if (version != kRecordVersion) return StatusCode::data_loss;
   if (payload.size() < kSequenceOnlyBytes) return StatusCode::data_loss;
   JournalRecord r;
-  Reader in(payload);
+  ByteReader in(payload);
   r.sequence = in.u32();
   switch (type) {
     case static_cast<std::uint8_t>(RecordType::stroke): {
@@ -170,8 +127,8 @@ Result<JournalRecord> decode_payload(std::uint8_t version, std::uint8_t type,
         return StatusCode::data_loss;
       for (std::size_t h = 0; h < 2; ++h) {
         if ((r.stroke.hand_mask & (1u << h)) == 0) continue;
-        r.stroke.start[h] = in.pose();
-        r.stroke.end[h] = in.pose();
+        r.stroke.start[h] = read_pose(in);
+        r.stroke.end[h] = read_pose(in);
         if (!finite(r.stroke.start[h]) || !finite(r.stroke.end[h])) return StatusCode::data_loss;
       }
       return r;
@@ -180,8 +137,8 @@ Result<JournalRecord> decode_payload(std::uint8_t version, std::uint8_t type,
       r.type = RecordType::object_move;
       if (payload.size() != kMoveBytes) return StatusCode::data_loss;
       r.move.hand = in.u8();
-      r.move.object_before = in.pose();
-      r.move.object_after = in.pose();
+      r.move.object_before = read_pose(in);
+      r.move.object_after = read_pose(in);
       if (r.move.hand > 1 || !finite(r.move.object_before) || !finite(r.move.object_after)) {
         return StatusCode::data_loss;
       }

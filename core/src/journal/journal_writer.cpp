@@ -9,11 +9,7 @@ Status JournalWriter::open() {
   broken_ = false;
   TWISTER_TRY_ASSIGN(size_, storage_.size());
   if (size_ == 0) {
-    std::array<std::byte, kFileHeaderBytes> header{};
-    std::memcpy(header.data(), kFileMagic.data(), kFileMagic.size());
-    for (std::size_t i = 0; i < 4; ++i)
-      header[4 + i] = std::byte(static_cast<std::uint8_t>(kFileVersion >> (8 * i)));
-    TWISTER_TRY(storage_.append(header));
+    TWISTER_TRY(storage_.append(kFileHeader));
     TWISTER_TRY(storage_.sync());
     size_ = kFileHeaderBytes;
   } else {

@@ -55,16 +55,14 @@ long cobs_decode(std::span<std::byte> buf) {
 
 Result<std::size_t> encode_frame(const LinkMessage& message, std::span<std::byte> out) {
   std::array<std::byte, kMaxPayload + kCrcBytes> payload{};
-  internal::PayloadWriter w(std::span<std::byte>(payload).first(kMaxPayload));
+  internal::ByteWriter w(std::span<std::byte>(payload).first(kMaxPayload));
   w.u8(kProtocolVersion);
   w.u8(static_cast<std::uint8_t>(message.type));
   if (!internal::write_body(w, message)) return StatusCode::invalid_argument;
   if (!w.ok()) return StatusCode::invalid_argument;  // cannot happen within the caps
   const std::size_t n = w.size();
   const std::uint32_t crc = journal::crc32(std::span<const std::byte>(payload).first(n));
-  for (std::size_t i = 0; i < kCrcBytes; ++i) {
-    payload[n + i] = static_cast<std::byte>((crc >> (8 * i)) & 0xffu);
-  }
+  internal::ByteWriter(std::span<std::byte>(payload).subspan(n)).u32(crc);
   const std::size_t written =
       cobs_encode(std::span<const std::byte>(payload).first(n + kCrcBytes), out);
   if (written == 0) return StatusCode::resource_exhausted;
@@ -72,7 +70,7 @@ Result<std::size_t> encode_frame(const LinkMessage& message, std::span<std::byte
 }
 
 Status decode_payload(std::span<const std::byte> payload, LinkMessage& out) {
-  internal::PayloadReader r(payload);
+  internal::ByteReader r(payload);
   const std::uint8_t version = r.u8();
   const std::uint8_t type = r.u8();
   if (!r.ok()) return StatusCode::invalid_argument;
@@ -130,11 +128,9 @@ bool LinkDecoder::finish_frame() {
     return false;
   }
   const auto body = std::span<const std::byte>(buffer_).first(n - kCrcBytes);
-  std::uint32_t want = 0;
-  for (std::size_t i = 0; i < kCrcBytes; ++i) {
-    want |= static_cast<std::uint32_t>(std::to_integer<std::uint8_t>(buffer_[n - kCrcBytes + i]))
-            << (8 * i);
-  }
+  const std::uint32_t want =
+      internal::ByteReader(std::span<const std::byte>(buffer_).subspan(n - kCrcBytes, kCrcBytes))
+          .u32();
   if (journal::crc32(body) != want) {
     ++counters_.bad_crc;
     return false;

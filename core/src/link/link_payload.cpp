@@ -6,7 +6,7 @@
 namespace twister::link::internal {
 namespace {
 
-void write_frame(PayloadWriter& w, const math::Frame& f) {
+void write_frame(ByteWriter& w, const math::Frame& f) {
   w.vec(f.origin);
   w.vec(f.u);
   w.vec(f.v);
@@ -18,7 +18,7 @@ bool finite(const glm::dvec3& v) {
 }
 
 // A frame or screw with NaN/inf would poison the display's shader: refused here.
-math::Frame read_frame(PayloadReader& r, bool& bad) {
+math::Frame read_frame(ByteReader& r, bool& bad) {
   math::Frame f;
   f.origin = r.vec();
   f.u = r.vec();
@@ -28,7 +28,7 @@ math::Frame read_frame(PayloadReader& r, bool& bad) {
   return f;
 }
 
-void write_screw(PayloadWriter& w, const math::Screw& s) {
+void write_screw(ByteWriter& w, const math::Screw& s) {
   w.vec(s.axis);
   w.f64(s.angle);
   w.f64(s.slide);
@@ -38,7 +38,7 @@ void write_screw(PayloadWriter& w, const math::Screw& s) {
   w.u8(s.pure_translation ? 1 : 0);
 }
 
-math::Screw read_screw(PayloadReader& r, bool& bad) {
+math::Screw read_screw(ByteReader& r, bool& bad) {
   math::Screw s;
   s.axis = r.vec();
   s.angle = r.f64();
@@ -53,7 +53,7 @@ math::Screw read_screw(PayloadReader& r, bool& bad) {
   return s;
 }
 
-bool read_bool(PayloadReader& r, bool& bad) {
+bool read_bool(ByteReader& r, bool& bad) {
   const std::uint8_t v = r.u8();
   bad = bad || v > 1;
   return v == 1;
@@ -61,7 +61,7 @@ bool read_bool(PayloadReader& r, bool& bad) {
 
 }  // namespace
 
-bool write_body(PayloadWriter& w, const LinkMessage& m) {
+bool write_body(ByteWriter& w, const LinkMessage& m) {
   switch (m.type) {
     case MessageType::hello:
       w.u8(static_cast<std::uint8_t>(m.hello.role));
@@ -133,7 +133,7 @@ bool write_body(PayloadWriter& w, const LinkMessage& m) {
   return false;
 }
 
-bool read_body(PayloadReader& r, LinkMessage& m) {
+bool read_body(ByteReader& r, LinkMessage& m) {
   bool bad = false;
   switch (m.type) {
     case MessageType::hello: {

@@ -11,26 +11,26 @@ struct Disp {
 };
 
 Disp hand_displacement(const KernelHand& h, double px, double py, double pz, double t) {
-  const double* d = h.axis_d;
-  const double vx = px - h.mid_d[0];
-  const double vy = py - h.mid_d[1];
-  const double vz = pz - h.mid_d[2];
-  const double half = t * h.half_angle_d;
+  const double* d = h.axis;
+  const double vx = px - h.mid[0];
+  const double vy = py - h.mid[1];
+  const double vz = pz - h.mid[2];
+  const double half = t * h.half_angle;
   const double sh = std::sin(half);
   const double ch = std::cos(half);
   const double a = sh * ch;
   const double b = sh * sh;
-  const double k = h.cot_half_d;
+  const double k = h.cot_half;
   const double dv = d[0] * vx + d[1] * vy + d[2] * vz;
   const double cx = d[1] * vz - d[2] * vy;
   const double cy = d[2] * vx - d[0] * vz;
   const double cz = d[0] * vy - d[1] * vx;
-  return {a * (2.0 * cx + k * h.chord_d[0]) +
-              b * (2.0 * (d[0] * dv - vx) + k * h.axis_x_chord_d[0]) + t * h.shift_d[0],
-          a * (2.0 * cy + k * h.chord_d[1]) +
-              b * (2.0 * (d[1] * dv - vy) + k * h.axis_x_chord_d[1]) + t * h.shift_d[1],
-          a * (2.0 * cz + k * h.chord_d[2]) +
-              b * (2.0 * (d[2] * dv - vz) + k * h.axis_x_chord_d[2]) + t * h.shift_d[2]};
+  return {a * (2.0 * cx + k * h.chord[0]) + b * (2.0 * (d[0] * dv - vx) + k * h.axis_x_chord[0]) +
+              t * h.shift[0],
+          a * (2.0 * cy + k * h.chord[1]) + b * (2.0 * (d[1] * dv - vy) + k * h.axis_x_chord[1]) +
+              t * h.shift[1],
+          a * (2.0 * cz + k * h.chord[2]) + b * (2.0 * (d[2] * dv - vz) + k * h.axis_x_chord[2]) +
+              t * h.shift[2]};
 }
 }  // namespace
 

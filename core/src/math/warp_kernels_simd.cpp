@@ -54,9 +54,9 @@ struct HandF {
 };
 
 HandF load(const KernelHand& h) {
-  const double* d = h.axis_d;
-  const double* m = h.mid_d;
-  const double k2 = 0.5 * h.cot_half_d;
+  const double* d = h.axis;
+  const double* m = h.mid;
+  const double k2 = 0.5 * h.cot_half;
   const double dm = d[0] * m[0] + d[1] * m[1] + d[2] * m[2];
   const double cx = d[1] * m[2] - d[2] * m[1];
   const double cy = d[2] * m[0] - d[0] * m[2];
@@ -65,16 +65,16 @@ HandF load(const KernelHand& h) {
   return {f(d[0]),
           f(d[1]),
           f(d[2]),
-          f(k2 * h.chord_d[0] - cx),
-          f(k2 * h.chord_d[1] - cy),
-          f(k2 * h.chord_d[2] - cz),
-          f(k2 * h.axis_x_chord_d[0] - d[0] * dm + m[0]),
-          f(k2 * h.axis_x_chord_d[1] - d[1] * dm + m[1]),
-          f(k2 * h.axis_x_chord_d[2] - d[2] * dm + m[2]),
-          f(h.shift_d[0]),
-          f(h.shift_d[1]),
-          f(h.shift_d[2]),
-          f(h.half_angle_d)};
+          f(k2 * h.chord[0] - cx),
+          f(k2 * h.chord[1] - cy),
+          f(k2 * h.chord[2] - cz),
+          f(k2 * h.axis_x_chord[0] - d[0] * dm + m[0]),
+          f(k2 * h.axis_x_chord[1] - d[1] * dm + m[1]),
+          f(k2 * h.axis_x_chord[2] - d[2] * dm + m[2]),
+          f(h.shift[0]),
+          f(h.shift[1]),
+          f(h.shift[2]),
+          f(h.half_angle)};
 }
 
 // acc += displacement of P for one hand with weight t.

@@ -14,13 +14,16 @@ namespace {
 // kernel can run on them unchanged.
 constexpr std::size_t kGatherChunk = 256;
 
-void put(float (&f)[3], double (&d)[3], glm::dvec3 v) {
+void put(double (&d)[3], glm::dvec3 v) {
   d[0] = v.x;
   d[1] = v.y;
   d[2] = v.z;
-  f[0] = static_cast<float>(v.x);
-  f[1] = static_cast<float>(v.y);
-  f[2] = static_cast<float>(v.z);
+}
+
+// Two grabs this close leave the squash undefined (§5).
+bool coincident_grabs(std::span<const Frame> start, double radius) {
+  return start.size() == 2 &&
+         glm::length(start[1].origin - start[0].origin) <= kCoincidentGrabFraction * radius;
 }
 
 // Fills `h` in place: returning the struct by value was miscompiled by GCC 12.2 at
@@ -28,23 +31,21 @@ void put(float (&f)[3], double (&d)[3], glm::dvec3 v) {
 void fill_kernel_hand(KernelHand& h, const Screw& s, const Frame& start, const Frame& end,
                       WarpMethod method) {
   h = KernelHand{};
-  put(h.axis, h.axis_d, s.axis);
+  put(h.axis, s.axis);
   if (method == WarpMethod::rottran) {
-    put(h.mid, h.mid_d, start.origin);
-    put(h.shift, h.shift_d, end.origin - start.origin);
-    h.half_angle_d = s.pure_translation ? 0.0 : 0.5 * s.angle;
+    put(h.mid, start.origin);
+    put(h.shift, end.origin - start.origin);
+    h.half_angle = s.pure_translation ? 0.0 : 0.5 * s.angle;
   } else if (s.pure_translation) {
-    put(h.shift, h.shift_d, s.chord);
+    put(h.shift, s.chord);
   } else {
-    put(h.mid, h.mid_d, s.mid);
-    put(h.chord, h.chord_d, s.chord);
-    put(h.axis_x_chord, h.axis_x_chord_d, glm::cross(s.axis, s.chord));
-    put(h.shift, h.shift_d, s.slide * s.axis);
-    h.half_angle_d = 0.5 * s.angle;
-    h.cot_half_d = s.cot_half;
+    put(h.mid, s.mid);
+    put(h.chord, s.chord);
+    put(h.axis_x_chord, glm::cross(s.axis, s.chord));
+    put(h.shift, s.slide * s.axis);
+    h.half_angle = 0.5 * s.angle;
+    h.cot_half = s.cot_half;
   }
-  h.half_angle = static_cast<float>(h.half_angle_d);
-  h.cot_half = static_cast<float>(h.cot_half_d);
 }
 }  // namespace
 
@@ -84,10 +85,7 @@ Status WarpPlan::build(ConstVertexColumns rest, std::span<const Frame> start, do
   for (const Frame& f : start) {
     if (!is_orthonormal(f)) return StatusCode::invalid_argument;
   }
-  if (start.size() == 2 &&
-      glm::length(start[1].origin - start[0].origin) <= kCoincidentGrabFraction * radius) {
-    return StatusCode::invalid_argument;  // squash undefined (§5)
-  }
+  if (coincident_grabs(start, radius)) return StatusCode::invalid_argument;
   if (method == WarpMethod::scodef) TWISTER_TRY(scodef_.build(start, radius));
 
   radius_ = radius;
@@ -138,10 +136,7 @@ Status WarpPlan::update(std::span<const Frame> end) {
 Status WarpPlan::rebase(std::span<const Frame> start) {
   if (!built()) return StatusCode::failed_precondition;
   TWISTER_TRY(check_frames(start));
-  if (start.size() == 2 &&
-      glm::length(start[1].origin - start[0].origin) <= kCoincidentGrabFraction * radius_) {
-    return StatusCode::invalid_argument;
-  }
+  if (coincident_grabs(start, radius_)) return StatusCode::invalid_argument;
   if (method_ == WarpMethod::scodef) {
     ScodefSystem fresh;
     TWISTER_TRY(fresh.build(start, radius_));

@@ -3,26 +3,25 @@
 #include "twister/tracker/fastrak_encoder.hpp"
 
 #include "fastrak_fields.hpp"
+#include "twister/base/internal/byte_cursor.hpp"
 
 namespace twister::tracker {
 namespace {
 
-void put_values(std::byte* p, Format format, int decimals, const float* v, std::size_t n) {
-  for (std::size_t i = 0; i < n; ++i) {
-    if (format == Format::binary) {
-      internal::write_f32_le(p + 4 * i, v[i]);
-    } else {
-      internal::write_fixed(p + 7 * i, 7, decimals, v[i]);
-    }
-  }
-}
-
-void put_extended(std::byte* p, Format format, const float* v, std::size_t n) {
+// Writes the `n` numbers of a number item (the inverse of the parser's read).
+void put_numbers(std::byte* p, Format format, Item item, const float* v, std::size_t n) {
   if (format == Format::binary) {
-    put_values(p, format, 0, v, n);
+    twister::internal::ByteWriter w({p, 4 * n});
+    for (std::size_t i = 0; i < n; ++i) w.f32(v[i]);
     return;
   }
-  for (std::size_t i = 0; i < n; ++i) internal::write_extended(p + 13 * i, v[i]);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (internal::is_extended(item)) {
+      internal::write_extended(p + 13 * i, v[i]);
+    } else {
+      internal::write_fixed(p + 7 * i, 7, internal::ascii_decimals(item), v[i]);
+    }
+  }
 }
 
 }  // namespace
@@ -54,38 +53,24 @@ Result<std::size_t> encode_record(const FastrakPose& pose, const FastrakConfig& 
         q[1] = static_cast<std::byte>(kLf);
         break;
       case Item::position:
-        put_values(q, fmt, 2, pose.position.data(), 3);
-        break;
       case Item::position_ext:
-        put_extended(q, fmt, pose.position.data(), 3);
+        put_numbers(q, fmt, item, pose.position.data(), 3);
         break;
       case Item::euler:
-        put_values(q, fmt, 2, pose.euler_deg.data(), 3);
-        break;
       case Item::euler_ext:
-        put_extended(q, fmt, pose.euler_deg.data(), 3);
+        put_numbers(q, fmt, item, pose.euler_deg.data(), 3);
         break;
       case Item::dcm_x:
       case Item::dcm_y:
-      case Item::dcm_z: {
-        const std::size_t row =
-            static_cast<std::size_t>(item) - static_cast<std::size_t>(Item::dcm_x);
-        put_values(q, fmt, 4, pose.dcm.data() + 3 * row, 3);
-        break;
-      }
+      case Item::dcm_z:
       case Item::dcm_x_ext:
       case Item::dcm_y_ext:
-      case Item::dcm_z_ext: {
-        const std::size_t row =
-            static_cast<std::size_t>(item) - static_cast<std::size_t>(Item::dcm_x_ext);
-        put_extended(q, fmt, pose.dcm.data() + 3 * row, 3);
+      case Item::dcm_z_ext:
+        put_numbers(q, fmt, item, pose.dcm.data() + 3 * internal::dcm_row(item), 3);
         break;
-      }
       case Item::quaternion:
-        put_values(q, fmt, 4, pose.quaternion.data(), 4);
-        break;
       case Item::quaternion_ext:
-        put_extended(q, fmt, pose.quaternion.data(), 4);
+        put_numbers(q, fmt, item, pose.quaternion.data(), 4);
         break;
       case Item::stylus:
       case Item::stylus_ext: {

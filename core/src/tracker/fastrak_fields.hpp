@@ -1,10 +1,12 @@
 // Private helpers shared by the parser and the encoder: fixed-width ASCII number
-// fields (spec §3.2) and little-endian float32 (§3.3).
+// fields (spec §3.2). Binary float32 fields (§3.3) go through the byte cursor of
+// twister/base/internal/byte_cursor.hpp.
 #pragma once
 
-#include <bit>
 #include <cstddef>
 #include <cstdint>
+
+#include "twister/tracker/fastrak_wire.hpp"
 
 namespace twister::tracker::internal {
 
@@ -12,19 +14,17 @@ inline char ch(std::byte b) { return static_cast<char>(b); }
 inline bool is_digit(char c) { return c >= '0' && c <= '9'; }
 inline bool is_letter(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
 
-inline float read_f32_le(const std::byte* p) {
-  const std::uint32_t v =
-      static_cast<std::uint32_t>(p[0]) | (static_cast<std::uint32_t>(p[1]) << 8) |
-      (static_cast<std::uint32_t>(p[2]) << 16) | (static_cast<std::uint32_t>(p[3]) << 24);
-  return std::bit_cast<float>(v);
+// The number items of the output list (§2.1, §3.2): codes 50 and up are the
+// extended 13-character form; the short ASCII form has 2 decimals for positions and
+// Euler angles, 4 for direction cosines and quaternions.
+inline bool is_extended(Item item) { return static_cast<std::uint8_t>(item) >= 50; }
+inline int ascii_decimals(Item item) {
+  return item == Item::position || item == Item::euler ? 2 : 4;
 }
-
-inline void write_f32_le(std::byte* p, float f) {
-  const auto v = std::bit_cast<std::uint32_t>(f);
-  p[0] = static_cast<std::byte>(v & 0xFFu);
-  p[1] = static_cast<std::byte>((v >> 8) & 0xFFu);
-  p[2] = static_cast<std::byte>((v >> 16) & 0xFFu);
-  p[3] = static_cast<std::byte>((v >> 24) & 0xFFu);
+// Row of R (0, 1, 2) that a direction-cosine item carries.
+inline std::size_t dcm_row(Item item) {
+  const Item first = is_extended(item) ? Item::dcm_x_ext : Item::dcm_x;
+  return static_cast<std::size_t>(item) - static_cast<std::size_t>(first);
 }
 
 // Parses a 7-character field with `decimals` decimals: `%7.2f` style ("  -3.21") or

@@ -9,6 +9,7 @@
 
 #include "fastrak_fields.hpp"
 #include "fastrak_plausibility.hpp"
+#include "twister/base/internal/byte_cursor.hpp"
 
 namespace twister::tracker {
 
@@ -35,21 +36,19 @@ const char* pose_error_name(PoseError e) {
 
 namespace {
 
-bool read_values(const std::byte* p, Format format, int decimals, std::size_t n, float* out) {
+// Reads the `n` numbers of a number item into `out`; false on a malformed field.
+bool read_numbers(const std::byte* p, Format format, Item item, std::size_t n, float* out) {
   if (format == Format::binary) {
-    for (std::size_t i = 0; i < n; ++i) out[i] = internal::read_f32_le(p + 4 * i);
+    twister::internal::ByteReader r({p, 4 * n});
+    for (std::size_t i = 0; i < n; ++i) out[i] = r.f32();
     return true;
   }
   for (std::size_t i = 0; i < n; ++i) {
-    if (!internal::parse_fixed(p + 7 * i, 7, decimals, out[i])) return false;
-  }
-  return true;
-}
-
-bool read_extended(const std::byte* p, Format format, std::size_t n, float* out) {
-  if (format == Format::binary) return read_values(p, format, 0, n, out);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!internal::parse_extended(p + 13 * i, out[i])) return false;
+    const bool ok =
+        internal::is_extended(item)
+            ? internal::parse_extended(p + 13 * i, out[i])
+            : internal::parse_fixed(p + 7 * i, 7, internal::ascii_decimals(item), out[i]);
+    if (!ok) return false;
   }
   return true;
 }
@@ -119,45 +118,29 @@ FastrakParser::Candidate FastrakParser::examine_record(const std::byte* p, std::
         ok = ch(q[0]) == kCr && ch(q[1]) == kLf;
         break;
       case Item::position:
-        ok = read_values(q, fmt, 2, 3, pose.position.data());
-        pose.has_position = true;
-        break;
       case Item::position_ext:
-        ok = read_extended(q, fmt, 3, pose.position.data());
+        ok = read_numbers(q, fmt, item, 3, pose.position.data());
         pose.has_position = true;
         break;
       case Item::euler:
-        ok = read_values(q, fmt, 2, 3, pose.euler_deg.data());
-        pose.has.euler = true;
-        break;
       case Item::euler_ext:
-        ok = read_extended(q, fmt, 3, pose.euler_deg.data());
+        ok = read_numbers(q, fmt, item, 3, pose.euler_deg.data());
         pose.has.euler = true;
         break;
       case Item::dcm_x:
       case Item::dcm_y:
-      case Item::dcm_z: {
-        const std::size_t row =
-            static_cast<std::size_t>(item) - static_cast<std::size_t>(Item::dcm_x);
-        ok = read_values(q, fmt, 4, 3, pose.dcm.data() + 3 * row);
-        dcm_rows |= 1u << static_cast<unsigned>(row);
-        break;
-      }
+      case Item::dcm_z:
       case Item::dcm_x_ext:
       case Item::dcm_y_ext:
       case Item::dcm_z_ext: {
-        const std::size_t row =
-            static_cast<std::size_t>(item) - static_cast<std::size_t>(Item::dcm_x_ext);
-        ok = read_extended(q, fmt, 3, pose.dcm.data() + 3 * row);
+        const std::size_t row = internal::dcm_row(item);
+        ok = read_numbers(q, fmt, item, 3, pose.dcm.data() + 3 * row);
         dcm_rows |= 1u << static_cast<unsigned>(row);
         break;
       }
       case Item::quaternion:
-        ok = read_values(q, fmt, 4, 4, pose.quaternion.data());
-        pose.has.quaternion = true;
-        break;
       case Item::quaternion_ext:
-        ok = read_extended(q, fmt, 4, pose.quaternion.data());
+        ok = read_numbers(q, fmt, item, 4, pose.quaternion.data());
         pose.has.quaternion = true;
         break;
       case Item::stylus:

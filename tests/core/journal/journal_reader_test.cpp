@@ -20,8 +20,7 @@ JournalRecord stroke(std::uint32_t seq) {
   return r;
 }
 
-std::vector<JournalRecord> read_all(test::FakeStorage& storage, JournalReader& reader,
-                                    Status* end) {
+std::vector<JournalRecord> read_all(JournalReader& reader, Status* end) {
   std::vector<JournalRecord> out;
   EXPECT_TRUE(reader.open().ok());
   for (;;) {
@@ -32,14 +31,13 @@ std::vector<JournalRecord> read_all(test::FakeStorage& storage, JournalReader& r
     }
     out.push_back(*r);
   }
-  (void)storage;
 }
 
 TEST(JournalReader, EmptyFileIsAnEmptyJournal) {
   test::FakeStorage storage;
   JournalReader reader(storage);
   Status end;
-  EXPECT_TRUE(read_all(storage, reader, &end).empty());
+  EXPECT_TRUE(read_all(reader, &end).empty());
   EXPECT_EQ(end.code(), StatusCode::unavailable);
 }
 
@@ -52,7 +50,7 @@ TEST(JournalReader, ReadsBackWhatTheWriterAppendedAndSynced) {
   EXPECT_EQ(storage.synced_size(), storage.bytes().size());
   JournalReader reader(storage);
   Status end;
-  const auto records = read_all(storage, reader, &end);
+  const auto records = read_all(reader, &end);
   EXPECT_EQ(end.code(), StatusCode::unavailable);
   ASSERT_EQ(records.size(), 5u);
   for (std::uint32_t i = 0; i < 5; ++i) EXPECT_EQ(records[i], stroke(i));
@@ -81,7 +79,7 @@ TEST(JournalReader, TornAppendAtEveryByteIsDetectedAndTruncated) {
 
     JournalReader reader(storage);
     Status end;
-    const auto records = read_all(storage, reader, &end);
+    const auto records = read_all(reader, &end);
     ASSERT_EQ(records.size(), 3u);
     if (cut == 0) {
       EXPECT_EQ(end.code(), StatusCode::unavailable);
@@ -128,7 +126,7 @@ TEST(JournalReader, CorruptByteStopsReadingThere) {
   storage.corrupt(first_end + 20, std::byte{0x04});  // inside record 1's payload
   JournalReader reader(storage);
   Status end;
-  const auto records = read_all(storage, reader, &end);
+  const auto records = read_all(reader, &end);
   ASSERT_EQ(records.size(), 1u);  // record 2 is behind the corrupt one: not applied
   EXPECT_EQ(end.code(), StatusCode::data_loss);
   EXPECT_EQ(reader.problem(), TailProblem::bad_crc);

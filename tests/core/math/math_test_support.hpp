@@ -7,8 +7,10 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <numbers>
+#include <vector>
 
 #include "twister/math/frame.hpp"
+#include "twister/math/vertex_columns.hpp"
 
 namespace twister::math::test {
 
@@ -67,5 +69,13 @@ inline rc::Gen<Frame> gen_end_frame(const Frame& start, double extent) {
 }
 
 inline double distance(glm::dvec3 a, glm::dvec3 b) { return glm::length(a - b); }
+
+// n positions as owned columns, e.g. the output of a warp.
+struct Columns {
+  explicit Columns(std::size_t n, float fill = 0.0f) : x(n, fill), y(n, fill), z(n, fill) {}
+  std::vector<float> x, y, z;
+  VertexColumns cols() { return {x, y, z}; }
+  glm::dvec3 at(std::size_t i) const { return {x[i], y[i], z[i]}; }
+};
 
 }  // namespace twister::math::test

@@ -14,6 +14,7 @@
 namespace twister::math {
 namespace {
 
+using test::Columns;
 using test::gen_end_frame;
 using test::gen_frame;
 using test::gen_point;
@@ -21,12 +22,6 @@ using test::gen_real;
 using test::gen_unit;
 
 WarpPlanWithStorage<1024> g_plan;
-
-struct Columns {
-  explicit Columns(std::size_t n) : x(n), y(n), z(n) {}
-  std::vector<float> x, y, z;
-  VertexColumns cols() { return {x, y, z}; }
-};
 
 // The vectorised kernel agrees with the scalar reference, and both with the double
 // per-point warp, to 1e-5 of the scene scale (the scene spans [-extent, extent]).
@@ -78,13 +73,13 @@ RC_GTEST_PROP(WarpKernelsTest, SimdAgreesWithScalarAndDouble, ()) {
 
 TEST(WarpKernelsTest, ZeroWeightLeavesPointsBitExact) {
   KernelHand h;
-  h.axis[0] = 0.0f;
-  h.axis[1] = 1.0f;
-  h.axis[2] = 0.0f;
-  h.half_angle = 1.2f;
-  h.cot_half = 0.4f;
-  h.chord[0] = 3.0f;
-  h.shift[2] = 2.0f;
+  h.axis[0] = 0.0;
+  h.axis[1] = 1.0;
+  h.axis[2] = 0.0;
+  h.half_angle = 1.2;
+  h.cot_half = 0.4;
+  h.chord[0] = 3.0;
+  h.shift[2] = 2.0;
   const std::array<float, 4> x{1.5f, -2.0f, 1e6f, 0.1f};
   const std::array<float, 4> w{0.0f, 0.0f, 0.0f, 0.0f};
   std::array<float, 4> ox{}, oy{}, oz{};

@@ -13,6 +13,7 @@
 namespace twister::math {
 namespace {
 
+using test::Columns;
 using test::distance;
 using test::gen_end_frame;
 using test::gen_frame;
@@ -32,13 +33,6 @@ struct Cloud {
     z.push_back(static_cast<float>(p.z));
   }
   ConstVertexColumns rest() const { return {x, y, z}; }
-  glm::dvec3 at(std::size_t i) const { return {x[i], y[i], z[i]}; }
-};
-
-struct Out {
-  explicit Out(std::size_t n, float fill = 0.0f) : x(n, fill), y(n, fill), z(n, fill) {}
-  std::vector<float> x, y, z;
-  VertexColumns cols() { return {x, y, z}; }
   glm::dvec3 at(std::size_t i) const { return {x[i], y[i], z[i]}; }
 };
 
@@ -71,7 +65,7 @@ RC_GTEST_PROP(WarpPlanTest, OneHandGrabPointAndFrameFollowTheHand, ()) {
     RC_ASSERT(distance(derivative, b) < 1e-4);
   }
   // The float kernel puts the grab point there too (float rounding of the scene).
-  Out out(1);
+  Columns out(1);
   RC_ASSERT(g_plan.apply(cloud.rest(), out.cols()).ok());
   RC_ASSERT(distance(out.at(0), end[0].origin) < 1e-5 * 4.0);
 }
@@ -92,7 +86,7 @@ RC_GTEST_PROP(WarpPlanTest, TwoHandsInsideEachOthersBallReachTargets, ()) {
   RC_ASSERT(g_plan.update(end).ok());
   RC_ASSERT(distance(g_plan.warp_point(first.origin), end[0].origin) < 1e-9);
   RC_ASSERT(distance(g_plan.warp_point(second.origin), end[1].origin) < 1e-9);
-  Out out(2);
+  Columns out(2);
   RC_ASSERT(g_plan.apply(cloud.rest(), out.cols()).ok());
   RC_ASSERT(distance(out.at(0), end[0].origin) < 1e-5 * 4.0);
   RC_ASSERT(distance(out.at(1), end[1].origin) < 1e-5 * 4.0);
@@ -113,7 +107,7 @@ RC_GTEST_PROP(WarpPlanTest, UnchangedPoseIsIdentity, ()) {
   const Status built = g_plan.build(cloud.rest(), start, radius, method);
   RC_PRE(built.ok());  // scodef may refuse a singular placement
   RC_ASSERT(g_plan.update(start).ok());
-  Out out(cloud.x.size());
+  Columns out(cloud.x.size());
   RC_ASSERT(g_plan.apply(cloud.rest(), out.cols()).ok());
   for (std::uint32_t i : g_plan.indices()) {
     RC_ASSERT(distance(out.at(i), cloud.at(i)) < 1e-12);
@@ -135,7 +129,7 @@ TEST(WarpPlanTest, OnlyInfluencedVerticesAreSelectedAndWritten) {
   EXPECT_FLOAT_EQ(g_plan.weights(0)[9], 1.0f);
   EXPECT_TRUE(g_plan.weights(1).empty());
   ASSERT_TRUE(g_plan.update(end).ok());
-  Out out(cloud.x.size(), -99.0f);
+  Columns out(cloud.x.size(), -99.0f);
   ASSERT_TRUE(g_plan.apply(cloud.rest(), out.cols()).ok());
   for (std::size_t i = 0; i < cloud.x.size(); ++i) {
     const bool influenced = i >= 11 && i < 30;
@@ -160,7 +154,7 @@ TEST(WarpPlanTest, SparseSelectionMatchesPerPointWarp) {
     ASSERT_TRUE(g_plan.build(cloud.rest(), start, 0.8, WarpMethod::twister).ok());
     g_plan.set_kernel(kind);
     ASSERT_TRUE(g_plan.update(end).ok());
-    Out out(cloud.x.size());
+    Columns out(cloud.x.size());
     ASSERT_TRUE(g_plan.apply(cloud.rest(), out.cols()).ok());
     ASSERT_GT(g_plan.indices().size(), 300u);
     for (std::uint32_t i : g_plan.indices()) {
@@ -195,13 +189,13 @@ TEST(WarpPlanTest, RefusesBadArguments) {
   const std::array<Frame, 1> bad{skew};
   EXPECT_EQ(g_plan.build(cloud.rest(), bad, 1.0, WarpMethod::twister).code(),
             StatusCode::invalid_argument);
-  Out out(1);
+  Columns out(1);
   EXPECT_EQ(g_plan.apply(cloud.rest(), out.cols()).code(), StatusCode::failed_precondition);
   EXPECT_EQ(g_plan.update(one).code(), StatusCode::failed_precondition);
   ASSERT_TRUE(g_plan.build(cloud.rest(), one, 1.0, WarpMethod::twister).ok());
   EXPECT_EQ(g_plan.update(bad).code(), StatusCode::invalid_argument);
   EXPECT_EQ(g_plan.update(same).code(), StatusCode::invalid_argument);
-  Out wrong(2);
+  Columns wrong(2);
   EXPECT_EQ(g_plan.apply(cloud.rest(), wrong.cols()).code(), StatusCode::invalid_argument);
 }
 
@@ -264,7 +258,7 @@ TEST(WarpPlanTest, HalfTurnKeepsTheStrokeSense) {
 TEST(WarpPlanTest, UpdateAndApplyDoNotAllocate) {
   Cloud cloud;
   for (int i = 0; i < 2000; ++i) cloud.add(glm::dvec3(0.001 * i - 1.0, (i % 3) * 0.4, 0.0));
-  Out out(cloud.x.size());
+  Columns out(cloud.x.size());
   const std::array<Frame, 2> start{identity_frame(glm::dvec3(-0.5, 0, 0)),
                                    identity_frame(glm::dvec3(0.5, 0, 0))};
   const std::array<Frame, 2> end{

@@ -112,10 +112,9 @@ class SessionEvents {
 // What a display needs for the live stroke (valid while active).
 struct LiveWarp {
   bool active = false;
-  std::uint8_t hand_mask = 0;               // session hands in the stroke (bit h)
-  const math::WarpPlan* plan = nullptr;     // indices, weights, screws, start/end frames
-  std::array<std::uint8_t, 2> plan_hand{};  // session hand -> plan hand index
-  math::ConstVertexColumns positions;       // live_x/y/z: warped where plan->indices()
+  std::uint8_t hand_mask = 0;            // session hands in the stroke (bit h)
+  const math::WarpPlan* plan = nullptr;  // indices, weights, screws, start/end frames
+  math::ConstVertexColumns positions;    // live_x/y/z: warped where plan->indices()
 };
 
 struct ReplayStats {
@@ -174,8 +173,8 @@ class SculptSession {
     math::Frame world{};  // last valid pose
   };
 
-  void apply_action(const Action& action, ports::TimestampUs now_us, SessionEvents& out);
-  Status begin_segment(std::uint8_t hand_mask, SessionEvents& out);
+  void apply_action(const Action& action, SessionEvents& out);
+  Status begin_segment(std::uint8_t hand_mask);
   // Commits the open segment; the committed event names `hand` and `reason`
   // (released: the hand's grab ends; none: the stroke continues). Returns that event.
   SessionEvent commit_segment(std::uint8_t hand, Reason reason, SessionEvents& out);
@@ -185,6 +184,8 @@ class SculptSession {
   Status update_plan();
   Status commit_plan(const journal::JournalRecord& record, bool journaled, SessionEvents* out);
   void journal_append(journal::JournalRecord& record, SessionEvents* out);
+  // undo() (type undo) or redo() (type redo): the step on the mesh, then its record.
+  Status step_history(journal::RecordType type);
   math::Frame to_object(const math::Frame& world) const;
   math::Frame moved_object() const;
   std::size_t plan_frames(std::array<math::Frame, 2>& frames) const;

@@ -22,6 +22,15 @@ inline constexpr std::array<std::byte, 4> kFileMagic{std::byte{'T'}, std::byte{'
                                                      std::byte{'L'}};
 inline constexpr std::uint32_t kFileVersion = 1;
 inline constexpr std::size_t kFileHeaderBytes = 8;
+// What every journal file starts with: the magic, then kFileVersion little-endian.
+inline constexpr std::array<std::byte, kFileHeaderBytes> kFileHeader = [] {
+  std::array<std::byte, kFileHeaderBytes> header{};
+  for (std::size_t i = 0; i < 4; ++i) {
+    header[i] = kFileMagic[i];
+    header[4 + i] = static_cast<std::byte>((kFileVersion >> (8 * i)) & 0xffu);
+  }
+  return header;
+}();
 inline constexpr std::uint8_t kRecordVersion = 1;
 inline constexpr std::size_t kRecordHeaderBytes = 8;
 inline constexpr std::size_t kRecordCrcBytes = 4;

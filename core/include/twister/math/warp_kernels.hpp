@@ -15,23 +15,16 @@ namespace twister::math {
 
 enum class KernelKind : std::uint8_t { scalar, simd };
 
-// One hand's per-update parameters in kernel form (see above), world frame.
+// One hand's per-update parameters in kernel form (see above), world frame, in
+// double; the simd kernel rounds them to float once per call.
 struct KernelHand {
-  float axis[3] = {0.0f, 0.0f, 1.0f};          // D
-  float mid[3] = {0.0f, 0.0f, 0.0f};           // M (O for rottran)
-  float chord[3] = {0.0f, 0.0f, 0.0f};         // X (0 for rottran)
-  float axis_x_chord[3] = {0.0f, 0.0f, 0.0f};  // D x X
-  float shift[3] = {0.0f, 0.0f, 0.0f};         // T: dD (twister), OO' (rottran, pure)
-  float half_angle = 0.0f;                     // a/2 in [0, pi/2]
-  float cot_half = 0.0f;                       // k
-  // Double copies for the scalar reference kernel.
-  double axis_d[3] = {0.0, 0.0, 1.0};
-  double mid_d[3] = {0.0, 0.0, 0.0};
-  double chord_d[3] = {0.0, 0.0, 0.0};
-  double axis_x_chord_d[3] = {0.0, 0.0, 0.0};
-  double shift_d[3] = {0.0, 0.0, 0.0};
-  double half_angle_d = 0.0;
-  double cot_half_d = 0.0;
+  double axis[3] = {0.0, 0.0, 1.0};          // D
+  double mid[3] = {0.0, 0.0, 0.0};           // M (O for rottran)
+  double chord[3] = {0.0, 0.0, 0.0};         // X (0 for rottran)
+  double axis_x_chord[3] = {0.0, 0.0, 0.0};  // D x X
+  double shift[3] = {0.0, 0.0, 0.0};         // T: dD (twister), OO' (rottran, pure)
+  double half_angle = 0.0;                   // a/2 in [0, pi/2]
+  double cot_half = 0.0;                     // k
 };
 
 // Dense columns: n rest positions with their weights in, n warped positions out.

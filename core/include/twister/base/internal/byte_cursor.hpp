@@ -1,6 +1,7 @@
-// Little-endian cursor over a fixed byte span (private to the link codec). Writes
-// past the end and reads past the end set a sticky failure flag instead of
-// touching memory, so callers check once at the end.
+// Little-endian cursor over a fixed byte span, shared by the journal record and link
+// payload codecs (public only so both core libraries can include it). Writes past the
+// end and reads past the end set a sticky failure flag instead of touching memory, so
+// callers check once at the end.
 #pragma once
 
 #include <bit>
@@ -9,11 +10,11 @@
 #include <glm/vec3.hpp>
 #include <span>
 
-namespace twister::link::internal {
+namespace twister::internal {
 
-class PayloadWriter {
+class ByteWriter {
  public:
-  explicit PayloadWriter(std::span<std::byte> out) : out_(out) {}
+  explicit ByteWriter(std::span<std::byte> out) : out_(out) {}
   void u8(std::uint8_t v) { put(v, 1); }
   void u16(std::uint16_t v) { put(v, 2); }
   void u32(std::uint32_t v) { put(v, 4); }
@@ -42,9 +43,9 @@ class PayloadWriter {
   bool ok_ = true;
 };
 
-class PayloadReader {
+class ByteReader {
  public:
-  explicit PayloadReader(std::span<const std::byte> in) : in_(in) {}
+  explicit ByteReader(std::span<const std::byte> in) : in_(in) {}
   std::uint8_t u8() { return static_cast<std::uint8_t>(get(1)); }
   std::uint16_t u16() { return static_cast<std::uint16_t>(get(2)); }
   std::uint32_t u32() { return static_cast<std::uint32_t>(get(4)); }
@@ -77,4 +78,4 @@ class PayloadReader {
   bool ok_ = true;
 };
 
-}  // namespace twister::link::internal
+}  // namespace twister::internal
