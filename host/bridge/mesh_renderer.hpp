@@ -70,6 +70,13 @@ class MeshRenderer {
   float hands_[2][17] = {};
   int hand_mask_ = 0;
   bool show_weights_ = false;
+  // Uniform locations, looked up once in init().
+  struct Uniforms {
+    int mvp = -1, eye = -1, light0 = -1, light1 = -1, show_weights = -1, hand_mask = -1;
+    int hand_vec3[2][5] = {};  // u_axis, u_mid, u_chord, u_axc, u_shift of each hand
+    int half[2] = {};
+    int cot[2] = {};
+  } uniforms_;
 };
 
 // Writes RGBA rows (top to bottom) as PNG (compression 1). false on I/O error.
