@@ -125,11 +125,20 @@ void BridgeApp::refresh_display() {
     live.weights_changed = false;
     shown_stroke_ = live.stroke;
   }
-  if (cpu_live) {
-    // scodef has no closed form per vertex in the shader: show the CPU warp.
-    renderer_->set_mesh(replica_.cpu_warp(), true);
-    renderer_->set_weights(live.weight1, live.weight2);
+  const std::uint64_t live_frames = replica_.counters().live_frames;
+  if (cpu_live && (!display_mesh_live_ || live_frames != shown_live_frames_)) {
+    // scodef has no closed form per vertex in the shader: show the CPU warp, once per
+    // live frame. The renderer already holds this mesh's triangles and this stroke's
+    // weights, so only the positions change.
+    const MeshData warped = replica_.cpu_warp();
+    if (warped.vertex_count() == renderer_->vertex_count()) {
+      renderer_->set_positions(warped);
+    } else {  // no warp (the plan failed: nothing drawn), or the first one after that
+      renderer_->set_mesh(warped, true);
+      renderer_->set_weights(live.weight1, live.weight2);
+    }
     display_mesh_live_ = true;
+    shown_live_frames_ = live_frames;
   }
   renderer_->set_show_weights(live.active);
   renderer_->set_live(live.active ? &live.message : nullptr);

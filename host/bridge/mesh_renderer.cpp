@@ -100,6 +100,17 @@ void put3(float* dst, const glm::dvec3& v) {
   dst[2] = static_cast<float>(v.z);
 }
 
+// x0 y0 z0 x1 y1 z1 ... for the position buffer.
+std::vector<float> interleaved_positions(const MeshData& mesh) {
+  std::vector<float> pos(3 * mesh.vertex_count());
+  for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
+    pos[3 * i] = mesh.x[i];
+    pos[3 * i + 1] = mesh.y[i];
+    pos[3 * i + 2] = mesh.z[i];
+  }
+  return pos;
+}
+
 }  // namespace
 
 MeshRenderer::~MeshRenderer() {
@@ -180,24 +191,21 @@ std::string MeshRenderer::init(int width, int height, bool offscreen, const View
 
 void MeshRenderer::set_mesh(const MeshData& mesh, bool keep_camera) {
   vertex_count_ = mesh.vertex_count();
-  std::vector<float> pos(3 * vertex_count_);
-  glm::vec3 lo(1e30F);
-  glm::vec3 hi(-1e30F);
-  for (std::size_t i = 0; i < vertex_count_; ++i) {
-    const glm::vec3 p(mesh.x[i], mesh.y[i], mesh.z[i]);
-    pos[3 * i] = p.x;
-    pos[3 * i + 1] = p.y;
-    pos[3 * i + 2] = p.z;
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
   if (!keep_camera && vertex_count_ > 0) {
+    glm::vec3 lo(1e30F);
+    glm::vec3 hi(-1e30F);
+    for (std::size_t i = 0; i < vertex_count_; ++i) {
+      const glm::vec3 p(mesh.x[i], mesh.y[i], mesh.z[i]);
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
     const glm::vec3 c = 0.5F * (lo + hi);
     center_[0] = c.x;
     center_[1] = c.y;
     center_[2] = c.z;
     radius_ = std::max(0.5F * glm::length(hi - lo), 1e-6F);
   }
+  const std::vector<float> pos = interleaved_positions(mesh);
   glBindVertexArray(vao_);
   glBindBuffer(GL_ARRAY_BUFFER, vbo_pos_);
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(pos.size() * sizeof(float)), pos.data(),
@@ -211,6 +219,13 @@ void MeshRenderer::set_mesh(const MeshData& mesh, bool keep_camera) {
                static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
                mesh.indices.data(), GL_STATIC_DRAW);
   index_count_ = mesh.indices.size();
+}
+
+void MeshRenderer::set_positions(const MeshData& mesh) {
+  const std::vector<float> pos = interleaved_positions(mesh);
+  glBindBuffer(GL_ARRAY_BUFFER, vbo_pos_);
+  glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(pos.size() * sizeof(float)),
+                  pos.data());
 }
 
 void MeshRenderer::set_weights(const std::vector<float>& w1, const std::vector<float>& w2) {
