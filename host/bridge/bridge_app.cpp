@@ -6,13 +6,12 @@
 namespace twister::bridge {
 
 BridgeApp::BridgeApp(ports::LinkPort& port, MeshRenderer* renderer, BridgeOptions options)
-    : port_(port), renderer_(renderer), options_(std::move(options)) {}
+    : port_(port), renderer_(renderer), options_(std::move(options)), in_(std::size_t{64} * 1024) {}
 
 std::size_t BridgeApp::step() {
   std::size_t frames = 0;
-  std::array<std::byte, std::size_t{64} * 1024> buf{};
   for (int round = 0; round < 64; ++round) {
-    const Result<std::size_t> got = port_.receive(buf);
+    const Result<std::size_t> got = port_.receive(in_);
     if (!got.ok()) {
       if (connected_) {
         ++counters_.disconnects;
@@ -37,12 +36,12 @@ std::size_t BridgeApp::step() {
       }
     }
     for (std::size_t i = 0; i < *got; ++i) {
-      if (decoder_.push(buf[i])) {
+      if (decoder_.push(in_[i])) {
         handle(decoder_.message());
         ++frames;
       }
     }
-    if (*got < buf.size()) break;
+    if (*got < in_.size()) break;
   }
   flush();
   refresh_display();

@@ -57,6 +57,7 @@ class BridgeApp {
   BridgeOptions options_;
   SceneReplica replica_;
   link::LinkDecoder decoder_;
+  std::vector<std::byte> in_;  // receive buffer, sized once
   std::vector<std::byte> out_;
   bool connected_ = false;
   bool display_mesh_live_ = false;  // the renderer holds CPU-warped positions (scodef)
