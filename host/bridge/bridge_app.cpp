@@ -6,13 +6,12 @@
 namespace twister::bridge {
 
 BridgeApp::BridgeApp(ports::LinkPort& port, MeshRenderer* renderer, BridgeOptions options)
-    : port_(port), renderer_(renderer), options_(std::move(options)) {}
+    : port_(port), renderer_(renderer), options_(std::move(options)), in_(std::size_t{64} * 1024) {}
 
 std::size_t BridgeApp::step() {
   std::size_t frames = 0;
-  std::array<std::byte, std::size_t{64} * 1024> buf{};
   for (int round = 0; round < 64; ++round) {
-    const Result<std::size_t> got = port_.receive(buf);
+    const Result<std::size_t> got = port_.receive(in_);
     if (!got.ok()) {
       if (connected_) {
         ++counters_.disconnects;
@@ -37,12 +36,12 @@ std::size_t BridgeApp::step() {
       }
     }
     for (std::size_t i = 0; i < *got; ++i) {
-      if (decoder_.push(buf[i])) {
+      if (decoder_.push(in_[i])) {
         handle(decoder_.message());
         ++frames;
       }
     }
-    if (*got < buf.size()) break;
+    if (*got < in_.size()) break;
   }
   flush();
   refresh_display();
@@ -125,11 +124,20 @@ void BridgeApp::refresh_display() {
     live.weights_changed = false;
     shown_stroke_ = live.stroke;
   }
-  if (cpu_live) {
-    // scodef has no closed form per vertex in the shader: show the CPU warp.
-    renderer_->set_mesh(replica_.cpu_warp(), true);
-    renderer_->set_weights(live.weight1, live.weight2);
+  const std::uint64_t live_frames = replica_.counters().live_frames;
+  if (cpu_live && (!display_mesh_live_ || live_frames != shown_live_frames_)) {
+    // scodef has no closed form per vertex in the shader: show the CPU warp, once per
+    // live frame. The renderer already holds this mesh's triangles and this stroke's
+    // weights, so only the positions change.
+    const MeshData warped = replica_.cpu_warp();
+    if (warped.vertex_count() == renderer_->vertex_count()) {
+      renderer_->set_positions(warped);
+    } else {  // no warp (the plan failed: nothing drawn), or the first one after that
+      renderer_->set_mesh(warped, true);
+      renderer_->set_weights(live.weight1, live.weight2);
+    }
     display_mesh_live_ = true;
+    shown_live_frames_ = live_frames;
   }
   renderer_->set_show_weights(live.active);
   renderer_->set_live(live.active ? &live.message : nullptr);

@@ -57,11 +57,13 @@ class BridgeApp {
   BridgeOptions options_;
   SceneReplica replica_;
   link::LinkDecoder decoder_;
+  std::vector<std::byte> in_;  // receive buffer, sized once
   std::vector<std::byte> out_;
   bool connected_ = false;
   bool display_mesh_live_ = false;  // the renderer holds CPU-warped positions (scodef)
   std::uint32_t shown_version_ = 0;
   std::uint32_t shown_stroke_ = 0;
+  std::uint64_t shown_live_frames_ = 0;  // replica live frames when the CPU warp was shown
   BridgeCounters counters_{};
   std::vector<std::string> pictures_;
 };

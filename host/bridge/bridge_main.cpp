@@ -29,8 +29,7 @@ struct Options {
   std::string export_path;
   unsigned exit_after_commits = 0;
   double timeout_s = 0.0;
-  float azimuth = 200.0F;
-  float elevation = 25.0F;
+  twister::bridge::ViewConfig view;  // --azimuth, --elevation
   bool exit_on_disconnect = false;
   bool quiet = false;
 };
@@ -54,10 +53,8 @@ int run(const Options& opt) {
     return 1;
   }
   twister::bridge::MeshRenderer renderer;
-  twister::bridge::ViewConfig view;
-  view.azimuth_deg = opt.azimuth;
-  view.elevation_deg = opt.elevation;
-  if (const std::string e = renderer.init(context->width(), context->height(), opt.offscreen, view);
+  if (const std::string e =
+          renderer.init(context->width(), context->height(), opt.offscreen, opt.view);
       !e.empty()) {
     std::fprintf(stderr, "twister-bridge: %s\n", e.c_str());
     return 1;
@@ -150,8 +147,8 @@ int main(int argc, char** argv) try {
                "exit when the station closes the link (after a mesh was received)");
   cli.add_option("--timeout", opt.timeout_s, "give up after this many seconds (0 = never)")
       ->check(CLI::NonNegativeNumber);
-  cli.add_option("--azimuth", opt.azimuth, "camera azimuth in degrees");
-  cli.add_option("--elevation", opt.elevation, "camera elevation in degrees");
+  cli.add_option("--azimuth", opt.view.azimuth_deg, "camera azimuth in degrees");
+  cli.add_option("--elevation", opt.view.elevation_deg, "camera elevation in degrees");
   cli.add_flag("-q,--quiet", opt.quiet, "log only errors and the summary");
   try {
     cli.parse(argc, argv);

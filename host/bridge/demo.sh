@@ -13,14 +13,13 @@ build="${1:-$here/../../build}"
 out="${2:-$build/bridge-demo}"
 station="$build/bin/twister-station"
 bridge="$build/bin/twister-bridge"
-for exe in "$station" "$bridge"; do
+twister="$build/bin/twister"
+for exe in "$station" "$bridge" "$twister"; do
   [[ -x "$exe" ]] || { echo "demo: $exe not built (make build)" >&2; exit 1; }
 done
 rm -rf "$out"
 mkdir -p "$out/pictures"
 out="$(cd "$out" && pwd)"
-twister="$build/bin/twister"
-[[ -x "$twister" ]] || { echo "demo: $twister not built (make build)" >&2; exit 1; }
 # The project's own mesh generator: 10k vertices, radius 0.30 m, in front of the
 # simulated transmitter (the default grab radius 0.25 m then moves part of it).
 "$twister" mesh sphere -n 80 --segments 128 --size 0.30 --center 0.55 0 0.10 \

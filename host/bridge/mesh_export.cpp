@@ -1,17 +1,11 @@
 #include "mesh_export.hpp"
 
 #include <cstdio>
-#include <vector>
 
-#include "twister/mesh/mesh.hpp"
 #include "twister/meshio/obj_file.hpp"
 
 namespace twister::bridge {
 namespace {
-
-bool ends_with(const std::string& s, const std::string& tail) {
-  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
-}
 
 bool export_ply(const std::string& path, const MeshData& m, std::string& message) {
   std::FILE* f = std::fopen(path.c_str(), "wb");
@@ -43,20 +37,17 @@ bool export_ply(const std::string& path, const MeshData& m, std::string& message
 }  // namespace
 
 bool export_mesh(const std::string& path, const MeshData& m, std::string& message) {
-  if (ends_with(path, ".ply")) return export_ply(path, m, message);
-  if (!ends_with(path, ".obj")) {
+  if (path.ends_with(".ply")) return export_ply(path, m, message);
+  if (!path.ends_with(".obj")) {
     message = "unknown mesh format (use .obj or .ply): " + path;
     return false;
   }
-  std::vector<float> x(m.x), y(m.y), z(m.z);
-  std::vector<std::uint32_t> idx(m.indices.size());
-  mesh::Mesh mesh(x, y, z, idx);
-  for (std::size_t i = 0; i < m.vertex_count(); ++i)
-    (void)mesh.add_vertex({m.x[i], m.y[i], m.z[i]});
-  for (std::size_t t = 0; t < m.triangle_count(); ++t) {
-    (void)mesh.add_triangle(m.indices[3 * t], m.indices[3 * t + 1], m.indices[3 * t + 2]);
+  const auto core = to_core_mesh(m);
+  if (!core) {
+    message = "triangle index out of range: " + path;
+    return false;
   }
-  return meshio::save_obj(path, mesh, message).ok();
+  return meshio::save_obj(path, core->mesh(), message).ok();
 }
 
 }  // namespace twister::bridge

@@ -100,6 +100,17 @@ void put3(float* dst, const glm::dvec3& v) {
   dst[2] = static_cast<float>(v.z);
 }
 
+// x0 y0 z0 x1 y1 z1 ... for the position buffer.
+std::vector<float> interleaved_positions(const MeshData& mesh) {
+  std::vector<float> pos(3 * mesh.vertex_count());
+  for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
+    pos[3 * i] = mesh.x[i];
+    pos[3 * i + 1] = mesh.y[i];
+    pos[3 * i + 2] = mesh.z[i];
+  }
+  return pos;
+}
+
 }  // namespace
 
 MeshRenderer::~MeshRenderer() {
@@ -129,6 +140,24 @@ std::string MeshRenderer::init(int width, int height, bool offscreen, const View
   GLint linked = 0;
   glGetProgramiv(program_, GL_LINK_STATUS, &linked);
   if (linked == 0) return "shader program does not link";
+  const auto at = [this](const std::string& name) {
+    return glGetUniformLocation(program_, name.c_str());
+  };
+  uniforms_.mvp = at("u_mvp");
+  uniforms_.eye = at("u_eye");
+  uniforms_.light0 = at("u_light0");
+  uniforms_.light1 = at("u_light1");
+  uniforms_.show_weights = at("u_show_weights");
+  uniforms_.hand_mask = at("u_hand_mask");
+  const char* names[] = {"u_axis", "u_mid", "u_chord", "u_axc", "u_shift"};
+  for (std::size_t h = 0; h < 2; ++h) {
+    const auto element = [h](const char* name) {
+      return std::string(name) + "[" + std::to_string(h) + "]";
+    };
+    for (std::size_t k = 0; k < 5; ++k) uniforms_.hand_vec3[h][k] = at(element(names[k]));
+    uniforms_.half[h] = at(element("u_half"));
+    uniforms_.cot[h] = at(element("u_cot"));
+  }
   glGenVertexArrays(1, &vao_);
   glGenBuffers(1, &vbo_pos_);
   glGenBuffers(1, &vbo_weight_);
@@ -162,24 +191,21 @@ std::string MeshRenderer::init(int width, int height, bool offscreen, const View
 
 void MeshRenderer::set_mesh(const MeshData& mesh, bool keep_camera) {
   vertex_count_ = mesh.vertex_count();
-  std::vector<float> pos(3 * vertex_count_);
-  glm::vec3 lo(1e30F);
-  glm::vec3 hi(-1e30F);
-  for (std::size_t i = 0; i < vertex_count_; ++i) {
-    const glm::vec3 p(mesh.x[i], mesh.y[i], mesh.z[i]);
-    pos[3 * i] = p.x;
-    pos[3 * i + 1] = p.y;
-    pos[3 * i + 2] = p.z;
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
   if (!keep_camera && vertex_count_ > 0) {
+    glm::vec3 lo(1e30F);
+    glm::vec3 hi(-1e30F);
+    for (std::size_t i = 0; i < vertex_count_; ++i) {
+      const glm::vec3 p(mesh.x[i], mesh.y[i], mesh.z[i]);
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
     const glm::vec3 c = 0.5F * (lo + hi);
     center_[0] = c.x;
     center_[1] = c.y;
     center_[2] = c.z;
     radius_ = std::max(0.5F * glm::length(hi - lo), 1e-6F);
   }
+  const std::vector<float> pos = interleaved_positions(mesh);
   glBindVertexArray(vao_);
   glBindBuffer(GL_ARRAY_BUFFER, vbo_pos_);
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(pos.size() * sizeof(float)), pos.data(),
@@ -193,6 +219,13 @@ void MeshRenderer::set_mesh(const MeshData& mesh, bool keep_camera) {
                static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
                mesh.indices.data(), GL_STATIC_DRAW);
   index_count_ = mesh.indices.size();
+}
+
+void MeshRenderer::set_positions(const MeshData& mesh) {
+  const std::vector<float> pos = interleaved_positions(mesh);
+  glBindBuffer(GL_ARRAY_BUFFER, vbo_pos_);
+  glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(pos.size() * sizeof(float)),
+                  pos.data());
 }
 
 void MeshRenderer::set_weights(const std::vector<float>& w1, const std::vector<float>& w2) {
@@ -259,26 +292,21 @@ void MeshRenderer::draw() {
                        0.05F * distance, 4.0F * distance);
   const glm::mat4 mvp = proj * glm::lookAt(eye, center, up);
   glUseProgram(program_);
-  glUniformMatrix4fv(glGetUniformLocation(program_, "u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
-  glUniform3fv(glGetUniformLocation(program_, "u_eye"), 1, glm::value_ptr(eye));
+  glUniformMatrix4fv(uniforms_.mvp, 1, GL_FALSE, glm::value_ptr(mvp));
+  glUniform3fv(uniforms_.eye, 1, glm::value_ptr(eye));
   const glm::vec3 right = glm::normalize(glm::cross(-dir, up));
   const glm::vec3 l0 = glm::normalize(dir + 0.8F * up + 0.6F * right);
   const glm::vec3 l1 = glm::normalize(-dir + 0.3F * up - 0.8F * right);
-  glUniform3fv(glGetUniformLocation(program_, "u_light0"), 1, glm::value_ptr(l0));
-  glUniform3fv(glGetUniformLocation(program_, "u_light1"), 1, glm::value_ptr(l1));
-  glUniform1i(glGetUniformLocation(program_, "u_show_weights"), hand_mask_ != 0 || show_weights_);
-  glUniform1i(glGetUniformLocation(program_, "u_hand_mask"), hand_mask_);
-  const char* names[] = {"u_axis", "u_mid", "u_chord", "u_axc", "u_shift"};
-  for (int h = 0; h < 2; ++h) {
-    for (int k = 0; k < 5; ++k) {
-      const std::string n = std::string(names[k]) + "[" + std::to_string(h) + "]";
-      glUniform3fv(glGetUniformLocation(program_, n.c_str()), 1,
-                   &hands_[h][static_cast<std::size_t>(3 * k)]);
+  glUniform3fv(uniforms_.light0, 1, glm::value_ptr(l0));
+  glUniform3fv(uniforms_.light1, 1, glm::value_ptr(l1));
+  glUniform1i(uniforms_.show_weights, hand_mask_ != 0 || show_weights_);
+  glUniform1i(uniforms_.hand_mask, hand_mask_);
+  for (std::size_t h = 0; h < 2; ++h) {
+    for (std::size_t k = 0; k < 5; ++k) {
+      glUniform3fv(uniforms_.hand_vec3[h][k], 1, &hands_[h][3 * k]);
     }
-    glUniform1f(glGetUniformLocation(program_, ("u_half[" + std::to_string(h) + "]").c_str()),
-                hands_[h][15]);
-    glUniform1f(glGetUniformLocation(program_, ("u_cot[" + std::to_string(h) + "]").c_str()),
-                hands_[h][16]);
+    glUniform1f(uniforms_.half[h], hands_[h][15]);
+    glUniform1f(uniforms_.cot[h], hands_[h][16]);
   }
   glBindVertexArray(vao_);
   glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(index_count_), GL_UNSIGNED_INT, nullptr);

@@ -32,6 +32,9 @@ class MeshRenderer {
   // New rest mesh (positions + triangles); resets weights and recentres the camera
   // unless keep_camera.
   void set_mesh(const MeshData& mesh, bool keep_camera);
+  // New positions for the mesh of the last set_mesh (same vertex count; triangles,
+  // weights and camera kept): the CPU-warped preview.
+  void set_positions(const MeshData& mesh);
   void set_weights(const std::vector<float>& w1, const std::vector<float>& w2);
   // Hand uniforms from a live message (scodef: no shader warp, see set_mesh).
   void set_live(const link::LiveWarp* live);
@@ -47,6 +50,7 @@ class MeshRenderer {
   }
   // RGBA rows top to bottom.
   std::vector<std::uint8_t> read_rgba() const;
+  std::size_t vertex_count() const { return vertex_count_; }
   int width() const { return width_; }
   int height() const { return height_; }
 
@@ -70,6 +74,13 @@ class MeshRenderer {
   float hands_[2][17] = {};
   int hand_mask_ = 0;
   bool show_weights_ = false;
+  // Uniform locations, looked up once in init().
+  struct Uniforms {
+    int mvp = -1, eye = -1, light0 = -1, light1 = -1, show_weights = -1, hand_mask = -1;
+    int hand_vec3[2][5] = {};  // u_axis, u_mid, u_chord, u_axc, u_shift of each hand
+    int half[2] = {};
+    int cot[2] = {};
+  } uniforms_;
 };
 
 // Writes RGBA rows (top to bottom) as PNG (compression 1). false on I/O error.

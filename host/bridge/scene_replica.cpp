@@ -9,20 +9,25 @@
 
 namespace twister::bridge {
 
-std::optional<std::uint64_t> mesh_checksum(const MeshData& m) {
-  // The station's own checksum code, so "equal" means bit-identical.
-  std::vector<float> x(m.x), y(m.y), z(m.z);
-  std::vector<std::uint32_t> idx(m.indices.size());
-  mesh::Mesh mesh(x, y, z, idx);
+std::unique_ptr<meshio::MeshBuffer> to_core_mesh(const MeshData& m) {
+  auto buffer = std::make_unique<meshio::MeshBuffer>(m.vertex_count(), m.triangle_count());
+  mesh::Mesh& mesh = buffer->mesh();
   for (std::size_t i = 0; i < m.vertex_count(); ++i) {
-    if (!mesh.add_vertex({m.x[i], m.y[i], m.z[i]}).ok()) return std::nullopt;
+    if (!mesh.add_vertex({m.x[i], m.y[i], m.z[i]}).ok()) return nullptr;
   }
   for (std::size_t t = 0; t < m.triangle_count(); ++t) {
     if (!mesh.add_triangle(m.indices[3 * t], m.indices[3 * t + 1], m.indices[3 * t + 2]).ok()) {
-      return std::nullopt;
+      return nullptr;
     }
   }
-  return mesh.checksum();
+  return buffer;
+}
+
+std::optional<std::uint64_t> mesh_checksum(const MeshData& m) {
+  // The station's own checksum code, so "equal" means bit-identical.
+  const auto core = to_core_mesh(m);
+  if (!core) return std::nullopt;
+  return core->mesh().checksum();
 }
 
 link::Hello SceneReplica::hello() const {

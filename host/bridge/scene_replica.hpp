@@ -9,11 +9,13 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "twister/link/link_message.hpp"
 #include "twister/math/warp_method.hpp"
+#include "twister/meshio/mesh_buffer.hpp"
 
 namespace twister::bridge {
 
@@ -24,6 +26,9 @@ struct MeshData {
   std::size_t triangle_count() const { return indices.size() / 3; }
 };
 
+// The data as a core mesh::Mesh (for the station's checksum and OBJ writer); null
+// when a triangle index is out of range.
+std::unique_ptr<meshio::MeshBuffer> to_core_mesh(const MeshData& mesh);
 // mesh::Mesh::checksum() of the data; nullopt when a triangle index is out of range.
 std::optional<std::uint64_t> mesh_checksum(const MeshData& mesh);
 

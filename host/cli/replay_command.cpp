@@ -1,6 +1,5 @@
 #include "replay_command.hpp"
 
-#include <chrono>
 #include <cinttypes>
 #include <cstdio>
 #include <cstring>

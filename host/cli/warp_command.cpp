@@ -6,8 +6,6 @@
 #include <iostream>
 #include <iterator>
 #include <memory>
-#include <span>
-#include <sstream>
 #include <string>
 #include <variant>
 #include <vector>

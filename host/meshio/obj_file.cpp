@@ -98,16 +98,10 @@ ObjLoad parse_obj(std::string_view text, std::size_t spare_vertices, std::size_t
     const auto& idx = shape.mesh.indices;
     for (std::size_t f = 0; f + 2 < idx.size(); f += 3) {
       const int a = idx[f].vertex_index, b = idx[f + 1].vertex_index, c = idx[f + 2].vertex_index;
-      if (a < 0 || b < 0 || c < 0) {
-        out.status = StatusCode::invalid_argument;
-        out.message = "OBJ face " + std::to_string(f / 3 + 1) + " in '" + shape.name +
-                      "' refers to a vertex that does not exist";
-        out.buffer.reset();
-        return out;
-      }
-      auto t = m.add_triangle(static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b),
-                              static_cast<std::uint32_t>(c));
-      if (!t.ok()) {
+      if (a < 0 || b < 0 || c < 0 ||
+          !m.add_triangle(static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b),
+                          static_cast<std::uint32_t>(c))
+               .ok()) {
         out.status = StatusCode::invalid_argument;
         out.message = "OBJ face " + std::to_string(f / 3 + 1) + " in '" + shape.name +
                       "' refers to a vertex that does not exist";

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <memory>
 
+#include "bridge_app.hpp"
 #include "gl_context.hpp"
 #include "mesh_renderer.hpp"
 #include "scene_replica.hpp"
@@ -156,6 +157,44 @@ TEST_F(BridgeRender, LiveWarpInTheShaderEqualsTheCpuWarp) {
     (void)write_png(std::string(dir) + "/render_rest.png", kW, kH, rest);
     (void)write_png(std::string(dir) + "/render_shader.png", kW, kH, shader);
     (void)write_png(std::string(dir) + "/render_cpu.png", kW, kH, cpu);
+  }
+}
+
+// A connected link with nothing to say: BridgeApp::step() only refreshes the display.
+class QuietLink final : public ports::LinkPort {
+  Result<std::size_t> do_send(std::span<const std::byte> src) override { return src.size(); }
+  Result<std::size_t> do_receive(std::span<std::byte>) override { return std::size_t{0}; }
+};
+
+TEST_F(BridgeRender, ScodefPreviewOfTheAppIsTheCpuWarpOfEachLiveFrame) {
+  QuietLink link;
+  BridgeApp app(link, &renderer_, {{}, false});
+  load(app.replica(), sphere());
+  app.step();
+  link::LinkMessage live;
+  live.type = link::MessageType::live_warp;
+  link::LiveWarp& l = live.live_warp;
+  l.mesh_version = 1;
+  l.stroke = 1;
+  l.active = true;
+  l.method = static_cast<std::uint8_t>(math::WarpMethod::scodef);
+  l.hand_mask = 1;
+  l.radius_m = 0.12;
+  l.hands[0].start = math::identity_frame({0.0, -0.1, 0.0});
+  for (const double lift : {0.03, 0.06}) {
+    l.hands[0].end = math::identity_frame({0.0, -0.1 - lift, 0.0});
+    l.hands[0].screw = math::compute_screw(l.hands[0].start, l.hands[0].end);
+    (void)app.replica().apply(live);
+    app.step();
+    app.step();  // no new frame: the picture stays
+    app.draw();
+    const auto shown = renderer_.read_rgba();
+    // What the preview is: the CPU warp as geometry, tinted by the stroke's weights.
+    const SceneReplica& r = app.replica();
+    renderer_.set_mesh(r.cpu_warp(), true);
+    renderer_.set_weights(r.live().weight1, r.live().weight2);
+    renderer_.draw();
+    EXPECT_EQ(differing(shown, renderer_.read_rgba(), 0), 0.0) << lift;
   }
 }
 

@@ -56,6 +56,28 @@ std::optional<link::ResendRequest> feed(SceneReplica& r, const std::vector<link:
   return last;
 }
 
+// A replica holding grid() as version 1.
+SceneReplica replica_with_grid() {
+  SceneReplica r;
+  const MeshData m = grid();
+  (void)feed(r, mesh_messages(m, true, 0, 1, *mesh_checksum(m)));
+  return r;
+}
+
+// The change set of a commit from version 1 to 2 of the grid that moves one vertex.
+std::vector<link::LinkMessage> commit_messages(const link::VertexEntry& moved,
+                                               std::uint64_t checksum) {
+  std::vector<link::LinkMessage> commit(3);
+  commit[0].type = link::MessageType::mesh_begin;
+  commit[0].mesh_begin = {false, 1, 2, 9, 8};
+  commit[1].type = link::MessageType::vertices;
+  commit[1].vertices.count = 1;
+  commit[1].vertices.items[0] = moved;
+  commit[2].type = link::MessageType::mesh_end;
+  commit[2].mesh_end = {2, checksum};
+  return commit;
+}
+
 TEST(BridgeSceneReplica, FullMeshThenCommitIsVerified) {
   SceneReplica r;
   const MeshData m = grid();
@@ -67,65 +89,45 @@ TEST(BridgeSceneReplica, FullMeshThenCommitIsVerified) {
   // Commit: vertex 4 moves up.
   MeshData moved = m;
   moved.z[4] = 0.05F;
-  std::vector<link::LinkMessage> commit(3);
-  commit[0].type = link::MessageType::mesh_begin;
-  commit[0].mesh_begin = {false, 1, 2, 9, 8};
-  commit[1].type = link::MessageType::vertices;
-  commit[1].vertices.count = 1;
-  commit[1].vertices.items[0] = {4, moved.x[4], moved.y[4], moved.z[4]};
-  commit[2].type = link::MessageType::mesh_end;
-  commit[2].mesh_end = {2, *mesh_checksum(moved)};
-  EXPECT_FALSE(feed(r, commit));
+  EXPECT_FALSE(
+      feed(r, commit_messages({4, moved.x[4], moved.y[4], moved.z[4]}, *mesh_checksum(moved))));
   EXPECT_EQ(r.version(), 2u);
   EXPECT_EQ(r.mesh().z[4], 0.05F);
   EXPECT_EQ(r.counters().commits, 1u);
 }
 
 TEST(BridgeSceneReplica, ChecksumMismatchKeepsTheVerifiedMeshAndAsksForResend) {
-  SceneReplica r;
-  const MeshData m = grid();
-  (void)feed(r, mesh_messages(m, true, 0, 1, *mesh_checksum(m)));
-  std::vector<link::LinkMessage> commit(3);
-  commit[0].type = link::MessageType::mesh_begin;
-  commit[0].mesh_begin = {false, 1, 2, 9, 8};
-  commit[1].type = link::MessageType::vertices;
-  commit[1].vertices.count = 1;
-  commit[1].vertices.items[0] = {4, 0.1F, 0.1F, 0.05F};
-  commit[2].type = link::MessageType::mesh_end;
-  commit[2].mesh_end = {2, 0xdeadbeefULL};  // not the checksum of the result
-  const auto request = feed(r, commit);
+  SceneReplica r = replica_with_grid();
+  // 0xdeadbeef: not the checksum of the result.
+  const auto request = feed(r, commit_messages({4, 0.1F, 0.1F, 0.05F}, 0xdeadbeefULL));
   ASSERT_TRUE(request);
   EXPECT_EQ(request->have_version, 1u);
   EXPECT_EQ(r.version(), 1u);
   EXPECT_EQ(r.mesh().z[4], 0.0F);  // unchanged
   EXPECT_EQ(r.counters().checksum_mismatches, 1u);
   // The resend brings the station's mesh: accepted.
-  MeshData moved = m;
+  MeshData moved = grid();
   moved.z[4] = 0.05F;
   EXPECT_FALSE(feed(r, mesh_messages(moved, true, 0, 2, *mesh_checksum(moved))));
   EXPECT_EQ(r.version(), 2u);
 }
 
 TEST(BridgeSceneReplica, CommitForAnotherVersionAndBadIndicesAskForResend) {
-  SceneReplica r;
-  const MeshData m = grid();
-  (void)feed(r, mesh_messages(m, true, 0, 1, *mesh_checksum(m)));
+  SceneReplica r = replica_with_grid();
   link::LinkMessage gap;
   gap.type = link::MessageType::mesh_begin;
   gap.mesh_begin = {false, 5, 6, 9, 8};  // missed versions 2..5
   EXPECT_TRUE(r.apply(gap));
   EXPECT_EQ(r.counters().version_gaps, 1u);
   // A full mesh whose triangle points past the vertices is refused.
-  MeshData bad = m;
+  MeshData bad = grid();
   bad.indices[0] = 99;
   EXPECT_TRUE(feed(r, mesh_messages(bad, true, 0, 7, 0)));
   EXPECT_EQ(r.version(), 1u);
 }
 
 TEST(BridgeSceneReplica, LiveStrokeWeightsAndCpuWarp) {
-  SceneReplica r;
-  const MeshData m = grid();
-  (void)feed(r, mesh_messages(m, true, 0, 1, *mesh_checksum(m)));
+  SceneReplica r = replica_with_grid();
   link::LinkMessage live;
   live.type = link::MessageType::live_warp;
   live.live_warp.mesh_version = 1;

@@ -3,16 +3,13 @@
 // method's curves and text, the SVG carries every label of both panels, and a bad
 // output path is a clear failure.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "cli_test_support.hpp"
 #include "figure8_plot.hpp"
 #include "figure8_test_image.hpp"
 
@@ -29,15 +26,9 @@ struct CliRun {
 };
 
 CliRun run(const std::string& args, const fs::path& err_file) {
-  const std::string cmd = std::string(TWISTER_CLI) + " " + args + " 2>" + err_file.string();
-  CliRun r;
-  FILE* p = popen(cmd.c_str(), "r");
-  std::array<char, 512> buf{};
-  while (p != nullptr && fgets(buf.data(), buf.size(), p) != nullptr) r.out += buf.data();
-  const int status = p == nullptr ? -1 : pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.err = read_file(err_file.string());
-  return r;
+  const host_test::CommandRun r =
+      host_test::run_command(std::string(TWISTER_CLI) + " " + args + " 2>" + err_file.string());
+  return {r.exit_code, r.out, read_file(err_file.string())};
 }
 
 // The cell labels the picture must carry, in table order: "N crossing(s)", ", turn T°".
@@ -61,12 +52,7 @@ std::vector<std::string> cell_labels(const std::string& table) {
 
 class Figure8Command : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("twister_figure8_cmd_" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
+  host_test::ScratchDir dir_{"twister_figure8_cmd"};
 };
 
 TEST_F(Figure8Command, PrintsTheTableAndWritesBothPictures) {

@@ -3,18 +3,16 @@
 #include "figure8_plot.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdio>
-#include <filesystem>
 #include <string>
 
+#include "cli_test_support.hpp"
 #include "figure8_test_image.hpp"
 
 namespace twister::cli {
 namespace {
 
-namespace fs = std::filesystem;
 using test::load_png;
 using test::read_file;
 
@@ -38,13 +36,8 @@ Figure8Picture small_picture() {
 
 class Figure8Plot : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("twister_figure8_plot_" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
   std::string path(const char* name) const { return (dir_ / name).string(); }
-  fs::path dir_;
+  host_test::ScratchDir dir_{"twister_figure8_plot"};
 };
 
 TEST(Figure8PictureSize, GrowsByWholeCells) {

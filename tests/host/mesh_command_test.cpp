@@ -1,30 +1,23 @@
 // `twister mesh sphere --center`: the generated sphere is translated as a whole (the
 // bridge demo places its sphere in front of the simulated transmitter this way).
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <filesystem>
 #include <glm/geometric.hpp>
 #include <string>
 
+#include "cli_test_support.hpp"
 #include "twister/meshio/obj_file.hpp"
 
 namespace {
 
 int run(const std::string& args) {
-  const std::string cmd = std::string(TWISTER_CLI) + " " + args + " > /dev/null 2>&1";
-  const int status = std::system(cmd.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return twister::host_test::run_command(std::string(TWISTER_CLI) + " " + args + " 2>&1").exit_code;
 }
 
 TEST(MeshCommand, SphereCenterTranslatesEveryVertex) {
-  const auto dir = std::filesystem::temp_directory_path();
-  const auto at_origin = dir / ("twister_mesh_test_" + std::to_string(::getpid()) + "_0.obj");
-  const auto moved = dir / ("twister_mesh_test_" + std::to_string(::getpid()) + "_c.obj");
+  const twister::host_test::ScratchDir dir("twister_mesh_test");
+  const auto at_origin = dir / "0.obj";
+  const auto moved = dir / "c.obj";
   ASSERT_EQ(run("mesh sphere -n 8 --segments 12 --size 0.3 --out " + at_origin.string()), 0);
   ASSERT_EQ(run("mesh sphere -n 8 --segments 12 --size 0.3 --center 0.55 -0.2 0.1 --out " +
                 moved.string()),
@@ -47,8 +40,6 @@ TEST(MeshCommand, SphereCenterTranslatesEveryVertex) {
   // Not three numbers: bad input.
   EXPECT_EQ(run("mesh sphere --center 1 2 --out " + moved.string()), 2);
   EXPECT_EQ(run("mesh sphere --center 1 x 3 --out " + moved.string()), 2);
-  std::filesystem::remove(at_origin);
-  std::filesystem::remove(moved);
 }
 
 }  // namespace

@@ -2,15 +2,12 @@
 // replayed by the CLI onto the same mesh (bit-identical checksum) and onto a finer
 // one (same strokes), with progress output and clear errors.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "cli_test_support.hpp"
 #include "core/input/session_harness.hpp"
 #include "twister/meshio/mesh_generator.hpp"
 #include "twister/meshio/obj_file.hpp"
@@ -21,20 +18,9 @@ namespace {
 using namespace input::test_support;
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int exit_code = -1;
-  std::string out;
-};
-
-CliRun run(const std::string& args) {
-  const std::string cmd = std::string(TWISTER_CLI) + " " + args + " 2>&1";
-  CliRun r;
-  FILE* p = popen(cmd.c_str(), "r");
-  std::array<char, 512> buf{};
-  while (p != nullptr && fgets(buf.data(), buf.size(), p) != nullptr) r.out += buf.data();
-  const int status = pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+// stdout and stderr of `twister ARGS`.
+host_test::CommandRun run(const std::string& args) {
+  return host_test::run_command(std::string(TWISTER_CLI) + " " + args + " 2>&1");
 }
 
 void write(const fs::path& path, std::span<const std::byte> bytes) {
@@ -44,12 +30,6 @@ void write(const fs::path& path, std::span<const std::byte> bytes) {
 
 class ReplayCommand : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("twister_replay_test_" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   // A live session on the 17 x 17 grid (as the harness builds it): a few strokes.
   void record(Station& s, int strokes) {
     for (int k = 0; k < strokes; ++k) {
@@ -63,7 +43,7 @@ class ReplayCommand : public ::testing::Test {
       (void)s.tick();
     }
   }
-  fs::path dir_;
+  host_test::ScratchDir dir_{"twister_replay_test"};
 };
 
 TEST_F(ReplayCommand, SameMeshBitIdenticalAndFinerMeshSameStrokes) {
@@ -79,7 +59,7 @@ TEST_F(ReplayCommand, SameMeshBitIdenticalAndFinerMeshSameStrokes) {
   ASSERT_TRUE(meshio::save_obj(dir_ / "initial.obj", initial.mesh(), message).ok());
   ASSERT_EQ(run("mesh grid -n 33 --size 1 --out " + (dir_ / "fine.obj").string()).exit_code, 0);
 
-  const CliRun same =
+  const host_test::CommandRun same =
       run("replay " + (dir_ / "j.twj").string() + " --mesh " + (dir_ / "initial.obj").string() +
           " --out " + (dir_ / "out.obj").string());
   ASSERT_EQ(same.exit_code, 0) << same.out;
@@ -90,7 +70,7 @@ TEST_F(ReplayCommand, SameMeshBitIdenticalAndFinerMeshSameStrokes) {
   ASSERT_TRUE(out.status.ok()) << out.message;
   EXPECT_EQ(out.buffer->mesh().checksum(), live.mesh.checksum());
 
-  const CliRun fine =
+  const host_test::CommandRun fine =
       run("replay " + (dir_ / "j.twj").string() + " --mesh " + (dir_ / "fine.obj").string() +
           " --out " + (dir_ / "fine_out.obj").string());
   ASSERT_EQ(fine.exit_code, 0) << fine.out;
@@ -117,8 +97,9 @@ TEST_F(ReplayCommand, LongJournalShowsProgressAndTornTailIsReported) {
   make_grid(initial.mesh(), 17);
   std::string message;
   ASSERT_TRUE(meshio::save_obj(dir_ / "initial.obj", initial.mesh(), message).ok());
-  const CliRun r = run("replay " + (dir_ / "long.twj").string() + " --mesh " +
-                       (dir_ / "initial.obj").string() + " --out " + (dir_ / "out.obj").string());
+  const host_test::CommandRun r =
+      run("replay " + (dir_ / "long.twj").string() + " --mesh " + (dir_ / "initial.obj").string() +
+          " --out " + (dir_ / "out.obj").string());
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("twister replay:  50% ("), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("torn_record tail"), std::string::npos) << r.out;
@@ -132,13 +113,14 @@ TEST_F(ReplayCommand, BadInputsExitTwo) {
   ASSERT_TRUE(meshio::make_grid(initial.mesh(), 3, 1.0f).ok());
   std::string message;
   ASSERT_TRUE(meshio::save_obj(dir_ / "ok.obj", initial.mesh(), message).ok());
-  const CliRun not_journal =
+  const host_test::CommandRun not_journal =
       run("replay " + (dir_ / "not_a_journal").string() + " --mesh " + (dir_ / "ok.obj").string() +
           " --out " + (dir_ / "o.obj").string());
   EXPECT_EQ(not_journal.exit_code, 2);
   EXPECT_NE(not_journal.out.find("not a Twister journal"), std::string::npos);
-  const CliRun bad_mesh = run("replay " + (dir_ / "not_a_journal").string() + " --mesh " +
-                              (dir_ / "bad.obj").string() + " --out " + (dir_ / "o.obj").string());
+  const host_test::CommandRun bad_mesh =
+      run("replay " + (dir_ / "not_a_journal").string() + " --mesh " + (dir_ / "bad.obj").string() +
+          " --out " + (dir_ / "o.obj").string());
   EXPECT_EQ(bad_mesh.exit_code, 2);
   EXPECT_EQ(run("replay").exit_code, 2);
   EXPECT_FALSE(fs::exists(dir_ / "o.obj"));
