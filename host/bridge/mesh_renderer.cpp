@@ -10,6 +10,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "twister/math/warp_plan.hpp"
+
 namespace twister::bridge {
 namespace {
 
@@ -92,12 +94,6 @@ unsigned compile(GLenum type, const char* source, std::string& error) {
     error = std::string("shader: ") + log;
   }
   return s;
-}
-
-void put3(float* dst, const glm::dvec3& v) {
-  dst[0] = static_cast<float>(v.x);
-  dst[1] = static_cast<float>(v.y);
-  dst[2] = static_cast<float>(v.z);
 }
 
 // x0 y0 z0 x1 y1 z1 ... for the position buffer.
@@ -245,27 +241,20 @@ void MeshRenderer::set_live(const link::LiveWarp* live) {
   const auto method = static_cast<math::WarpMethod>(live->method);
   if (method == math::WarpMethod::scodef) return;  // CPU path (positions uploaded)
   hand_mask_ = live->hand_mask;
-  // Same constants as core's fill_kernel_hand (warp_plan.cpp).
+  // The kernels' per-hand constants, rounded to float for the shader uniforms.
   for (std::size_t h = 0; h < link::kLinkHands; ++h) {
     float* k = hands_[h];
     std::fill(k, k + 17, 0.0F);
     if ((live->hand_mask & (1u << h)) == 0) continue;
-    const math::Screw& s = live->hands[h].screw;
-    put3(k, s.axis);
-    if (method == math::WarpMethod::rottran) {
-      put3(k + 3, live->hands[h].start.origin);
-      put3(k + 12, live->hands[h].end.origin - live->hands[h].start.origin);
-      k[15] = s.pure_translation ? 0.0F : static_cast<float>(0.5 * s.angle);
-    } else if (s.pure_translation) {
-      put3(k + 12, s.chord);
-    } else {
-      put3(k + 3, s.mid);
-      put3(k + 6, s.chord);
-      put3(k + 9, glm::cross(s.axis, s.chord));
-      put3(k + 12, s.slide * s.axis);
-      k[15] = static_cast<float>(0.5 * s.angle);
-      k[16] = static_cast<float>(s.cot_half);
+    math::KernelHand kh;
+    math::fill_kernel_hand(kh, live->hands[h].screw, live->hands[h].start, live->hands[h].end,
+                           method);
+    const double* columns[] = {kh.axis, kh.mid, kh.chord, kh.axis_x_chord, kh.shift};
+    for (std::size_t c = 0; c < 5; ++c) {
+      for (std::size_t i = 0; i < 3; ++i) k[3 * c + i] = static_cast<float>(columns[c][i]);
     }
+    k[15] = static_cast<float>(kh.half_angle);
+    k[16] = static_cast<float>(kh.cot_half);
   }
 }
 

@@ -26,8 +26,10 @@ bool coincident_grabs(std::span<const Frame> start, double radius) {
          glm::length(start[1].origin - start[0].origin) <= kCoincidentGrabFraction * radius;
 }
 
-// Fills `h` in place: returning the struct by value was miscompiled by GCC 12.2 at
-// -O2 (IPA mod/ref dropped the stores into the member array); in-place is immune.
+}  // namespace
+
+// In place: returning the struct by value was miscompiled by GCC 12.2 at -O2 (IPA
+// mod/ref dropped the stores into the member array); in-place is immune.
 void fill_kernel_hand(KernelHand& h, const Screw& s, const Frame& start, const Frame& end,
                       WarpMethod method) {
   h = KernelHand{};
@@ -47,8 +49,6 @@ void fill_kernel_hand(KernelHand& h, const Screw& s, const Frame& start, const F
     h.cot_half = s.cot_half;
   }
 }
-}  // namespace
-
 WarpPlan::WarpPlan(WarpPlanStorage storage)
     : indices_(storage.indices), weights1_(storage.weights1), weights2_(storage.weights2) {
   capacity_ = std::min({indices_.size(), weights1_.size(), weights2_.size()});

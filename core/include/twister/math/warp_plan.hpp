@@ -39,6 +39,11 @@ inline constexpr double kCoincidentGrabFraction = 1e-9;
 
 // Caller-owned storage of a plan: one entry per influenced vertex in each span
 // (capacity = the smallest span).
+// The kernel form of one hand's screw for `method` (twister or rottran): the
+// constants the warp kernels and the display's vertex shader evaluate per vertex.
+void fill_kernel_hand(KernelHand& h, const Screw& s, const Frame& start, const Frame& end,
+                      WarpMethod method);
+
 struct WarpPlanStorage {
   std::span<std::uint32_t> indices;
   std::span<float> weights1;
