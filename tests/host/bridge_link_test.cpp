@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "bridge_app.hpp"
-#include "memory_link.hpp"
+#include "fakes/memory_wire.hpp"
 #include "session_harness.hpp"
 #include "twister/link/station_link.hpp"
 

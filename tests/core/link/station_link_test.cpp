@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "memory_link.hpp"
+#include "fakes/memory_wire.hpp"
 #include "session_harness.hpp"
 #include "support/allocation_counter.hpp"
 
