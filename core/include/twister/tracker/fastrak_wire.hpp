@@ -17,10 +17,10 @@ inline constexpr char kReplyType = '2';   // replies (status, read-backs, errors
 inline constexpr char kCr = '\r';
 inline constexpr char kLf = '\n';
 // Control-byte commands (spec §2).
-inline constexpr char kCtrlY = 0x19;  // re-initialise as at power-up
-inline constexpr char kCtrlK = 0x0B;  // save the configuration to EEPROM
-inline constexpr char kCtrlS = 0x13;  // suspend output (XOFF)
-inline constexpr char kCtrlQ = 0x11;  // resume output (XON)
+inline constexpr char kCtrlY = 0x19;            // re-initialise as at power-up
+inline constexpr char kCtrlK = 0x0B;            // save the configuration to EEPROM
+inline constexpr char kCtrlS = 0x13;            // suspend output (XOFF)
+inline constexpr char kCtrlQ = 0x11;            // resume output (XON)
 inline constexpr std::size_t kHeaderBytes = 3;  // '0', station digit, status char
 inline constexpr int kMaxStations = 4;
 inline constexpr std::size_t kMaxItems = 32;          // `O` accepts up to 32 items
