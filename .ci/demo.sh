@@ -13,7 +13,7 @@ bin=build/bin
 out=build/demo
 
 echo "== 1. simulated station -> twister-bridge (offscreen display)"
-host/bridge/demo.sh build "$out"
+host/twister-bridge/demo.sh build "$out"
 
 echo
 echo "== 2. replay the station's journal onto the initial sphere"

@@ -15,7 +15,7 @@ packages=(
   # hal backends and the station
   libusb-1.0-0-dev libgpiod-dev libhidapi-dev libsystemd-dev libtomlplusplus-dev
   libcli11-dev umockdev libumockdev-dev
-  systemd  # systemd-analyze checks the deployment unit (tests/hal/station)
+  systemd  # systemd-analyze checks the deployment unit (tests/hal/twister-station)
   # host tools and display
   libpng-dev libtinyobjloader-dev libglfw3-dev libepoxy-dev libegl-dev
   libgl1-mesa-dri xvfb xauth  # xvfb: the bridge's window path is tested on a virtual X server

@@ -13,6 +13,7 @@
 #include "mesh_renderer.hpp"
 #include "scene_replica.hpp"
 #include "twister/link/link_codec.hpp"
+#include "twister/link/math_conversion.hpp"
 #include "twister/math/screw.hpp"
 #include "twister/mesh/mesh.hpp"
 #include "twister/meshio/mesh_generator.hpp"
@@ -30,10 +31,11 @@ link::LinkMessage live_message(std::uint8_t mask) {
   m.live_warp.radius_m = 0.12;
   for (std::size_t h = 0; h < 2; ++h) {
     auto& hand = m.live_warp.hands[h];
-    hand.start = math::identity_frame({0.0, h == 0 ? -0.1 : 0.1, 0.0});
-    hand.end = math::frame_from_uv({0.0, h == 0 ? -0.15 : 0.15, -0.03}, {1.0, 0.0, 0.0},
-                                   {0.0, 0.8253356149, 0.5646424734});
-    hand.screw = math::compute_screw(hand.start, hand.end);
+    const math::Frame start = math::identity_frame({0.0, h == 0 ? -0.1 : 0.1, 0.0});
+    const math::Frame end = math::frame_from_uv({0.0, h == 0 ? -0.15 : 0.15, -0.03},
+                                                {1.0, 0.0, 0.0}, {0.0, 0.8253356149, 0.5646424734});
+    hand = {link::to_wire(start), link::to_wire(end),
+            link::to_wire(math::compute_screw(start, end))};
   }
   return m;
 }

@@ -45,16 +45,36 @@ function(twister_core_library part)
   add_dependencies(${target} twister_core_portability)
 endfunction()
 
+# The area label of a test is the folder it lives in under tests/, which mirrors
+# the code it tests: tests/core/math -> "core/math", tests/hal/twister-station ->
+# "hal/twister-station" (`ctest -L ^hal/` runs every hal test). It is a directory
+# property, so CTest gives it to every test of the folder, also to those
+# gtest_discover_tests finds at test time. Capability labels (fuzz, architecture,
+# integrity, ...) come on top through LABELS.
+function(twister_test_area)
+  file(RELATIVE_PATH area ${PROJECT_SOURCE_DIR}/tests ${CMAKE_CURRENT_SOURCE_DIR})
+  set_property(DIRECTORY PROPERTY LABELS ${area})
+endfunction()
+
 # twister_add_test(<name> SOURCES ... [LIBS ...] [LABELS ...] [ENVIRONMENT ...])
-# One GoogleTest executable; each test case becomes a CTest test carrying LABELS
-# (and ENVIRONMENT, e.g. an LD_PRELOAD of a device emulator).
+# One GoogleTest executable; each test case becomes a CTest test carrying the area
+# label plus LABELS (and ENVIRONMENT, e.g. an LD_PRELOAD of a device emulator).
 function(twister_add_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;LIBS;LABELS;ENVIRONMENT" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} twister_test_support GTest::gmock GTest::gtest_main)
   twister_warnings(${name} TEST)
-  set(properties LABELS "${ARG_LABELS}")
+  twister_test_area()
+  # gtest_discover_tests flattens PROPERTIES: one capability label at most here.
+  set(properties "")
+  if(ARG_LABELS)
+    list(LENGTH ARG_LABELS n)
+    if(n GREATER 1)
+      message(FATAL_ERROR "twister_add_test(${name}): one capability label at most")
+    endif()
+    list(APPEND properties LABELS ${ARG_LABELS})
+  endif()
   if(ARG_ENVIRONMENT)
     list(APPEND properties ENVIRONMENT "${ARG_ENVIRONMENT}")
   endif()
@@ -62,6 +82,21 @@ function(twister_add_test name)
     DISCOVERY_MODE PRE_TEST
     TEST_PREFIX "${name}."
     PROPERTIES ${properties})
+endfunction()
+
+# twister_add_script_test(<name> COMMAND ... [LABELS ...] [PROPERTIES ...])
+# A CTest test that runs a command (a script or a program), labelled like
+# twister_add_test: its area plus LABELS; PROPERTIES go to set_tests_properties.
+function(twister_add_script_test name)
+  cmake_parse_arguments(ARG "" "" "COMMAND;LABELS;PROPERTIES" ${ARGN})
+  add_test(NAME ${name} COMMAND ${ARG_COMMAND})
+  twister_test_area()
+  if(ARG_LABELS)
+    set_tests_properties(${name} PROPERTIES LABELS "${ARG_LABELS}")
+  endif()
+  if(ARG_PROPERTIES)
+    set_tests_properties(${name} PROPERTIES ${ARG_PROPERTIES})
+  endif()
 endfunction()
 
 # twister_add_fuzzer(<name> SOURCES ... [LIBS ...])

@@ -1,4 +1,4 @@
-// Mesh export of the replica: OBJ through host/meshio (same writer as the CLI
+// Mesh export of the replica: OBJ through hal/meshio (same writer as the CLI
 // tools) or binary little-endian PLY, chosen by the file extension.
 #pragma once
 

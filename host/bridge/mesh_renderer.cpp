@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "twister/link/math_conversion.hpp"
 #include "twister/math/warp_plan.hpp"
 
 namespace twister::bridge {
@@ -247,7 +248,8 @@ void MeshRenderer::set_live(const link::LiveWarp* live) {
     std::fill(k, k + 17, 0.0F);
     if ((live->hand_mask & (1u << h)) == 0) continue;
     math::KernelHand kh;
-    math::fill_kernel_hand(kh, live->hands[h].screw, live->hands[h].start, live->hands[h].end,
+    math::fill_kernel_hand(kh, link::to_screw(live->hands[h].screw),
+                           link::to_frame(live->hands[h].start), link::to_frame(live->hands[h].end),
                            method);
     const double* columns[] = {kh.axis, kh.mid, kh.chord, kh.axis_x_chord, kh.shift};
     for (std::size_t c = 0; c < 5; ++c) {

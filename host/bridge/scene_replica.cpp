@@ -4,6 +4,7 @@
 #include <array>
 #include <memory>
 
+#include "twister/link/math_conversion.hpp"
 #include "twister/math/warp_plan.hpp"
 #include "twister/mesh/mesh.hpp"
 
@@ -174,8 +175,8 @@ std::unique_ptr<PlanHolder> build_plan(const MeshData& mesh, const link::LiveWar
   std::size_t hands = 0;
   for (std::size_t k = 0; k < link::kLinkHands; ++k) {
     if ((l.hand_mask & (1u << k)) == 0) continue;
-    start[hands] = l.hands[k].start;
-    end[hands] = l.hands[k].end;
+    start[hands] = link::to_frame(l.hands[k].start);
+    end[hands] = link::to_frame(l.hands[k].end);
     ++hands;
   }
   const math::ConstVertexColumns rest{mesh.x, mesh.y, mesh.z};

@@ -1,4 +1,4 @@
-// Fuzz target of the OBJ loader (host/meshio over tinyobjloader). Properties: never
+// Fuzz target of the OBJ loader (hal/meshio over tinyobjloader). Properties: never
 // crashes; a loaded mesh has only finite positions and in-range indices; saving and
 // loading it again gives a bit-identical mesh.
 #include <cmath>

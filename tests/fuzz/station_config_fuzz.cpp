@@ -5,11 +5,11 @@
 #include <cstdint>
 #include <string_view>
 
-#include "twister/hal/station_config.hpp"
+#include "config/station_config.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);
-  const auto result = twister::hal::parse_station_config(text, "fuzz.toml");
+  const auto result = twister::station_app::parse_station_config(text, "fuzz.toml");
   for (const auto& e : result.errors) {
     if (e.line == 0 || e.message.empty()) __builtin_trap();
     if (e.to_string().empty()) __builtin_trap();

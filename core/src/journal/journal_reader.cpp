@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include "twister/base/checksum.hpp"
 #include "twister/base/internal/byte_cursor.hpp"
-#include "twister/journal/crc32.hpp"
 
 namespace twister::journal {
 namespace {

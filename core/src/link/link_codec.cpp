@@ -4,7 +4,7 @@
 #include "twister/link/link_codec.hpp"
 
 #include "link_payload.hpp"
-#include "twister/journal/crc32.hpp"
+#include "twister/base/checksum.hpp"
 
 namespace twister::link {
 namespace {
@@ -61,7 +61,7 @@ Result<std::size_t> encode_frame(const LinkMessage& message, std::span<std::byte
   if (!internal::write_body(w, message)) return StatusCode::invalid_argument;
   if (!w.ok()) return StatusCode::invalid_argument;  // cannot happen within the caps
   const std::size_t n = w.size();
-  const std::uint32_t crc = journal::crc32(std::span<const std::byte>(payload).first(n));
+  const std::uint32_t crc = crc32(std::span<const std::byte>(payload).first(n));
   internal::ByteWriter(std::span<std::byte>(payload).subspan(n)).u32(crc);
   const std::size_t written =
       cobs_encode(std::span<const std::byte>(payload).first(n + kCrcBytes), out);
@@ -131,7 +131,7 @@ bool LinkDecoder::finish_frame() {
   const std::uint32_t want =
       internal::ByteReader(std::span<const std::byte>(buffer_).subspan(n - kCrcBytes, kCrcBytes))
           .u32();
-  if (journal::crc32(body) != want) {
+  if (crc32(body) != want) {
     ++counters_.bad_crc;
     return false;
   }

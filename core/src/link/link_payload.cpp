@@ -6,7 +6,7 @@
 namespace twister::link::internal {
 namespace {
 
-void write_frame(ByteWriter& w, const math::Frame& f) {
+void write_frame(ByteWriter& w, const Pose& f) {
   w.vec(f.origin);
   w.vec(f.u);
   w.vec(f.v);
@@ -18,8 +18,8 @@ bool finite(const glm::dvec3& v) {
 }
 
 // A frame or screw with NaN/inf would poison the display's shader: refused here.
-math::Frame read_frame(ByteReader& r, bool& bad) {
-  math::Frame f;
+Pose read_frame(ByteReader& r, bool& bad) {
+  Pose f;
   f.origin = r.vec();
   f.u = r.vec();
   f.v = r.vec();
@@ -28,7 +28,7 @@ math::Frame read_frame(ByteReader& r, bool& bad) {
   return f;
 }
 
-void write_screw(ByteWriter& w, const math::Screw& s) {
+void write_screw(ByteWriter& w, const Screw& s) {
   w.vec(s.axis);
   w.f64(s.angle);
   w.f64(s.slide);
@@ -38,8 +38,8 @@ void write_screw(ByteWriter& w, const math::Screw& s) {
   w.u8(s.pure_translation ? 1 : 0);
 }
 
-math::Screw read_screw(ByteReader& r, bool& bad) {
-  math::Screw s;
+Screw read_screw(ByteReader& r, bool& bad) {
+  Screw s;
   s.axis = r.vec();
   s.angle = r.f64();
   s.slide = r.f64();

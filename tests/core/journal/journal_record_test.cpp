@@ -6,7 +6,7 @@
 #include <array>
 #include <cstring>
 
-#include "twister/journal/crc32.hpp"
+#include "twister/base/checksum.hpp"
 
 namespace twister::journal {
 namespace {

@@ -8,9 +8,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-
-#include "twister/math/frame.hpp"
-#include "twister/math/screw.hpp"
+#include <glm/vec3.hpp>
 
 namespace twister::link {
 
@@ -20,6 +18,26 @@ inline constexpr std::size_t kMaxPayload = 4096;
 inline constexpr std::size_t kMaxVerticesPerChunk = 200;   // 16 bytes each
 inline constexpr std::size_t kMaxTrianglesPerChunk = 300;  // 12 bytes each
 inline constexpr std::size_t kLinkHands = 2;
+
+// A pose on the wire: origin and orthonormal axes, doubles (math::Frame's fields;
+// the link stays independent of the math library, its users convert).
+struct Pose {
+  glm::dvec3 origin{0.0};
+  glm::dvec3 u{1.0, 0.0, 0.0};
+  glm::dvec3 v{0.0, 1.0, 0.0};
+  glm::dvec3 w{0.0, 0.0, 1.0};
+};
+
+// A screw on the wire (math::Screw's fields: spec §2).
+struct Screw {
+  glm::dvec3 axis{0.0, 0.0, 1.0};
+  double angle = 0.0;
+  double slide = 0.0;
+  glm::dvec3 mid{0.0};
+  glm::dvec3 chord{0.0};
+  double cot_half = 0.0;
+  bool pure_translation = true;
+};
 
 enum class MessageType : std::uint8_t {
   hello = 1,           // either side on connect: who it is and which mesh it holds
@@ -72,9 +90,9 @@ struct MeshEnd {
 };
 
 struct LiveHand {
-  math::Frame start{};  // grab pose (object frame)
-  math::Frame end{};    // current pose (object frame)
-  math::Screw screw{};  // minimal screw start -> end (spec §2)
+  Pose start{};   // grab pose (object frame)
+  Pose end{};     // current pose (object frame)
+  Screw screw{};  // minimal screw start -> end (spec §2)
 };
 
 struct LiveWarp {

@@ -48,7 +48,7 @@ struct Fault {
 
 // A scripted level change of a button line (0-based, the station's ButtonMap line:
 // by default 0-2 hand 0 grab/radius/move, 3-5 hand 1 grab/radius/freeze). Played by
-// hal::SimButtonSource, not by the Fastrak model (those lines are not on the tracker).
+// sim::SimButtonSource, not by the Fastrak model (those lines are not on the tracker).
 inline constexpr int kMaxScenarioButtonLines = 16;
 struct ButtonEvent {
   double t_s = 0.0;

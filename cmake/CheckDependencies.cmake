@@ -1,0 +1,247 @@
+# The architecture's link rules, checked against the real link graph.
+#
+# The rules are the dependency table of docs/architecture.md (between the markers
+# "dependency-table:begin" and ":end"): one row per folder, its kind (library,
+# program, test) and what it may link. Each project target belongs to the row
+# whose folder is the longest prefix of the target's SOURCE_DIR. An edge A -> B
+# (B a direct entry of A's LINK_LIBRARIES) is allowed when
+#   - A and B are in the same row (a part uses itself), or
+#   - A's row lists B's row folder, or a pattern `x/*` that covers it, or
+#   - A's row says "any library" and B's row is a library (programs), or
+#   - A's row says "anything" (tests and benchmarks).
+# External libraries (imported targets, system libraries) are allowed only where
+# the row lists "system libraries"; "GLM" allows glm::glm alone.
+#
+# Two modes:
+#   include(CheckDependencies); twister_check_dependencies()
+#       at the end of the top-level CMakeLists: writes the graph to
+#       ${CMAKE_BINARY_DIR}/architecture/link_graph.txt (TWISTER_LINK_GRAPH) and
+#       checks it, so a forbidden edge fails the configure step;
+#   cmake -DGRAPH=<file> -DTABLE=<docs/architecture.md> -P CheckDependencies.cmake
+#       checks a written graph (the CTest test architecture.dependency_check_passes).
+
+# Rows of the table: sets twister_dep_folders, and for each folder F the variables
+# twister_dep_kind_<F> and twister_dep_uses_<F> (a list of tokens).
+function(twister_read_dependency_table table)
+  file(STRINGS "${table}" lines)
+  set(inside FALSE)
+  set(folders "")
+  foreach(line IN LISTS lines)
+    if(line MATCHES "dependency-table:begin")
+      set(inside TRUE)
+      continue()
+    elseif(line MATCHES "dependency-table:end")
+      break()
+    endif()
+    if(NOT inside OR NOT line MATCHES "^\\|")
+      continue()
+    endif()
+    string(REGEX REPLACE "^\\|(.*)\\|$" "\\1" row "${line}")
+    string(REPLACE "|" ";" cells "${row}")
+    list(LENGTH cells n)
+    if(NOT n EQUAL 3)
+      continue()
+    endif()
+    list(GET cells 0 folder_cell)
+    list(GET cells 1 kind)
+    list(GET cells 2 uses_cell)
+    string(STRIP "${kind}" kind)
+    if(NOT kind MATCHES "^(library|program|test)$")
+      continue()  # the header row and the separator
+    endif()
+    string(REPLACE "," ";" uses_list "${uses_cell}")
+    set(uses "")
+    foreach(token IN LISTS uses_list)
+      string(REPLACE "`" "" token "${token}")
+      string(STRIP "${token}" token)
+      if(NOT token STREQUAL "" AND NOT token STREQUAL "—")
+        list(APPEND uses "${token}")
+      endif()
+    endforeach()
+    # A cell may name several folders: `tests`, `bench`.
+    string(REPLACE "," ";" folder_list "${folder_cell}")
+    foreach(folder IN LISTS folder_list)
+      string(REPLACE "`" "" folder "${folder}")
+      string(STRIP "${folder}" folder)
+      list(APPEND folders "${folder}")
+      set(twister_dep_kind_${folder} "${kind}" PARENT_SCOPE)
+      set(twister_dep_uses_${folder} "${uses}" PARENT_SCOPE)
+    endforeach()
+  endforeach()
+  if(NOT folders)
+    message(FATAL_ERROR "CheckDependencies: no dependency table found in ${table}")
+  endif()
+  set(twister_dep_folders "${folders}" PARENT_SCOPE)
+endfunction()
+
+# The table row (folder) of a source folder: the longest row folder that is the
+# folder itself or one of its parents. Empty when none.
+function(twister_row_of dir out)
+  set(best "")
+  string(LENGTH "" best_length)
+  foreach(folder IN LISTS twister_dep_folders)
+    if(dir STREQUAL folder OR dir MATCHES "^${folder}/")
+      string(LENGTH "${folder}" length)
+      if(length GREATER best_length)
+        set(best "${folder}")
+        set(best_length ${length})
+      endif()
+    endif()
+  endforeach()
+  set(${out} "${best}" PARENT_SCOPE)
+endfunction()
+
+# Whether row `from` may link the project target in row `to`; sets ${out}.
+function(twister_edge_allowed from to out)
+  set(allowed FALSE)
+  if(from STREQUAL to)
+    set(allowed TRUE)
+  endif()
+  foreach(token IN LISTS twister_dep_uses_${from})
+    if(token STREQUAL "anything" OR token STREQUAL to)
+      set(allowed TRUE)
+    elseif(token STREQUAL "any library" AND twister_dep_kind_${to} STREQUAL "library")
+      set(allowed TRUE)
+    elseif(token MATCHES "^(.*)/\\*$")
+      set(prefix "${CMAKE_MATCH_1}")  # expanded only after the match above ran
+      if(to MATCHES "^${prefix}/")
+        set(allowed TRUE)
+      endif()
+    endif()
+  endforeach()
+  set(${out} ${allowed} PARENT_SCOPE)
+endfunction()
+
+# Whether row `from` may link the external library `name`; sets ${out}.
+function(twister_external_allowed from name out)
+  set(allowed FALSE)
+  foreach(token IN LISTS twister_dep_uses_${from})
+    if(token STREQUAL "anything" OR token STREQUAL "system libraries")
+      set(allowed TRUE)
+    elseif(token STREQUAL "GLM" AND name STREQUAL "glm::glm")
+      set(allowed TRUE)
+    endif()
+  endforeach()
+  set(${out} ${allowed} PARENT_SCOPE)
+endfunction()
+
+# Checks the graph file (lines "target|folder|dependency|dependency folder", the
+# dependency folder empty for an external library). Fails with every violation.
+function(twister_check_graph graph table)
+  twister_read_dependency_table("${table}")
+  file(STRINGS "${graph}" edges)
+  set(violations "")
+  set(checked 0)
+  foreach(edge IN LISTS edges)
+    string(REPLACE "|" ";" fields "${edge}")
+    list(GET fields 0 target)
+    list(GET fields 1 dir)
+    list(GET fields 2 dep)
+    list(LENGTH fields n)
+    set(dep_dir "")
+    if(n GREATER 3)
+      list(GET fields 3 dep_dir)
+    endif()
+    twister_row_of("${dir}" from)
+    if(from STREQUAL "")
+      list(APPEND violations "${target} (${dir}): its folder has no row in the table")
+      continue()
+    endif()
+    if(dep STREQUAL "-")
+      continue()  # a target without dependencies: only its folder is checked
+    endif()
+    math(EXPR checked "${checked} + 1")
+    if(dep_dir STREQUAL "")
+      twister_external_allowed("${from}" "${dep}" ok)
+      if(NOT ok)
+        list(APPEND violations "${target} (${from}) -> ${dep}: external library not allowed here")
+      endif()
+      continue()
+    endif()
+    twister_row_of("${dep_dir}" to)
+    if(to STREQUAL "")
+      list(APPEND violations "${dep} (${dep_dir}): its folder has no row in the table")
+      continue()
+    endif()
+    twister_edge_allowed("${from}" "${to}" ok)
+    if(NOT ok)
+      list(APPEND violations "${target} (${from}) -> ${dep} (${to}): not allowed by the table")
+    endif()
+  endforeach()
+  if(violations)
+    list(JOIN violations "\n  " text)
+    message(FATAL_ERROR
+      "Link graph breaks the architecture (docs/architecture.md, dependency table):\n"
+      "  ${text}")
+  endif()
+  message(STATUS "Dependency check: ${checked} link edges follow docs/architecture.md")
+endfunction()
+
+# Every build-system target defined in `dir` and below.
+function(twister_targets_below dir out)
+  get_property(targets DIRECTORY "${dir}" PROPERTY BUILDSYSTEM_TARGETS)
+  get_property(subdirs DIRECTORY "${dir}" PROPERTY SUBDIRECTORIES)
+  foreach(sub IN LISTS subdirs)
+    twister_targets_below("${sub}" more)
+    list(APPEND targets ${more})
+  endforeach()
+  set(${out} "${targets}" PARENT_SCOPE)
+endfunction()
+
+# Folder of a project target relative to the project root; empty for targets that
+# are not the project's own (imported, or defined outside the source tree).
+function(twister_target_folder target out)
+  set(folder "")
+  if(TARGET "${target}")
+    get_target_property(imported "${target}" IMPORTED)
+    get_target_property(source_dir "${target}" SOURCE_DIR)
+    if(NOT imported AND source_dir MATCHES "^${PROJECT_SOURCE_DIR}/")
+      file(RELATIVE_PATH folder "${PROJECT_SOURCE_DIR}" "${source_dir}")
+    endif()
+  endif()
+  set(${out} "${folder}" PARENT_SCOPE)
+endfunction()
+
+function(twister_check_dependencies)
+  twister_targets_below("${PROJECT_SOURCE_DIR}" targets)
+  set(lines "")
+  foreach(target IN LISTS targets)
+    get_target_property(type "${target}" TYPE)
+    if(NOT type MATCHES "^(STATIC_LIBRARY|SHARED_LIBRARY|OBJECT_LIBRARY|INTERFACE_LIBRARY|EXECUTABLE)$")
+      continue()
+    endif()
+    twister_target_folder("${target}" folder)
+    if(type STREQUAL "INTERFACE_LIBRARY")
+      get_target_property(deps "${target}" INTERFACE_LINK_LIBRARIES)
+    else()
+      get_target_property(deps "${target}" LINK_LIBRARIES)
+    endif()
+    set(any FALSE)
+    foreach(dep IN LISTS deps)
+      # $<LINK_ONLY:x> marks a private dependency of a static library; -l/-L flags
+      # and other generator expressions are not edges between parts.
+      string(REGEX REPLACE "^\\$<LINK_ONLY:(.*)>$" "\\1" dep "${dep}")
+      if(dep MATCHES "^(\\$<|-)" OR dep STREQUAL "" OR dep MATCHES "-NOTFOUND$")
+        continue()
+      endif()
+      twister_target_folder("${dep}" dep_folder)
+      list(APPEND lines "${target}|${folder}|${dep}|${dep_folder}")
+      set(any TRUE)
+    endforeach()
+    if(NOT any)
+      list(APPEND lines "${target}|${folder}|-|")
+    endif()
+  endforeach()
+  list(JOIN lines "\n" text)
+  set(graph "${CMAKE_BINARY_DIR}/architecture/link_graph.txt")
+  file(WRITE "${graph}" "${text}\n")
+  set(TWISTER_LINK_GRAPH "${graph}" CACHE INTERNAL "The project's link graph (CheckDependencies)")
+  twister_check_graph("${graph}" "${PROJECT_SOURCE_DIR}/docs/architecture.md")
+endfunction()
+
+if(CMAKE_SCRIPT_MODE_FILE STREQUAL CMAKE_CURRENT_LIST_FILE)
+  if(NOT GRAPH OR NOT TABLE)
+    message(FATAL_ERROR "usage: cmake -DGRAPH=<file> -DTABLE=<architecture.md> -P ${CMAKE_CURRENT_LIST_FILE}")
+  endif()
+  twister_check_graph("${GRAPH}" "${TABLE}")
+endif()

@@ -1,0 +1,227 @@
+// The only place that names concrete backend classes (with main.cpp). Which ones
+// exist is decided by CMake (TWISTER_HAVE_* definitions on this file only).
+#include "backend_factory.hpp"
+
+#include <cstdio>
+
+#include "twister/hal/monotonic_clock.hpp"
+#include "twister/sim/builtin_scenarios.hpp"
+#include "twister/sim/sim_button_source.hpp"
+#include "twister/sim/sim_fastrak_stream.hpp"
+#ifdef TWISTER_HAVE_HAL_GPIOD
+#include "twister/hal/gpiod_button_source.hpp"
+#endif
+#ifdef TWISTER_HAVE_HAL_HIDAPI
+#include "twister/hal/hidapi_button_source.hpp"
+#endif
+#ifdef TWISTER_HAVE_HAL_TERMIOS
+#include "twister/hal/termios_byte_stream.hpp"
+#endif
+#ifdef TWISTER_HAVE_HAL_LIBUSB
+#include "twister/hal/libusb_byte_stream.hpp"
+#endif
+
+namespace twister::station_app {
+namespace {
+
+// Buttons come from the tracker's stylus item: no device of their own.
+class NoButtonSource final : public ports::ButtonSource {
+  Result<ports::ButtonEdge> do_poll() override { return StatusCode::unavailable; }
+  std::uint8_t do_line_count() const override { return 0; }
+};
+
+bool make_sim_tracker(const StationConfig& config, Backends& out, std::string& error) {
+  const SimTrackerConfig& s = config.tracker.sim;
+  sim::Scenario scenario;
+  if (!s.scenario_file.empty()) {
+    if (!sim::load_scenario_file(s.scenario_file, scenario, error)) return false;
+    out.tracker_name = "sim " + s.scenario_file;
+  } else {
+    if (!sim::load_builtin_scenario(s.scenario, scenario, error)) return false;
+    out.tracker_name = "sim " + s.scenario;
+  }
+  if (s.unplug_at_ms > 0) {
+    scenario.faults.push_back(
+        {s.unplug_at_ms / 1000.0, sim::FaultKind::hangup, s.replug_after_ms / 1000.0});
+  }
+  out.scenario_duration_s = scenario.duration_s;
+  if (s.time == SimTime::virtual_time) {
+    auto clock = std::make_unique<sim::VirtualClock>(1'000'000);
+    out.virtual_clock = clock.get();
+    out.clock = std::move(clock);
+    out.tracker_name += " (virtual time)";
+  } else {
+    out.clock = std::make_unique<hal::MonotonicClock>();
+    out.tracker_name += " (real time)";
+  }
+  sim::FastrakDeviceConfig device{};
+  device.baud = static_cast<int>(config.tracker.serial.baud);
+  // Scenario time 0 for both: the device powers up at this instant.
+  const ports::TimestampUs start_us = out.clock->now_us();
+  if (config.buttons.backend == ButtonBackend::sim) {
+    out.buttons_name = "sim (" + std::to_string(scenario.buttons.size()) + " scripted events)";
+    out.buttons = std::make_unique<sim::SimButtonSource>(*out.clock, scenario.buttons, start_us,
+                                                         std::uint8_t{6});
+  }
+  out.tracker = std::make_unique<sim::SimFastrakStream>(*out.clock, device, std::move(scenario));
+  return true;
+}
+
+}  // namespace
+
+bool tracker_backend_built(TrackerBackend b) {
+  switch (b) {
+    case TrackerBackend::sim:
+      return true;
+#ifdef TWISTER_HAVE_HAL_TERMIOS
+    case TrackerBackend::serial:
+      return true;
+#endif
+#ifdef TWISTER_HAVE_HAL_LIBUSB
+    case TrackerBackend::usb:
+      return true;
+#endif
+    default:
+      return false;
+  }
+}
+
+bool button_backend_built(ButtonBackend b) {
+  switch (b) {
+    case ButtonBackend::stylus:
+    case ButtonBackend::sim:
+      return true;
+#ifdef TWISTER_HAVE_HAL_GPIOD
+    case ButtonBackend::gpiod:
+      return true;
+#endif
+#ifdef TWISTER_HAVE_HAL_HIDAPI
+    case ButtonBackend::hidapi:
+      return true;
+#endif
+    default:
+      return false;
+  }
+}
+
+bool make_backends(const StationConfig& config, Backends& out, std::string& error) {
+  if (!tracker_backend_built(config.tracker.backend)) {
+    error = std::string("tracker backend \"") + to_string(config.tracker.backend) +
+            "\" is not built into this binary";
+    return false;
+  }
+  if (!button_backend_built(config.buttons.backend)) {
+    error = std::string("button backend \"") + to_string(config.buttons.backend) +
+            "\" is not built into this binary";
+    return false;
+  }
+  switch (config.tracker.backend) {
+    case TrackerBackend::sim:
+      if (!make_sim_tracker(config, out, error)) return false;
+      break;
+    case TrackerBackend::serial:
+#ifdef TWISTER_HAVE_HAL_TERMIOS
+    {
+      out.clock = std::make_unique<hal::MonotonicClock>();
+      const SerialTrackerConfig& sc = config.tracker.serial;
+      hal::TermiosConfig tc;
+      tc.path = sc.device;
+      tc.baud = static_cast<int>(sc.baud);
+      tc.flow = sc.flow_control == SerialFlowControl::rtscts    ? hal::FlowControl::rts_cts
+                : sc.flow_control == SerialFlowControl::xonxoff ? hal::FlowControl::xon_xoff
+                                                                : hal::FlowControl::none;
+      // Not opened here: the Fastrak session opens it, and keeps retrying while the
+      // adapter is unplugged, so a station may start before its tracker is plugged.
+      auto stream = std::make_unique<hal::TermiosByteStream>(tc);
+      hal::TermiosByteStream* raw = stream.get();
+      out.tracker_fd = [raw] { return raw->fd(); };
+      out.tracker = std::move(stream);
+      out.tracker_name = "serial " + sc.device + " at " + std::to_string(sc.baud) + " baud";
+    }
+#endif
+    break;
+    case TrackerBackend::usb: {
+#ifdef TWISTER_HAVE_HAL_LIBUSB
+      out.clock = std::make_unique<hal::MonotonicClock>();
+      const UsbTrackerConfig& uc = config.tracker.usb;
+      auto stream = std::make_unique<hal::LibusbByteStream>(
+          hal::LibusbConfig{uc.vendor_id, uc.product_id, uc.interface_number, uc.endpoint_in,
+                            uc.endpoint_out, uc.timeout_ms});
+      if (const Status st = stream->init(); !st.ok()) {
+        error = std::string("libusb: initialisation failed (") + st.name() + ", libusb error " +
+                std::to_string(stream->last_error()) + ")";
+        return false;
+      }
+      // Opened by the Fastrak session, which retries while the tracker is unplugged.
+      // libusb's own fds are not waited on: the loop's timeout paces the reads.
+      char ids[32];
+      std::snprintf(ids, sizeof ids, "%04x:%04x", uc.vendor_id, uc.product_id);
+      out.tracker_name =
+          std::string("usb ") + ids + (stream->hotplug_supported() ? " (hot-plug)" : "");
+      out.tracker = std::move(stream);
+#endif
+      break;
+    }
+  }
+  switch (config.buttons.backend) {
+    case ButtonBackend::sim:
+      // Built with the simulated tracker (same scenario, same clock).
+      if (!out.buttons) {
+        error = "button backend \"sim\" needs tracker backend \"sim\"";
+        return false;
+      }
+      break;
+    case ButtonBackend::stylus:
+      out.buttons = std::make_unique<NoButtonSource>();
+      out.buttons_name = "stylus of receiver 1";
+      break;
+    case ButtonBackend::gpiod: {
+#ifdef TWISTER_HAVE_HAL_GPIOD
+      auto src = std::make_unique<hal::GpiodButtonSource>();
+      hal::GpiodButtonConfig gc;
+      gc.chip = config.buttons.gpiod.chip;
+      gc.lines = config.buttons.gpiod.lines;
+      gc.active_low = config.buttons.gpiod.active_low;
+      gc.bias = static_cast<hal::GpiodButtonConfig::Bias>(config.buttons.gpiod.bias);
+      const Status s = src->open(gc);
+      if (!s.ok()) {
+        error = "gpiod: cannot request lines on " + gc.chip + " (" + s.name() + ", errno " +
+                std::to_string(src->last_errno()) + ")";
+        return false;
+      }
+      hal::GpiodButtonSource* raw = src.get();
+      out.button_fds = [raw] {
+        auto fds = raw->poll_fds();
+        return std::vector<int>(fds.begin(), fds.end());
+      };
+      out.reopen_buttons = [raw, gc] { return raw->open(gc).ok(); };
+      out.buttons = std::move(src);
+      out.buttons_name = "gpiod " + gc.chip;
+#endif
+      break;
+    }
+    case ButtonBackend::hidapi: {
+#ifdef TWISTER_HAVE_HAL_HIDAPI
+      auto src = std::make_unique<hal::HidapiButtonSource>(*out.clock);
+      hal::HidapiButtonConfig hc;
+      hc.vendor_id = config.buttons.hidapi.vendor_id;
+      hc.product_id = config.buttons.hidapi.product_id;
+      hc.path = config.buttons.hidapi.path;
+      for (const auto& b : config.buttons.hidapi.buttons) hc.buttons.push_back({b.byte, b.mask});
+      const Status s = src->open(hc);
+      if (!s.ok()) {
+        error = std::string("hidapi: cannot open the button device (") + s.name() + ")";
+        return false;
+      }
+      hal::HidapiButtonSource* raw = src.get();
+      out.reopen_buttons = [raw, hc] { return raw->open(hc).ok(); };
+      out.buttons = std::move(src);
+      out.buttons_name = "hidapi";
+#endif
+      break;
+    }
+  }
+  return true;
+}
+
+}  // namespace twister::station_app

@@ -1,0 +1,40 @@
+// Backend factory of twister-station (composition root only): builds the clock,
+// tracker ByteStream and ButtonSource named in the config, or says which backend
+// is not built into this binary / failed to open. Init-time; allocates.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "config/station_config.hpp"
+#include "twister/ports/button_source.hpp"
+#include "twister/ports/byte_stream.hpp"
+#include "twister/ports/clock.hpp"
+#include "twister/sim/virtual_clock.hpp"
+
+namespace twister::station_app {
+
+struct Backends {
+  std::unique_ptr<ports::Clock> clock;
+  sim::VirtualClock* virtual_clock = nullptr;  // set when the simulator runs in virtual time
+  std::unique_ptr<ports::ByteStream> tracker;
+  std::function<int()> tracker_fd;  // fd to wait on (-1 = none now); may be empty
+  std::unique_ptr<ports::ButtonSource> buttons;
+  std::function<std::vector<int>()> button_fds;  // may be empty
+  std::function<bool()> reopen_buttons;          // after an io_error; may be empty
+  double scenario_duration_s = 0.0;              // simulator: the scenario's length (0 = none)
+  std::string tracker_name;  // for the log: "serial /dev/...", "sim stroke", ...
+  std::string buttons_name;
+};
+
+// Builds every backend. On failure returns false with `error` set to a message
+// naming the backend ("tracker backend \"usb\" is not built into this binary", ...).
+bool make_backends(const StationConfig& config, Backends& out, std::string& error);
+
+// Which backends this binary was built with (for --check and --help).
+bool tracker_backend_built(TrackerBackend b);
+bool button_backend_built(ButtonBackend b);
+
+}  // namespace twister::station_app

@@ -1,0 +1,128 @@
+// StationConfig: everything twister-station reads from its TOML file, already
+// validated. parse_station_config() checks every key, type and value and reports
+// each problem with file, line, the key's dotted name and the expected form; a
+// config with any error is refused as a whole (the station never guesses).
+// The messages are documented in docs/hardware.md ("Config errors").
+// Init-time code: allocates freely, never throws.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace twister::station_app {
+
+enum class TrackerBackend : std::uint8_t { serial, usb, sim };
+enum class ButtonBackend : std::uint8_t { gpiod, hidapi, stylus, sim };
+enum class SerialFlowControl : std::uint8_t { none, rtscts, xonxoff };
+enum class GpioBias : std::uint8_t { as_is, disable, pull_up, pull_down };
+enum class RecordFormat : std::uint8_t { binary, ascii };
+enum class SimTime : std::uint8_t { virtual_time, real_time };
+
+struct SerialTrackerConfig {
+  std::string device;           // e.g. /dev/twister-fastrak (udev symlink)
+  std::uint32_t baud = 115200;  // one of 2400 ... 115200
+  SerialFlowControl flow_control = SerialFlowControl::none;
+};
+
+struct UsbTrackerConfig {
+  std::uint16_t vendor_id = 0;
+  std::uint16_t product_id = 0;
+  std::uint8_t interface_number = 0;
+  std::uint8_t endpoint_in = 0x81;   // bulk IN (bit 7 set)
+  std::uint8_t endpoint_out = 0x01;  // bulk OUT (bit 7 clear)
+  std::uint32_t timeout_ms = 100;    // per bulk transfer
+};
+
+struct SimTrackerConfig {
+  std::string scenario = "stroke";  // built-in scenario name
+  std::string scenario_file;        // scenario text file (sim/ format); wins when set
+  SimTime time = SimTime::virtual_time;
+  std::uint32_t unplug_at_ms = 0;     // 0 = never; else simulated unplug at this time
+  std::uint32_t replug_after_ms = 0;  // how long the simulated tracker stays unplugged
+};
+
+struct TrackerConfig {
+  TrackerBackend backend = TrackerBackend::serial;
+  std::uint8_t left_station = 1;  // Fastrak receiver (1..4) held in the left hand
+  std::uint8_t right_station = 2;
+  RecordFormat format = RecordFormat::binary;
+  std::uint32_t reconnect_interval_ms = 1000;
+  std::uint32_t silence_timeout_ms = 500;  // no record for this long = tracker lost
+  SerialTrackerConfig serial;
+  UsbTrackerConfig usb;
+  SimTrackerConfig sim;
+};
+
+struct HidButtonBit {
+  std::uint8_t byte = 0;  // index into the input report (0 = report id if numbered)
+  std::uint8_t mask = 0;  // bit(s) that mean "pressed"
+};
+
+struct GpiodButtonsConfig {
+  std::string chip = "gpiochip0";    // name, number or /dev path
+  std::vector<std::uint32_t> lines;  // line offsets; button i = lines[i]
+  bool active_low = true;
+  GpioBias bias = GpioBias::as_is;
+};
+
+struct HidapiButtonsConfig {
+  std::uint16_t vendor_id = 0;
+  std::uint16_t product_id = 0;
+  std::string path;                   // hidraw path; overrides the ids when set
+  std::vector<HidButtonBit> buttons;  // button i = buttons[i]
+};
+
+struct ButtonsConfig {
+  ButtonBackend backend = ButtonBackend::gpiod;
+  std::uint32_t debounce_ms = 10;
+  GpiodButtonsConfig gpiod;
+  HidapiButtonsConfig hidapi;
+};
+
+struct StationSection {
+  std::string journal;                 // append-only stroke journal (fsynced per stroke)
+  std::string mesh;                    // initial model (OBJ, metres); relative = to the config file
+  std::uint32_t spare_vertices = 0;    // extra mesh capacity beyond the OBJ's vertices
+  std::uint32_t loop_timeout_ms = 10;  // poll() timeout of the event loop
+};
+
+struct SystemdConfig {
+  bool notify = true;    // READY=1 / STOPPING=1 via sd_notify (no-op without systemd)
+  bool watchdog = true;  // WATCHDOG=1 at half of WATCHDOG_USEC when the unit sets it
+};
+
+struct StationConfig {
+  StationSection station;
+  TrackerConfig tracker;
+  ButtonsConfig buttons;
+  SystemdConfig systemd;
+};
+
+// One problem in a config file. to_string(): "FILE:LINE: KEY: MESSAGE".
+struct ConfigError {
+  std::string file;
+  std::uint32_t line = 0;  // 1-based; 0 when the file could not be read at all
+  std::string key;         // dotted name ("tracker.serial.baud"); empty for syntax errors
+  std::string message;     // what was wrong and the expected form
+  std::string to_string() const;
+};
+
+struct ConfigParseResult {
+  StationConfig config;
+  std::vector<ConfigError> errors;  // empty = valid
+  bool ok() const { return errors.empty(); }
+};
+
+// Parses TOML text. file_name only labels the messages.
+ConfigParseResult parse_station_config(std::string_view text, std::string_view file_name);
+
+// Reads and parses a file; an unreadable file is one error with line 0.
+ConfigParseResult load_station_config(const std::string& path);
+
+// Short names used in logs and messages ("serial", "gpiod", ...).
+const char* to_string(TrackerBackend b);
+const char* to_string(ButtonBackend b);
+
+}  // namespace twister::station_app

@@ -1,0 +1,39 @@
+// DisplayLink: twister-station's optional link to twister-bridge (--link ADDRESS):
+// a listening hal::SocketLink plus core's StationLink with its storage sized once from
+// the mesh capacity. The station never waits for it except where asked:
+// wait_for_peer() before the run (demo/tests in virtual time) and drain() at exit.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "twister/hal/socket_link.hpp"
+#include "twister/station/station_link.hpp"
+
+namespace twister::station_app {
+
+class DisplayLink {
+ public:
+  // Binds `address` and takes the session's mesh as version 1. Empty string on
+  // success, else a message.
+  std::string open(const std::string& address, const input::SculptSession& session);
+  void poll(const input::SculptSession& session, ports::TimestampUs now_us);
+  int poll_fd() const { return socket_ ? socket_->poll_fd() : -1; }
+  // Real-time waits (ms granularity): true when a peer holds our mesh.
+  bool wait_for_peer(const input::SculptSession& session, double seconds);
+  // Hands everything queued to the peer (up to `seconds`).
+  void drain(const input::SculptSession& session, ports::TimestampUs now_us, double seconds);
+  const station::StationLinkCounters* counters() const {
+    return link_ ? &link_->counters() : nullptr;
+  }
+
+ private:
+  std::unique_ptr<hal::SocketLink> socket_;
+  std::vector<float> x_, y_, z_;
+  std::vector<std::uint32_t> indices_;
+  std::vector<std::byte> out_;
+  std::unique_ptr<station::StationLink> link_;
+};
+
+}  // namespace twister::station_app

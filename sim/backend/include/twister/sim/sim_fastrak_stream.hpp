@@ -1,0 +1,40 @@
+// SimFastrakStream: the ByteStream port over an in-process FastrakDevice.
+// Writes go to the device as commands; reads return the bytes whose transmission
+// has completed by clock.now_us() (the model paces itself at baud/10 bytes per
+// second and 120 Hz shared by the receivers). A scenario "hangup" fault looks like
+// an unplugged USB-serial adapter: read/write fail with io_error and reopen() is
+// unavailable until the fault ends, then the unit powers up from its defaults.
+// The device model uses the heap internally (it is a simulator, not station code).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "twister/ports/byte_stream.hpp"
+#include "twister/ports/clock.hpp"
+#include "twister/sim/fastrak_device.hpp"
+
+namespace twister::sim {
+
+class SimFastrakStream final : public ports::ByteStream {
+ public:
+  // clock must outlive the stream. The device starts powered up at clock.now_us().
+  SimFastrakStream(ports::Clock& clock, const FastrakDeviceConfig& config, Scenario scenario);
+
+  const FastrakDevice& device() const { return device_; }
+  bool connected() const { return connected_; }
+
+ private:
+  Result<std::size_t> do_read(std::span<std::byte> dest) override;
+  Result<std::size_t> do_write(std::span<const std::byte> src) override;
+  Status do_reopen() override;
+  void do_discard_input() override;
+
+  ports::Clock& clock_;
+  FastrakDevice device_;
+  std::vector<std::byte> pending_;
+  std::size_t pending_pos_ = 0;
+  bool connected_ = false;
+};
+
+}  // namespace twister::sim

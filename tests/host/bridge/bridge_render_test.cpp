@@ -1,0 +1,205 @@
+// Offscreen rendering on Mesa llvmpipe (EGL surfaceless + FBO): the model covers
+// the centre, the live warp changes the picture where the stroke's weights are,
+// and the shader's warp equals core's CPU warp drawn as plain geometry.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+
+#include "bridge_app.hpp"
+#include "gl_context.hpp"
+#include "mesh_renderer.hpp"
+#include "scene_replica.hpp"
+#include "twister/link/math_conversion.hpp"
+#include "twister/math/screw.hpp"
+#include "twister/mesh/mesh.hpp"
+#include "twister/meshio/mesh_generator.hpp"
+
+namespace twister::bridge {
+namespace {
+
+constexpr int kW = 320;
+constexpr int kH = 240;
+
+MeshData sphere() {
+  static mesh::MeshWithStorage<8192, 16384> m;
+  EXPECT_TRUE(meshio::make_sphere(m, 48, 64, 0.1F).ok());
+  MeshData d;
+  d.x.assign(m.x().begin(), m.x().end());
+  d.y.assign(m.y().begin(), m.y().end());
+  d.z.assign(m.z().begin(), m.z().end());
+  d.indices.assign(m.triangle_indices().begin(), m.triangle_indices().end());
+  return d;
+}
+
+void load(SceneReplica& r, const MeshData& m) {
+  link::LinkMessage b;
+  b.type = link::MessageType::mesh_begin;
+  b.mesh_begin = {true, 0, 1, static_cast<std::uint32_t>(m.vertex_count()),
+                  static_cast<std::uint32_t>(m.triangle_count())};
+  (void)r.apply(b);
+  link::LinkMessage v;
+  v.type = link::MessageType::vertices;
+  for (std::uint32_t i = 0; i < m.vertex_count(); ++i) {
+    v.vertices.items[v.vertices.count++] = {i, m.x[i], m.y[i], m.z[i]};
+    if (v.vertices.count == link::kMaxVerticesPerChunk || i + 1 == m.vertex_count()) {
+      (void)r.apply(v);
+      v.vertices.count = 0;
+    }
+  }
+  link::LinkMessage t;
+  t.type = link::MessageType::triangles;
+  for (std::uint32_t k = 0; k < m.triangle_count(); k += link::kMaxTrianglesPerChunk) {
+    const auto n = std::min<std::size_t>(link::kMaxTrianglesPerChunk, m.triangle_count() - k);
+    t.triangles.first = k;
+    t.triangles.count = static_cast<std::uint16_t>(n);
+    std::copy_n(m.indices.begin() + 3 * static_cast<std::ptrdiff_t>(k), 3 * n,
+                t.triangles.indices.begin());
+    (void)r.apply(t);
+  }
+  link::LinkMessage e;
+  e.type = link::MessageType::mesh_end;
+  e.mesh_end = {1, *mesh_checksum(m)};
+  ASSERT_FALSE(r.apply(e));
+  ASSERT_EQ(r.version(), 1u);
+}
+
+// Fraction of pixels whose channels differ by more than `tol`.
+double differing(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b, int tol) {
+  std::size_t n = 0;
+  for (std::size_t p = 0; p < a.size(); p += 4) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      if (std::abs(int{a[p + c]} - int{b[p + c]}) > tol) {
+        ++n;
+        break;
+      }
+    }
+  }
+  return static_cast<double>(n) / static_cast<double>(a.size() / 4);
+}
+
+class BridgeRender : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    // Headless on purpose: never a display server, even when one is around.
+    ::unsetenv("DISPLAY");
+    ::unsetenv("WAYLAND_DISPLAY");
+    std::string error;
+    context_ = make_offscreen_context(kW, kH, error);
+    ASSERT_TRUE(context_) << error;
+    ViewConfig view;
+    ASSERT_EQ(renderer_.init(kW, kH, true, view), "");
+  }
+  std::unique_ptr<GlContext> context_;
+  MeshRenderer renderer_;
+};
+
+TEST_F(BridgeRender, LiveWarpInTheShaderEqualsTheCpuWarp) {
+  SceneReplica r;
+  load(r, sphere());
+  renderer_.set_mesh(r.mesh(), false);
+  renderer_.draw();
+  const auto rest = renderer_.read_rgba();
+  // The model is centred: the centre pixel is not background, a corner is.
+  const auto px = [&](const std::vector<std::uint8_t>& img, int x, int y) {
+    return &img[(static_cast<std::size_t>(y) * kW + static_cast<std::size_t>(x)) * 4];
+  };
+  const std::uint8_t* corner = px(rest, 2, 2);
+  const std::uint8_t* centre = px(rest, kW / 2, kH / 2);
+  EXPECT_GT(std::abs(int{centre[0]} - int{corner[0]}) + std::abs(int{centre[1]} - int{corner[1]}),
+            60);
+
+  // A one-hand stroke grabbing the sphere's -Y side: pull out and twist.
+  link::LinkMessage live;
+  live.type = link::MessageType::live_warp;
+  link::LiveWarp& l = live.live_warp;
+  l.mesh_version = 1;
+  l.stroke = 1;
+  l.active = true;
+  l.hand_mask = 1;
+  l.radius_m = 0.12;
+  l.hands[0].start = link::to_wire(math::identity_frame({0.0, -0.1, 0.0}));
+  l.hands[0].end = link::to_wire(math::frame_from_uv({0.0, -0.16, -0.03}, {1.0, 0.0, 0.0},
+                                                     {0.0, std::cos(0.6), std::sin(0.6)}));
+  l.hands[0].screw = link::to_wire(
+      math::compute_screw(link::to_frame(l.hands[0].start), link::to_frame(l.hands[0].end)));
+  (void)r.apply(live);
+  ASSERT_TRUE(r.live().active);
+  renderer_.set_weights(r.live().weight1, r.live().weight2);
+  renderer_.set_show_weights(true);
+  renderer_.set_live(&r.live().message);
+  renderer_.draw();
+  const auto shader = renderer_.read_rgba();
+  EXPECT_GT(differing(rest, shader, 8), 0.02);  // the stroke is visible
+
+  // Same weights (colours), CPU-warped positions, no shader warp.
+  renderer_.set_mesh(r.cpu_warp(), true);
+  renderer_.set_weights(r.live().weight1, r.live().weight2);
+  renderer_.set_show_weights(true);
+  renderer_.set_live(nullptr);
+  renderer_.draw();
+  const auto cpu = renderer_.read_rgba();
+  const double diff = differing(shader, cpu, 12);
+  std::printf("rest vs live: %.2f%% of pixels differ; shader vs CPU warp: %.3f%%\n",
+              100.0 * differing(rest, shader, 8), 100.0 * diff);
+  EXPECT_LT(diff, 0.002) << "shader vs CPU warp differ in " << diff * 100 << "% of pixels";
+
+  // Where every weight is zero the shader leaves the rest mesh alone.
+  std::vector<float> zero(r.mesh().vertex_count(), 0.0F);
+  renderer_.set_mesh(r.mesh(), true);
+  renderer_.set_weights(zero, zero);
+  renderer_.set_show_weights(false);
+  renderer_.set_live(&r.live().message);
+  renderer_.draw();
+  EXPECT_EQ(differing(rest, renderer_.read_rgba(), 0), 0.0);
+  if (const char* dir = std::getenv("TWISTER_BRIDGE_TEST_PNG")) {
+    (void)write_png(std::string(dir) + "/render_rest.png", kW, kH, rest);
+    (void)write_png(std::string(dir) + "/render_shader.png", kW, kH, shader);
+    (void)write_png(std::string(dir) + "/render_cpu.png", kW, kH, cpu);
+  }
+}
+
+// A connected link with nothing to say: BridgeApp::step() only refreshes the display.
+class QuietLink final : public ports::LinkPort {
+  Result<std::size_t> do_send(std::span<const std::byte> src) override { return src.size(); }
+  Result<std::size_t> do_receive(std::span<std::byte>) override { return std::size_t{0}; }
+};
+
+TEST_F(BridgeRender, ScodefPreviewOfTheAppIsTheCpuWarpOfEachLiveFrame) {
+  QuietLink link;
+  BridgeApp app(link, &renderer_, {{}, false});
+  load(app.replica(), sphere());
+  app.step();
+  link::LinkMessage live;
+  live.type = link::MessageType::live_warp;
+  link::LiveWarp& l = live.live_warp;
+  l.mesh_version = 1;
+  l.stroke = 1;
+  l.active = true;
+  l.method = static_cast<std::uint8_t>(math::WarpMethod::scodef);
+  l.hand_mask = 1;
+  l.radius_m = 0.12;
+  l.hands[0].start = link::to_wire(math::identity_frame({0.0, -0.1, 0.0}));
+  for (const double lift : {0.03, 0.06}) {
+    l.hands[0].end = link::to_wire(math::identity_frame({0.0, -0.1 - lift, 0.0}));
+    l.hands[0].screw = link::to_wire(
+        math::compute_screw(link::to_frame(l.hands[0].start), link::to_frame(l.hands[0].end)));
+    (void)app.replica().apply(live);
+    app.step();
+    app.step();  // no new frame: the picture stays
+    app.draw();
+    const auto shown = renderer_.read_rgba();
+    // What the preview is: the CPU warp as geometry, tinted by the stroke's weights.
+    const SceneReplica& r = app.replica();
+    renderer_.set_mesh(r.cpu_warp(), true);
+    renderer_.set_weights(r.live().weight1, r.live().weight2);
+    renderer_.draw();
+    EXPECT_EQ(differing(shown, renderer_.read_rgba(), 0), 0.0) << lift;
+  }
+}
+
+}  // namespace
+}  // namespace twister::bridge

@@ -1,0 +1,159 @@
+// SceneReplica: full mesh, commits verified by checksum, resend on mismatch or on
+// a commit for a version it does not hold; live stroke weights from the core plan.
+#include <gtest/gtest.h>
+
+#include "scene_replica.hpp"
+#include "twister/link/math_conversion.hpp"
+#include "twister/math/frame.hpp"
+#include "twister/math/screw.hpp"
+
+namespace twister::bridge {
+namespace {
+
+// 3 x 3 grid at z = 0, spacing 0.1 m.
+MeshData grid() {
+  MeshData m;
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 3; ++i) {
+      m.x.push_back(0.1F * static_cast<float>(i));
+      m.y.push_back(0.1F * static_cast<float>(j));
+      m.z.push_back(0.0F);
+    }
+  }
+  for (std::uint32_t j = 0; j < 2; ++j) {
+    for (std::uint32_t i = 0; i < 2; ++i) {
+      const std::uint32_t a = 3 * j + i;
+      m.indices.insert(m.indices.end(), {a, a + 1, a + 3, a + 1, a + 4, a + 3});
+    }
+  }
+  return m;
+}
+
+std::vector<link::LinkMessage> mesh_messages(const MeshData& m, bool full, std::uint32_t base,
+                                             std::uint32_t version, std::uint64_t checksum) {
+  std::vector<link::LinkMessage> out(4);
+  out[0].type = link::MessageType::mesh_begin;
+  out[0].mesh_begin = {full, base, version, static_cast<std::uint32_t>(m.vertex_count()),
+                       static_cast<std::uint32_t>(m.triangle_count())};
+  out[1].type = link::MessageType::vertices;
+  out[1].vertices.count = static_cast<std::uint16_t>(m.vertex_count());
+  for (std::uint32_t i = 0; i < m.vertex_count(); ++i) {
+    out[1].vertices.items[i] = {i, m.x[i], m.y[i], m.z[i]};
+  }
+  out[2].type = link::MessageType::triangles;
+  out[2].triangles.first = 0;
+  out[2].triangles.count = static_cast<std::uint16_t>(m.triangle_count());
+  std::copy(m.indices.begin(), m.indices.end(), out[2].triangles.indices.begin());
+  out[3].type = link::MessageType::mesh_end;
+  out[3].mesh_end = {version, checksum};
+  return out;
+}
+
+std::optional<link::ResendRequest> feed(SceneReplica& r, const std::vector<link::LinkMessage>& ms) {
+  std::optional<link::ResendRequest> last;
+  for (const auto& m : ms) {
+    if (auto q = r.apply(m)) last = q;
+  }
+  return last;
+}
+
+// A replica holding grid() as version 1.
+SceneReplica replica_with_grid() {
+  SceneReplica r;
+  const MeshData m = grid();
+  (void)feed(r, mesh_messages(m, true, 0, 1, *mesh_checksum(m)));
+  return r;
+}
+
+// The change set of a commit from version 1 to 2 of the grid that moves one vertex.
+std::vector<link::LinkMessage> commit_messages(const link::VertexEntry& moved,
+                                               std::uint64_t checksum) {
+  std::vector<link::LinkMessage> commit(3);
+  commit[0].type = link::MessageType::mesh_begin;
+  commit[0].mesh_begin = {false, 1, 2, 9, 8};
+  commit[1].type = link::MessageType::vertices;
+  commit[1].vertices.count = 1;
+  commit[1].vertices.items[0] = moved;
+  commit[2].type = link::MessageType::mesh_end;
+  commit[2].mesh_end = {2, checksum};
+  return commit;
+}
+
+TEST(BridgeSceneReplica, FullMeshThenCommitIsVerified) {
+  SceneReplica r;
+  const MeshData m = grid();
+  const std::uint64_t sum = *mesh_checksum(m);
+  EXPECT_FALSE(feed(r, mesh_messages(m, true, 0, 1, sum)));
+  ASSERT_TRUE(r.has_mesh());
+  EXPECT_EQ(r.version(), 1u);
+  EXPECT_EQ(r.checksum(), sum);
+  // Commit: vertex 4 moves up.
+  MeshData moved = m;
+  moved.z[4] = 0.05F;
+  EXPECT_FALSE(
+      feed(r, commit_messages({4, moved.x[4], moved.y[4], moved.z[4]}, *mesh_checksum(moved))));
+  EXPECT_EQ(r.version(), 2u);
+  EXPECT_EQ(r.mesh().z[4], 0.05F);
+  EXPECT_EQ(r.counters().commits, 1u);
+}
+
+TEST(BridgeSceneReplica, ChecksumMismatchKeepsTheVerifiedMeshAndAsksForResend) {
+  SceneReplica r = replica_with_grid();
+  // 0xdeadbeef: not the checksum of the result.
+  const auto request = feed(r, commit_messages({4, 0.1F, 0.1F, 0.05F}, 0xdeadbeefULL));
+  ASSERT_TRUE(request);
+  EXPECT_EQ(request->have_version, 1u);
+  EXPECT_EQ(r.version(), 1u);
+  EXPECT_EQ(r.mesh().z[4], 0.0F);  // unchanged
+  EXPECT_EQ(r.counters().checksum_mismatches, 1u);
+  // The resend brings the station's mesh: accepted.
+  MeshData moved = grid();
+  moved.z[4] = 0.05F;
+  EXPECT_FALSE(feed(r, mesh_messages(moved, true, 0, 2, *mesh_checksum(moved))));
+  EXPECT_EQ(r.version(), 2u);
+}
+
+TEST(BridgeSceneReplica, CommitForAnotherVersionAndBadIndicesAskForResend) {
+  SceneReplica r = replica_with_grid();
+  link::LinkMessage gap;
+  gap.type = link::MessageType::mesh_begin;
+  gap.mesh_begin = {false, 5, 6, 9, 8};  // missed versions 2..5
+  EXPECT_TRUE(r.apply(gap));
+  EXPECT_EQ(r.counters().version_gaps, 1u);
+  // A full mesh whose triangle points past the vertices is refused.
+  MeshData bad = grid();
+  bad.indices[0] = 99;
+  EXPECT_TRUE(feed(r, mesh_messages(bad, true, 0, 7, 0)));
+  EXPECT_EQ(r.version(), 1u);
+}
+
+TEST(BridgeSceneReplica, LiveStrokeWeightsAndCpuWarp) {
+  SceneReplica r = replica_with_grid();
+  link::LinkMessage live;
+  live.type = link::MessageType::live_warp;
+  live.live_warp.mesh_version = 1;
+  live.live_warp.stroke = 1;
+  live.live_warp.active = true;
+  live.live_warp.hand_mask = 1;
+  live.live_warp.radius_m = 0.12;
+  live.live_warp.hands[0].start = link::to_wire(math::identity_frame({0.1, 0.1, 0.0}));
+  live.live_warp.hands[0].end = link::to_wire(math::identity_frame({0.1, 0.1, 0.04}));
+  live.live_warp.hands[0].screw = link::to_wire(math::compute_screw(
+      link::to_frame(live.live_warp.hands[0].start), link::to_frame(live.live_warp.hands[0].end)));
+  (void)r.apply(live);
+  ASSERT_TRUE(r.live().active);
+  EXPECT_FLOAT_EQ(r.live().weight1[4], 1.0F);  // the grab point itself
+  EXPECT_EQ(r.live().weight1[0], 0.0F);        // corner: 0.141 m away, outside the radius
+  EXPECT_GT(r.live().weight1[1], 0.0F);        // edge middle: 0.1 m away, inside
+  const MeshData warped = r.cpu_warp();
+  ASSERT_EQ(warped.vertex_count(), 9u);
+  EXPECT_NEAR(warped.z[4], 0.04F, 1e-6F);
+  // A live frame for another mesh version is ignored.
+  live.live_warp.mesh_version = 7;
+  (void)r.apply(live);
+  EXPECT_FALSE(r.live().active);
+  EXPECT_EQ(r.counters().live_stale, 1u);
+}
+
+}  // namespace
+}  // namespace twister::bridge
