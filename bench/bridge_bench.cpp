@@ -47,7 +47,7 @@ void BM_LiveFrameEncodeDecode(benchmark::State& state) {
   std::size_t bytes = 0;
   for (auto _ : state) {
     const auto n = link::encode_frame(m, frame);
-    for (std::size_t i = 0; i < *n; ++i) benchmark::DoNotOptimize(decoder.push(frame[i]));
+    for (std::size_t i = 0; i < *n; ++i) benchmark::DoNotOptimize(decoder.process(frame[i]).ok());
     bytes += *n;
   }
   state.SetBytesProcessed(static_cast<std::int64_t>(bytes));

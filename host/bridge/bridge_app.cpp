@@ -24,7 +24,7 @@ std::size_t BridgeApp::step() {
     if (!connected_) {
       connected_ = true;
       ++counters_.connects;
-      decoder_.reset();
+      decoder_.clear();
       // Resync by version: the station sends the full mesh only if ours differs.
       link::LinkMessage hello;
       hello.type = link::MessageType::hello;
@@ -36,8 +36,8 @@ std::size_t BridgeApp::step() {
       }
     }
     for (std::size_t i = 0; i < *got; ++i) {
-      if (decoder_.push(in_[i])) {
-        handle(decoder_.message());
+      if (const auto m = decoder_.process(in_[i]); m.ok()) {
+        handle(**m);
         ++frames;
       }
     }

@@ -43,7 +43,7 @@ class BridgeApp {
   const SceneReplica& replica() const { return replica_; }
   SceneReplica& replica() { return replica_; }
   const BridgeCounters& counters() const { return counters_; }
-  const link::DecoderCounters& decoder_counters() const { return decoder_.counters(); }
+  link::DecoderCounters decoder_counters() const { return decoder_.counters(); }
   const std::vector<std::string>& pictures() const { return pictures_; }
 
  private:

@@ -10,35 +10,48 @@
 
 #include "twister/link/link_codec.hpp"
 
+namespace {
+
+// The last message a fresh decoder finds in bytes[0, n); null when none.
+const twister::link::LinkMessage* decode_all(const std::vector<std::byte>& bytes, std::size_t n) {
+  static twister::link::LinkDecoder again;
+  again.clear();
+  const twister::link::LinkMessage* got = nullptr;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (const auto m = again.process(bytes[k]); m.ok()) got = *m;
+  }
+  return got;
+}
+
+}  // namespace
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static twister::link::LinkDecoder decoder;
-  decoder = twister::link::LinkDecoder{};
+  decoder.clear();
+  const auto skipped_before = decoder.counters().bytes_skipped;
   static std::vector<std::byte> a(twister::link::kMaxFrameBytes);
   static std::vector<std::byte> b(twister::link::kMaxFrameBytes);
   for (std::size_t i = 0; i < size; ++i) {
-    if (!decoder.push(static_cast<std::byte>(data[i]))) continue;
-    const auto n = twister::link::encode_frame(decoder.message(), a);
+    const auto message = decoder.process(static_cast<std::byte>(data[i]));
+    if (!message.ok()) continue;
+    const auto n = twister::link::encode_frame(**message, a);
     if (!n.ok()) std::abort();
-    twister::link::LinkDecoder again;
-    bool got = false;
-    for (std::size_t k = 0; k < *n; ++k) got = again.push(a[k]) || got;
-    if (!got) std::abort();
-    const auto m = twister::link::encode_frame(again.message(), b);
+    const twister::link::LinkMessage* got = decode_all(a, *n);
+    if (got == nullptr) std::abort();
+    const auto m = twister::link::encode_frame(*got, b);
     if (!m.ok() || *m != *n) std::abort();
     for (std::size_t k = 0; k < *n; ++k) {
       if (a[k] != b[k]) std::abort();
     }
   }
-  if (decoder.counters().bytes_skipped > size) std::abort();
+  if (decoder.counters().bytes_skipped - skipped_before > size) std::abort();
   static twister::link::LinkMessage direct;
   if (twister::link::decode_payload({reinterpret_cast<const std::byte*>(data), size}, direct)
           .ok()) {
     const auto n = twister::link::encode_frame(direct, a);
     if (!n.ok()) std::abort();
-    twister::link::LinkDecoder again;
-    bool got = false;
-    for (std::size_t k = 0; k < *n; ++k) got = again.push(a[k]) || got;
-    if (!got || again.message().type != direct.type) std::abort();
+    const twister::link::LinkMessage* got = decode_all(a, *n);
+    if (got == nullptr || got->type != direct.type) std::abort();
   }
   return 0;
 }

@@ -83,49 +83,50 @@ Status decode_payload(std::span<const std::byte> payload, LinkMessage& out) {
   return ok_status();
 }
 
-void LinkDecoder::reset() {
+void FrameDecoder::clear() {
   size_ = 0;
   overflow_ = false;
 }
 
-bool LinkDecoder::push(std::byte byte) {
+Result<std::span<const std::byte>> FrameDecoder::process(std::byte byte) {
   if (byte != std::byte{0}) {
-    if (size_ == buffer_.size()) {
-      // Too long to be ours: drop everything up to the next delimiter.
-      if (!overflow_) ++counters_.oversize;
-      overflow_ = true;
-      counters_.bytes_skipped += size_;
-      size_ = 0;
-    }
     if (overflow_) {
       ++counters_.bytes_skipped;
-      return false;
+      return StatusCode::unavailable;
+    }
+    if (size_ == buffer_.size()) {
+      // Too long to be ours: drop everything up to the next delimiter.
+      ++counters_.oversize;
+      counters_.bytes_skipped += size_ + 1;
+      overflow_ = true;
+      size_ = 0;
+      return StatusCode::resource_exhausted;
     }
     buffer_[size_++] = byte;
-    return false;
+    return StatusCode::unavailable;
   }
   if (overflow_) {
     overflow_ = false;
     size_ = 0;
-    return false;
+    return StatusCode::unavailable;
   }
-  if (size_ == 0) return false;  // back-to-back delimiters: an empty frame is no frame
-  const bool good = finish_frame();
-  if (!good) counters_.bytes_skipped += size_ + 1;
+  if (size_ == 0) return StatusCode::unavailable;  // back-to-back delimiters: no frame
+  auto frame = finish_frame();
+  if (!frame.ok()) counters_.bytes_skipped += size_ + 1;
   size_ = 0;
-  return good;
+  return frame;
 }
 
-bool LinkDecoder::finish_frame() {
-  const long decoded = cobs_decode(std::span<std::byte>(buffer_).first(size_));
+Result<std::span<const std::byte>> FrameDecoder::finish_frame() {
+  const long decoded = cobs_decode(buffer_.first(size_));
   if (decoded < 0) {
     ++counters_.bad_cobs;
-    return false;
+    return StatusCode::data_loss;
   }
   const auto n = static_cast<std::size_t>(decoded);
   if (n < 2 + kCrcBytes) {
     ++counters_.bad_crc;
-    return false;
+    return StatusCode::data_loss;
   }
   const auto body = std::span<const std::byte>(buffer_).first(n - kCrcBytes);
   const std::uint32_t want =
@@ -133,14 +134,30 @@ bool LinkDecoder::finish_frame() {
           .u32();
   if (crc32(body) != want) {
     ++counters_.bad_crc;
-    return false;
-  }
-  if (!decode_payload(body, message_).ok()) {
-    ++counters_.bad_payload;
-    return false;
+    return StatusCode::data_loss;
   }
   ++counters_.frames;
-  return true;
+  return body;
+}
+
+Result<const LinkMessage*> LinkDecoder::process(std::byte byte) {
+  const auto frame = frames_.process(byte);
+  if (!frame.ok()) return frame.status();
+  const Status s = decode_payload(*frame, message_);
+  if (!s.ok()) {
+    ++bad_payload_;
+    bad_payload_bytes_ += frame->size();
+    return s;
+  }
+  ++messages_;
+  return &message_;
+}
+
+DecoderCounters LinkDecoder::counters() const {
+  const FrameCounters& f = frames_.counters();
+  // A refused payload was a good frame: its bytes count as skipped here.
+  return DecoderCounters{messages_,  f.bad_crc,    f.bad_cobs,
+                         f.oversize, bad_payload_, f.bytes_skipped + bad_payload_bytes_};
 }
 
 }  // namespace twister::link

@@ -66,7 +66,7 @@ void StationLink::receive() {
       peer_hello_ = false;
       out_size_ = 0;  // a torn frame is harmless: the next peer resyncs at 0x00
       full_active_ = false;
-      decoder_.reset();
+      decoder_.clear();
       return;
     }
     if (!connected_) {
@@ -79,7 +79,7 @@ void StationLink::receive() {
       queue(scratch_);
     }
     for (std::size_t i = 0; i < *got; ++i) {
-      if (decoder_.push(buf[i])) on_message(decoder_.message());
+      if (const auto m = decoder_.process(buf[i]); m.ok()) on_message(**m);
     }
     if (*got < buf.size()) return;
   }
@@ -284,7 +284,7 @@ void StationLink::send_status(const input::SculptSession& session, ports::Timest
       counters_.live_dropped,
       counters_.full_sends,
       counters_.commits_sent,
-      decoder_.counters().bad_crc + decoder_.counters().bad_cobs + decoder_.counters().bad_payload};
+      decoder_counters().bad_crc + decoder_counters().bad_cobs + decoder_counters().bad_payload};
   if (queue(scratch_)) {
     status_sent_ = true;
     last_status_us_ = now_us;

@@ -22,9 +22,9 @@ std::vector<MessageType> feed(LinkDecoder& d, const std::vector<std::byte>& byte
                               LinkMessage* last = nullptr) {
   std::vector<MessageType> types;
   for (const std::byte b : bytes) {
-    if (d.push(b)) {
-      types.push_back(d.message().type);
-      if (last != nullptr) *last = d.message();
+    if (const auto m = d.process(b); m.ok()) {
+      types.push_back((*m)->type);
+      if (last != nullptr) *last = **m;
     }
   }
   return types;

@@ -44,7 +44,7 @@ struct Rig {
       const auto n = bridge_end.receive(buf);
       if (!n.ok() || *n == 0) break;
       for (std::size_t i = 0; i < *n; ++i) {
-        if (decoder.push(buf[i])) got.push_back(decoder.message());
+        if (const auto m = decoder.process(buf[i]); m.ok()) got.push_back(**m);
       }
     }
     return got;

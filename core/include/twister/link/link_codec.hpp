@@ -29,8 +29,60 @@ Result<std::size_t> encode_frame(const LinkMessage& message, std::span<std::byte
 // length or a field out of range (counts, booleans, method).
 Status decode_payload(std::span<const std::byte> payload, LinkMessage& out);
 
+struct FrameCounters {
+  std::uint64_t frames = 0;         // good frames (CRC and COBS fine)
+  std::uint64_t bad_crc = 0;        // CRC mismatch or frame too short
+  std::uint64_t bad_cobs = 0;       // COBS structure broken
+  std::uint64_t oversize = 0;       // longer than the buffer (dropped to next 0)
+  std::uint64_t bytes_skipped = 0;  // bytes of dropped frames
+};
+
+// FrameDecoder: the framing layer, byte by byte (pigweed pw_hdlc's Decoder shape).
+// Works in a caller-owned buffer (FrameDecoderBuffer<N> owns one); a frame longer
+// than the buffer is dropped. No heap, no I/O.
+class FrameDecoder {
+ public:
+  explicit FrameDecoder(std::span<std::byte> buffer) : buffer_(buffer) {}
+
+  // ok: `byte` completed a good frame; the value is its payload (version, type,
+  //   body; CRC checked and removed), valid until the next process() or clear().
+  // unavailable: no complete frame yet (keep feeding).
+  // data_loss: a frame ended with a bad CRC or a broken COBS structure (dropped).
+  // resource_exhausted: the frame outgrew the buffer; it is dropped up to the
+  //   next delimiter (reported once per frame).
+  Result<std::span<const std::byte>> process(std::byte byte);
+  // Drops a partial frame (a new peer: its bytes start a fresh frame).
+  void clear();
+  std::size_t max_size() const { return buffer_.size(); }
+  const FrameCounters& counters() const { return counters_; }
+
+ private:
+  Result<std::span<const std::byte>> finish_frame();
+
+  std::span<std::byte> buffer_;
+  std::size_t size_ = 0;
+  bool overflow_ = false;
+  FrameCounters counters_{};
+};
+
+namespace internal {
+template <std::size_t N>
+struct FrameStorage {
+  std::array<std::byte, N> bytes{};
+};
+}  // namespace internal
+
+// A FrameDecoder owning a buffer for frames of up to N encoded bytes.
+template <std::size_t N = kMaxFrameBytes>
+class FrameDecoderBuffer : private internal::FrameStorage<N>, public FrameDecoder {
+ public:
+  FrameDecoderBuffer() : FrameDecoder(this->bytes) {}
+  FrameDecoderBuffer(const FrameDecoderBuffer&) = delete;
+  FrameDecoderBuffer& operator=(const FrameDecoderBuffer&) = delete;
+};
+
 struct DecoderCounters {
-  std::uint64_t frames = 0;         // good frames delivered
+  std::uint64_t frames = 0;         // good messages delivered
   std::uint64_t bad_crc = 0;        // CRC mismatch or frame too short
   std::uint64_t bad_cobs = 0;       // COBS structure broken
   std::uint64_t oversize = 0;       // longer than kMaxFrameBytes (dropped to next 0)
@@ -38,26 +90,24 @@ struct DecoderCounters {
   std::uint64_t bytes_skipped = 0;  // bytes of dropped frames
 };
 
-// Byte-wise frame decoder: feed bytes as they arrive (any split); message() holds
-// the last good frame after push() returned true.
+// LinkDecoder: frames -> messages. Feed bytes as they arrive (any split).
 class LinkDecoder {
  public:
-  // true when `byte` completed a good frame (see message()); bad frames are
-  // counted and skipped.
-  bool push(std::byte byte);
-  const LinkMessage& message() const { return message_; }
-  const DecoderCounters& counters() const { return counters_; }
+  // ok: `byte` completed a good message (valid until the next process()).
+  // unavailable / data_loss / resource_exhausted: as FrameDecoder::process.
+  // invalid_argument / not_supported: a good frame whose payload is not a valid
+  //   message of this protocol version (dropped, counted as bad_payload).
+  Result<const LinkMessage*> process(std::byte byte);
   // Drops a partial frame (the peer reconnected).
-  void reset();
+  void clear() { frames_.clear(); }
+  DecoderCounters counters() const;
 
  private:
-  bool finish_frame();
-
-  std::array<std::byte, kMaxFrameBytes> buffer_{};
-  std::size_t size_ = 0;
-  bool overflow_ = false;
+  FrameDecoderBuffer<kMaxFrameBytes> frames_;
   LinkMessage message_{};
-  DecoderCounters counters_{};
+  std::uint64_t messages_ = 0;
+  std::uint64_t bad_payload_ = 0;
+  std::uint64_t bad_payload_bytes_ = 0;
 };
 
 }  // namespace twister::link

@@ -69,7 +69,7 @@ class StationLink {
   // A peer said hello and everything it needs has been handed to the port.
   bool peer_synced() const { return connected_ && peer_hello_ && idle(); }
   const StationLinkCounters& counters() const { return counters_; }
-  const link::DecoderCounters& decoder_counters() const { return decoder_.counters(); }
+  link::DecoderCounters decoder_counters() const { return decoder_.counters(); }
 
  private:
   enum class FullPhase : std::uint8_t { begin, vertices, triangles, end };
