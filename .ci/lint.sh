@@ -1,8 +1,12 @@
 #!/usr/bin/env bash
-# clang-format check and clang-tidy over the project's own sources (needs build/ for
-# compile_commands.json). Runs both and fails if either finds something.
+# `make lint`: the project's code rules, all of them, failing if any breaks:
+#   clang-format    layout (.clang-format)
+#   clang-tidy      naming, bug finders, no function over 80 lines (.clang-tidy;
+#                   needs build/ for compile_commands.json)
+#   file length     no code file over 400 lines (tests and benchmarks included)
 set -uo pipefail
 cd "$(dirname "$0")/.."
+max_lines=400
 mapfile -t files < <(git ls-files 'core/*.cpp' 'core/*.hpp' 'hal/*.cpp' 'hal/*.hpp' \
                                   'sim/*.cpp' 'sim/*.hpp' 'host/*.cpp' 'host/*.hpp')
 status=0
@@ -11,4 +15,12 @@ clang-format --dry-run --Werror "${files[@]}" || status=1
 mapfile -t units < <(printf '%s\n' "${files[@]}" | grep '\.cpp$')
 echo "lint: clang-tidy on ${#units[@]} translation units"
 printf '%s\n' "${units[@]}" | xargs -P "$(nproc)" -n 4 clang-tidy -p build --quiet || status=1
+mapfile -t code < <(git ls-files '*.cpp' '*.hpp' '*.h' '*.py' '*.sh')
+echo "lint: file length (at most $max_lines lines) on ${#code[@]} files"
+long=$(wc -l "${code[@]}" | awk -v max="$max_lines" '$2 != "total" && $1 > max {print "  " $2 ": " $1 " lines"}')
+if [[ -n "$long" ]]; then
+  echo "lint: files over $max_lines lines (split them by concept):"
+  echo "$long"
+  status=1
+fi
 exit $status

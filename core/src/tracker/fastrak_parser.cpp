@@ -98,8 +98,6 @@ FastrakParser::Candidate FastrakParser::examine_record(const std::byte* p, std::
   if (status != ' ' && !is_letter(status)) return {Verdict::drop, 1};
   if (avail < len) return {Verdict::need_more, len};
 
-  const Format fmt = config_.format;
-  const bool bin = fmt == Format::binary;
   const StationConfig& st = config_.stations[static_cast<std::size_t>(station)];
   FastrakPose pose{};
   pose.station = static_cast<std::uint8_t>(station + 1);
@@ -108,54 +106,8 @@ FastrakParser::Candidate FastrakParser::examine_record(const std::byte* p, std::
   std::size_t off = kHeaderBytes;
   for (std::size_t i = 0; i < st.list.count; ++i) {
     const Item item = st.list.items[i];
-    const std::byte* q = p + off;
-    bool ok = true;
-    switch (item) {
-      case Item::space:
-        ok = ch(q[0]) == ' ';
-        break;
-      case Item::crlf:
-        ok = ch(q[0]) == kCr && ch(q[1]) == kLf;
-        break;
-      case Item::position:
-      case Item::position_ext:
-        ok = read_numbers(q, fmt, item, 3, pose.position.data());
-        pose.has_position = true;
-        break;
-      case Item::euler:
-      case Item::euler_ext:
-        ok = read_numbers(q, fmt, item, 3, pose.euler_deg.data());
-        pose.has.euler = true;
-        break;
-      case Item::dcm_x:
-      case Item::dcm_y:
-      case Item::dcm_z:
-      case Item::dcm_x_ext:
-      case Item::dcm_y_ext:
-      case Item::dcm_z_ext: {
-        const std::size_t row = internal::dcm_row(item);
-        ok = read_numbers(q, fmt, item, 3, pose.dcm.data() + 3 * row);
-        dcm_rows |= 1u << static_cast<unsigned>(row);
-        break;
-      }
-      case Item::quaternion:
-      case Item::quaternion_ext:
-        ok = read_numbers(q, fmt, item, 4, pose.quaternion.data());
-        pose.has.quaternion = true;
-        break;
-      case Item::stylus:
-      case Item::stylus_ext: {
-        // Only the last byte carries the state; the first of two is unconfirmed (§3.5).
-        const std::size_t w = bin ? 2 : config_.ascii_stylus_width;
-        const char s = ch(q[w - 1]);
-        ok = s == '0' || s == '1';
-        pose.has_button = true;
-        pose.button = s == '1';
-        break;
-      }
-    }
-    if (!ok) return {Verdict::drop, 1};
-    off += item_width(item, fmt, config_.ascii_stylus_width);
+    if (!read_item(item, p + off, pose, dcm_rows)) return {Verdict::drop, 1};
+    off += item_width(item, config_.format, config_.ascii_stylus_width);
   }
   pose.has.dcm = dcm_rows == 7u;
 
@@ -168,6 +120,49 @@ FastrakParser::Candidate FastrakParser::examine_record(const std::byte* p, std::
     out.pose = pose;
   }
   return {Verdict::accept, len};
+}
+
+bool FastrakParser::read_item(Item item, const std::byte* q, FastrakPose& pose,
+                              unsigned& dcm_rows) const {
+  const Format fmt = config_.format;
+  switch (item) {
+    case Item::space:
+      return ch(q[0]) == ' ';
+    case Item::crlf:
+      return ch(q[0]) == kCr && ch(q[1]) == kLf;
+    case Item::position:
+    case Item::position_ext:
+      pose.has_position = true;
+      return read_numbers(q, fmt, item, 3, pose.position.data());
+    case Item::euler:
+    case Item::euler_ext:
+      pose.has.euler = true;
+      return read_numbers(q, fmt, item, 3, pose.euler_deg.data());
+    case Item::dcm_x:
+    case Item::dcm_y:
+    case Item::dcm_z:
+    case Item::dcm_x_ext:
+    case Item::dcm_y_ext:
+    case Item::dcm_z_ext: {
+      const std::size_t row = internal::dcm_row(item);
+      dcm_rows |= 1u << static_cast<unsigned>(row);
+      return read_numbers(q, fmt, item, 3, pose.dcm.data() + 3 * row);
+    }
+    case Item::quaternion:
+    case Item::quaternion_ext:
+      pose.has.quaternion = true;
+      return read_numbers(q, fmt, item, 4, pose.quaternion.data());
+    case Item::stylus:
+    case Item::stylus_ext: {
+      // Only the last byte carries the state; the first of two is unconfirmed (§3.5).
+      const std::size_t w = fmt == Format::binary ? 2 : config_.ascii_stylus_width;
+      const char s = ch(q[w - 1]);
+      pose.has_button = true;
+      pose.button = s == '1';
+      return s == '0' || s == '1';
+    }
+  }
+  return false;
 }
 
 FastrakParser::Candidate FastrakParser::examine_reply(const std::byte* p, std::size_t avail,

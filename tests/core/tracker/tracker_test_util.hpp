@@ -24,6 +24,12 @@ inline std::string f32le(float f) {
   return s;
 }
 
+// The default output list (position, Euler angles, CR LF) and the manual's own
+// record for it: "01 " + x y z + az el roll + CR LF, 47 bytes (§3.2).
+inline const OutputList kDefaultList = OutputList::of({Item::position, Item::euler, Item::crlf});
+inline const std::string kDefaultAscii = std::string("01 ") + "  12.50" + "  -3.21" + "-123.45" +
+                                         "  90.00" + "   0.00" + " 180.00" + "\r\n";
+
 // Feeds `stream` in chunks of the given sizes (cycled; empty = all at once), then
 // finish(); returns every event.
 inline std::vector<FastrakEvent> parse_all(FastrakParser& parser, std::string_view stream,

@@ -68,6 +68,9 @@ class FastrakParser {
 
   Candidate examine(const std::byte* p, std::size_t avail, FastrakEvent& out) const;
   Candidate examine_record(const std::byte* p, std::size_t avail, FastrakEvent& out) const;
+  // Reads one output-list item at q into the pose (dcm_rows: bit per DCM row seen);
+  // false when its bytes are not a valid item.
+  bool read_item(Item item, const std::byte* q, FastrakPose& pose, unsigned& dcm_rows) const;
   Candidate examine_reply(const std::byte* p, std::size_t avail, FastrakEvent& out) const;
   Result<FastrakEvent> emit(const FastrakEvent& ev);
   void drop_bytes(std::size_t n);
