@@ -19,7 +19,8 @@ using input::test_support::Station;
 using input::test_support::z_turn;
 
 struct BridgeLinkRig {
-  explicit BridgeLinkRig(ports::LogSink& log) : station_end(wire, true), bridge_end(wire, false), bridge(bridge_end, nullptr, {}, log) {
+  explicit BridgeLinkRig(ports::LogSink& log)
+      : station_end(wire, true), bridge_end(wire, false), bridge(bridge_end, nullptr, {}, log) {
     const std::size_t n = station.mesh.vertex_capacity();
     x.resize(n);
     y.resize(n);

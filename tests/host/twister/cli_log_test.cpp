@@ -92,8 +92,8 @@ TEST_F(CliLog, QuietReplayKeepsWarningsAndDropsProgress) {
 TEST_F(CliLog, ErrorsNameTheCommandAndExitNonZero) {
   const CliRun missing = run("fastrak-dump --file " + (dir_ / "absent.bin").string());
   EXPECT_EQ(missing.exit_code, 1);
-  EXPECT_EQ(missing.err, "twister fastrak-dump: cannot read " + (dir_ / "absent.bin").string() +
-                             "\n");
+  EXPECT_EQ(missing.err,
+            "twister fastrak-dump: cannot read " + (dir_ / "absent.bin").string() + "\n");
   const CliRun both = run("fastrak-dump -F -f --file -");
   EXPECT_EQ(both.exit_code, 2);
   EXPECT_EQ(both.err, "twister fastrak-dump: -F and -f exclude each other\n");
