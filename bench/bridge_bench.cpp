@@ -79,9 +79,10 @@ GlFixture& gl() {
   if (init) return f;
   init = true;
   ::unsetenv("DISPLAY");
-  std::string error;
-  f.context = bridge::make_offscreen_context(800, 600, error);
-  if (!f.context || !f.renderer.init(800, 600, true, {}).empty()) return f;
+  auto context = bridge::make_offscreen_context(800, 600);
+  if (!context) return f;
+  f.context = std::move(*context);
+  if (!f.renderer.init(800, 600, true, {})) return f;
   static mesh::MeshWithStorage<110000, 220000> sphere;
   (void)meshio::make_sphere(sphere, 256, 400, 0.1F);  // ~102k vertices
   bridge::MeshData d;

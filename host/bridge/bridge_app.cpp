@@ -1,12 +1,18 @@
 #include "bridge_app.hpp"
 
 #include <array>
-#include <cstdio>
 
 namespace twister::bridge {
 
-BridgeApp::BridgeApp(ports::LinkPort& port, MeshRenderer* renderer, BridgeOptions options)
-    : port_(port), renderer_(renderer), options_(std::move(options)), in_(std::size_t{64} * 1024) {}
+using ports::LogLevel;
+
+BridgeApp::BridgeApp(ports::LinkPort& port, MeshRenderer* renderer, BridgeOptions options,
+                     ports::LogSink& log)
+    : port_(port),
+      renderer_(renderer),
+      log_(log),
+      options_(std::move(options)),
+      in_(std::size_t{64} * 1024) {}
 
 std::size_t BridgeApp::step() {
   std::size_t frames = 0;
@@ -15,7 +21,7 @@ std::size_t BridgeApp::step() {
     if (!got.ok()) {
       if (connected_) {
         ++counters_.disconnects;
-        if (options_.verbose) std::fprintf(stderr, "twister-bridge: link lost; reconnecting\n");
+        log_.write(LogLevel::warning, "link", "lost; reconnecting");
       }
       connected_ = false;
       out_.clear();
@@ -30,10 +36,8 @@ std::size_t BridgeApp::step() {
       hello.type = link::MessageType::hello;
       hello.hello = replica_.hello();
       send(hello);
-      if (options_.verbose) {
-        std::fprintf(stderr, "twister-bridge: connected (holding mesh version %u)\n",
-                     replica_.version());
-      }
+      log_.write(LogLevel::notice, "link", "connected (holding mesh version %u)",
+                 {replica_.version()});
     }
     for (std::size_t i = 0; i < *got; ++i) {
       if (const auto m = decoder_.process(in_[i]); m.ok()) {
@@ -63,28 +67,21 @@ void BridgeApp::handle(const link::LinkMessage& m) {
     r.type = link::MessageType::resend_request;
     r.resend_request = *request;
     send(r);
-    if (options_.verbose) {
-      std::fprintf(stderr,
-                   "twister-bridge: mesh change set rejected (checksum/version); asked for a "
-                   "full resend\n");
-    }
+    log_.write(LogLevel::warning, "replica",
+               "mesh change set rejected (checksum/version); asked for a full resend");
   }
   if (replica_.counters().full_meshes != fulls) {
-    if (options_.verbose) {
-      std::fprintf(stderr, "twister-bridge: mesh version %u: %zu vertices, %zu triangles\n",
-                   replica_.version(), replica_.mesh().vertex_count(),
-                   replica_.mesh().triangle_count());
-    }
+    log_.write(
+        LogLevel::notice, "replica", "mesh version %u: %zu vertices, %zu triangles",
+        {replica_.version(), replica_.mesh().vertex_count(), replica_.mesh().triangle_count()});
     if (!options_.snapshot_dir.empty() && fulls == 0) {
       refresh_display();
       snapshot("rest");
     }
   }
   if (replica_.counters().commits != commits) {
-    if (options_.verbose) {
-      std::fprintf(stderr, "twister-bridge: commit -> mesh version %u, checksum %016llx verified\n",
-                   replica_.version(), static_cast<unsigned long long>(replica_.checksum()));
-    }
+    log_.write(LogLevel::notice, "replica", "commit -> mesh version %u, checksum %016llx verified",
+               {replica_.version(), replica_.checksum()});
     if (!options_.snapshot_dir.empty()) {
       refresh_display();
       snapshot("commit-" + std::to_string(replica_.version()));
@@ -151,13 +148,15 @@ std::string BridgeApp::snapshot(const std::string& name) {
   if (renderer_ == nullptr || options_.snapshot_dir.empty()) return {};
   renderer_->draw();
   std::string path = options_.snapshot_dir + "/" + name + ".png";
-  if (!write_png(path, renderer_->width(), renderer_->height(), renderer_->read_rgba())) {
-    std::fprintf(stderr, "twister-bridge: cannot write %s\n", path.c_str());
+  if (const hal::Expected<void> written =
+          write_png(path, renderer_->width(), renderer_->height(), renderer_->read_rgba());
+      !written) {
+    log_.write(LogLevel::error, "snapshot", "%s", {written.error().message.c_str()});
     return {};
   }
   ++counters_.snapshots;
   pictures_.push_back(path);
-  if (options_.verbose) std::fprintf(stderr, "twister-bridge: wrote %s\n", path.c_str());
+  log_.write(LogLevel::info, "snapshot", "wrote %s", {path.c_str()});
   return path;
 }
 

@@ -4,6 +4,9 @@
 // each verified version, the stroke's weights once per stroke, the screws on each
 // live frame. Snapshots (offscreen): the rest mesh when the first mesh arrives,
 // the live warp just before each commit is applied, and the committed mesh.
+// Messages go to the LogSink it is given (components "link", "replica",
+// "snapshot"): link loss and rejected change sets are warnings, connects, meshes
+// and commits notices, each picture written info.
 #pragma once
 
 #include <cstdint>
@@ -14,12 +17,12 @@
 #include "scene_replica.hpp"
 #include "twister/link/link_codec.hpp"
 #include "twister/ports/link_port.hpp"
+#include "twister/ports/log_sink.hpp"
 
 namespace twister::bridge {
 
 struct BridgeOptions {
   std::string snapshot_dir;  // empty: no PNGs
-  bool verbose = true;
 };
 
 struct BridgeCounters {
@@ -30,8 +33,10 @@ struct BridgeCounters {
 
 class BridgeApp {
  public:
-  // `renderer` may be null (headless replica, tests).
-  BridgeApp(ports::LinkPort& port, MeshRenderer* renderer, BridgeOptions options);
+  // `renderer` may be null (headless replica, tests). `port` and `log` must outlive
+  // the app.
+  BridgeApp(ports::LinkPort& port, MeshRenderer* renderer, BridgeOptions options,
+            ports::LogSink& log);
   // One step: link I/O and replica updates (never blocks). Returns frames decoded.
   std::size_t step();
   // Draws the current scene (window mode each frame; offscreen for snapshots).
@@ -54,6 +59,7 @@ class BridgeApp {
 
   ports::LinkPort& port_;
   MeshRenderer* renderer_;
+  ports::LogSink& log_;
   BridgeOptions options_;
   SceneReplica replica_;
   link::LinkDecoder decoder_;

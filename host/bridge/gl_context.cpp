@@ -12,6 +12,10 @@
 namespace twister::bridge {
 namespace {
 
+hal::Error unavailable(const char* message) {
+  return hal::make_error(StatusCode::unavailable, message);
+}
+
 class OffscreenContext final : public GlContext {
  public:
   OffscreenContext(EGLDisplay display, EGLContext context, int w, int h)
@@ -65,23 +69,20 @@ class WindowContext final : public GlContext {
 
 }  // namespace
 
-std::unique_ptr<GlContext> make_offscreen_context(int width, int height, std::string& error) {
+hal::Expected<std::unique_ptr<GlContext>> make_offscreen_context(int width, int height) {
   EGLDisplay display =
       eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
   if (display == EGL_NO_DISPLAY) {
-    error = "EGL: no surfaceless display (Mesa EGL_MESA_platform_surfaceless missing)";
-    return nullptr;
+    return unavailable("EGL: no surfaceless display (Mesa EGL_MESA_platform_surfaceless missing)");
   }
   EGLint major = 0;
   EGLint minor = 0;
   if (eglInitialize(display, &major, &minor) != EGL_TRUE) {
-    error = "EGL: eglInitialize failed";
-    return nullptr;
+    return unavailable("EGL: eglInitialize failed");
   }
   if (eglBindAPI(EGL_OPENGL_API) != EGL_TRUE) {
-    error = "EGL: desktop OpenGL not available";
     eglTerminate(display);
-    return nullptr;
+    return unavailable("EGL: desktop OpenGL not available");
   }
   const EGLint config_attribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE,
                                    EGL_OPENGL_BIT, EGL_NONE};
@@ -99,24 +100,21 @@ std::unique_ptr<GlContext> make_offscreen_context(int width, int height, std::st
                                     EGL_NONE};
   EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attribs);
   if (context == EGL_NO_CONTEXT) {
-    error = "EGL: cannot create an OpenGL 3.3 core context";
     eglTerminate(display);
-    return nullptr;
+    return unavailable("EGL: cannot create an OpenGL 3.3 core context");
   }
   if (eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context) != EGL_TRUE) {
-    error = "EGL: eglMakeCurrent (surfaceless) failed";
     eglDestroyContext(display, context);
     eglTerminate(display);
-    return nullptr;
+    return unavailable("EGL: eglMakeCurrent (surfaceless) failed");
   }
-  return std::make_unique<OffscreenContext>(display, context, width, height);
+  return std::unique_ptr<GlContext>(
+      std::make_unique<OffscreenContext>(display, context, width, height));
 }
 
-std::unique_ptr<GlContext> make_window_context(int width, int height, bool kiosk,
-                                               std::string& error) {
+hal::Expected<std::unique_ptr<GlContext>> make_window_context(int width, int height, bool kiosk) {
   if (glfwInit() != GLFW_TRUE) {
-    error = "GLFW: cannot initialise (no display? use --offscreen)";
-    return nullptr;
+    return unavailable("GLFW: cannot initialise (no display? use --offscreen)");
   }
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
@@ -132,13 +130,12 @@ std::unique_ptr<GlContext> make_window_context(int width, int height, bool kiosk
   }
   GLFWwindow* window = glfwCreateWindow(width, height, "Twister", monitor, nullptr);
   if (window == nullptr) {
-    error = "GLFW: cannot open an OpenGL 3.3 core window";
     glfwTerminate();
-    return nullptr;
+    return unavailable("GLFW: cannot open an OpenGL 3.3 core window");
   }
   glfwMakeContextCurrent(window);
   glfwSwapInterval(1);
-  return std::make_unique<WindowContext>(window);
+  return std::unique_ptr<GlContext>(std::make_unique<WindowContext>(window));
 }
 
 }  // namespace twister::bridge

@@ -1,11 +1,12 @@
 // OpenGL 3.3 core contexts for the bridge: EGL surfaceless (offscreen, no display
 // server; Mesa llvmpipe in CI) or a GLFW window (desk display or kiosk full screen).
-// Functions are loaded through libepoxy. Both throw nothing: failures are returned
-// as a message.
+// Functions are loaded through libepoxy. Both throw nothing: a failure is an Error
+// (status unavailable: no display / driver; message for the log).
 #pragma once
 
 #include <memory>
-#include <string>
+
+#include "twister/hal/expected.hpp"
 
 struct GLFWwindow;
 
@@ -25,10 +26,9 @@ class GlContext {
   virtual bool offscreen() const = 0;
 };
 
-// Surfaceless EGL + a current context (draw into an FBO). Empty message on success.
-std::unique_ptr<GlContext> make_offscreen_context(int width, int height, std::string& error);
+// Surfaceless EGL + a current context (draw into an FBO).
+hal::Expected<std::unique_ptr<GlContext>> make_offscreen_context(int width, int height);
 // A window (full screen on the primary monitor when kiosk).
-std::unique_ptr<GlContext> make_window_context(int width, int height, bool kiosk,
-                                               std::string& error);
+hal::Expected<std::unique_ptr<GlContext>> make_window_context(int width, int height, bool kiosk);
 
 }  // namespace twister::bridge

@@ -7,12 +7,9 @@
 namespace twister::bridge {
 namespace {
 
-bool export_ply(const std::string& path, const MeshData& m, std::string& message) {
+hal::Expected<void> export_ply(const std::string& path, const MeshData& m) {
   std::FILE* f = std::fopen(path.c_str(), "wb");
-  if (f == nullptr) {
-    message = "cannot open " + path;
-    return false;
-  }
+  if (f == nullptr) return hal::make_error(StatusCode::io_error, "cannot open " + path);
   std::fprintf(f,
                "ply\nformat binary_little_endian 1.0\ncomment twister-bridge export (metres)\n"
                "element vertex %zu\nproperty float x\nproperty float y\nproperty float z\n"
@@ -27,27 +24,27 @@ bool export_ply(const std::string& path, const MeshData& m, std::string& message
     std::fwrite(&three, 1, 1, f);
     std::fwrite(&m.indices[3 * t], sizeof(std::uint32_t), 3, f);
   }
-  if (std::fclose(f) != 0) {
-    message = "write failed: " + path;
-    return false;
-  }
-  return true;
+  if (std::fclose(f) != 0) return hal::make_error(StatusCode::io_error, "write failed: " + path);
+  return {};
 }
 
 }  // namespace
 
-bool export_mesh(const std::string& path, const MeshData& m, std::string& message) {
-  if (path.ends_with(".ply")) return export_ply(path, m, message);
+hal::Expected<void> export_mesh(const std::string& path, const MeshData& m) {
+  if (path.ends_with(".ply")) return export_ply(path, m);
   if (!path.ends_with(".obj")) {
-    message = "unknown mesh format (use .obj or .ply): " + path;
-    return false;
+    return hal::make_error(StatusCode::invalid_argument,
+                           "unknown mesh format (use .obj or .ply): " + path);
   }
   const auto core = to_core_mesh(m);
   if (!core) {
-    message = "triangle index out of range: " + path;
-    return false;
+    return hal::make_error(StatusCode::invalid_argument, "triangle index out of range: " + path);
   }
-  return meshio::save_obj(path, core->mesh(), message).ok();
+  std::string message;
+  if (const Status s = meshio::save_obj(path, core->mesh(), message); !s.ok()) {
+    return hal::Error{s, message};
+  }
+  return {};
 }
 
 }  // namespace twister::bridge

@@ -5,10 +5,12 @@
 #include <string>
 
 #include "scene_replica.hpp"
+#include "twister/hal/expected.hpp"
 
 namespace twister::bridge {
 
-// true on success; otherwise `message` says why (unknown extension, I/O error).
-bool export_mesh(const std::string& path, const MeshData& mesh, std::string& message);
+// Writes `mesh` to `path`. Errors: invalid_argument (unknown extension, triangle
+// index out of range), io_error (cannot open or write); the message names the path.
+hal::Expected<void> export_mesh(const std::string& path, const MeshData& mesh);
 
 }  // namespace twister::bridge

@@ -83,7 +83,8 @@ void main() {
 }
 )";
 
-unsigned compile(GLenum type, const char* source, std::string& error) {
+// A compiled shader, or the driver's log.
+hal::Expected<GLuint> compile(GLenum type, const char* source) {
   const GLuint s = glCreateShader(type);
   glShaderSource(s, 1, &source, nullptr);
   glCompileShader(s);
@@ -92,9 +93,34 @@ unsigned compile(GLenum type, const char* source, std::string& error) {
   if (ok == 0) {
     char log[1024] = {};
     glGetShaderInfoLog(s, sizeof log, nullptr, log);
-    error = std::string("shader: ") + log;
+    glDeleteShader(s);
+    return hal::make_error(StatusCode::not_supported, std::string("shader: ") + log);
   }
   return s;
+}
+
+// The linked program of both shaders.
+hal::Expected<GLuint> build_program() {
+  hal::Expected<GLuint> vs = compile(GL_VERTEX_SHADER, kVertexShader);
+  if (!vs) return vs.error();
+  hal::Expected<GLuint> fs = compile(GL_FRAGMENT_SHADER, kFragmentShader);
+  if (!fs) {
+    glDeleteShader(*vs);
+    return fs.error();
+  }
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, *vs);
+  glAttachShader(program, *fs);
+  glLinkProgram(program);
+  glDeleteShader(*vs);
+  glDeleteShader(*fs);
+  GLint linked = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &linked);
+  if (linked == 0) {
+    glDeleteProgram(program);
+    return hal::make_error(StatusCode::not_supported, "shader program does not link");
+  }
+  return program;
 }
 
 // x0 y0 z0 x1 y1 z1 ... for the position buffer.
@@ -120,23 +146,14 @@ MeshRenderer::~MeshRenderer() {
   glDeleteRenderbuffers(2, rbs);
 }
 
-std::string MeshRenderer::init(int width, int height, bool offscreen, const ViewConfig& view) {
+hal::Expected<void> MeshRenderer::init(int width, int height, bool offscreen,
+                                       const ViewConfig& view) {
   width_ = width;
   height_ = height;
   view_ = view;
-  std::string error;
-  const GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader, error);
-  const GLuint fs = compile(GL_FRAGMENT_SHADER, kFragmentShader, error);
-  if (!error.empty()) return error;
-  program_ = glCreateProgram();
-  glAttachShader(program_, vs);
-  glAttachShader(program_, fs);
-  glLinkProgram(program_);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint linked = 0;
-  glGetProgramiv(program_, GL_LINK_STATUS, &linked);
-  if (linked == 0) return "shader program does not link";
+  hal::Expected<GLuint> program = build_program();
+  if (!program) return program.error();
+  program_ = *program;
   const auto at = [this](const std::string& name) {
     return glGetUniformLocation(program_, name.c_str());
   };
@@ -179,7 +196,7 @@ std::string MeshRenderer::init(int width, int height, bool offscreen, const View
     glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
     glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_rb_);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-      return "framebuffer object incomplete";
+      return hal::make_error(StatusCode::not_supported, "framebuffer object incomplete");
     }
   }
   glEnable(GL_DEPTH_TEST);
@@ -321,16 +338,16 @@ std::vector<std::uint8_t> MeshRenderer::read_rgba() const {
   return rows;
 }
 
-bool write_png(const std::string& path, int width, int height,
-               const std::vector<std::uint8_t>& rgba) {
+hal::Expected<void> write_png(const std::string& path, int width, int height,
+                              const std::vector<std::uint8_t>& rgba) {
   std::FILE* f = std::fopen(path.c_str(), "wb");
-  if (f == nullptr) return false;
+  if (f == nullptr) return hal::make_error(StatusCode::io_error, "cannot write " + path);
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png_create_info_struct(png);
   if (png == nullptr || info == nullptr || setjmp(png_jmpbuf(png))) {
     png_destroy_write_struct(&png, &info);
     std::fclose(f);
-    return false;
+    return hal::make_error(StatusCode::io_error, "cannot write " + path + " (libpng)");
   }
   png_init_io(png, f);
   png_set_compression_level(png, 1);
@@ -344,7 +361,8 @@ bool write_png(const std::string& path, int width, int height,
   }
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
-  return std::fclose(f) == 0;
+  if (std::fclose(f) != 0) return hal::make_error(StatusCode::io_error, "cannot write " + path);
+  return {};
 }
 
 }  // namespace twister::bridge

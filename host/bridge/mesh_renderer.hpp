@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "scene_replica.hpp"
+#include "twister/hal/expected.hpp"
 
 namespace twister::bridge {
 
@@ -27,8 +28,8 @@ class MeshRenderer {
  public:
   ~MeshRenderer();
   // Compiles the shaders; with `offscreen`, renders into a width x height FBO.
-  // Empty string on success.
-  std::string init(int width, int height, bool offscreen, const ViewConfig& view);
+  // Error not_supported: a shader does not compile or link, or the FBO is incomplete.
+  hal::Expected<void> init(int width, int height, bool offscreen, const ViewConfig& view);
   // New rest mesh (positions + triangles); resets weights and recentres the camera
   // unless keep_camera.
   void set_mesh(const MeshData& mesh, bool keep_camera);
@@ -83,8 +84,9 @@ class MeshRenderer {
   } uniforms_;
 };
 
-// Writes RGBA rows (top to bottom) as PNG (compression 1). false on I/O error.
-bool write_png(const std::string& path, int width, int height,
-               const std::vector<std::uint8_t>& rgba);
+// Writes RGBA rows (top to bottom) as PNG (compression 1). Error io_error naming
+// the path when it cannot be written.
+hal::Expected<void> write_png(const std::string& path, int width, int height,
+                              const std::vector<std::uint8_t>& rgba);
 
 }  // namespace twister::bridge

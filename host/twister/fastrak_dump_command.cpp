@@ -16,6 +16,8 @@
 #include <vector>
 
 #include "cli_exit.hpp"
+#include "cli_log.hpp"
+#include "twister/hal/expected.hpp"
 #include "twister/hal/termios_byte_stream.hpp"
 #include "twister/tracker/fastrak_parser.hpp"
 #include "twister/tracker/fastrak_session.hpp"
@@ -53,8 +55,12 @@ struct DumpOptions {
   bool quick = false;
 };
 
-// Parses "s,i1,...,in" into the config; false with a message on error.
-bool parse_list(const std::string& text, FastrakConfig& config, std::string& error) {
+hal::Error bad_option(std::string message) {
+  return hal::make_error(StatusCode::invalid_argument, std::move(message));
+}
+
+// Parses "s,i1,...,in" into the config.
+hal::Expected<void> parse_list(const std::string& text, FastrakConfig& config) {
   std::vector<int> v;
   std::size_t pos = 0;
   while (pos <= text.size()) {
@@ -62,15 +68,13 @@ bool parse_list(const std::string& text, FastrakConfig& config, std::string& err
     const std::string field = text.substr(pos, comma - pos);
     if (field.empty() || field.find_first_not_of("0123456789") != std::string::npos ||
         field.size() > 3) {
-      error = "-O " + text + ": expected station,item,item,... with integers";
-      return false;
+      return bad_option("-O " + text + ": expected station,item,item,... with integers");
     }
     v.push_back(std::stoi(field));
     pos = comma + 1;
   }
   if (v.size() < 2 || v[0] < 1 || v[0] > tracker::kMaxStations) {
-    error = "-O " + text + ": station 1..4 and at least one item";
-    return false;
+    return bad_option("-O " + text + ": station 1..4 and at least one item");
   }
   auto& st = config.stations[static_cast<std::size_t>(v[0] - 1)];
   st.enabled = true;
@@ -78,23 +82,17 @@ bool parse_list(const std::string& text, FastrakConfig& config, std::string& err
   for (std::size_t i = 1; i < v.size(); ++i) {
     if (v[i] > 255 || !tracker::is_supported_item(static_cast<std::uint8_t>(v[i])) ||
         st.list.count >= tracker::kMaxItems) {
-      error = "-O " + text + ": unsupported item " + std::to_string(v[i]);
-      return false;
+      return bad_option("-O " + text + ": unsupported item " + std::to_string(v[i]));
     }
     st.list.items[st.list.count++] = static_cast<tracker::Item>(v[i]);
   }
-  return true;
+  return {};
 }
 
-bool build_config(const DumpOptions& o, FastrakConfig& config, std::string& error) {
-  if (o.ascii && o.binary) {
-    error = "-F and -f exclude each other";
-    return false;
-  }
-  if (o.inches && o.cm) {
-    error = "-U and -u exclude each other";
-    return false;
-  }
+hal::Expected<FastrakConfig> build_config(const DumpOptions& o) {
+  if (o.ascii && o.binary) return bad_option("-F and -f exclude each other");
+  if (o.inches && o.cm) return bad_option("-U and -u exclude each other");
+  FastrakConfig config;
   config.format = o.binary ? Format::binary : Format::ascii;
   config.units = o.cm ? tracker::Units::centimetres : tracker::Units::inches;
   config.ascii_stylus_width = static_cast<std::uint8_t>(o.stylus_width);
@@ -102,13 +100,12 @@ bool build_config(const DumpOptions& o, FastrakConfig& config, std::string& erro
     config.stations[0].enabled = true;  // the unit's default list 2,4,1 on station 1
   }
   for (const auto& l : o.lists) {
-    if (!parse_list(l, config, error)) return false;
+    if (auto parsed = parse_list(l, config); !parsed) return parsed.error();
   }
   if (!tracker::validate(config).ok()) {
-    error = "output lists give a record longer than 254 bytes";
-    return false;
+    return bad_option("output lists give a record longer than 254 bytes");
   }
-  return true;
+  return config;
 }
 
 void print_pose(const tracker::FastrakPose& p, Format format) {
@@ -149,7 +146,7 @@ int run_file(const DumpOptions& o, const FastrakConfig& config) {
   if (o.file != "-") {
     file.open(o.file, std::ios::binary);
     if (!file) {
-      std::fprintf(stderr, "fastrak-dump: cannot read %s\n", o.file.c_str());
+      cli_log().error("", "cannot read %s", o.file.c_str());
       return kExitFailure;
     }
     in = &file;
@@ -165,18 +162,15 @@ int run_file(const DumpOptions& o, const FastrakConfig& config) {
   }
   for (auto e = parser.finish(); e.ok(); e = parser.finish()) print_event(*e, config.format);
   const auto& c = parser.counters();
-  std::fprintf(
-      stderr, "fastrak-dump: bytes=%llu poses=%llu errors=%llu resyncs=%llu dropped=%llu\n",
-      static_cast<unsigned long long>(c.bytes), static_cast<unsigned long long>(c.poses),
-      static_cast<unsigned long long>(c.errors), static_cast<unsigned long long>(c.resyncs),
-      static_cast<unsigned long long>(c.dropped_bytes));
+  cli_log().notice("counters", "bytes=%llu poses=%llu errors=%llu resyncs=%llu dropped=%llu",
+                   c.bytes, c.poses, c.errors, c.resyncs, c.dropped_bytes);
   return kExitOk;
 }
 
 int run_device(const DumpOptions& o, const FastrakConfig& config) {
   unsigned speed = 0;
   if (!hal::baud_to_speed(o.baud, speed)) {
-    std::fprintf(stderr, "fastrak-dump: unsupported baud %d\n", o.baud);
+    cli_log().error("", "unsupported baud %d", o.baud);
     return kExitBadInput;
   }
   tracker::FastrakSessionConfig sc;
@@ -199,20 +193,13 @@ int run_device(const DumpOptions& o, const FastrakConfig& config) {
   auto report = [&] {
     const auto& c = session.counters();
     const auto& p = session.parser_counters();
-    std::fprintf(stderr,
-                 "counters state=%s poses=%llu inits=%llu streams=%llu status_timeouts=%llu "
-                 "io_errors=%llu silence=%llu garbage=%llu rejected=%llu resyncs=%llu "
-                 "dropped_bytes=%llu\n",
-                 tracker::session_state_name(session.state()),
-                 static_cast<unsigned long long>(c.poses), static_cast<unsigned long long>(c.inits),
-                 static_cast<unsigned long long>(c.streams_started),
-                 static_cast<unsigned long long>(c.status_timeouts),
-                 static_cast<unsigned long long>(c.io_errors),
-                 static_cast<unsigned long long>(c.silence_faults),
-                 static_cast<unsigned long long>(c.garbage_faults),
-                 static_cast<unsigned long long>(c.rejected_poses),
-                 static_cast<unsigned long long>(p.resyncs),
-                 static_cast<unsigned long long>(p.dropped_bytes));
+    cli_log().notice("counters",
+                     "state=%s poses=%llu inits=%llu streams=%llu status_timeouts=%llu "
+                     "io_errors=%llu silence=%llu garbage=%llu rejected=%llu resyncs=%llu "
+                     "dropped_bytes=%llu",
+                     tracker::session_state_name(session.state()), c.poses, c.inits,
+                     c.streams_started, c.status_timeouts, c.io_errors, c.silence_faults,
+                     c.garbage_faults, c.rejected_poses, p.resyncs, p.dropped_bytes);
   };
   while (g_stop == 0) {
     for (auto p = session.poll(); p.ok(); p = session.poll()) {
@@ -256,17 +243,17 @@ void add_fastrak_dump_command(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--quick", opts->quick, "short reset waits, for twister-sim");
   cmd->callback([opts] {
+    start_command_log("fastrak-dump");
     if (opts->device.empty() == opts->file.empty()) {
-      std::fprintf(stderr, "fastrak-dump: give either DEVICE or --file PATH\n");
+      cli_log().error("", "give either DEVICE or --file PATH");
       throw Exit{kExitBadInput};
     }
-    FastrakConfig config;
-    std::string error;
-    if (!build_config(*opts, config, error)) {
-      std::fprintf(stderr, "fastrak-dump: %s\n", error.c_str());
+    const hal::Expected<FastrakConfig> config = build_config(*opts);
+    if (!config) {
+      cli_log().error("", "%s", config.error().message.c_str());
       throw Exit{kExitBadInput};
     }
-    const int rc = opts->file.empty() ? run_device(*opts, config) : run_file(*opts, config);
+    const int rc = opts->file.empty() ? run_device(*opts, *config) : run_file(*opts, *config);
     std::fflush(stdout);
     if (rc != kExitOk) throw Exit{rc};
   });

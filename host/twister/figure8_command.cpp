@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cli_exit.hpp"
+#include "cli_log.hpp"
 #include "figure8_experiment.hpp"
 #include "figure8_plot.hpp"
 
@@ -37,8 +38,8 @@ std::vector<Figure8Curve> run_table(const Figure8Setup& setup) {
     for (const auto m : kMethods) {
       Figure8Curve c;
       if (const Status s = run_figure8_curve(setup, angle, m, c); !s.ok()) {
-        std::fprintf(stderr, "twister figure8: %s at %d degrees failed: %s\n",
-                     std::string(math::warp_method_name(m)).c_str(), angle, s.name());
+        cli_log().error("", "%s at %d degrees failed: %s",
+                        std::string(math::warp_method_name(m)).c_str(), angle, s.name());
         throw Exit{kExitFailure};
       }
       char cell[32];
@@ -58,6 +59,12 @@ std::string panel_heading(const char* label, const Figure8Setup& s) {
   return buf;
 }
 
+void check_written(const hal::Expected<void>& written) {
+  if (written) return;
+  cli_log().error("", "%s", written.error().message.c_str());
+  throw Exit{kExitFailure};
+}
+
 void run_figure8(const Figure8Options& opt) {
   // Both experiments of spec §9: the paper-like one and the small displacement.
   const Figure8Setup paper_like{};
@@ -74,15 +81,8 @@ void run_figure8(const Figure8Options& opt) {
   picture.panels[0].curves = run_table(paper_like);
   std::printf("\n");
   picture.panels[1].curves = run_table(small);
-  std::string error;
-  if (!opt.svg.empty() && !write_figure8_svg(opt.svg, picture, error)) {
-    std::fprintf(stderr, "twister figure8: %s\n", error.c_str());
-    throw Exit{kExitFailure};
-  }
-  if (!opt.png.empty() && !write_figure8_png(opt.png, picture, error)) {
-    std::fprintf(stderr, "twister figure8: %s\n", error.c_str());
-    throw Exit{kExitFailure};
-  }
+  if (!opt.svg.empty()) check_written(write_figure8_svg(opt.svg, picture));
+  if (!opt.png.empty()) check_written(write_figure8_png(opt.png, picture));
 }
 
 }  // namespace
@@ -93,7 +93,10 @@ void add_figure8_command(CLI::App& app) {
   auto opt = std::make_shared<Figure8Options>();
   cmd->add_option("--svg", opt->svg, "write the grid of curves as SVG");
   cmd->add_option("--png", opt->png, "write the grid of curves as PNG");
-  cmd->callback([opt] { run_figure8(*opt); });
+  cmd->callback([opt] {
+    start_command_log("figure8");
+    run_figure8(*opt);
+  });
 }
 
 }  // namespace twister::cli

@@ -283,16 +283,21 @@ void draw(cairo_t* cr, const Figure8Picture& pic, std::vector<std::string>& text
 using SurfacePtr = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
 using ContextPtr = std::unique_ptr<cairo_t, decltype(&cairo_destroy)>;
 
-// Draws onto `surface`; false with a message when cairo reports an error.
-bool render(cairo_surface_t* surface, const Figure8Picture& pic, std::vector<std::string>& texts,
-            std::string& error) {
+hal::Error cairo_error(cairo_status_t st) {
+  return hal::make_error(StatusCode::failed_precondition,
+                         std::string("cairo: ") + cairo_status_to_string(st));
+}
+
+// Draws onto `surface`; an Error when cairo reports one.
+hal::Expected<void> render(cairo_surface_t* surface, const Figure8Picture& pic,
+                           std::vector<std::string>& texts) {
   const ContextPtr cr(cairo_create(surface), &cairo_destroy);
   draw(cr.get(), pic, texts);
   cairo_status_t st = cairo_status(cr.get());
   cairo_surface_flush(surface);
   if (st == CAIRO_STATUS_SUCCESS) st = cairo_surface_status(surface);
-  if (st != CAIRO_STATUS_SUCCESS) error = std::string("cairo: ") + cairo_status_to_string(st);
-  return st == CAIRO_STATUS_SUCCESS;
+  if (st != CAIRO_STATUS_SUCCESS) return cairo_error(st);
+  return {};
 }
 
 std::string xml_escape(const std::string& s) {
@@ -329,7 +334,7 @@ Figure8Size figure8_picture_size(std::size_t panels, std::size_t rows, std::size
           2 * kMargin + kTitleH + p * panel_h + std::max(0, p - 1) * kPanelGap};
 }
 
-bool write_figure8_svg(const std::string& path, const Figure8Picture& picture, std::string& error) {
+hal::Expected<void> write_figure8_svg(const std::string& path, const Figure8Picture& picture) {
   const Figure8Size size = size_of(picture);
   std::string svg;
   std::vector<std::string> texts;
@@ -338,50 +343,42 @@ bool write_figure8_svg(const std::string& path, const Figure8Picture& picture, s
         cairo_svg_surface_create_for_stream(&append_to_string, &svg, size.width, size.height),
         &cairo_surface_destroy);
     cairo_svg_surface_set_document_unit(surface.get(), CAIRO_SVG_UNIT_PX);
-    if (!render(surface.get(), picture, texts, error)) return false;
+    if (auto drawn = render(surface.get(), picture, texts); !drawn) return drawn;
     cairo_surface_finish(surface.get());
     if (const cairo_status_t st = cairo_surface_status(surface.get()); st != CAIRO_STATUS_SUCCESS) {
-      error = std::string("cairo: ") + cairo_status_to_string(st);
-      return false;
+      return cairo_error(st);
     }
   }
   // cairo draws text as glyph outlines; the labels go in as text too (search, screen readers).
   const std::size_t open = svg.find("<svg");
   const std::size_t end = open == std::string::npos ? open : svg.find('>', open);
   if (end == std::string::npos) {
-    error = "cairo wrote no <svg> element";
-    return false;
+    return hal::make_error(StatusCode::failed_precondition, "cairo wrote no <svg> element");
   }
   std::string meta = "\n<title>" + xml_escape(picture.title) + "</title>\n<desc>";
   for (const auto& t : texts) meta += xml_escape(t) + "\n";
   meta += "</desc>";
   svg.insert(end + 1, meta);
   std::ofstream out(path, std::ios::binary);
-  if (!out) {
-    error = "cannot write '" + path + "'";
-    return false;
-  }
+  if (!out) return hal::make_error(StatusCode::io_error, "cannot write '" + path + "'");
   out << svg;
   out.close();
-  if (!out) {
-    error = "write to '" + path + "' failed";
-    return false;
-  }
-  return true;
+  if (!out) return hal::make_error(StatusCode::io_error, "write to '" + path + "' failed");
+  return {};
 }
 
-bool write_figure8_png(const std::string& path, const Figure8Picture& picture, std::string& error) {
+hal::Expected<void> write_figure8_png(const std::string& path, const Figure8Picture& picture) {
   const Figure8Size size = size_of(picture);
   const SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, size.width, size.height),
                            &cairo_surface_destroy);
   std::vector<std::string> texts;
-  if (!render(surface.get(), picture, texts, error)) return false;
+  if (auto drawn = render(surface.get(), picture, texts); !drawn) return drawn;
   if (const cairo_status_t st = cairo_surface_write_to_png(surface.get(), path.c_str());
       st != CAIRO_STATUS_SUCCESS) {
-    error = "cannot write '" + path + "': " + cairo_status_to_string(st);
-    return false;
+    return hal::make_error(StatusCode::io_error,
+                           "cannot write '" + path + "': " + cairo_status_to_string(st));
   }
-  return true;
+  return {};
 }
 
 }  // namespace twister::cli

@@ -2,7 +2,7 @@
 // experiment, each a grid with one row per method and one column per angle. One
 // drawing routine renders to an SVG surface and to an image surface saved as PNG, so
 // both files show the same picture. Units: pixels (SVG user units = PNG pixels).
-// Host code. Writers return false with a message in `error` on I/O or cairo errors.
+// Host code. Writers return an Error with a message on I/O or cairo errors.
 #pragma once
 
 #include <cstddef>
@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "figure8_experiment.hpp"
+#include "twister/hal/expected.hpp"
 
 namespace twister::cli {
 
@@ -40,7 +41,9 @@ Figure8Size figure8_picture_size(std::size_t panels, std::size_t rows, std::size
 
 // Writes the picture. The SVG draws the labels as glyph outlines (cairo) and also
 // carries them as text in its <title> and <desc> elements, so it is searchable.
-bool write_figure8_svg(const std::string& path, const Figure8Picture& picture, std::string& error);
-bool write_figure8_png(const std::string& path, const Figure8Picture& picture, std::string& error);
+// Errors: io_error ("cannot write '<path>'", "write to '<path>' failed"),
+// failed_precondition (cairo could not draw).
+hal::Expected<void> write_figure8_svg(const std::string& path, const Figure8Picture& picture);
+hal::Expected<void> write_figure8_png(const std::string& path, const Figure8Picture& picture);
 
 }  // namespace twister::cli

@@ -1,10 +1,10 @@
 // `twister`: command-line tools for the station's math, tracker and journal.
 // Each subcommand lives in its own <name>_command.cpp and registers itself here.
 #include <CLI/CLI.hpp>
-#include <cstdio>
 #include <exception>
 
 #include "cli_exit.hpp"
+#include "cli_log.hpp"
 #include "fastrak_dump_command.hpp"
 #include "figure8_command.hpp"
 #include "mesh_command.hpp"
@@ -39,10 +39,12 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  twister::cli::cli_log().configure(
+      {"twister", twister::hal::LogLevel::notice, twister::hal::stderr_is_journal(), 2, false});
   try {
     return run(argc, argv);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "twister: %s\n", e.what());
+    twister::cli::cli_log().error("", "%s", e.what());
     return twister::cli::kExitFailure;
   }
 }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cli_exit.hpp"
+#include "cli_log.hpp"
 #include "twister/meshio/mesh_generator.hpp"
 #include "twister/meshio/obj_file.hpp"
 
@@ -32,7 +33,7 @@ void run_mesh(const Options& o) {
   const Status s = grid ? meshio::make_grid(buffer.mesh(), o.n, o.size_m)
                         : meshio::make_sphere(buffer.mesh(), o.n, o.segments, o.size_m);
   if (!s.ok()) {
-    std::fprintf(stderr, "twister mesh: cannot make that %s: %s\n", o.shape.c_str(), s.name());
+    cli_log().error("", "cannot make that %s: %s", o.shape.c_str(), s.name());
     throw Exit{kExitBadInput};
   }
   // Placed where a scene needs it (e.g. in front of the simulated transmitter).
@@ -42,7 +43,7 @@ void run_mesh(const Options& o) {
   }
   std::string message;
   if (!meshio::save_obj(o.out, buffer.mesh(), message).ok()) {
-    std::fprintf(stderr, "twister mesh: %s\n", message.c_str());
+    cli_log().error("", "%s", message.c_str());
     throw Exit{kExitFailure};
   }
   std::printf("%s: %zu vertices, %zu triangles\n", o.out.c_str(), buffer.mesh().vertex_count(),
@@ -67,7 +68,10 @@ void add_mesh_command(CLI::App& app) {
   cmd->add_option("--center", options->center_m, "centre of the mesh: X Y Z (m, default 0 0 0)")
       ->expected(3)
       ->check(CLI::Number);
-  cmd->callback([options] { run_mesh(*options); });
+  cmd->callback([options] {
+    start_command_log("mesh");
+    run_mesh(*options);
+  });
 }
 
 }  // namespace twister::cli

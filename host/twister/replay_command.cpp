@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli_exit.hpp"
+#include "cli_log.hpp"
 #include "twister/input/sculpt_session.hpp"
 #include "twister/journal/journal_reader.hpp"
 #include "twister/meshio/obj_file.hpp"
@@ -51,7 +52,7 @@ struct Options {
 };
 
 [[noreturn]] void fail(int code, const std::string& message) {
-  std::fprintf(stderr, "twister replay: %s\n", message.c_str());
+  cli_log().error("", "%s", message.c_str());
   throw Exit{code};
 }
 
@@ -75,8 +76,7 @@ void to_world(mesh::Mesh& m, const math::Frame& pose) {
 void run_replay(const Options& o) {
   meshio::ObjLoad loaded = meshio::load_obj(o.mesh_in);
   if (!loaded.status.ok()) fail(kExitBadInput, o.mesh_in + ": " + loaded.message);
-  if (!loaded.message.empty() && !o.quiet)
-    std::fprintf(stderr, "twister replay: %s\n", loaded.message.c_str());
+  if (!loaded.message.empty()) cli_log().warning("", "%s", loaded.message.c_str());
   mesh::Mesh& mesh = loaded.buffer->mesh();
 
   ReadOnlyStorage storage(read_file(o.journal));
@@ -93,8 +93,8 @@ void run_replay(const Options& o) {
                             changes, entries};
   input::SculptSession session(input::SculptSessionConfig{}, mesh, work, nullptr);
 
-  // Progress for long journals: a line per 10% of the file, on stderr.
-  const bool show_progress = !o.quiet && (o.progress || total_bytes > (std::uint64_t{1} << 16));
+  // Progress for long journals: a line per 10% of the file, on stderr (notice).
+  const bool show_progress = o.progress || total_bytes > (std::uint64_t{1} << 16);
   int shown_decile = 0;
   std::size_t applied = 0;
   for (;;) {
@@ -115,16 +115,14 @@ void run_replay(const Options& o) {
       const int decile = static_cast<int>(10 * reader.good_end() / total_bytes);
       if (decile > shown_decile) {
         shown_decile = decile;
-        std::fprintf(stderr, "twister replay: %3d%% (%zu records)\n", 10 * decile, applied);
+        cli_log().notice("", "%3d%% (%zu records)", 10 * decile, applied);
       }
     }
   }
   if (reader.problem() != journal::TailProblem::none) {
-    std::fprintf(stderr,
-                 "twister replay: %s: %s tail of %" PRIu64 " bytes at offset %" PRIu64
-                 " not applied\n",
-                 o.journal.c_str(), journal::tail_problem_name(reader.problem()),
-                 reader.tail_bytes(), reader.good_end());
+    cli_log().warning("", "%s: %s tail of %llu bytes at offset %llu not applied", o.journal.c_str(),
+                      journal::tail_problem_name(reader.problem()), reader.tail_bytes(),
+                      reader.good_end());
   }
   if (o.world) to_world(mesh, session.object_pose());
   std::string message;
@@ -159,8 +157,11 @@ void add_replay_command(CLI::App& app) {
   cmd->add_flag("--world", options->world, "Write world coordinates (apply the object pose)");
   cmd->add_flag("--progress", options->progress,
                 "Always print progress (default: journals > 64 KiB)");
-  cmd->add_flag("-q,--quiet", options->quiet, "No progress or warnings on stderr");
-  cmd->callback([options] { run_replay(*options); });
+  cmd->add_flag("-q,--quiet", options->quiet, "Only warnings and errors on stderr (no progress)");
+  cmd->callback([options] {
+    start_command_log("replay", options->quiet ? hal::LogLevel::warning : hal::LogLevel::notice);
+    run_replay(*options);
+  });
 }
 
 }  // namespace twister::cli

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli_exit.hpp"
+#include "cli_log.hpp"
 #include "twister/math/warp_plan.hpp"
 #include "warp_case.hpp"
 
@@ -19,7 +20,7 @@ namespace twister::cli {
 namespace {
 
 [[noreturn]] void bad_input(const std::string& source, int line, const std::string& message) {
-  std::fprintf(stderr, "twister warp: %s:%d: %s\n", source.c_str(), line, message.c_str());
+  cli_log().error("", "%s:%d: %s", source.c_str(), line, message.c_str());
   throw Exit{kExitBadInput};
 }
 
@@ -30,7 +31,7 @@ void run_warp(const std::string& path) {
   } else {
     std::ifstream in(path, std::ios::binary);
     if (!in) {
-      std::fprintf(stderr, "twister warp: cannot open '%s'\n", path.c_str());
+      cli_log().error("", "cannot open '%s'", path.c_str());
       throw Exit{kExitBadInput};
     }
     text.assign(std::istreambuf_iterator<char>(in), {});
@@ -66,7 +67,7 @@ void run_warp(const std::string& path) {
     bad_input(source, c.hand_lines.back(), std::string("cannot update the warp: ") + s.name());
   }
   if (const Status s = plan.apply(rest, math::VertexColumns{ox, oy, oz}); !s.ok()) {
-    std::fprintf(stderr, "twister warp: apply failed: %s\n", s.name());
+    cli_log().error("", "apply failed: %s", s.name());
     throw Exit{kExitFailure};
   }
   for (std::size_t i = 0; i < n; ++i) {
@@ -81,7 +82,10 @@ void add_warp_command(CLI::App& app) {
   auto* cmd = app.add_subcommand("warp", "Warp the points of a case file (spec §10)");
   auto path = std::make_shared<std::string>();
   cmd->add_option("case", *path, "case file, or - for stdin")->required();
-  cmd->callback([path] { run_warp(*path); });
+  cmd->callback([path] {
+    start_command_log("warp");
+    run_warp(*path);
+  });
 }
 
 }  // namespace twister::cli

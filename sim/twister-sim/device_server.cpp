@@ -16,7 +16,11 @@
 namespace twister::sim {
 namespace {
 constexpr std::size_t kMaxBacklog = 1 << 16;
+
+hal::Error io_error(std::string message) {
+  return hal::make_error(StatusCode::io_error, std::move(message));
 }
+}  // namespace
 
 DeviceServer::DeviceServer(FastrakDevice& device, ServeOptions options)
     : device_(device), options_(std::move(options)), epoch_(std::chrono::steady_clock::now()) {}
@@ -29,18 +33,17 @@ std::int64_t DeviceServer::now_us() const {
       .count();
 }
 
-bool DeviceServer::open_pty(std::string& error) {
+hal::Expected<void> DeviceServer::open_pty() {
   const int m = ::posix_openpt(O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
   if (m < 0 || ::grantpt(m) != 0 || ::unlockpt(m) != 0) {
-    error = std::string("cannot create a PTY: ") + std::strerror(errno);
+    hal::Error error = io_error(std::string("cannot create a PTY: ") + std::strerror(errno));
     if (m >= 0) ::close(m);
-    return false;
+    return error;
   }
   const char* name = ::ptsname(m);
   if (name == nullptr) {
-    error = "ptsname failed";
     ::close(m);
-    return false;
+    return io_error("ptsname failed");
   }
   termios tio{};
   if (::tcgetattr(m, &tio) == 0) {
@@ -56,11 +59,10 @@ bool DeviceServer::open_pty(std::string& error) {
     const std::string tmp = options_.link + ".tmp";
     ::unlink(tmp.c_str());
     if (::symlink(name, tmp.c_str()) != 0 || ::rename(tmp.c_str(), options_.link.c_str()) != 0) {
-      error = "cannot link " + options_.link + ": " + std::strerror(errno);
-      return false;
+      return io_error("cannot link " + options_.link + ": " + std::strerror(errno));
     }
   }
-  return true;
+  return {};
 }
 
 void DeviceServer::close_pty() {
@@ -69,20 +71,19 @@ void DeviceServer::close_pty() {
   slave_keep_ = master_ = -1;
 }
 
-bool DeviceServer::start(std::string& error) {
-  if (options_.device.empty()) return open_pty(error);
+hal::Expected<void> DeviceServer::start() {
+  if (options_.device.empty()) return open_pty();
   tty_ = std::make_unique<hal::TermiosByteStream>(
       hal::TermiosConfig{options_.device, options_.baud, hal::FlowControl::none});
   const Status s = tty_->reopen();
   if (!s.ok()) {
-    error = "cannot open " + options_.device + ": " + std::strerror(tty_->last_errno());
-    return false;
+    return io_error("cannot open " + options_.device + ": " + std::strerror(tty_->last_errno()));
   }
   slave_path_ = options_.device;
-  return true;
+  return {};
 }
 
-bool DeviceServer::step(int wait_ms, std::string& error) {
+hal::Expected<void> DeviceServer::step(int wait_ms) {
   const std::int64_t now = now_us();
   std::array<std::byte, 512> in{};
   if (tty_) {
@@ -91,10 +92,7 @@ bool DeviceServer::step(int wait_ms, std::string& error) {
       out_.clear();
     } else {
       auto n = tty_->read(in);
-      if (!n.ok()) {
-        error = "serial device failed";
-        return false;
-      }
+      if (!n.ok()) return io_error("serial device failed");
       counters_.bytes_in += *n;
       device_.receive(in.data(), *n, now);
       device_.advance(now, out_);
@@ -107,7 +105,7 @@ bool DeviceServer::step(int wait_ms, std::string& error) {
       }
     }
     ::usleep(static_cast<useconds_t>(wait_ms) * 1000u);
-    return true;
+    return {};
   }
 
   if (device_.hung_up(now)) {
@@ -121,9 +119,11 @@ bool DeviceServer::step(int wait_ms, std::string& error) {
       out_.clear();
     }
     ::usleep(static_cast<useconds_t>(wait_ms) * 1000u);
-    return true;
+    return {};
   }
-  if (master_ < 0 && !open_pty(error)) return false;
+  if (master_ < 0) {
+    if (hal::Expected<void> opened = open_pty(); !opened) return opened;
+  }
 
   for (;;) {
     const ssize_t n = ::read(master_, in.data(), in.size());
@@ -145,7 +145,7 @@ bool DeviceServer::step(int wait_ms, std::string& error) {
   }
   pollfd p{master_, POLLIN, 0};
   ::poll(&p, 1, wait_ms);
-  return true;
+  return {};
 }
 
 }  // namespace twister::sim

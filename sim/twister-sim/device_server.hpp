@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "twister/hal/expected.hpp"
 #include "twister/hal/termios_byte_stream.hpp"
 #include "twister/sim/fastrak_device.hpp"
 
@@ -37,11 +38,12 @@ class DeviceServer {
   DeviceServer(const DeviceServer&) = delete;
   DeviceServer& operator=(const DeviceServer&) = delete;
 
-  // Opens the first PTY (or the HIL device). False with a message on failure.
-  bool start(std::string& error);
+  // Opens the first PTY (or the HIL device). Error io_error (no PTY, the link or the
+  // device cannot be made or opened) with the reason.
+  hal::Expected<void> start();
   // One iteration: moves bytes both ways, waiting up to wait_ms for input.
-  // False with a message on a fatal error.
-  bool step(int wait_ms, std::string& error);
+  // Error io_error on a fatal failure (the serial device, a new PTY after a hang-up).
+  hal::Expected<void> step(int wait_ms);
   // Microseconds since construction (the device's clock).
   std::int64_t now_us() const;
 
@@ -49,7 +51,7 @@ class DeviceServer {
   const ServeCounters& counters() const { return counters_; }
 
  private:
-  bool open_pty(std::string& error);
+  hal::Expected<void> open_pty();
   void close_pty();
 
   FastrakDevice& device_;

@@ -1,98 +1,133 @@
 // twister-sim: a simulated Polhemus Fastrak on a PTY (or a real serial port for HIL
-// rigs), driven by a scenario file. Prints the device path on stdout as its first line.
+// rigs), driven by a scenario file. Prints the device path on stdout as its first
+// line (its output: clients wait for it). Logs through hal::Logger ("twister-sim:
+// [error: ]component: message"); --log-level picks the threshold (default notice:
+// errors and the exit summary).
+// Exit codes: 0 ok, 1 failure (PTY or device), 2 bad options or scenario.
 #include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdio>
+#include <string>
 
 #include "device_server.hpp"
+#include "twister/hal/logger.hpp"
 #include "twister/sim/fastrak_device.hpp"
 #include "twister/sim/scenario.hpp"
 
 namespace {
+
+using twister::hal::LogLevel;
+
+constexpr int kExitOk = 0;
+constexpr int kExitFailure = 1;
+constexpr int kExitBadOptions = 2;
+
 volatile std::sig_atomic_t g_stop = 0;
 void on_signal(int) { g_stop = 1; }
 
-int run(int argc, char** argv) {
-  CLI::App app{"twister-sim: simulated Polhemus Fastrak on a PTY or serial port"};
+twister::hal::Logger& logger() { return twister::hal::process_log(); }
+
+struct Options {
   std::string scenario_path;
   twister::sim::ServeOptions serve;
   twister::sim::FastrakDeviceConfig dev;
   double reset_s = 0.5;
   double duration_s = 0.0;
   bool binary = false;
-  app.add_option("--scenario", scenario_path,
+  std::string log_level = "notice";
+};
+
+void add_options(CLI::App& app, Options& o) {
+  app.add_option("--scenario", o.scenario_path,
                  "scenario file (docs/fastrak.md); default: resting hands");
-  app.add_option("--link", serve.link, "PTY mode: keep a symlink to the current slave here");
-  app.add_option("--device", serve.device,
+  app.add_option("--link", o.serve.link, "PTY mode: keep a symlink to the current slave here");
+  app.add_option("--device", o.serve.device,
                  "serve on this real serial device (HIL) instead of a PTY");
-  app.add_option("--baud", dev.baud, "modelled line rate (bits/s, 10 bits per byte)")
+  app.add_option("--baud", o.dev.baud, "modelled line rate (bits/s, 10 bits per byte)")
       ->check(CLI::Range(300, 4000000));
-  app.add_option("--reset-time", reset_s, "seconds a ^Y or power-up takes (real unit: 10-20)")
+  app.add_option("--reset-time", o.reset_s, "seconds a ^Y or power-up takes (real unit: 10-20)")
       ->check(CLI::Range(0.0, 60.0));
-  app.add_flag("--continuous", dev.start_continuous, "power up in continuous mode");
-  app.add_flag("--binary", binary, "power up in binary format");
-  app.add_option("--duration", duration_s, "stop after this many seconds (0: run until signalled)")
+  app.add_flag("--continuous", o.dev.start_continuous, "power up in continuous mode");
+  app.add_flag("--binary", o.binary, "power up in binary format");
+  app.add_option("--duration", o.duration_s,
+                 "stop after this many seconds (0: run until signalled)")
       ->check(CLI::Range(0.0, 1e9));
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int rc = app.exit(e);
-    return rc == 0 ? 0 : 2;
-  }
-  serve.baud = dev.baud;
-  dev.reset_time_us = static_cast<std::int64_t>(reset_s * 1e6);
-  if (binary) dev.start_format = twister::tracker::Format::binary;
+  app.add_option("--log-level", o.log_level, "error | warning | notice (default) | info | debug")
+      ->check(CLI::IsMember({"error", "warning", "notice", "info", "debug"}));
+}
 
-  twister::sim::Scenario scenario;
-  if (std::string error;
-      !scenario_path.empty() && !twister::sim::load_scenario_file(scenario_path, scenario, error)) {
-    std::fprintf(stderr, "twister-sim: %s\n", error.c_str());
-    return 2;
-  }
-  if (duration_s == 0.0) duration_s = scenario.duration_s;
+void log_summary(const twister::sim::FastrakDevice& device,
+                 const twister::sim::DeviceServer& server) {
+  const auto& c = device.counters();
+  logger().notice("summary",
+                  "records=%llu dropped_solutions=%llu commands=%llu errors=%llu resets=%llu "
+                  "ptys=%llu hangups=%llu",
+                  c.records, c.dropped_solutions, c.commands, c.command_errors, c.resets,
+                  server.counters().ptys_opened, server.counters().hangups);
+}
 
-  twister::sim::FastrakDevice device(dev, scenario, 0);
-  twister::sim::DeviceServer server(device, serve);
-  std::string error;
-  if (!server.start(error)) {
-    std::fprintf(stderr, "twister-sim: %s\n", error.c_str());
-    return 1;
+// Serves the device until signalled or the duration is over.
+int serve(Options& o, const twister::sim::Scenario& scenario) {
+  o.serve.baud = o.dev.baud;
+  o.dev.reset_time_us = static_cast<std::int64_t>(o.reset_s * 1e6);
+  if (o.binary) o.dev.start_format = twister::tracker::Format::binary;
+  const double duration_s = o.duration_s == 0.0 ? scenario.duration_s : o.duration_s;
+
+  twister::sim::FastrakDevice device(o.dev, scenario, 0);
+  twister::sim::DeviceServer server(device, o.serve);
+  if (const auto started = server.start(); !started) {
+    logger().error("device", "%s", started.error().message.c_str());
+    return kExitFailure;
   }
-  std::printf("%s\n", serve.link.empty() ? server.slave_path().c_str() : serve.link.c_str());
+  std::printf("%s\n", o.serve.link.empty() ? server.slave_path().c_str() : o.serve.link.c_str());
   std::fflush(stdout);
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   std::signal(SIGPIPE, SIG_IGN);
   while (g_stop == 0) {
-    if (!server.step(1, error)) {
-      std::fprintf(stderr, "twister-sim: %s\n", error.c_str());
-      return 1;
+    if (const auto stepped = server.step(1); !stepped) {
+      logger().error("device", "%s", stepped.error().message.c_str());
+      return kExitFailure;
     }
     if (duration_s > 0.0 && static_cast<double>(server.now_us()) / 1e6 >= duration_s) break;
   }
-  const auto& c = device.counters();
-  std::fprintf(stderr,
-               "twister-sim: records=%llu dropped_solutions=%llu commands=%llu errors=%llu "
-               "resets=%llu ptys=%llu hangups=%llu\n",
-               static_cast<unsigned long long>(c.records),
-               static_cast<unsigned long long>(c.dropped_solutions),
-               static_cast<unsigned long long>(c.commands),
-               static_cast<unsigned long long>(c.command_errors),
-               static_cast<unsigned long long>(c.resets),
-               static_cast<unsigned long long>(server.counters().ptys_opened),
-               static_cast<unsigned long long>(server.counters().hangups));
-  if (!serve.link.empty()) std::remove(serve.link.c_str());
-  return 0;
+  log_summary(device, server);
+  if (!o.serve.link.empty()) std::remove(o.serve.link.c_str());
+  return kExitOk;
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{"twister-sim: simulated Polhemus Fastrak on a PTY or serial port"};
+  Options o;
+  add_options(app, o);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? kExitOk : kExitBadOptions;
+  }
+  LogLevel level = LogLevel::notice;
+  (void)twister::hal::parse_log_level(o.log_level, level);  // checked by CLI11
+  logger().set_threshold(level);
+
+  twister::sim::Scenario scenario;
+  if (std::string error; !o.scenario_path.empty() &&
+                         !twister::sim::load_scenario_file(o.scenario_path, scenario, error)) {
+    logger().error("scenario", "%s", error.c_str());
+    return kExitBadOptions;
+  }
+  return serve(o, scenario);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
+  logger().configure({"twister-sim", LogLevel::notice, twister::hal::stderr_is_journal(), 2});
   // Anything thrown (allocation failure, I/O library) ends the run with a message.
   try {
     return run(argc, argv);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "twister-sim: %s\n", e.what());
-    return 1;
+    logger().error("", "%s", e.what());
+    return kExitFailure;
   }
 }

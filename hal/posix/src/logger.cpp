@@ -136,7 +136,7 @@ void Logger::do_write(LogLevel level, const char* component, const char* format,
   } else {
     pos = append(out, pos, config_.program.data(), config_.program.size());
     pos = append(out, pos, ": ", 2);
-    const char* word = level_word(level);
+    const char* word = config_.level_words ? level_word(level) : "";
     pos = append(out, pos, word, std::strlen(word));
   }
   if (component != nullptr && *component != '\0') {

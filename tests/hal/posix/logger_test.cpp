@@ -69,6 +69,14 @@ TEST(Logger, PlainLinesCarryProgramLevelAndComponent) {
             "twister-station: error: cannot open /x\n");
 }
 
+TEST(Logger, CommandLineToolLinesMayLeaveOutTheLevelWord) {
+  Pipe p;
+  Logger log({"twister figure8", LogLevel::warning, false, p.fds[1], false});
+  log.error("", "cannot write '%s'", "/x.png");
+  log.notice("", "hidden");
+  EXPECT_EQ(p.drain(), "twister figure8: cannot write '/x.png'\n");
+}
+
 TEST(Logger, SystemdLinesCarryPriorityPrefixes) {
   Pipe p;
   Logger log({"twister-station", LogLevel::debug, true, p.fds[1]});

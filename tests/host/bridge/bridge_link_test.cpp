@@ -5,64 +5,15 @@
 // resend) and line noise inside a commit (mismatch -> resend -> identical mesh).
 #include <gtest/gtest.h>
 
-#include <memory>
-#include <vector>
-
-#include "bridge_app.hpp"
-#include "fakes/memory_wire.hpp"
-#include "session_harness.hpp"
-#include "twister/station/station_link.hpp"
+#include "bridge_link_rig.hpp"
 
 namespace twister::bridge {
 namespace {
 
-using input::test_support::kGrab0;
-using input::test_support::Station;
-using input::test_support::z_turn;
-
-struct Rig {
-  Rig()
-      : station_end(wire, true), bridge_end(wire, false), bridge(bridge_end, nullptr, {{}, false}) {
-    const std::size_t n = station.mesh.vertex_capacity();
-    x.resize(n);
-    y.resize(n);
-    z.resize(n);
-    idx.resize(3 * station.mesh.triangle_capacity());
-    out.resize(64 * link::kMaxFrameBytes);
-    link = std::make_unique<station::StationLink>(
-        station_end, station::StationLinkStorage{x, y, z, idx, out}, station::StationLinkConfig{});
-    EXPECT_TRUE(link->start(*station.session).ok());
-  }
-  void run(int rounds = 20) {
-    for (int i = 0; i < rounds; ++i) {
-      bridge.step();
-      link->poll(*station.session, station.now_us);
-    }
-    bridge.step();
-  }
-  void stroke(double lift) {
-    station.hand(0, math::identity_frame({0, 0, 0}));
-    station.button(kGrab0, true);
-    (void)station.tick();
-    run(2);
-    for (int k = 1; k <= 4; ++k) {
-      station.hand(0, z_turn({0.1 * k, 0, lift * k}, 0.2 * k));
-      (void)station.tick();
-      run(2);
-    }
-    station.button(kGrab0, false);
-    (void)station.tick();
-  }
-
-  Station station;
-  test::MemoryWire wire;
-  test::MemoryLinkEnd station_end;
-  test::MemoryLinkEnd bridge_end;
-  std::vector<float> x, y, z;
-  std::vector<std::uint32_t> idx;
-  std::vector<std::byte> out;
-  std::unique_ptr<station::StationLink> link;
-  BridgeApp bridge;
+// The rig of every test here: a station and a bridge that logs nowhere.
+struct Rig : test_support::BridgeLinkRig {
+  Rig() : BridgeLinkRig(null_log) {}
+  static inline ports::NullLogSink null_log;
 };
 
 TEST(BridgeLink, SyncLiveCommitAndResyncAfterLinkLoss) {

@@ -31,8 +31,8 @@ std::string temp(const std::string& name) {
 TEST(BridgeMeshExport, ObjReloadsBitIdentical) {
   const MeshData m = tetra();
   const std::string path = temp("m.obj");
-  std::string message;
-  ASSERT_TRUE(export_mesh(path, m, message)) << message;
+  const hal::Expected<void> exported = export_mesh(path, m);
+  ASSERT_TRUE(exported) << exported.error().message;
   const meshio::ObjLoad back = meshio::load_obj(path);
   ASSERT_TRUE(back.status.ok()) << back.message;
   EXPECT_EQ(back.buffer->mesh().checksum(), *mesh_checksum(m));
@@ -42,8 +42,8 @@ TEST(BridgeMeshExport, ObjReloadsBitIdentical) {
 TEST(BridgeMeshExport, PlyHeaderAndSize) {
   const MeshData m = tetra();
   const std::string path = temp("m.ply");
-  std::string message;
-  ASSERT_TRUE(export_mesh(path, m, message)) << message;
+  const hal::Expected<void> exported = export_mesh(path, m);
+  ASSERT_TRUE(exported) << exported.error().message;
   std::ifstream in(path, std::ios::binary);
   std::stringstream all;
   all << in.rdbuf();
@@ -57,10 +57,10 @@ TEST(BridgeMeshExport, PlyHeaderAndSize) {
 }
 
 TEST(BridgeMeshExport, UnknownFormatAndBadPathAreErrors) {
-  std::string message;
-  EXPECT_FALSE(export_mesh(temp("m.stl"), tetra(), message));
-  EXPECT_NE(message.find("unknown mesh format"), std::string::npos);
-  EXPECT_FALSE(export_mesh("/nonexistent-dir/m.ply", tetra(), message));
+  const hal::Expected<void> stl = export_mesh(temp("m.stl"), tetra());
+  ASSERT_FALSE(stl);
+  EXPECT_NE(stl.error().message.find("unknown mesh format"), std::string::npos);
+  EXPECT_FALSE(export_mesh("/nonexistent-dir/m.ply", tetra()));
 }
 
 }  // namespace

@@ -87,11 +87,12 @@ class BridgeRender : public ::testing::Test {
     // Headless on purpose: never a display server, even when one is around.
     ::unsetenv("DISPLAY");
     ::unsetenv("WAYLAND_DISPLAY");
-    std::string error;
-    context_ = make_offscreen_context(kW, kH, error);
-    ASSERT_TRUE(context_) << error;
+    auto context = make_offscreen_context(kW, kH);
+    ASSERT_TRUE(context) << context.error().message;
+    context_ = std::move(*context);
     ViewConfig view;
-    ASSERT_EQ(renderer_.init(kW, kH, true, view), "");
+    const hal::Expected<void> ready = renderer_.init(kW, kH, true, view);
+    ASSERT_TRUE(ready) << ready.error().message;
   }
   std::unique_ptr<GlContext> context_;
   MeshRenderer renderer_;
@@ -170,7 +171,8 @@ class QuietLink final : public ports::LinkPort {
 
 TEST_F(BridgeRender, ScodefPreviewOfTheAppIsTheCpuWarpOfEachLiveFrame) {
   QuietLink link;
-  BridgeApp app(link, &renderer_, {{}, false});
+  ports::NullLogSink log;
+  BridgeApp app(link, &renderer_, {}, log);
   load(app.replica(), sphere());
   app.step();
   link::LinkMessage live;

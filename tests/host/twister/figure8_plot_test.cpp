@@ -55,8 +55,8 @@ TEST(Figure8PictureSize, GrowsByWholeCells) {
 }
 
 TEST_F(Figure8Plot, PngIsAnImageOfTheGridSizeWithCurvesAndText) {
-  std::string error;
-  ASSERT_TRUE(write_figure8_png(path("f.png"), small_picture(), error)) << error;
+  const hal::Expected<void> written = write_figure8_png(path("f.png"), small_picture());
+  ASSERT_TRUE(written) << written.error().message;
   const auto png = load_png(path("f.png"));
   ASSERT_EQ(png.status, CAIRO_STATUS_SUCCESS);
   const Figure8Size size = figure8_picture_size(1, 2, 4);
@@ -71,8 +71,8 @@ TEST_F(Figure8Plot, PngIsAnImageOfTheGridSizeWithCurvesAndText) {
 }
 
 TEST_F(Figure8Plot, SvgHasTheSizeAndCarriesEveryLabel) {
-  std::string error;
-  ASSERT_TRUE(write_figure8_svg(path("f.svg"), small_picture(), error)) << error;
+  const hal::Expected<void> written = write_figure8_svg(path("f.svg"), small_picture());
+  ASSERT_TRUE(written) << written.error().message;
   const std::string svg = read_file(path("f.svg"));
   const Figure8Size size = figure8_picture_size(1, 2, 4);
   EXPECT_NE(svg.find("width=\"" + std::to_string(size.width) + "px\""), std::string::npos);
@@ -102,31 +102,32 @@ TEST_F(Figure8Plot, CrossingsAndTurnsOfEachCellAreLabelled) {
   pic.panels[0].curves[0].intersections = 1;
   pic.panels[0].curves[1].intersections = 12;
   pic.panels[0].curves[1].sharpest_turn_deg = 47.46;
-  std::string error;
-  ASSERT_TRUE(write_figure8_svg(path("f.svg"), pic, error)) << error;
+  const hal::Expected<void> written = write_figure8_svg(path("f.svg"), pic);
+  ASSERT_TRUE(written) << written.error().message;
   const std::string desc = test::svg_desc(read_file(path("f.svg")));
   EXPECT_NE(desc.find("1 crossing\n"), std::string::npos);
   EXPECT_NE(desc.find("12 crossings\n, turn 47.5\u00b0"), std::string::npos);
 }
 
 TEST_F(Figure8Plot, EmptyPictureIsStillAValidImage) {
-  std::string error;
-  ASSERT_TRUE(write_figure8_png(path("e.png"), Figure8Picture{}, error)) << error;
+  const hal::Expected<void> written = write_figure8_png(path("e.png"), Figure8Picture{});
+  ASSERT_TRUE(written) << written.error().message;
   const auto png = load_png(path("e.png"));
   ASSERT_EQ(png.status, CAIRO_STATUS_SUCCESS);
   EXPECT_EQ(png.width, figure8_picture_size(0, 0, 0).width);
-  ASSERT_TRUE(write_figure8_svg(path("e.svg"), Figure8Picture{}, error)) << error;
+  const hal::Expected<void> svg = write_figure8_svg(path("e.svg"), Figure8Picture{});
+  ASSERT_TRUE(svg) << svg.error().message;
 }
 
 TEST_F(Figure8Plot, UnwritablePathIsAnErrorNamingIt) {
   const std::string bad = path("no/such/dir/f.png");
-  std::string error;
-  EXPECT_FALSE(write_figure8_png(bad, small_picture(), error));
-  EXPECT_NE(error.find(bad), std::string::npos) << error;
-  error.clear();
+  const hal::Expected<void> png = write_figure8_png(bad, small_picture());
+  ASSERT_FALSE(png);
+  EXPECT_NE(png.error().message.find(bad), std::string::npos) << png.error().message;
   const std::string bad_svg = path("no/such/dir/f.svg");
-  EXPECT_FALSE(write_figure8_svg(bad_svg, small_picture(), error));
-  EXPECT_NE(error.find(bad_svg), std::string::npos) << error;
+  const hal::Expected<void> svg = write_figure8_svg(bad_svg, small_picture());
+  ASSERT_FALSE(svg);
+  EXPECT_NE(svg.error().message.find(bad_svg), std::string::npos) << svg.error().message;
 }
 
 }  // namespace

@@ -15,9 +15,9 @@ namespace {
 
 std::string pump(DeviceServer& server, int master, int ms) {
   std::string out;
-  std::string err;
   for (int i = 0; i < ms; ++i) {
-    EXPECT_TRUE(server.step(1, err)) << err;
+    const hal::Expected<void> stepped = server.step(1);
+    EXPECT_TRUE(stepped) << (stepped ? "" : stepped.error().message);
     char buf[512];
     const ssize_t n = ::read(master, buf, sizeof buf);
     if (n > 0) out.append(buf, static_cast<std::size_t>(n));
@@ -37,8 +37,8 @@ TEST(DeviceServer, HilModeServesARealTtyPath) {
   ServeOptions opts;
   opts.device = pty.slave;
   DeviceServer server(device, opts);
-  std::string err;
-  ASSERT_TRUE(server.start(err)) << err;
+  const hal::Expected<void> started = server.start();
+  ASSERT_TRUE(started) << started.error().message;
   EXPECT_EQ(server.slave_path(), opts.device);
   ASSERT_EQ(::write(master, "S", 1), 1);
   const std::string status = pump(server, master, 100);
@@ -58,8 +58,8 @@ TEST(DeviceServer, PtyModeLinksTheSlave) {
   ServeOptions opts;
   opts.link = ::testing::TempDir() + "fastrak_server_" + std::to_string(::getpid());
   DeviceServer server(device, opts);
-  std::string err;
-  ASSERT_TRUE(server.start(err)) << err;
+  const hal::Expected<void> started = server.start();
+  ASSERT_TRUE(started) << started.error().message;
   char target[256] = {};
   const ssize_t n = ::readlink(opts.link.c_str(), target, sizeof target - 1);
   ASSERT_GT(n, 0);

@@ -53,7 +53,8 @@ TEST_P(FastrakPtyAcceptance, SessionRecoversAndNoInvalidPoseReachesTheConsumer) 
   ServeOptions opts;
   opts.link = ::testing::TempDir() + "fastrak_acc_" + std::to_string(::getpid()) + "_" + fc.name;
   DeviceServer server(device, opts);
-  ASSERT_TRUE(server.start(err)) << err;
+  const hal::Expected<void> started = server.start();
+  ASSERT_TRUE(started) << started.error().message;
   // The simulator runs in its own thread; stopped and joined even when an assertion
   // returns early.
   struct SimThread {
@@ -62,8 +63,7 @@ TEST_P(FastrakPtyAcceptance, SessionRecoversAndNoInvalidPoseReachesTheConsumer) 
     std::thread thread;
     explicit SimThread(DeviceServer& s)
         : server(s), thread([this] {
-            std::string e;
-            while (!stop.load() && server.step(1, e)) {
+            while (!stop.load() && server.step(1)) {
             }
           }) {}
     ~SimThread() { join(); }

@@ -1,6 +1,7 @@
 // Logger: the programs' logging facade and the LogSink of the core they drive.
 // Every line has a level and a component: "twister-station: tracker: lost" or, at
-// warning and error, "twister-station: error: journal: ...". Under systemd (stderr
+// warning and error, "twister-station: error: journal: ..." (unless level_words is
+// off). An empty component is left out. Under systemd (stderr
 // connected to the journal, JOURNAL_STREAM) lines carry sd-daemon(3) priority
 // prefixes instead ("<4>tracker: lost") so journald stores their levels.
 // Messages below the threshold cost a comparison. Formatting happens in a fixed
@@ -23,6 +24,10 @@ struct LoggerConfig {
   LogLevel threshold = LogLevel::notice;  // lines above it (less severe) are dropped
   bool syslog_prefixes = false;           // "<N>" instead of the program name
   int fd = 2;                             // where lines go (stderr)
+  // "error: " / "warning: " after the program name. A command-line tool may turn
+  // them off and keep the classic "tool: message" shape: its exit code says whether
+  // it failed (the `twister` CLI, whose messages scripts and tests match).
+  bool level_words = true;
 };
 
 class Logger final : public ports::LogSink {
