@@ -8,7 +8,6 @@ namespace twister::input {
 namespace {
 
 journal::JournalPose to_journal(const math::Frame& f) { return {f.origin, f.u, f.v}; }
-glm::dmat3 axes(const math::Frame& f) { return glm::dmat3(f.u, f.v, f.w); }
 
 SessionEventKind event_for(ActionKind kind) {
   switch (kind) {
@@ -31,35 +30,23 @@ SculptSession::SculptSession(const SculptSessionConfig& config, mesh::Mesh& mesh
       mesh_(mesh),
       storage_(storage),
       journal_(journal),
-      debouncer_(config.debounce),
+      buttons_(config.debounce, config.buttons),
       machine_(config.interaction),
       plan_(storage.plan),
-      history_(storage.undo_changes, storage.undo_entries) {
+      history_(storage.undo_changes, storage.undo_entries),
+      mover_(poses_) {
   TWISTER_ASSERT(storage.live_x.size() >= mesh.vertex_capacity() &&
                  storage.live_y.size() >= mesh.vertex_capacity() &&
                  storage.live_z.size() >= mesh.vertex_capacity());
 }
 
-Status SculptSession::feed_button(const ports::ButtonEdge& edge) { return debouncer_.feed(edge); }
+Status SculptSession::feed_button(const ports::ButtonEdge& edge) { return buttons_.feed(edge); }
 
 Status SculptSession::set_hand(std::uint8_t hand, bool valid, const math::Frame& pose_in_world) {
-  if (hand >= kHandCount) return StatusCode::out_of_range;
-  if (!valid) {
-    hands_[hand].valid = false;
-    return ok_status();
-  }
-  if (!math::is_orthonormal(pose_in_world)) {
-    hands_[hand].valid = false;
-    return StatusCode::invalid_argument;
-  }
-  hands_[hand].valid = true;
-  // W is rebuilt from U and V so that the journal (which stores O, U, V) replays
-  // exactly the frame used live.
-  hands_[hand].world = math::frame_from_uv(pose_in_world.origin, pose_in_world.u, pose_in_world.v);
-  return ok_status();
+  return poses_.set_hand(hand, valid, pose_in_world);
 }
 
-bool SculptSession::busy() const { return stroke_mask_ != 0 || moving_; }
+bool SculptSession::busy() const { return stroke_mask_ != 0 || mover_.moving(); }
 
 math::ConstVertexColumns SculptSession::rest() const {
   const mesh::Mesh& m = mesh_;
@@ -71,27 +58,10 @@ math::VertexColumns SculptSession::live_columns() {
   return {storage_.live_x.first(n), storage_.live_y.first(n), storage_.live_z.first(n)};
 }
 
-math::Frame SculptSession::to_object(const math::Frame& world) const {
-  const glm::dmat3 r_t = glm::transpose(axes(object_));
-  return math::frame_from_uv(r_t * (world.origin - object_.origin), r_t * world.u, r_t * world.v);
-}
-
-math::Frame SculptSession::moved_object() const {
-  const math::Frame& now = hands_[move_hand_].world;
-  const glm::dmat3 delta = axes(now) * glm::transpose(axes(move_hand_start_));
-  const glm::dvec3 origin =
-      delta * (move_object_start_.origin - move_hand_start_.origin) + now.origin;
-  // Re-orthonormalise so rounding cannot accumulate over many moves.
-  const glm::dvec3 u = glm::normalize(delta * move_object_start_.u);
-  const glm::dvec3 v0 = delta * move_object_start_.v;
-  const glm::dvec3 v = glm::normalize(v0 - glm::dot(v0, u) * u);
-  return math::frame_from_uv(origin, u, v);
-}
-
 std::size_t SculptSession::plan_frames(std::array<math::Frame, 2>& frames) const {
   std::size_t n = 0;
   for (std::uint8_t h = 0; h < kHandCount; ++h) {
-    if ((stroke_mask_ & (1u << h)) != 0) frames[n++] = to_object(hands_[h].world);
+    if ((stroke_mask_ & (1u << h)) != 0) frames[n++] = poses_.hand_in_object(h);
   }
   return n;
 }
@@ -263,23 +233,19 @@ void SculptSession::apply_action(const Action& a, SessionEvents& out) {
       segment_moved_ = false;
       return;
     case ActionKind::move_begin:
-      moving_ = true;
-      move_hand_ = a.hand;
-      move_hand_start_ = hands_[a.hand].world;
-      move_object_start_ = object_;
+      mover_.begin(a.hand);
       out.push({SessionEventKind::move_begin, a.hand, Reason::none, ok_status(), 0});
       return;
     case ActionKind::move_commit: {
-      if (!moving_) return;
-      moving_ = false;
-      object_ = moved_object();
+      const Result<ObjectMove> move = mover_.commit();
+      if (!move.ok()) return;
       journal::JournalRecord r;
       r.type = journal::RecordType::object_move;
       r.move.hand = a.hand;
-      r.move.object_before = to_journal(move_object_start_);
-      r.move.object_after = to_journal(object_);
+      r.move.object_before = to_journal(move->before);
+      r.move.object_after = to_journal(move->after);
       history_.begin_entry();
-      history_.record_object(move_object_start_, object_);
+      history_.record_object(move->before, move->after);
       history_.end_entry().ignore();  // an object-only entry always fits
       const std::uint32_t sequence = next_sequence_;
       journal_append(r, &out);
@@ -287,9 +253,7 @@ void SculptSession::apply_action(const Action& a, SessionEvents& out) {
       return;
     }
     case ActionKind::move_cancel:
-      if (!moving_) return;
-      moving_ = false;
-      object_ = move_object_start_;
+      if (!mover_.cancel()) return;
       out.push({SessionEventKind::move_cancelled, a.hand, a.reason, ok_status(), 0});
       return;
     case ActionKind::radius_begin:
@@ -306,14 +270,12 @@ void SculptSession::apply_action(const Action& a, SessionEvents& out) {
 
 SessionEvents SculptSession::step(ports::TimestampUs now_us) {
   SessionEvents out;
-  for (auto e = debouncer_.poll(now_us); e.ok(); e = debouncer_.poll(now_us)) {
-    config_.buttons.apply(*e, buttons_);
-  }
+  buttons_.poll(now_us);
   InteractionInputs inputs;
   for (std::uint8_t h = 0; h < kHandCount; ++h) {
-    inputs.hands[h].pose_valid = hands_[h].valid;
-    inputs.hands[h].position_m = glm::vec3(hands_[h].world.origin);
-    inputs.hands[h].buttons = buttons_[h];
+    inputs.hands[h].pose_valid = poses_.valid(h);
+    inputs.hands[h].position_m = glm::vec3(poses_.hand_in_world(h).origin);
+    inputs.hands[h].buttons = buttons_.hand(h);
   }
   const ActionList actions = machine_.step(inputs, now_us);
   releasing_mask_ = 0;
@@ -321,7 +283,7 @@ SessionEvents SculptSession::step(ports::TimestampUs now_us) {
     if (a.kind == ActionKind::commit) releasing_mask_ |= static_cast<std::uint8_t>(1u << a.hand);
   }
   for (const Action& a : actions.items()) apply_action(a, out);
-  if (moving_ && hands_[move_hand_].valid) object_ = moved_object();
+  mover_.follow();
   if (stroke_mask_ != 0) {
     update_plan().ignore();
     segment_moved_ = true;

@@ -21,7 +21,7 @@ Status SculptSession::step_history(journal::RecordType type) {
   if (busy()) return StatusCode::failed_precondition;
   TWISTER_TRY_ASSIGN(const UndoStep step, type == journal::RecordType::undo ? history_.undo(mesh_)
                                                                             : history_.redo(mesh_));
-  if (step.object_move) object_ = step.object_pose;
+  if (step.object_move) poses_.set_object(step.object_pose);
   journal::JournalRecord r;
   r.type = type;
   journal_append(r, nullptr);
@@ -81,9 +81,9 @@ Status SculptSession::apply_record(const journal::JournalRecord& record) {
       const math::Frame after = from_journal(record.move.object_after);
       if (!math::is_orthonormal(after)) return StatusCode::data_loss;
       history_.begin_entry();
-      history_.record_object(object_, after);
+      history_.record_object(poses_.object(), after);
       history_.end_entry().ignore();
-      object_ = after;
+      poses_.set_object(after);
       ++replay_stats_.moves;
       break;
     }
@@ -92,7 +92,7 @@ Status SculptSession::apply_record(const journal::JournalRecord& record) {
       const bool is_undo = record.type == journal::RecordType::undo;
       auto step = is_undo ? history_.undo(mesh_) : history_.redo(mesh_);
       if (!step.ok()) return StatusCode::data_loss;
-      if (step->object_move) object_ = step->object_pose;
+      if (step->object_move) poses_.set_object(step->object_pose);
       replay_chain_open_ = false;
       ++(is_undo ? replay_stats_.undos : replay_stats_.redos);
       break;

@@ -27,9 +27,12 @@
 
 #include "twister/base/result.hpp"
 #include "twister/input/button_debouncer.hpp"
+#include "twister/input/button_front_end.hpp"
 #include "twister/input/button_map.hpp"
 #include "twister/input/interaction_machine.hpp"
+#include "twister/input/object_mover.hpp"
 #include "twister/input/session_events.hpp"
+#include "twister/input/session_poses.hpp"
 #include "twister/input/undo_history.hpp"
 #include "twister/journal/journal_reader.hpp"
 #include "twister/journal/journal_record.hpp"
@@ -116,7 +119,7 @@ class SculptSession {
   const ReplayStats& replay_stats() const { return replay_stats_; }
 
   const mesh::Mesh& mesh() const { return mesh_; }
-  const math::Frame& object_pose() const { return object_; }
+  const math::Frame& object_pose() const { return poses_.object(); }
   float radius_m() const { return machine_.radius_m(); }
   const InteractionMachine& machine() const { return machine_; }
   LiveWarp live() const;
@@ -125,11 +128,6 @@ class SculptSession {
   const UndoHistory& history() const { return history_; }
 
  private:
-  struct HandTrack {
-    bool valid = false;
-    math::Frame world{};  // last valid pose
-  };
-
   void apply_action(const Action& action, SessionEvents& out);
   Status begin_segment(std::uint8_t hand_mask);
   // Commits the open segment; the committed event names `hand` and `reason`
@@ -143,8 +141,6 @@ class SculptSession {
   void journal_append(journal::JournalRecord& record, SessionEvents* out);
   // undo() (type undo) or redo() (type redo): the step on the mesh, then its record.
   Status step_history(journal::RecordType type);
-  math::Frame to_object(const math::Frame& world) const;
-  math::Frame moved_object() const;
   std::size_t plan_frames(std::array<math::Frame, 2>& frames) const;
   math::ConstVertexColumns rest() const;
   math::VertexColumns live_columns();
@@ -153,24 +149,18 @@ class SculptSession {
   mesh::Mesh& mesh_;
   SculptStorage storage_;
   journal::JournalWriter* journal_;
-  ButtonDebouncer debouncer_;
+  SessionPoses poses_;
+  ButtonFrontEnd buttons_;
   InteractionMachine machine_;
   math::WarpPlan plan_;
   UndoHistory history_;
-  std::array<HandButtons, kHandCount> buttons_{};
-  std::array<HandTrack, kHandCount> hands_{};
-  math::Frame object_{};
   // Open stroke segment.
   std::uint8_t stroke_mask_ = 0;
   std::uint16_t chain_step_ = 0;
   bool segment_moved_ = false;  // a step has passed since the segment began
   double stroke_radius_m_ = 0.0;
   std::array<math::Frame, 2> stroke_start_{};  // object frame, per plan hand
-  // Open object move.
-  bool moving_ = false;
-  std::uint8_t move_hand_ = 0;
-  math::Frame move_hand_start_{};  // world
-  math::Frame move_object_start_{};
+  ObjectMover mover_;
   std::uint32_t next_sequence_ = 0;
   // Hands whose grab the machine ends with a commit in the current step: released
   // together, they share one commit instead of one hand "continuing" for no time.
