@@ -96,90 +96,116 @@ void InteractionMachine::step_hand(std::uint8_t h, const InteractionInputs& inpu
                                    ports::TimestampUs now_us, ActionList& out) {
   Hand& hand = hands_[h];
   const HandInput& in = inputs.hands[h];
-  const bool grab_pressed = in.buttons.grab && !hand.previous.grab;
-  const bool move_pressed = in.buttons.move_object && !hand.previous.move_object;
-  const bool freeze_pressed = in.buttons.freeze && !hand.previous.freeze;
-  const bool lost_too_long = now_us - hand.since_us >= config_.lost_timeout_us;
-
+  const HandStep step{h,
+                      in,
+                      in.buttons.grab && !hand.previous.grab,
+                      in.buttons.move_object && !hand.previous.move_object,
+                      in.buttons.freeze && !hand.previous.freeze,
+                      now_us};
   switch (hand.state) {
     case HandState::idle:
-      if (grab_pressed) {
-        if (!in.pose_valid) {
-          out.push({ActionKind::refused, h, Reason::no_tracking, radius_m_});
-        } else if (other_hand_grabs_near(h, in.position_m)) {
-          out.push({ActionKind::refused, h, Reason::same_point, radius_m_});
-        } else {
-          enter(h, HandState::dragging, now_us);
-          out.push({ActionKind::grab_begin, h, Reason::none, radius_m_});
-        }
-      } else if (move_pressed) {
-        const HandState other = hands_[1 - h].state;
-        if (!in.pose_valid) {
-          out.push({ActionKind::refused, h, Reason::no_tracking, radius_m_});
-        } else if (other == HandState::moving || other == HandState::moving_lost) {
-          out.push({ActionKind::refused, h, Reason::object_busy, radius_m_});
-        } else {
-          enter(h, HandState::moving, now_us);
-          out.push({ActionKind::move_begin, h, Reason::none, radius_m_});
-        }
-      }
+      step_idle(step, out);
       break;
-
     case HandState::dragging:
-      if (!in.buttons.grab) {
-        enter(h, HandState::idle, now_us);
-        out.push({ActionKind::commit, h, Reason::released, radius_m_});
-      } else if (!in.pose_valid) {
-        enter(h, HandState::dragging_lost, now_us);
-        out.push({ActionKind::tracking_lost, h, Reason::none, radius_m_});
-      } else if (freeze_pressed) {
-        out.push({ActionKind::freeze, h, Reason::none, radius_m_});
-      } else if (move_pressed) {
-        out.push({ActionKind::refused, h, Reason::hand_busy, radius_m_});
-      }
+      step_dragging(step, out);
       break;
-
     case HandState::dragging_lost:
-      // Releasing while lost commits what the display shows: the warp held at the
-      // last valid pose.
-      if (!in.buttons.grab) {
-        enter(h, HandState::idle, now_us);
-        out.push({ActionKind::commit, h, Reason::released, radius_m_});
-      } else if (in.pose_valid) {
-        enter(h, HandState::dragging, now_us);
-        out.push({ActionKind::tracking_resumed, h, Reason::none, radius_m_});
-      } else if (lost_too_long) {
-        enter(h, HandState::idle, now_us);
-        out.push({ActionKind::cancel, h, Reason::tracking_timeout, radius_m_});
-      }
+      step_dragging_lost(step, out);
       break;
-
     case HandState::moving:
-      if (!in.buttons.move_object) {
-        enter(h, HandState::idle, now_us);
-        out.push({ActionKind::move_commit, h, Reason::released, radius_m_});
-      } else if (!in.pose_valid) {
-        enter(h, HandState::moving_lost, now_us);
-        out.push({ActionKind::tracking_lost, h, Reason::none, radius_m_});
-      } else if (grab_pressed) {
-        out.push({ActionKind::refused, h, Reason::hand_busy, radius_m_});
-      }
+      step_moving(step, out);
       break;
-
     case HandState::moving_lost:
-      if (!in.buttons.move_object) {
-        enter(h, HandState::idle, now_us);
-        out.push({ActionKind::move_commit, h, Reason::released, radius_m_});
-      } else if (in.pose_valid) {
-        enter(h, HandState::moving, now_us);
-        out.push({ActionKind::tracking_resumed, h, Reason::none, radius_m_});
-      } else if (lost_too_long) {
-        enter(h, HandState::idle, now_us);
-        out.push({ActionKind::move_cancel, h, Reason::tracking_timeout, radius_m_});
-      }
+      step_moving_lost(step, out);
       break;
   }
   if (in.pose_valid) hand.last_valid_m = in.position_m;
+}
+
+bool InteractionMachine::lost_too_long(const HandStep& s) const {
+  return s.now_us - hands_[s.hand].since_us >= config_.lost_timeout_us;
+}
+
+void InteractionMachine::step_idle(const HandStep& s, ActionList& out) {
+  const std::uint8_t h = s.hand;
+  if (s.grab_pressed) {
+    if (!s.in.pose_valid) {
+      out.push({ActionKind::refused, h, Reason::no_tracking, radius_m_});
+    } else if (other_hand_grabs_near(h, s.in.position_m)) {
+      out.push({ActionKind::refused, h, Reason::same_point, radius_m_});
+    } else {
+      enter(h, HandState::dragging, s.now_us);
+      out.push({ActionKind::grab_begin, h, Reason::none, radius_m_});
+    }
+  } else if (s.move_pressed) {
+    const HandState other = hands_[1 - h].state;
+    if (!s.in.pose_valid) {
+      out.push({ActionKind::refused, h, Reason::no_tracking, radius_m_});
+    } else if (other == HandState::moving || other == HandState::moving_lost) {
+      out.push({ActionKind::refused, h, Reason::object_busy, radius_m_});
+    } else {
+      enter(h, HandState::moving, s.now_us);
+      out.push({ActionKind::move_begin, h, Reason::none, radius_m_});
+    }
+  }
+}
+
+void InteractionMachine::step_dragging(const HandStep& s, ActionList& out) {
+  const std::uint8_t h = s.hand;
+  if (!s.in.buttons.grab) {
+    enter(h, HandState::idle, s.now_us);
+    out.push({ActionKind::commit, h, Reason::released, radius_m_});
+  } else if (!s.in.pose_valid) {
+    enter(h, HandState::dragging_lost, s.now_us);
+    out.push({ActionKind::tracking_lost, h, Reason::none, radius_m_});
+  } else if (s.freeze_pressed) {
+    out.push({ActionKind::freeze, h, Reason::none, radius_m_});
+  } else if (s.move_pressed) {
+    out.push({ActionKind::refused, h, Reason::hand_busy, radius_m_});
+  }
+}
+
+void InteractionMachine::step_dragging_lost(const HandStep& s, ActionList& out) {
+  const std::uint8_t h = s.hand;
+  // Releasing while lost commits what the display shows: the warp held at the last
+  // valid pose.
+  if (!s.in.buttons.grab) {
+    enter(h, HandState::idle, s.now_us);
+    out.push({ActionKind::commit, h, Reason::released, radius_m_});
+  } else if (s.in.pose_valid) {
+    enter(h, HandState::dragging, s.now_us);
+    out.push({ActionKind::tracking_resumed, h, Reason::none, radius_m_});
+  } else if (lost_too_long(s)) {
+    enter(h, HandState::idle, s.now_us);
+    out.push({ActionKind::cancel, h, Reason::tracking_timeout, radius_m_});
+  }
+}
+
+void InteractionMachine::step_moving(const HandStep& s, ActionList& out) {
+  const std::uint8_t h = s.hand;
+  if (!s.in.buttons.move_object) {
+    enter(h, HandState::idle, s.now_us);
+    out.push({ActionKind::move_commit, h, Reason::released, radius_m_});
+  } else if (!s.in.pose_valid) {
+    enter(h, HandState::moving_lost, s.now_us);
+    out.push({ActionKind::tracking_lost, h, Reason::none, radius_m_});
+  } else if (s.grab_pressed) {
+    out.push({ActionKind::refused, h, Reason::hand_busy, radius_m_});
+  }
+}
+
+void InteractionMachine::step_moving_lost(const HandStep& s, ActionList& out) {
+  const std::uint8_t h = s.hand;
+  if (!s.in.buttons.move_object) {
+    enter(h, HandState::idle, s.now_us);
+    out.push({ActionKind::move_commit, h, Reason::released, radius_m_});
+  } else if (s.in.pose_valid) {
+    enter(h, HandState::moving, s.now_us);
+    out.push({ActionKind::tracking_resumed, h, Reason::none, radius_m_});
+  } else if (lost_too_long(s)) {
+    enter(h, HandState::idle, s.now_us);
+    out.push({ActionKind::move_cancel, h, Reason::tracking_timeout, radius_m_});
+  }
 }
 
 void InteractionMachine::step_radius(const InteractionInputs& inputs, ActionList& out) {

@@ -1,14 +1,12 @@
+// SculptSession: the wiring. Each step: buttons -> machine -> actions dispatched to
+// the part that owns them (strokes, object move, plain events), then the open move
+// and stroke follow the hands. History and replay calls pass straight through.
 #include "twister/input/sculpt_session.hpp"
 
-#include <bit>
-#include <glm/geometric.hpp>
-#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
 
 namespace twister::input {
 namespace {
-
-journal::JournalPose to_journal(const math::Frame& f) { return {f.origin, f.u, f.v}; }
-glm::dmat3 axes(const math::Frame& f) { return glm::dmat3(f.u, f.v, f.w); }
 
 SessionEventKind event_for(ActionKind kind) {
   switch (kind) {
@@ -25,314 +23,63 @@ SessionEventKind event_for(ActionKind kind) {
 
 }  // namespace
 
-const char* session_event_kind_name(SessionEventKind kind) {
-  switch (kind) {
-    case SessionEventKind::grab_begin:
-      return "grab_begin";
-    case SessionEventKind::committed:
-      return "committed";
-    case SessionEventKind::cancelled:
-      return "cancelled";
-    case SessionEventKind::tracking_lost:
-      return "tracking_lost";
-    case SessionEventKind::tracking_resumed:
-      return "tracking_resumed";
-    case SessionEventKind::refused:
-      return "refused";
-    case SessionEventKind::radius_changed:
-      return "radius_changed";
-    case SessionEventKind::move_begin:
-      return "move_begin";
-    case SessionEventKind::move_committed:
-      return "move_committed";
-    case SessionEventKind::move_cancelled:
-      return "move_cancelled";
-    case SessionEventKind::undone:
-      return "undone";
-    case SessionEventKind::redone:
-      return "redone";
-    case SessionEventKind::journal_failed:
-      return "journal_failed";
-    case SessionEventKind::history_overflow:
-      return "history_overflow";
-  }
-  return "unknown";
-}
-
-void SessionEvents::push(const SessionEvent& event) {
-  if (count_ == items_.size()) {
-    ++dropped_;
-    return;
-  }
-  items_[count_++] = event;
-}
-
 SculptSession::SculptSession(const SculptSessionConfig& config, mesh::Mesh& mesh,
                              SculptStorage storage, journal::JournalWriter* journal)
-    : config_(config),
-      mesh_(mesh),
-      storage_(storage),
-      journal_(journal),
-      debouncer_(config.debounce),
+    : mesh_(mesh, storage.live_x, storage.live_y, storage.live_z),
+      buttons_(config.debounce, config.buttons),
       machine_(config.interaction),
       plan_(storage.plan),
-      history_(storage.undo_changes, storage.undo_entries) {
-  TWISTER_ASSERT(storage.live_x.size() >= mesh.vertex_capacity() &&
-                 storage.live_y.size() >= mesh.vertex_capacity() &&
-                 storage.live_z.size() >= mesh.vertex_capacity());
-}
+      history_(mesh_, poses_, storage.undo_changes, storage.undo_entries, journal),
+      strokes_(plan_, mesh_, poses_, history_, config.method),
+      mover_(poses_),
+      replay_(plan_, mesh_, history_, poses_) {}
 
-Status SculptSession::feed_button(const ports::ButtonEdge& edge) { return debouncer_.feed(edge); }
+Status SculptSession::feed_button(const ports::ButtonEdge& edge) { return buttons_.feed(edge); }
 
 Status SculptSession::set_hand(std::uint8_t hand, bool valid, const math::Frame& pose_in_world) {
-  if (hand >= kHandCount) return StatusCode::out_of_range;
-  if (!valid) {
-    hands_[hand].valid = false;
-    return ok_status();
-  }
-  if (!math::is_orthonormal(pose_in_world)) {
-    hands_[hand].valid = false;
-    return StatusCode::invalid_argument;
-  }
-  hands_[hand].valid = true;
-  // W is rebuilt from U and V so that the journal (which stores O, U, V) replays
-  // exactly the frame used live.
-  hands_[hand].world = math::frame_from_uv(pose_in_world.origin, pose_in_world.u, pose_in_world.v);
-  return ok_status();
+  return poses_.set_hand(hand, valid, pose_in_world);
 }
 
-bool SculptSession::busy() const { return stroke_mask_ != 0 || moving_; }
-
-math::ConstVertexColumns SculptSession::rest() const {
-  const mesh::Mesh& m = mesh_;
-  return {m.x(), m.y(), m.z()};
+SessionEvents SculptSession::step(ports::TimestampUs now_us) {
+  SessionEvents out;
+  buttons_.poll(now_us);
+  const ActionList actions = machine_.step(inputs(), now_us);
+  strokes_.begin_step(actions, machine_.radius_m());
+  for (const Action& a : actions.items()) apply_action(a, out);
+  mover_.follow();
+  strokes_.end_step();
+  return out;
 }
 
-math::VertexColumns SculptSession::live_columns() {
-  const std::size_t n = mesh_.vertex_count();
-  return {storage_.live_x.first(n), storage_.live_y.first(n), storage_.live_z.first(n)};
-}
-
-math::Frame SculptSession::to_object(const math::Frame& world) const {
-  const glm::dmat3 r_t = glm::transpose(axes(object_));
-  return math::frame_from_uv(r_t * (world.origin - object_.origin), r_t * world.u, r_t * world.v);
-}
-
-math::Frame SculptSession::moved_object() const {
-  const math::Frame& now = hands_[move_hand_].world;
-  const glm::dmat3 delta = axes(now) * glm::transpose(axes(move_hand_start_));
-  const glm::dvec3 origin =
-      delta * (move_object_start_.origin - move_hand_start_.origin) + now.origin;
-  // Re-orthonormalise so rounding cannot accumulate over many moves.
-  const glm::dvec3 u = glm::normalize(delta * move_object_start_.u);
-  const glm::dvec3 v0 = delta * move_object_start_.v;
-  const glm::dvec3 v = glm::normalize(v0 - glm::dot(v0, u) * u);
-  return math::frame_from_uv(origin, u, v);
-}
-
-std::size_t SculptSession::plan_frames(std::array<math::Frame, 2>& frames) const {
-  std::size_t n = 0;
+InteractionInputs SculptSession::inputs() const {
+  InteractionInputs in;
   for (std::uint8_t h = 0; h < kHandCount; ++h) {
-    if ((stroke_mask_ & (1u << h)) != 0) frames[n++] = to_object(hands_[h].world);
+    in.hands[h].pose_valid = poses_.valid(h);
+    in.hands[h].position_m = glm::vec3(poses_.hand_in_world(h).origin);
+    in.hands[h].buttons = buttons_.hand(h);
   }
-  return n;
-}
-
-Status SculptSession::begin_segment(std::uint8_t hand_mask) {
-  stroke_mask_ = hand_mask;
-  std::array<math::Frame, 2> frames{};
-  const std::size_t n = plan_frames(frames);
-  stroke_radius_m_ = static_cast<double>(machine_.radius_m());
-  const Status s =
-      plan_.build(rest(), std::span(frames).first(n), stroke_radius_m_, config_.method);
-  if (!s.ok()) {
-    stroke_mask_ = 0;
-    plan_.reset();
-    return s;
-  }
-  chain_step_ = 0;
-  stroke_start_ = frames;
-  return plan_.apply(rest(), live_columns());
-}
-
-Status SculptSession::update_plan() {
-  std::array<math::Frame, 2> frames{};
-  const std::size_t n = plan_frames(frames);
-  TWISTER_TRY(plan_.update(std::span(frames).first(n)));
-  return plan_.apply(rest(), live_columns());
-}
-
-void SculptSession::journal_append(journal::JournalRecord& record, SessionEvents* out) {
-  record.sequence = next_sequence_++;
-  if (journal_ == nullptr) return;
-  const Status s = journal_->append(record);
-  if (!s.ok() && out != nullptr) {
-    out->push({SessionEventKind::journal_failed, 0, Reason::none, s, record.sequence});
-  }
-}
-
-Status SculptSession::commit_plan(const journal::JournalRecord& record, bool journaled,
-                                  SessionEvents* out) {
-  TWISTER_TRY(plan_.apply(rest(), live_columns()));
-  const math::VertexColumns live = live_columns();
-  history_.begin_entry();
-  bool undoable = true;
-  for (const std::uint32_t i : plan_.indices()) {
-    const glm::vec3 after{live.x[i], live.y[i], live.z[i]};
-    if (!history_.record(i, mesh_.position(i), after).ok()) undoable = false;
-    mesh_.set_position(i, after);
-  }
-  if (!history_.end_entry().ok()) undoable = false;
-  if (!undoable && out != nullptr) {
-    out->push({SessionEventKind::history_overflow, 0, Reason::none,
-               Status(StatusCode::resource_exhausted), next_sequence_});
-  }
-  if (journaled) {
-    journal::JournalRecord copy = record;
-    journal_append(copy, out);
-  }
-  return ok_status();
-}
-
-SessionEvent SculptSession::commit_segment(std::uint8_t hand, Reason reason, SessionEvents& out) {
-  update_plan().ignore();  // on error the previous update stays in force
-  journal::JournalRecord r;
-  r.type = journal::RecordType::stroke;
-  r.stroke.method = static_cast<std::uint8_t>(plan_.method());
-  r.stroke.hand_mask = stroke_mask_;
-  r.stroke.chain_step = chain_step_;
-  r.stroke.radius_m = stroke_radius_m_;
-  std::size_t i = 0;
-  for (std::uint8_t h = 0; h < kHandCount; ++h) {
-    if ((stroke_mask_ & (1u << h)) == 0) continue;
-    r.stroke.start[h] = to_journal(stroke_start_[i]);
-    r.stroke.end[h] = to_journal(plan_.end_frame(i));
-    ++i;
-  }
-  const std::uint32_t sequence = next_sequence_;
-  const Status s = commit_plan(r, true, &out);
-  const SessionEvent committed{SessionEventKind::committed, hand, reason, s, sequence};
-  out.push(committed);
-  return committed;
-}
-
-void SculptSession::end_hands(std::uint8_t mask, Status status, SessionEvents& out) {
-  for (std::uint8_t h = 0; h < kHandCount; ++h) {
-    if ((mask & (1u << h)) != 0)
-      out.push({SessionEventKind::cancelled, h, Reason::none, status, 0});
-  }
-}
-
-void SculptSession::restart_without(std::uint8_t hand, bool commit, SessionEvents& out) {
-  auto remaining = static_cast<std::uint8_t>(stroke_mask_ & ~(1u << hand));
-  if (commit) {
-    SessionEvent committed = commit_segment(hand, Reason::released, out);
-    // The other hands of this segment released in the same step end with this very
-    // commit (their own commit actions then find nothing open).
-    const auto together = static_cast<std::uint8_t>(remaining & releasing_mask_);
-    for (std::uint8_t h = 0; h < kHandCount; ++h) {
-      if ((together & (1u << h)) == 0) continue;
-      committed.hand = h;
-      out.push(committed);
-    }
-    remaining = static_cast<std::uint8_t>(remaining & ~together);
-  } else {
-    out.push({SessionEventKind::cancelled, hand, Reason::tracking_timeout, ok_status(), 0});
-  }
-  stroke_mask_ = 0;
-  plan_.reset();
-  if (remaining == 0) return;
-  const Status s = begin_segment(remaining);
-  if (!s.ok()) {
-    end_hands(remaining, s, out);
-  }
+  return in;
 }
 
 void SculptSession::apply_action(const Action& a, SessionEvents& out) {
-  const auto bit = static_cast<std::uint8_t>(1u << a.hand);
   switch (a.kind) {
-    case ActionKind::grab_begin: {
-      std::uint8_t mask = bit;
-      if (stroke_mask_ != 0) {
-        // A hand joins: what the other hand did so far is committed, then both
-        // continue as one two-hand segment from the current poses. Hands grabbing
-        // in the same step simply start together.
-        mask = static_cast<std::uint8_t>(mask | stroke_mask_);
-        if (segment_moved_ || chain_step_ != 0) commit_segment(a.hand, Reason::none, out);
-        stroke_mask_ = 0;
-        plan_.reset();
-      }
-      const Status s = begin_segment(mask);
-      if (s.ok()) {
-        out.push({SessionEventKind::grab_begin, a.hand, Reason::none, s, 0});
-      } else {
-        out.push({SessionEventKind::refused, a.hand, Reason::none, s, 0});
-        const auto previous = static_cast<std::uint8_t>(mask & ~bit);
-        if (previous != 0) {
-          const Status again = begin_segment(previous);
-          if (!again.ok()) end_hands(previous, again, out);
-        }
-      }
-      segment_moved_ = false;
-      return;
-    }
+    case ActionKind::grab_begin:
     case ActionKind::freeze:
-      if ((stroke_mask_ & bit) == 0) return;
-      commit_segment(a.hand, Reason::none, out);
-      {
-        std::array<math::Frame, 2> frames{};
-        const std::size_t n = plan_frames(frames);
-        const Status rebased = plan_.rebase(std::span(frames).first(n));
-        if (rebased.ok()) {
-          stroke_start_ = frames;
-          ++chain_step_;
-        } else {
-          // Cannot continue with the same weights: end the stroke cleanly.
-          const std::uint8_t mask = stroke_mask_;
-          stroke_mask_ = 0;
-          plan_.reset();
-          end_hands(mask, rebased, out);
-        }
-      }
-      segment_moved_ = false;
-      return;
     case ActionKind::commit:
-      if ((stroke_mask_ & bit) != 0) restart_without(a.hand, true, out);
-      segment_moved_ = false;
-      return;
     case ActionKind::cancel:
-      if ((stroke_mask_ & bit) != 0) restart_without(a.hand, false, out);
-      segment_moved_ = false;
+      strokes_.apply(a, out);
       return;
     case ActionKind::move_begin:
-      moving_ = true;
-      move_hand_ = a.hand;
-      move_hand_start_ = hands_[a.hand].world;
-      move_object_start_ = object_;
+      mover_.begin(a.hand);
       out.push({SessionEventKind::move_begin, a.hand, Reason::none, ok_status(), 0});
       return;
-    case ActionKind::move_commit: {
-      if (!moving_) return;
-      moving_ = false;
-      object_ = moved_object();
-      journal::JournalRecord r;
-      r.type = journal::RecordType::object_move;
-      r.move.hand = a.hand;
-      r.move.object_before = to_journal(move_object_start_);
-      r.move.object_after = to_journal(object_);
-      history_.begin_entry();
-      history_.record_object(move_object_start_, object_);
-      history_.end_entry().ignore();  // an object-only entry always fits
-      const std::uint32_t sequence = next_sequence_;
-      journal_append(r, &out);
-      out.push({SessionEventKind::move_committed, a.hand, Reason::released, ok_status(), sequence});
+    case ActionKind::move_commit:
+      commit_move(a, out);
       return;
-    }
     case ActionKind::move_cancel:
-      if (!moving_) return;
-      moving_ = false;
-      object_ = move_object_start_;
-      out.push({SessionEventKind::move_cancelled, a.hand, a.reason, ok_status(), 0});
+      if (mover_.cancel()) {
+        out.push({SessionEventKind::move_cancelled, a.hand, a.reason, ok_status(), 0});
+      }
       return;
     case ActionKind::radius_begin:
     case ActionKind::radius_end:
@@ -346,39 +93,42 @@ void SculptSession::apply_action(const Action& a, SessionEvents& out) {
   }
 }
 
-SessionEvents SculptSession::step(ports::TimestampUs now_us) {
-  SessionEvents out;
-  for (auto e = debouncer_.poll(now_us); e.ok(); e = debouncer_.poll(now_us)) {
-    config_.buttons.apply(*e, buttons_);
-  }
-  InteractionInputs inputs;
-  for (std::uint8_t h = 0; h < kHandCount; ++h) {
-    inputs.hands[h].pose_valid = hands_[h].valid;
-    inputs.hands[h].position_m = glm::vec3(hands_[h].world.origin);
-    inputs.hands[h].buttons = buttons_[h];
-  }
-  const ActionList actions = machine_.step(inputs, now_us);
-  releasing_mask_ = 0;
-  for (const Action& a : actions.items()) {
-    if (a.kind == ActionKind::commit) releasing_mask_ |= static_cast<std::uint8_t>(1u << a.hand);
-  }
-  for (const Action& a : actions.items()) apply_action(a, out);
-  if (moving_ && hands_[move_hand_].valid) object_ = moved_object();
-  if (stroke_mask_ != 0) {
-    update_plan().ignore();
-    segment_moved_ = true;
-  }
-  return out;
+void SculptSession::commit_move(const Action& a, SessionEvents& out) {
+  const Result<ObjectMove> move = mover_.commit();
+  if (!move.ok()) return;  // no move open
+  const std::uint32_t sequence = history_.commit_move(a.hand, move->before, move->after, out);
+  out.push({SessionEventKind::move_committed, a.hand, Reason::released, ok_status(), sequence});
 }
 
-LiveWarp SculptSession::live() const {
-  LiveWarp w;
-  w.active = stroke_mask_ != 0;
-  w.hand_mask = stroke_mask_;
-  w.plan = &plan_;
-  const std::size_t n = mesh_.vertex_count();
-  w.positions = {storage_.live_x.first(n), storage_.live_y.first(n), storage_.live_z.first(n)};
-  return w;
+Status SculptSession::undo() { return step_history(journal::RecordType::undo); }
+
+Status SculptSession::redo() { return step_history(journal::RecordType::redo); }
+
+Status SculptSession::step_history(journal::RecordType type) {
+  if (busy()) return StatusCode::failed_precondition;
+  const Status s = history_.commit_history_step(type);
+  // io_error means the step happened and only its record is not durable.
+  if (s.ok() || s.code() == StatusCode::io_error) replay_.break_chain();
+  return s;
+}
+
+Status SculptSession::apply_record(const journal::JournalRecord& record) {
+  if (busy()) return StatusCode::failed_precondition;
+  return replay_.apply(record);
+}
+
+Result<std::size_t> SculptSession::replay(journal::JournalReader& reader) {
+  std::size_t applied = 0;
+  for (;;) {
+    auto record = reader.next();
+    if (record.status().code() == StatusCode::unavailable ||
+        record.status().code() == StatusCode::data_loss) {
+      return applied;  // clean end, or a tail the caller reports and truncates
+    }
+    if (!record.ok()) return record.status();
+    TWISTER_TRY(apply_record(*record));
+    ++applied;
+  }
 }
 
 }  // namespace twister::input

@@ -119,8 +119,25 @@ class InteractionMachine {
     glm::vec3 last_valid_m{0.0f};
   };
 
+  // One hand's step: its button edges and input, read once before any transition.
+  struct HandStep {
+    std::uint8_t hand;
+    const HandInput& in;
+    bool grab_pressed;
+    bool move_pressed;
+    bool freeze_pressed;
+    ports::TimestampUs now_us;
+  };
+
+  // step_hand dispatches on the hand's state to one function per HandState.
   void step_hand(std::uint8_t h, const InteractionInputs& inputs, ports::TimestampUs now_us,
                  ActionList& out);
+  void step_idle(const HandStep& s, ActionList& out);
+  void step_dragging(const HandStep& s, ActionList& out);
+  void step_dragging_lost(const HandStep& s, ActionList& out);
+  void step_moving(const HandStep& s, ActionList& out);
+  void step_moving_lost(const HandStep& s, ActionList& out);
+  bool lost_too_long(const HandStep& s) const;
   void step_radius(const InteractionInputs& inputs, ActionList& out);
   void enter(std::uint8_t h, HandState state, ports::TimestampUs now_us);
   bool other_hand_grabs_near(std::uint8_t h, glm::vec3 position_m) const;

@@ -15,6 +15,12 @@
 // lost too long) drops the open segment: the model stays as at its start.
 // Each commit is one journal record (synced) and one undo entry.
 //
+// Structure (docs/interaction.md "SculptSession's parts"): a thin composition of
+// ButtonFrontEnd (debounce + map), SessionPoses (hands, object pose),
+// InteractionMachine, StrokeController (segments, WarpPlan lifecycle), ObjectMover,
+// SessionHistory (mesh commits, undo, journal) and JournalReplay, over a LiveMesh
+// (the mesh and the live stroke's warped columns).
+//
 // Memory: everything comes from SculptStorage given at construction (see
 // SculptSessionWithStorage); no heap allocation ever. Not thread-safe: call from
 // the station's poll loop only. Time in microseconds on a monotonic clock.
@@ -27,8 +33,16 @@
 
 #include "twister/base/result.hpp"
 #include "twister/input/button_debouncer.hpp"
+#include "twister/input/button_front_end.hpp"
 #include "twister/input/button_map.hpp"
 #include "twister/input/interaction_machine.hpp"
+#include "twister/input/journal_replay.hpp"
+#include "twister/input/live_mesh.hpp"
+#include "twister/input/object_mover.hpp"
+#include "twister/input/session_events.hpp"
+#include "twister/input/session_history.hpp"
+#include "twister/input/session_poses.hpp"
+#include "twister/input/stroke_controller.hpp"
 #include "twister/input/undo_history.hpp"
 #include "twister/journal/journal_reader.hpp"
 #include "twister/journal/journal_record.hpp"
@@ -65,65 +79,6 @@ struct SculptStorage {
   std::span<UndoEntry> undo_entries;
 };
 
-enum class SessionEventKind : std::uint8_t {
-  grab_begin,     // hand started a stroke
-  committed,      // a stroke segment was applied to the mesh (sequence = its record);
-                  // reason released: `hand`'s grab ends here; none: freeze or a
-                  // hand joining, the stroke goes on
-  cancelled,      // `hand`'s grab ended without commit: reason tracking_timeout
-                  // (segment dropped, model as at its start) or a warp-plan error
-                  // (status) when the stroke could not go on
-  tracking_lost,  // hand lost tracking during a stroke or move; warp holds
-  tracking_resumed,
-  refused,  // a press was refused (reason; status for a plan error)
-  radius_changed,
-  move_begin,
-  move_committed,
-  move_cancelled,
-  undone,
-  redone,
-  journal_failed,    // the commit happened but its record is not durable (status)
-  history_overflow,  // the commit was too large to be undoable
-};
-const char* session_event_kind_name(SessionEventKind kind);
-
-struct SessionEvent {
-  SessionEventKind kind = SessionEventKind::committed;
-  std::uint8_t hand = 0;
-  Reason reason = Reason::none;
-  Status status{};
-  std::uint32_t sequence = 0;  // journal sequence of committed / undone / redone
-};
-
-inline constexpr std::size_t kMaxEventsPerStep = 16;
-
-class SessionEvents {
- public:
-  void push(const SessionEvent& event);  // beyond capacity: counted, dropped
-  std::span<const SessionEvent> items() const { return {items_.data(), count_}; }
-  std::size_t dropped() const { return dropped_; }
-
- private:
-  std::array<SessionEvent, kMaxEventsPerStep> items_{};
-  std::size_t count_ = 0;
-  std::size_t dropped_ = 0;
-};
-
-// What a display needs for the live stroke (valid while active).
-struct LiveWarp {
-  bool active = false;
-  std::uint8_t hand_mask = 0;            // session hands in the stroke (bit h)
-  const math::WarpPlan* plan = nullptr;  // indices, weights, screws, start/end frames
-  math::ConstVertexColumns positions;    // live_x/y/z: warped where plan->indices()
-};
-
-struct ReplayStats {
-  std::size_t strokes = 0;
-  std::size_t moves = 0;
-  std::size_t undos = 0;
-  std::size_t redos = 0;
-};
-
 class SculptSession {
  public:
   // `journal` may be null (no recording, e.g. the replay tool). The mesh, storage
@@ -156,71 +111,35 @@ class SculptSession {
   // clean end or at a torn/corrupt tail (see reader.problem(); the caller reports
   // it and calls reader.truncate_tail()). Errors of apply_record are returned.
   Result<std::size_t> replay(journal::JournalReader& reader);
-  const ReplayStats& replay_stats() const { return replay_stats_; }
+  const ReplayStats& replay_stats() const { return replay_.stats(); }
 
-  const mesh::Mesh& mesh() const { return mesh_; }
-  const math::Frame& object_pose() const { return object_; }
+  const mesh::Mesh& mesh() const { return mesh_.mesh(); }
+  const math::Frame& object_pose() const { return poses_.object(); }
   float radius_m() const { return machine_.radius_m(); }
   const InteractionMachine& machine() const { return machine_; }
-  LiveWarp live() const;
-  bool busy() const;  // a stroke or move is active
-  std::uint32_t next_sequence() const { return next_sequence_; }
-  const UndoHistory& history() const { return history_; }
+  LiveWarp live() const { return strokes_.live(); }
+  bool busy() const { return strokes_.active() || mover_.moving(); }  // stroke or move
+  std::uint32_t next_sequence() const { return history_.next_sequence(); }
+  const UndoHistory& history() const { return history_.undo_history(); }
 
  private:
-  struct HandTrack {
-    bool valid = false;
-    math::Frame world{};  // last valid pose
-  };
-
   void apply_action(const Action& action, SessionEvents& out);
-  Status begin_segment(std::uint8_t hand_mask);
-  // Commits the open segment; the committed event names `hand` and `reason`
-  // (released: the hand's grab ends; none: the stroke continues). Returns that event.
-  SessionEvent commit_segment(std::uint8_t hand, Reason reason, SessionEvents& out);
-  // Reports the grabs of `mask` as ended (cancelled with `status`).
-  void end_hands(std::uint8_t mask, Status status, SessionEvents& out);
-  void restart_without(std::uint8_t hand, bool commit, SessionEvents& out);
-  Status update_plan();
-  Status commit_plan(const journal::JournalRecord& record, bool journaled, SessionEvents* out);
-  void journal_append(journal::JournalRecord& record, SessionEvents* out);
-  // undo() (type undo) or redo() (type redo): the step on the mesh, then its record.
+  void commit_move(const Action& action, SessionEvents& out);
+  InteractionInputs inputs() const;
+  // undo() (type undo) or redo() (type redo).
   Status step_history(journal::RecordType type);
-  math::Frame to_object(const math::Frame& world) const;
-  math::Frame moved_object() const;
-  std::size_t plan_frames(std::array<math::Frame, 2>& frames) const;
-  math::ConstVertexColumns rest() const;
-  math::VertexColumns live_columns();
 
-  SculptSessionConfig config_;
-  mesh::Mesh& mesh_;
-  SculptStorage storage_;
-  journal::JournalWriter* journal_;
-  ButtonDebouncer debouncer_;
+  LiveMesh mesh_;
+  SessionPoses poses_;
+  ButtonFrontEnd buttons_;
   InteractionMachine machine_;
+  // The one plan (one WarpPlanStorage): the live strokes' and, while none is open,
+  // the replay's; a replayed freeze step continues the plan of the record before it.
   math::WarpPlan plan_;
-  UndoHistory history_;
-  std::array<HandButtons, kHandCount> buttons_{};
-  std::array<HandTrack, kHandCount> hands_{};
-  math::Frame object_{};
-  // Open stroke segment.
-  std::uint8_t stroke_mask_ = 0;
-  std::uint16_t chain_step_ = 0;
-  bool segment_moved_ = false;  // a step has passed since the segment began
-  double stroke_radius_m_ = 0.0;
-  std::array<math::Frame, 2> stroke_start_{};  // object frame, per plan hand
-  // Open object move.
-  bool moving_ = false;
-  std::uint8_t move_hand_ = 0;
-  math::Frame move_hand_start_{};  // world
-  math::Frame move_object_start_{};
-  std::uint32_t next_sequence_ = 0;
-  // Hands whose grab the machine ends with a commit in the current step: released
-  // together, they share one commit instead of one hand "continuing" for no time.
-  std::uint8_t releasing_mask_ = 0;
-  bool replay_chain_open_ = false;  // replay: a stroke chain may continue (freeze)
-  std::uint16_t replay_chain_step_ = 0;
-  ReplayStats replay_stats_{};
+  SessionHistory history_;
+  StrokeController strokes_;
+  ObjectMover mover_;
+  JournalReplay replay_;
 };
 
 // A session owning its working memory: kVertices = mesh vertex capacity,

@@ -1,0 +1,78 @@
+// SessionHistory: the one place where the model changes for good. Each commit (a
+// stroke's warp copied from the live columns into the mesh, an object move) becomes
+// one UndoHistory entry and one journal record with the next sequence number
+// (appended and synced before the call returns); undo and redo step the history and
+// are journaled as well. Replay (JournalReplay) uses the apply_* functions: the same
+// changes without writing records, so a replayed model is bit-identical.
+//
+// A failed journal append is reported (journal_failed event or io_error) but the
+// in-memory change stands; a commit too large for the history is applied but not
+// undoable (history_overflow event).
+// Memory: the mesh, poses, history storage and journal are the caller's and must
+// outlive this object; no allocation. Not thread-safe.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "twister/base/status.hpp"
+#include "twister/input/live_mesh.hpp"
+#include "twister/input/session_events.hpp"
+#include "twister/input/session_poses.hpp"
+#include "twister/input/stroke_commit_sink.hpp"
+#include "twister/input/undo_history.hpp"
+#include "twister/journal/journal_record.hpp"
+#include "twister/journal/journal_writer.hpp"
+#include "twister/math/frame.hpp"
+#include "twister/math/warp_plan.hpp"
+
+namespace twister::input {
+
+class SessionHistory final : public StrokeCommitSink {
+ public:
+  // `journal` may be null (no recording; sequence numbers still count).
+  SessionHistory(LiveMesh& mesh, SessionPoses& poses, std::span<VertexChange> changes,
+                 std::span<UndoEntry> entries, journal::JournalWriter* journal);
+  SessionHistory(const SessionHistory&) = delete;
+  SessionHistory& operator=(const SessionHistory&) = delete;
+
+  // Live, journaled. A stroke commits through StrokeCommitSink::commit().
+  // A finished object move of `hand` (the object already stands at `after`); returns
+  // its sequence.
+  std::uint32_t commit_move(std::uint8_t hand, const math::Frame& before, const math::Frame& after,
+                            SessionEvents& out);
+  // Undo (type undo) or redo (type redo) of the newest entry, then its record.
+  // failed_precondition: nothing to undo/redo; out_of_range: the history does not fit
+  // the mesh. io_error: the step happened but its record is not durable.
+  Status commit_history_step(journal::RecordType type);
+
+  // Replay, not journaled. The warp of `plan` (updated to its end poses); errors of
+  // WarpPlan::apply (then nothing changed).
+  Status apply_stroke(const math::WarpPlan& plan);
+  // An undo entry for an object move (the caller sets the pose).
+  void apply_move(const math::Frame& before, const math::Frame& after);
+  // Undo or redo without a record; errors as commit_history_step.
+  Status apply_history_step(journal::RecordType type);
+  // The record `sequence` was applied: the next record gets sequence + 1.
+  void resume_after(std::uint32_t sequence) { next_sequence_ = sequence + 1; }
+
+  std::uint32_t next_sequence() const { return next_sequence_; }
+  const UndoHistory& undo_history() const { return history_; }
+
+ private:
+  CommitOutcome do_commit(const math::WarpPlan& plan, const journal::StrokeRecord& stroke,
+                          SessionEvents& out) override;
+  // The commit of a warp, live and replayed alike: live columns into the mesh, one
+  // undo entry. Commit-time work on the mesh (refinement) hooks in here.
+  Status apply_plan(const math::WarpPlan& plan, SessionEvents* out);
+  // Gives `record` the next sequence and appends it (when journaling).
+  void append(journal::JournalRecord& record, SessionEvents* out);
+
+  LiveMesh& mesh_;
+  SessionPoses& poses_;
+  UndoHistory history_;
+  journal::JournalWriter* journal_;
+  std::uint32_t next_sequence_ = 0;
+};
+
+}  // namespace twister::input

@@ -1,0 +1,39 @@
+// StrokeCommitSink: where a StrokeController's commits go. A commit makes the plan's
+// current warp part of the model for good: the sink applies `plan` (built on the rest
+// columns the controller was given) and records `stroke`, the segment's journal
+// record without its sequence. The session's sink is SessionHistory (mesh, undo
+// entry, journal); commit-time work such as mesh refinement belongs behind this
+// interface, not in the controller.
+#pragma once
+
+#include <cstdint>
+
+#include "twister/base/status.hpp"
+#include "twister/input/session_events.hpp"
+#include "twister/journal/journal_record.hpp"
+#include "twister/math/warp_plan.hpp"
+
+namespace twister::input {
+
+struct CommitOutcome {
+  Status status{};             // not ok: nothing was committed (the plan could not apply)
+  std::uint32_t sequence = 0;  // the commit's journal sequence
+};
+
+class StrokeCommitSink {
+ public:
+  virtual ~StrokeCommitSink() = default;
+
+  // Commits the plan's warp. Events of the commit itself (history_overflow,
+  // journal_failed) go to `out`; the `committed` event is the caller's.
+  CommitOutcome commit(const math::WarpPlan& plan, const journal::StrokeRecord& stroke,
+                       SessionEvents& out) {
+    return do_commit(plan, stroke, out);
+  }
+
+ private:
+  virtual CommitOutcome do_commit(const math::WarpPlan& plan, const journal::StrokeRecord& stroke,
+                                  SessionEvents& out) = 0;
+};
+
+}  // namespace twister::input

@@ -1,0 +1,47 @@
+#include "twister/input/session_events.hpp"
+
+namespace twister::input {
+
+const char* session_event_kind_name(SessionEventKind kind) {
+  switch (kind) {
+    case SessionEventKind::grab_begin:
+      return "grab_begin";
+    case SessionEventKind::committed:
+      return "committed";
+    case SessionEventKind::cancelled:
+      return "cancelled";
+    case SessionEventKind::tracking_lost:
+      return "tracking_lost";
+    case SessionEventKind::tracking_resumed:
+      return "tracking_resumed";
+    case SessionEventKind::refused:
+      return "refused";
+    case SessionEventKind::radius_changed:
+      return "radius_changed";
+    case SessionEventKind::move_begin:
+      return "move_begin";
+    case SessionEventKind::move_committed:
+      return "move_committed";
+    case SessionEventKind::move_cancelled:
+      return "move_cancelled";
+    case SessionEventKind::undone:
+      return "undone";
+    case SessionEventKind::redone:
+      return "redone";
+    case SessionEventKind::journal_failed:
+      return "journal_failed";
+    case SessionEventKind::history_overflow:
+      return "history_overflow";
+  }
+  return "unknown";
+}
+
+void SessionEvents::push(const SessionEvent& event) {
+  if (count_ == items_.size()) {
+    ++dropped_;
+    return;
+  }
+  items_[count_++] = event;
+}
+
+}  // namespace twister::input

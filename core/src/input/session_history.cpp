@@ -1,0 +1,95 @@
+#include "twister/input/session_history.hpp"
+
+#include <glm/vec3.hpp>
+
+#include "twister/base/assert.hpp"
+#include "twister/input/journal_pose.hpp"
+
+namespace twister::input {
+
+SessionHistory::SessionHistory(LiveMesh& mesh, SessionPoses& poses, std::span<VertexChange> changes,
+                               std::span<UndoEntry> entries, journal::JournalWriter* journal)
+    : mesh_(mesh), poses_(poses), history_(changes, entries), journal_(journal) {}
+
+CommitOutcome SessionHistory::do_commit(const math::WarpPlan& plan,
+                                        const journal::StrokeRecord& stroke, SessionEvents& out) {
+  const std::uint32_t sequence = next_sequence_;
+  const Status s = apply_plan(plan, &out);
+  if (s.ok()) {
+    journal::JournalRecord r;
+    r.type = journal::RecordType::stroke;
+    r.stroke = stroke;
+    append(r, &out);
+  }
+  return {s, sequence};
+}
+
+std::uint32_t SessionHistory::commit_move(std::uint8_t hand, const math::Frame& before,
+                                          const math::Frame& after, SessionEvents& out) {
+  journal::JournalRecord r;
+  r.type = journal::RecordType::object_move;
+  r.move.hand = hand;
+  r.move.object_before = to_journal(before);
+  r.move.object_after = to_journal(after);
+  apply_move(before, after);
+  const std::uint32_t sequence = next_sequence_;
+  append(r, &out);
+  return sequence;
+}
+
+Status SessionHistory::commit_history_step(journal::RecordType type) {
+  TWISTER_TRY(apply_history_step(type));
+  journal::JournalRecord r;
+  r.type = type;
+  append(r, nullptr);
+  return journal_ == nullptr || journal_->healthy() ? ok_status() : Status(StatusCode::io_error);
+}
+
+Status SessionHistory::apply_stroke(const math::WarpPlan& plan) {
+  return apply_plan(plan, nullptr);
+}
+
+void SessionHistory::apply_move(const math::Frame& before, const math::Frame& after) {
+  history_.begin_entry();
+  history_.record_object(before, after);
+  history_.end_entry().ignore();  // an object-only entry always fits
+}
+
+Status SessionHistory::apply_history_step(journal::RecordType type) {
+  TWISTER_ASSERT(type == journal::RecordType::undo || type == journal::RecordType::redo);
+  mesh::Mesh& mesh = mesh_.mesh();
+  TWISTER_TRY_ASSIGN(const UndoStep step,
+                     type == journal::RecordType::undo ? history_.undo(mesh) : history_.redo(mesh));
+  if (step.object_move) poses_.set_object(step.object_pose);
+  return ok_status();
+}
+
+Status SessionHistory::apply_plan(const math::WarpPlan& plan, SessionEvents* out) {
+  TWISTER_TRY(plan.apply(mesh_.rest(), mesh_.live()));
+  const math::VertexColumns live = mesh_.live();
+  mesh::Mesh& mesh = mesh_.mesh();
+  history_.begin_entry();
+  bool undoable = true;
+  for (const std::uint32_t i : plan.indices()) {
+    const glm::vec3 after{live.x[i], live.y[i], live.z[i]};
+    if (!history_.record(i, mesh.position(i), after).ok()) undoable = false;
+    mesh.set_position(i, after);
+  }
+  if (!history_.end_entry().ok()) undoable = false;
+  if (!undoable && out != nullptr) {
+    out->push({SessionEventKind::history_overflow, 0, Reason::none,
+               Status(StatusCode::resource_exhausted), next_sequence_});
+  }
+  return ok_status();
+}
+
+void SessionHistory::append(journal::JournalRecord& record, SessionEvents* out) {
+  record.sequence = next_sequence_++;
+  if (journal_ == nullptr) return;
+  const Status s = journal_->append(record);
+  if (!s.ok() && out != nullptr) {
+    out->push({SessionEventKind::journal_failed, 0, Reason::none, s, record.sequence});
+  }
+}
+
+}  // namespace twister::input
