@@ -4,11 +4,11 @@
 // second and 120 Hz shared by the receivers). A scenario "hangup" fault looks like
 // an unplugged USB-serial adapter: read/write fail with io_error and reopen() is
 // unavailable until the fault ends, then the unit powers up from its defaults.
-// The device model uses the heap internally (it is a simulator, not station code).
+// Steady state (reads while streaming) uses no heap: bytes go from the model's
+// fixed line queue straight into the reader's buffer. Commands (start-up) may.
 #pragma once
 
 #include <cstddef>
-#include <vector>
 
 #include "twister/ports/byte_stream.hpp"
 #include "twister/ports/clock.hpp"
@@ -32,8 +32,6 @@ class SimFastrakStream final : public ports::ByteStream {
 
   ports::Clock& clock_;
   FastrakDevice device_;
-  std::vector<std::byte> pending_;
-  std::size_t pending_pos_ = 0;
   bool connected_ = false;
 };
 
