@@ -92,7 +92,8 @@ std::size_t format_log_message(std::span<char> out, const char* format,
   for (const char* p = format; *p != '\0';) {
     if (*p != '%') {
       const char* literal_end = std::strchr(p, '%');
-      const std::size_t n = literal_end ? static_cast<std::size_t>(literal_end - p) : std::strlen(p);
+      const std::size_t n =
+          literal_end ? static_cast<std::size_t>(literal_end - p) : std::strlen(p);
       pos = append(out, pos, p, n);
       p += n;
       continue;
@@ -154,8 +155,8 @@ void Logger::do_write(LogLevel level, const char* component, const char* format,
 }
 
 bool parse_log_level(std::string_view text, LogLevel& out) {
-  for (const LogLevel l : {LogLevel::error, LogLevel::warning, LogLevel::notice, LogLevel::info,
-                           LogLevel::debug}) {
+  for (const LogLevel l :
+       {LogLevel::error, LogLevel::warning, LogLevel::notice, LogLevel::info, LogLevel::debug}) {
     if (text == log_level_name(l)) {
       out = l;
       return true;
@@ -183,7 +184,7 @@ const char* log_level_name(LogLevel level) {
 bool stderr_is_journal() {
   // sd-daemon(3): JOURNAL_STREAM is "DEVICE:INODE" of the stream systemd connected.
   const char* env = std::getenv("JOURNAL_STREAM");
-  struct stat st{};
+  struct stat st {};
   if (env == nullptr || ::fstat(2, &st) != 0) return false;
   unsigned long long dev = 0;
   unsigned long long ino = 0;

@@ -37,8 +37,7 @@ struct Pipe {
 };
 
 TEST(LogFormat, ConversionsTakeTheArgumentsInOrder) {
-  EXPECT_EQ(format("hand %u committed as record %u", {0u, 12u}),
-            "hand 0 committed as record 12");
+  EXPECT_EQ(format("hand %u committed as record %u", {0u, 12u}), "hand 0 committed as record 12");
   EXPECT_EQ(format("%d %s %.3f %5.1f%%", {-4, "x", 0.5, 2.25}), "-4 x 0.500   2.2%");
   EXPECT_EQ(format("%016llx", {0xabcULL}), "0000000000000abc");
   EXPECT_EQ(format("%zu %lld", {std::size_t{7}, -8LL}), "7 -8");
@@ -97,8 +96,8 @@ TEST(Logger, WritingALineDoesNotAllocate) {
 }
 
 TEST(LogLevelNames, ParseAndNameRoundTrip) {
-  for (const LogLevel l : {LogLevel::error, LogLevel::warning, LogLevel::notice, LogLevel::info,
-                           LogLevel::debug}) {
+  for (const LogLevel l :
+       {LogLevel::error, LogLevel::warning, LogLevel::notice, LogLevel::info, LogLevel::debug}) {
     LogLevel parsed = LogLevel::error;
     ASSERT_TRUE(parse_log_level(log_level_name(l), parsed));
     EXPECT_EQ(parsed, l);
@@ -110,7 +109,7 @@ TEST(LogLevelNames, ParseAndNameRoundTrip) {
 TEST(StderrIsJournal, MatchesOnlyTheDeviceAndInodeOfStderr) {
   ::unsetenv("JOURNAL_STREAM");
   EXPECT_FALSE(stderr_is_journal());
-  struct stat st{};
+  struct stat st {};
   ASSERT_EQ(::fstat(2, &st), 0);
   const std::string mine = std::to_string(st.st_dev) + ":" + std::to_string(st.st_ino);
   ::setenv("JOURNAL_STREAM", mine.c_str(), 1);

@@ -29,14 +29,14 @@ struct LogArg {
     const char* s;
   };
 
-  LogArg(int v) : kind(Kind::signed_integer), i(v) {}                // NOLINT: implicit by design
-  LogArg(long v) : kind(Kind::signed_integer), i(v) {}               // NOLINT
-  LogArg(long long v) : kind(Kind::signed_integer), i(v) {}          // NOLINT
-  LogArg(unsigned v) : kind(Kind::unsigned_integer), u(v) {}         // NOLINT
-  LogArg(unsigned long v) : kind(Kind::unsigned_integer), u(v) {}    // NOLINT
+  LogArg(int v) : kind(Kind::signed_integer), i(v) {}              // NOLINT: implicit by design
+  LogArg(long v) : kind(Kind::signed_integer), i(v) {}             // NOLINT
+  LogArg(long long v) : kind(Kind::signed_integer), i(v) {}        // NOLINT
+  LogArg(unsigned v) : kind(Kind::unsigned_integer), u(v) {}       // NOLINT
+  LogArg(unsigned long v) : kind(Kind::unsigned_integer), u(v) {}  // NOLINT
   LogArg(unsigned long long v) : kind(Kind::unsigned_integer), u(v) {}  // NOLINT
-  LogArg(double v) : kind(Kind::real), d(v) {}                       // NOLINT
-  LogArg(const char* v) : kind(Kind::text), s(v) {}                  // NOLINT
+  LogArg(double v) : kind(Kind::real), d(v) {}                          // NOLINT
+  LogArg(const char* v) : kind(Kind::text), s(v) {}                     // NOLINT
 };
 
 class LogSink {

@@ -19,10 +19,10 @@ namespace twister::hal {
 using ports::LogLevel;
 
 struct LoggerConfig {
-  std::string program;                  // prefix of plain lines ("twister-station")
+  std::string program;                    // prefix of plain lines ("twister-station")
   LogLevel threshold = LogLevel::notice;  // lines above it (less severe) are dropped
-  bool syslog_prefixes = false;         // "<N>" instead of the program name
-  int fd = 2;                           // where lines go (stderr)
+  bool syslog_prefixes = false;           // "<N>" instead of the program name
+  int fd = 2;                             // where lines go (stderr)
 };
 
 class Logger final : public ports::LogSink {
