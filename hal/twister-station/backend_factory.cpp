@@ -25,10 +25,19 @@ namespace twister::station_app {
 namespace {
 
 // Buttons come from the tracker's stylus item: no device of their own.
-class NoButtonSource final : public ports::ButtonSource {
+class NoButtonSource final : public ports::ButtonSource, public hal::PollSource {
   Result<ports::ButtonEdge> do_poll() override { return StatusCode::unavailable; }
   std::uint8_t do_line_count() const override { return 0; }
+  std::size_t do_poll_fds(std::span<pollfd>) const override { return 0; }
+  Status do_reopen() override { return ok_status(); }
 };
+
+// Owns `device` through its port and keeps it as a PollSource too.
+template <typename Port, typename Device>
+void adopt(std::unique_ptr<Device> device, std::unique_ptr<Port>& port, hal::PollSource*& poll) {
+  poll = device.get();
+  port = std::move(device);
+}
 
 bool make_sim_tracker(const StationConfig& config, Backends& out, std::string& error) {
   const SimTrackerConfig& s = config.tracker.sim;
@@ -60,10 +69,12 @@ bool make_sim_tracker(const StationConfig& config, Backends& out, std::string& e
   const ports::TimestampUs start_us = out.clock->now_us();
   if (config.buttons.backend == ButtonBackend::sim) {
     out.buttons_name = "sim (" + std::to_string(scenario.buttons.size()) + " scripted events)";
-    out.buttons = std::make_unique<sim::SimButtonSource>(*out.clock, scenario.buttons, start_us,
-                                                         std::uint8_t{6});
+    adopt(std::make_unique<sim::SimButtonSource>(*out.clock, scenario.buttons, start_us,
+                                                 std::uint8_t{6}),
+          out.buttons, out.buttons_poll);
   }
-  out.tracker = std::make_unique<sim::SimFastrakStream>(*out.clock, device, std::move(scenario));
+  adopt(std::make_unique<sim::SimFastrakStream>(*out.clock, device, std::move(scenario)),
+        out.tracker, out.tracker_poll);
   return true;
 }
 
@@ -132,10 +143,7 @@ bool make_backends(const StationConfig& config, Backends& out, std::string& erro
                                                                 : hal::FlowControl::none;
       // Not opened here: the Fastrak session opens it, and keeps retrying while the
       // adapter is unplugged, so a station may start before its tracker is plugged.
-      auto stream = std::make_unique<hal::TermiosByteStream>(tc);
-      hal::TermiosByteStream* raw = stream.get();
-      out.tracker_fd = [raw] { return raw->fd(); };
-      out.tracker = std::move(stream);
+      adopt(std::make_unique<hal::TermiosByteStream>(tc), out.tracker, out.tracker_poll);
       out.tracker_name = "serial " + sc.device + " at " + std::to_string(sc.baud) + " baud";
     }
 #endif
@@ -153,12 +161,11 @@ bool make_backends(const StationConfig& config, Backends& out, std::string& erro
         return false;
       }
       // Opened by the Fastrak session, which retries while the tracker is unplugged.
-      // libusb's own fds are not waited on: the loop's timeout paces the reads.
       char ids[32];
       std::snprintf(ids, sizeof ids, "%04x:%04x", uc.vendor_id, uc.product_id);
       out.tracker_name =
           std::string("usb ") + ids + (stream->hotplug_supported() ? " (hot-plug)" : "");
-      out.tracker = std::move(stream);
+      adopt(std::move(stream), out.tracker, out.tracker_poll);
 #endif
       break;
     }
@@ -172,7 +179,7 @@ bool make_backends(const StationConfig& config, Backends& out, std::string& erro
       }
       break;
     case ButtonBackend::stylus:
-      out.buttons = std::make_unique<NoButtonSource>();
+      adopt(std::make_unique<NoButtonSource>(), out.buttons, out.buttons_poll);
       out.buttons_name = "stylus of receiver 1";
       break;
     case ButtonBackend::gpiod: {
@@ -189,13 +196,7 @@ bool make_backends(const StationConfig& config, Backends& out, std::string& erro
                 std::to_string(src->last_errno()) + ")";
         return false;
       }
-      hal::GpiodButtonSource* raw = src.get();
-      out.button_fds = [raw] {
-        auto fds = raw->poll_fds();
-        return std::vector<int>(fds.begin(), fds.end());
-      };
-      out.reopen_buttons = [raw, gc] { return raw->open(gc).ok(); };
-      out.buttons = std::move(src);
+      adopt(std::move(src), out.buttons, out.buttons_poll);
       out.buttons_name = "gpiod " + gc.chip;
 #endif
       break;
@@ -213,9 +214,7 @@ bool make_backends(const StationConfig& config, Backends& out, std::string& erro
         error = std::string("hidapi: cannot open the button device (") + s.name() + ")";
         return false;
       }
-      hal::HidapiButtonSource* raw = src.get();
-      out.reopen_buttons = [raw, hc] { return raw->open(hc).ok(); };
-      out.buttons = std::move(src);
+      adopt(std::move(src), out.buttons, out.buttons_poll);
       out.buttons_name = "hidapi";
 #endif
       break;

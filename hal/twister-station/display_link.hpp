@@ -19,7 +19,8 @@ class DisplayLink {
   // success, else a message.
   std::string open(const std::string& address, const input::SculptSession& session);
   void poll(const input::SculptSession& session, ports::TimestampUs now_us);
-  int poll_fd() const { return socket_ ? socket_->poll_fd() : -1; }
+  // The link's descriptors for the loop's poll set (none without --link).
+  std::size_t poll_fds(std::span<pollfd> out) const { return socket_ ? socket_->poll_fds(out) : 0; }
   // Real-time waits (ms granularity): true when a peer holds our mesh.
   bool wait_for_peer(const input::SculptSession& session, double seconds);
   // Hands everything queued to the peer (up to `seconds`).

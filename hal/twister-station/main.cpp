@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <array>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -193,23 +194,18 @@ int run(const Options& opt, StationConfig cfg) {
     stop_after_s = backends.scenario_duration_s;
   auto last_button_retry_us = start_us;
   bool buttons_broken = false;
-  std::vector<pollfd> fds;
-  fds.reserve(16);
+  std::array<pollfd, 1 + 3 * twister::hal::PollSource::kMaxFds> fds{};
   const char* stop_reason = "end of run";
   for (;;) {
-    fds.clear();
-    fds.push_back({sig_fd, POLLIN, 0});
-    if (backends.tracker_fd) {
-      if (const int fd = backends.tracker_fd(); fd >= 0) fds.push_back({fd, POLLIN, 0});
-    }
-    if (backends.button_fds && !buttons_broken) {
-      for (const int fd : backends.button_fds()) fds.push_back({fd, POLLIN, 0});
-    }
-    if (const int fd = display.poll_fd(); fd >= 0) fds.push_back({fd, POLLIN, 0});
+    std::size_t nfds = 0;
+    fds[nfds++] = {sig_fd, POLLIN, 0};
+    nfds += backends.tracker_poll->poll_fds(std::span(fds).subspan(nfds));
+    if (!buttons_broken) nfds += backends.buttons_poll->poll_fds(std::span(fds).subspan(nfds));
+    nfds += display.poll_fds(std::span(fds).subspan(nfds));
     // Virtual time: never wait, advance 1 ms per iteration instead.
     const int timeout_ms =
         backends.virtual_clock ? 0 : static_cast<int>(cfg.station.loop_timeout_ms);
-    ::poll(fds.data(), fds.size(), timeout_ms);
+    ::poll(fds.data(), nfds, timeout_ms);
     if (fds[0].revents & POLLIN) {
       signalfd_siginfo info{};
       if (::read(sig_fd, &info, sizeof info) == static_cast<ssize_t>(sizeof info)) {
@@ -225,11 +221,10 @@ int run(const Options& opt, StationConfig cfg) {
       if (e->kind == station::StationEventKind::button_source_error) buttons_broken = true;
       if (!opt.quiet) log_event(*e);
     }
-    if (buttons_broken && backends.reopen_buttons &&
-        now_us - last_button_retry_us >=
-            static_cast<std::int64_t>(cfg.tracker.reconnect_interval_ms) * 1000) {
+    if (buttons_broken && now_us - last_button_retry_us >=
+                              static_cast<std::int64_t>(cfg.tracker.reconnect_interval_ms) * 1000) {
       last_button_retry_us = now_us;
-      if (backends.reopen_buttons()) {
+      if (backends.buttons_poll->reopen().ok()) {
         buttons_broken = false;
         std::fprintf(stderr, "twister-station: buttons reopened\n");
       }
