@@ -41,14 +41,14 @@ void adopt(std::unique_ptr<Device> device, std::unique_ptr<Port>& port, hal::Pol
 
 bool make_sim_tracker(const StationConfig& config, Backends& out, std::string& error) {
   const SimTrackerConfig& s = config.tracker.sim;
-  sim::Scenario scenario;
-  if (!s.scenario_file.empty()) {
-    if (!sim::load_scenario_file(s.scenario_file, scenario, error)) return false;
-    out.tracker_name = "sim " + s.scenario_file;
-  } else {
-    if (!sim::load_builtin_scenario(s.scenario, scenario, error)) return false;
-    out.tracker_name = "sim " + s.scenario;
+  auto loaded = s.scenario_file.empty() ? sim::load_builtin_scenario(s.scenario)
+                                        : sim::load_scenario_file(s.scenario_file);
+  if (!loaded) {
+    error = loaded.error().message;
+    return false;
   }
+  sim::Scenario scenario = std::move(*loaded);
+  out.tracker_name = "sim " + (s.scenario_file.empty() ? s.scenario : s.scenario_file);
   if (s.unplug_at_ms > 0) {
     scenario.faults.push_back(
         {s.unplug_at_ms / 1000.0, sim::FaultKind::hangup, s.replug_after_ms / 1000.0});

@@ -44,10 +44,13 @@ int run(int argc, char** argv) {
   if (binary) dev.start_format = twister::tracker::Format::binary;
 
   twister::sim::Scenario scenario;
-  if (std::string error;
-      !scenario_path.empty() && !twister::sim::load_scenario_file(scenario_path, scenario, error)) {
-    std::fprintf(stderr, "twister-sim: %s\n", error.c_str());
-    return 2;
+  if (!scenario_path.empty()) {
+    auto loaded = twister::sim::load_scenario_file(scenario_path);
+    if (!loaded) {
+      std::fprintf(stderr, "twister-sim: %s\n", loaded.error().message.c_str());
+      return 2;
+    }
+    scenario = std::move(*loaded);
   }
   if (duration_s == 0.0) duration_s = scenario.duration_s;
 
