@@ -7,6 +7,7 @@
 #include <string>
 
 #include "config/station_config.hpp"
+#include "twister/hal/expected.hpp"
 #include "twister/hal/poll_source.hpp"
 #include "twister/ports/button_source.hpp"
 #include "twister/ports/byte_stream.hpp"
@@ -29,9 +30,10 @@ struct Backends {
   std::string buttons_name;
 };
 
-// Builds every backend. On failure returns false with `error` set to a message
-// naming the backend ("tracker backend \"usb\" is not built into this binary", ...).
-bool make_backends(const StationConfig& config, Backends& out, std::string& error);
+// Builds every backend. Errors name the backend: not_supported ("tracker backend
+// \"usb\" is not built into this binary"), invalid_argument (a combination or
+// scenario that cannot run), or the status of the device that failed to open.
+hal::Expected<Backends> make_backends(const StationConfig& config);
 
 // Which backends this binary was built with (for --check and --help).
 bool tracker_backend_built(TrackerBackend b);
