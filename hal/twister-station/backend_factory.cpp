@@ -25,21 +25,27 @@ namespace twister::station_app {
 namespace {
 
 // Buttons come from the tracker's stylus item: no device of their own.
-class NoButtonSource final : public ports::ButtonSource {
+class NoButtonSource final : public ports::ButtonSource, public hal::PollSource {
   Result<ports::ButtonEdge> do_poll() override { return StatusCode::unavailable; }
   std::uint8_t do_line_count() const override { return 0; }
+  std::size_t do_poll_fds(std::span<pollfd>) const override { return 0; }
+  Status do_reopen() override { return ok_status(); }
 };
 
-bool make_sim_tracker(const StationConfig& config, Backends& out, std::string& error) {
+// Owns `device` through its port and keeps it as a PollSource too.
+template <typename Port, typename Device>
+void adopt(std::unique_ptr<Device> device, std::unique_ptr<Port>& port, hal::PollSource*& poll) {
+  poll = device.get();
+  port = std::move(device);
+}
+
+hal::Expected<void> make_sim_tracker(const StationConfig& config, Backends& out) {
   const SimTrackerConfig& s = config.tracker.sim;
-  sim::Scenario scenario;
-  if (!s.scenario_file.empty()) {
-    if (!sim::load_scenario_file(s.scenario_file, scenario, error)) return false;
-    out.tracker_name = "sim " + s.scenario_file;
-  } else {
-    if (!sim::load_builtin_scenario(s.scenario, scenario, error)) return false;
-    out.tracker_name = "sim " + s.scenario;
-  }
+  auto loaded = s.scenario_file.empty() ? sim::load_builtin_scenario(s.scenario)
+                                        : sim::load_scenario_file(s.scenario_file);
+  if (!loaded) return loaded.error();
+  sim::Scenario scenario = std::move(*loaded);
+  out.tracker_name = "sim " + (s.scenario_file.empty() ? s.scenario : s.scenario_file);
   if (s.unplug_at_ms > 0) {
     scenario.faults.push_back(
         {s.unplug_at_ms / 1000.0, sim::FaultKind::hangup, s.replug_after_ms / 1000.0});
@@ -60,11 +66,128 @@ bool make_sim_tracker(const StationConfig& config, Backends& out, std::string& e
   const ports::TimestampUs start_us = out.clock->now_us();
   if (config.buttons.backend == ButtonBackend::sim) {
     out.buttons_name = "sim (" + std::to_string(scenario.buttons.size()) + " scripted events)";
-    out.buttons = std::make_unique<sim::SimButtonSource>(*out.clock, scenario.buttons, start_us,
-                                                         std::uint8_t{6});
+    adopt(std::make_unique<sim::SimButtonSource>(*out.clock, scenario.buttons, start_us,
+                                                 std::uint8_t{6}),
+          out.buttons, out.buttons_poll);
   }
-  out.tracker = std::make_unique<sim::SimFastrakStream>(*out.clock, device, std::move(scenario));
-  return true;
+  adopt(std::make_unique<sim::SimFastrakStream>(*out.clock, device, std::move(scenario)),
+        out.tracker, out.tracker_poll);
+  return {};
+}
+
+#ifdef TWISTER_HAVE_HAL_TERMIOS
+void make_serial_tracker(const SerialTrackerConfig& sc, Backends& out) {
+  out.clock = std::make_unique<hal::MonotonicClock>();
+  hal::TermiosConfig tc;
+  tc.path = sc.device;
+  tc.baud = static_cast<int>(sc.baud);
+  tc.flow = sc.flow_control == SerialFlowControl::rtscts    ? hal::FlowControl::rts_cts
+            : sc.flow_control == SerialFlowControl::xonxoff ? hal::FlowControl::xon_xoff
+                                                            : hal::FlowControl::none;
+  // Not opened here: the Fastrak session opens it, and keeps retrying while the
+  // adapter is unplugged, so a station may start before its tracker is plugged.
+  adopt(std::make_unique<hal::TermiosByteStream>(tc), out.tracker, out.tracker_poll);
+  out.tracker_name = "serial " + sc.device + " at " + std::to_string(sc.baud) + " baud";
+}
+#endif
+
+#ifdef TWISTER_HAVE_HAL_LIBUSB
+hal::Expected<void> make_usb_tracker(const UsbTrackerConfig& uc, Backends& out) {
+  out.clock = std::make_unique<hal::MonotonicClock>();
+  auto stream = std::make_unique<hal::LibusbByteStream>(
+      hal::LibusbConfig{uc.vendor_id, uc.product_id, uc.interface_number, uc.endpoint_in,
+                        uc.endpoint_out, uc.timeout_ms});
+  if (const Status st = stream->init(); !st.ok()) {
+    return hal::Error{st, std::string("libusb: initialisation failed (") + st.name() +
+                              ", libusb error " + std::to_string(stream->last_error()) + ")"};
+  }
+  // Opened by the Fastrak session, which retries while the tracker is unplugged.
+  char ids[32];
+  std::snprintf(ids, sizeof ids, "%04x:%04x", uc.vendor_id, uc.product_id);
+  out.tracker_name = std::string("usb ") + ids + (stream->hotplug_supported() ? " (hot-plug)" : "");
+  adopt(std::move(stream), out.tracker, out.tracker_poll);
+  return {};
+}
+#endif
+
+#ifdef TWISTER_HAVE_HAL_GPIOD
+hal::Expected<void> make_gpiod_buttons(const GpiodButtonsConfig& config, Backends& out) {
+  auto src = std::make_unique<hal::GpiodButtonSource>();
+  hal::GpiodButtonConfig gc;
+  gc.chip = config.chip;
+  gc.lines = config.lines;
+  gc.active_low = config.active_low;
+  gc.bias = static_cast<hal::GpiodButtonConfig::Bias>(config.bias);
+  if (const Status s = src->open(gc); !s.ok()) {
+    return hal::Error{s, "gpiod: cannot request lines on " + gc.chip + " (" + s.name() +
+                             ", errno " + std::to_string(src->last_errno()) + ")"};
+  }
+  adopt(std::move(src), out.buttons, out.buttons_poll);
+  out.buttons_name = "gpiod " + gc.chip;
+  return {};
+}
+#endif
+
+#ifdef TWISTER_HAVE_HAL_HIDAPI
+hal::Expected<void> make_hidapi_buttons(const HidapiButtonsConfig& config, Backends& out) {
+  auto src = std::make_unique<hal::HidapiButtonSource>(*out.clock);
+  hal::HidapiButtonConfig hc;
+  hc.vendor_id = config.vendor_id;
+  hc.product_id = config.product_id;
+  hc.path = config.path;
+  for (const auto& b : config.buttons) hc.buttons.push_back({b.byte, b.mask});
+  if (const Status s = src->open(hc); !s.ok()) {
+    return hal::Error{s, std::string("hidapi: cannot open the button device (") + s.name() + ")"};
+  }
+  adopt(std::move(src), out.buttons, out.buttons_poll);
+  out.buttons_name = "hidapi";
+  return {};
+}
+#endif
+
+hal::Expected<void> make_tracker(const StationConfig& config, Backends& out) {
+  switch (config.tracker.backend) {
+    case TrackerBackend::sim:
+      return make_sim_tracker(config, out);
+    case TrackerBackend::serial:
+#ifdef TWISTER_HAVE_HAL_TERMIOS
+      make_serial_tracker(config.tracker.serial, out);
+#endif
+      return {};
+    case TrackerBackend::usb:
+#ifdef TWISTER_HAVE_HAL_LIBUSB
+      return make_usb_tracker(config.tracker.usb, out);
+#endif
+      return {};
+  }
+  return {};
+}
+
+hal::Expected<void> make_buttons(const StationConfig& config, Backends& out) {
+  switch (config.buttons.backend) {
+    case ButtonBackend::sim:
+      // Built with the simulated tracker (same scenario, same clock).
+      if (!out.buttons) {
+        return hal::make_error(StatusCode::invalid_argument,
+                               "button backend \"sim\" needs tracker backend \"sim\"");
+      }
+      return {};
+    case ButtonBackend::stylus:
+      adopt(std::make_unique<NoButtonSource>(), out.buttons, out.buttons_poll);
+      out.buttons_name = "stylus of receiver 1";
+      return {};
+    case ButtonBackend::gpiod:
+#ifdef TWISTER_HAVE_HAL_GPIOD
+      return make_gpiod_buttons(config.buttons.gpiod, out);
+#endif
+      return {};
+    case ButtonBackend::hidapi:
+#ifdef TWISTER_HAVE_HAL_HIDAPI
+      return make_hidapi_buttons(config.buttons.hidapi, out);
+#endif
+      return {};
+  }
+  return {};
 }
 
 }  // namespace
@@ -104,124 +227,21 @@ bool button_backend_built(ButtonBackend b) {
   }
 }
 
-bool make_backends(const StationConfig& config, Backends& out, std::string& error) {
+hal::Expected<Backends> make_backends(const StationConfig& config) {
   if (!tracker_backend_built(config.tracker.backend)) {
-    error = std::string("tracker backend \"") + to_string(config.tracker.backend) +
-            "\" is not built into this binary";
-    return false;
+    return hal::make_error(StatusCode::not_supported, std::string("tracker backend \"") +
+                                                          to_string(config.tracker.backend) +
+                                                          "\" is not built into this binary");
   }
   if (!button_backend_built(config.buttons.backend)) {
-    error = std::string("button backend \"") + to_string(config.buttons.backend) +
-            "\" is not built into this binary";
-    return false;
+    return hal::make_error(StatusCode::not_supported, std::string("button backend \"") +
+                                                          to_string(config.buttons.backend) +
+                                                          "\" is not built into this binary");
   }
-  switch (config.tracker.backend) {
-    case TrackerBackend::sim:
-      if (!make_sim_tracker(config, out, error)) return false;
-      break;
-    case TrackerBackend::serial:
-#ifdef TWISTER_HAVE_HAL_TERMIOS
-    {
-      out.clock = std::make_unique<hal::MonotonicClock>();
-      const SerialTrackerConfig& sc = config.tracker.serial;
-      hal::TermiosConfig tc;
-      tc.path = sc.device;
-      tc.baud = static_cast<int>(sc.baud);
-      tc.flow = sc.flow_control == SerialFlowControl::rtscts    ? hal::FlowControl::rts_cts
-                : sc.flow_control == SerialFlowControl::xonxoff ? hal::FlowControl::xon_xoff
-                                                                : hal::FlowControl::none;
-      // Not opened here: the Fastrak session opens it, and keeps retrying while the
-      // adapter is unplugged, so a station may start before its tracker is plugged.
-      auto stream = std::make_unique<hal::TermiosByteStream>(tc);
-      hal::TermiosByteStream* raw = stream.get();
-      out.tracker_fd = [raw] { return raw->fd(); };
-      out.tracker = std::move(stream);
-      out.tracker_name = "serial " + sc.device + " at " + std::to_string(sc.baud) + " baud";
-    }
-#endif
-    break;
-    case TrackerBackend::usb: {
-#ifdef TWISTER_HAVE_HAL_LIBUSB
-      out.clock = std::make_unique<hal::MonotonicClock>();
-      const UsbTrackerConfig& uc = config.tracker.usb;
-      auto stream = std::make_unique<hal::LibusbByteStream>(
-          hal::LibusbConfig{uc.vendor_id, uc.product_id, uc.interface_number, uc.endpoint_in,
-                            uc.endpoint_out, uc.timeout_ms});
-      if (const Status st = stream->init(); !st.ok()) {
-        error = std::string("libusb: initialisation failed (") + st.name() + ", libusb error " +
-                std::to_string(stream->last_error()) + ")";
-        return false;
-      }
-      // Opened by the Fastrak session, which retries while the tracker is unplugged.
-      // libusb's own fds are not waited on: the loop's timeout paces the reads.
-      char ids[32];
-      std::snprintf(ids, sizeof ids, "%04x:%04x", uc.vendor_id, uc.product_id);
-      out.tracker_name =
-          std::string("usb ") + ids + (stream->hotplug_supported() ? " (hot-plug)" : "");
-      out.tracker = std::move(stream);
-#endif
-      break;
-    }
-  }
-  switch (config.buttons.backend) {
-    case ButtonBackend::sim:
-      // Built with the simulated tracker (same scenario, same clock).
-      if (!out.buttons) {
-        error = "button backend \"sim\" needs tracker backend \"sim\"";
-        return false;
-      }
-      break;
-    case ButtonBackend::stylus:
-      out.buttons = std::make_unique<NoButtonSource>();
-      out.buttons_name = "stylus of receiver 1";
-      break;
-    case ButtonBackend::gpiod: {
-#ifdef TWISTER_HAVE_HAL_GPIOD
-      auto src = std::make_unique<hal::GpiodButtonSource>();
-      hal::GpiodButtonConfig gc;
-      gc.chip = config.buttons.gpiod.chip;
-      gc.lines = config.buttons.gpiod.lines;
-      gc.active_low = config.buttons.gpiod.active_low;
-      gc.bias = static_cast<hal::GpiodButtonConfig::Bias>(config.buttons.gpiod.bias);
-      const Status s = src->open(gc);
-      if (!s.ok()) {
-        error = "gpiod: cannot request lines on " + gc.chip + " (" + s.name() + ", errno " +
-                std::to_string(src->last_errno()) + ")";
-        return false;
-      }
-      hal::GpiodButtonSource* raw = src.get();
-      out.button_fds = [raw] {
-        auto fds = raw->poll_fds();
-        return std::vector<int>(fds.begin(), fds.end());
-      };
-      out.reopen_buttons = [raw, gc] { return raw->open(gc).ok(); };
-      out.buttons = std::move(src);
-      out.buttons_name = "gpiod " + gc.chip;
-#endif
-      break;
-    }
-    case ButtonBackend::hidapi: {
-#ifdef TWISTER_HAVE_HAL_HIDAPI
-      auto src = std::make_unique<hal::HidapiButtonSource>(*out.clock);
-      hal::HidapiButtonConfig hc;
-      hc.vendor_id = config.buttons.hidapi.vendor_id;
-      hc.product_id = config.buttons.hidapi.product_id;
-      hc.path = config.buttons.hidapi.path;
-      for (const auto& b : config.buttons.hidapi.buttons) hc.buttons.push_back({b.byte, b.mask});
-      const Status s = src->open(hc);
-      if (!s.ok()) {
-        error = std::string("hidapi: cannot open the button device (") + s.name() + ")";
-        return false;
-      }
-      hal::HidapiButtonSource* raw = src.get();
-      out.reopen_buttons = [raw, hc] { return raw->open(hc).ok(); };
-      out.buttons = std::move(src);
-      out.buttons_name = "hidapi";
-#endif
-      break;
-    }
-  }
-  return true;
+  Backends out;
+  if (auto made = make_tracker(config, out); !made) return made.error();
+  if (auto made = make_buttons(config, out); !made) return made.error();
+  return out;
 }
 
 }  // namespace twister::station_app

@@ -3,12 +3,12 @@
 // is not built into this binary / failed to open. Init-time; allocates.
 #pragma once
 
-#include <functional>
 #include <memory>
 #include <string>
-#include <vector>
 
 #include "config/station_config.hpp"
+#include "twister/hal/expected.hpp"
+#include "twister/hal/poll_source.hpp"
 #include "twister/ports/button_source.hpp"
 #include "twister/ports/byte_stream.hpp"
 #include "twister/ports/clock.hpp"
@@ -16,22 +16,24 @@
 
 namespace twister::station_app {
 
+// Each device backend is owned through its port; `*_poll` is the same object seen
+// as a PollSource (the loop's descriptors, and reopen after a failure).
 struct Backends {
   std::unique_ptr<ports::Clock> clock;
   sim::VirtualClock* virtual_clock = nullptr;  // set when the simulator runs in virtual time
   std::unique_ptr<ports::ByteStream> tracker;
-  std::function<int()> tracker_fd;  // fd to wait on (-1 = none now); may be empty
+  hal::PollSource* tracker_poll = nullptr;  // never null after make_backends
   std::unique_ptr<ports::ButtonSource> buttons;
-  std::function<std::vector<int>()> button_fds;  // may be empty
-  std::function<bool()> reopen_buttons;          // after an io_error; may be empty
-  double scenario_duration_s = 0.0;              // simulator: the scenario's length (0 = none)
-  std::string tracker_name;  // for the log: "serial /dev/...", "sim stroke", ...
+  hal::PollSource* buttons_poll = nullptr;  // never null after make_backends
+  double scenario_duration_s = 0.0;         // simulator: the scenario's length (0 = none)
+  std::string tracker_name;                 // for the log: "serial /dev/...", "sim stroke", ...
   std::string buttons_name;
 };
 
-// Builds every backend. On failure returns false with `error` set to a message
-// naming the backend ("tracker backend \"usb\" is not built into this binary", ...).
-bool make_backends(const StationConfig& config, Backends& out, std::string& error);
+// Builds every backend. Errors name the backend: not_supported ("tracker backend
+// \"usb\" is not built into this binary"), invalid_argument (a combination or
+// scenario that cannot run), or the status of the device that failed to open.
+hal::Expected<Backends> make_backends(const StationConfig& config);
 
 // Which backends this binary was built with (for --check and --help).
 bool tracker_backend_built(TrackerBackend b);

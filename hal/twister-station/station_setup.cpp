@@ -4,10 +4,9 @@
 
 namespace twister::station_app {
 
-StationSetup make_station_setup(const StationConfig& config) {
+hal::Expected<station::StationConfig> make_station_setup(const StationConfig& config) {
   using tracker::Item;
-  StationSetup out;
-  station::StationConfig& c = out.core;
+  station::StationConfig c;
   const TrackerConfig& t = config.tracker;
   auto& proto = c.session.protocol;
   proto.format =
@@ -39,12 +38,13 @@ StationSetup make_station_setup(const StationConfig& config) {
     } else if (t.right_station == 1) {
       c.stylus_line[0] = 3;
     } else {
-      out.error =
+      return hal::make_error(
+          StatusCode::invalid_argument,
           "buttons.backend = \"stylus\" needs receiver 1 (the stylus) in a hand: set "
-          "tracker.left_station or tracker.right_station to 1";
+          "tracker.left_station or tracker.right_station to 1");
     }
   }
-  return out;
+  return c;
 }
 
 }  // namespace twister::station_app

@@ -4,19 +4,13 @@
 // conversion, debounce, and the stylus-to-button-line binding. Init-time only.
 #pragma once
 
-#include <string>
-
 #include "config/station_config.hpp"
+#include "twister/hal/expected.hpp"
 #include "twister/station/station.hpp"
 
 namespace twister::station_app {
 
-struct StationSetup {
-  station::StationConfig core{};
-  std::string error;  // non-empty: the combination cannot run (message for the log)
-  bool ok() const { return error.empty(); }
-};
-
-StationSetup make_station_setup(const StationConfig& config);
+// invalid_argument: the combination cannot run (the message says why).
+hal::Expected<station::StationConfig> make_station_setup(const StationConfig& config);
 
 }  // namespace twister::station_app

@@ -111,10 +111,13 @@ int run(int argc, char** argv) {
   logger().set_threshold(level);
 
   twister::sim::Scenario scenario;
-  if (std::string error; !o.scenario_path.empty() &&
-                         !twister::sim::load_scenario_file(o.scenario_path, scenario, error)) {
-    logger().error("scenario", "%s", error.c_str());
-    return kExitBadOptions;
+  if (!o.scenario_path.empty()) {
+    auto loaded = twister::sim::load_scenario_file(o.scenario_path);
+    if (!loaded) {
+      logger().error("scenario", "%s", loaded.error().message.c_str());
+      return kExitBadOptions;
+    }
+    scenario = std::move(*loaded);
   }
   return serve(o, scenario);
 }

@@ -24,6 +24,8 @@ void GpiodButtonSource::close() {
 
 Status GpiodButtonSource::open(const GpiodButtonConfig& config) {
   close();
+  if (&config != &config_) config_ = config;
+  configured_ = true;
   if (config.lines.empty() || config.lines.size() > kMaxLines) return StatusCode::invalid_argument;
   chip_ = gpiod_chip_open_lookup(config.chip.c_str());
   if (chip_ == nullptr) {
@@ -65,6 +67,17 @@ Status GpiodButtonSource::open(const GpiodButtonConfig& config) {
   next_line_ = 0;
   last_errno_ = 0;
   return ok_status();
+}
+
+std::size_t GpiodButtonSource::do_poll_fds(std::span<pollfd> out) const {
+  std::size_t n = 0;
+  for (; n < line_count_ && n < out.size(); ++n) out[n] = {fds_[n], POLLIN, 0};
+  return n;
+}
+
+Status GpiodButtonSource::do_reopen() {
+  if (!configured_) return StatusCode::failed_precondition;
+  return open(config_);
 }
 
 Result<ports::ButtonEdge> GpiodButtonSource::do_poll() {

@@ -14,6 +14,8 @@ void HidapiButtonSource::close() {
 
 Status HidapiButtonSource::open(const HidapiButtonConfig& config) {
   close();
+  if (&config != &config_) config_ = config;
+  configured_ = true;
   TWISTER_TRY(decoder_.configure(config.buttons));
   if (config.buttons.empty()) return StatusCode::invalid_argument;
   if (hid_init() != 0) return StatusCode::io_error;
@@ -33,6 +35,11 @@ Status HidapiButtonSource::open(const HidapiButtonConfig& config) {
     return StatusCode::io_error;
   }
   return ok_status();
+}
+
+Status HidapiButtonSource::do_reopen() {
+  if (!configured_) return StatusCode::failed_precondition;
+  return open(config_);
 }
 
 Result<ports::ButtonEdge> HidapiButtonSource::do_poll() {

@@ -12,6 +12,12 @@ struct LibusbCallbacks {
   static void on_in_transfer(libusb_transfer* transfer);
   static int on_hotplug(libusb_context* ctx, libusb_device* device, libusb_hotplug_event event,
                         void* self);
+  static void on_fd_added(int fd, short events, void* self) {
+    static_cast<LibusbByteStream*>(self)->add_fd(fd, events);
+  }
+  static void on_fd_removed(int fd, void* self) {
+    static_cast<LibusbByteStream*>(self)->remove_fd(fd);
+  }
 };
 
 LibusbByteStream::~LibusbByteStream() {
@@ -30,6 +36,13 @@ Status LibusbByteStream::init() {
     ctx_ = nullptr;
     last_error_ = rc;
     return StatusCode::io_error;
+  }
+  // The descriptors to wait on: libusb's list once, then its notifications.
+  libusb_set_pollfd_notifiers(ctx_, &LibusbCallbacks::on_fd_added, &LibusbCallbacks::on_fd_removed,
+                              this);
+  if (const libusb_pollfd** list = libusb_get_pollfds(ctx_); list != nullptr) {
+    for (std::size_t i = 0; list[i] != nullptr; ++i) add_fd(list[i]->fd, list[i]->events);
+    libusb_free_pollfds(list);
   }
   in_transfer_ = libusb_alloc_transfer(0);
   if (in_transfer_ == nullptr) return StatusCode::resource_exhausted;
@@ -85,13 +98,29 @@ void LibusbByteStream::pump_events() {
   libusb_handle_events_timeout_completed(ctx_, &zero, nullptr);
 }
 
-std::size_t LibusbByteStream::poll_fds(std::span<int> fds) const {
-  if (ctx_ == nullptr) return 0;
-  const libusb_pollfd** list = libusb_get_pollfds(ctx_);
-  if (list == nullptr) return 0;
-  std::size_t n = 0;
-  for (std::size_t i = 0; list[i] != nullptr && n < fds.size(); ++i) fds[n++] = list[i]->fd;
-  libusb_free_pollfds(list);
+void LibusbByteStream::add_fd(int fd, short events) {
+  for (std::size_t i = 0; i < usb_fd_count_; ++i) {
+    if (usb_fds_[i].fd == fd) {
+      usb_fds_[i].events = events;
+      return;
+    }
+  }
+  if (usb_fd_count_ < usb_fds_.size()) usb_fds_[usb_fd_count_++] = {fd, events, 0};
+}
+
+void LibusbByteStream::remove_fd(int fd) {
+  for (std::size_t i = 0; i < usb_fd_count_; ++i) {
+    if (usb_fds_[i].fd == fd) {
+      usb_fds_[i] = usb_fds_[--usb_fd_count_];
+      return;
+    }
+  }
+}
+
+std::size_t LibusbByteStream::do_poll_fds(std::span<pollfd> out) const {
+  if (handle_ == nullptr) return 0;
+  const std::size_t n = std::min(usb_fd_count_, out.size());
+  std::copy_n(usb_fds_.begin(), n, out.begin());
   return n;
 }
 

@@ -68,7 +68,12 @@ void tune(int fd, int family) {
 
 }  // namespace
 
-SocketLink::SocketLink(SocketLinkConfig config) : config_(std::move(config)) {}
+SocketLink::SocketLink(SocketLinkConfig config) : config_(std::move(config)) {
+  const Address a = parse(config_.address);
+  address_ = a.storage;
+  address_length_ = a.length;
+  address_ok_ = a.ok;
+}
 
 SocketLink::~SocketLink() {
   drop_peer();
@@ -76,18 +81,18 @@ SocketLink::~SocketLink() {
 }
 
 Status SocketLink::open() {
-  const Address a = parse(config_.address);
-  if (!a.ok) return StatusCode::invalid_argument;
+  if (!address_ok_) return StatusCode::invalid_argument;
   if (!config_.server) return ok_status();
-  if (a.family == AF_UNIX) ::unlink(reinterpret_cast<const sockaddr_un*>(&a.storage)->sun_path);
-  listen_fd_ = ::socket(a.family, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+  const int family = address_.ss_family;
+  if (family == AF_UNIX) ::unlink(reinterpret_cast<const sockaddr_un*>(&address_)->sun_path);
+  listen_fd_ = ::socket(family, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
   if (listen_fd_ < 0) {
     last_errno_ = errno;
     return StatusCode::io_error;
   }
   const int one = 1;
   setsockopt(listen_fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
-  if (::bind(listen_fd_, reinterpret_cast<const sockaddr*>(&a.storage), a.length) != 0 ||
+  if (::bind(listen_fd_, reinterpret_cast<const sockaddr*>(&address_), address_length_) != 0 ||
       ::listen(listen_fd_, 2) != 0) {
     last_errno_ = errno;
     ::close(listen_fd_);
@@ -95,6 +100,22 @@ Status SocketLink::open() {
     return StatusCode::io_error;
   }
   return ok_status();
+}
+
+std::size_t SocketLink::do_poll_fds(std::span<pollfd> out) const {
+  std::size_t n = 0;
+  for (const int fd : {peer_fd_, listen_fd_}) {
+    if (fd >= 0 && n < out.size()) out[n++] = {fd, POLLIN, 0};
+  }
+  return n;
+}
+
+Status SocketLink::do_reopen() {
+  drop_peer();
+  if (listen_fd_ >= 0) ::close(listen_fd_);
+  listen_fd_ = -1;
+  next_attempt_ms_ = 0;
+  return open();
 }
 
 void SocketLink::drop_peer() {
@@ -110,7 +131,7 @@ bool SocketLink::ensure_peer() {
       const int fd = ::accept4(listen_fd_, nullptr, nullptr, SOCK_NONBLOCK | SOCK_CLOEXEC);
       if (fd < 0) break;
       // The station sends the live frames: its side needs TCP_NODELAY most.
-      tune(fd, parse(config_.address).family);
+      tune(fd, address_.ss_family);
       drop_peer();
       peer_fd_ = fd;
       ++connects_;
@@ -121,22 +142,21 @@ bool SocketLink::ensure_peer() {
   const std::int64_t now = now_ms();
   if (now < next_attempt_ms_) return false;
   next_attempt_ms_ = now + config_.reconnect_interval_ms;
-  const Address a = parse(config_.address);
-  if (!a.ok) return false;
-  const int fd = ::socket(a.family, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  if (!address_ok_) return false;
+  const int fd = ::socket(address_.ss_family, SOCK_STREAM | SOCK_CLOEXEC, 0);
   if (fd < 0) {
     last_errno_ = errno;
     return false;
   }
   // A blocking connect is immediate on loopback/Unix sockets (refused or accepted).
-  if (::connect(fd, reinterpret_cast<const sockaddr*>(&a.storage), a.length) != 0) {
+  if (::connect(fd, reinterpret_cast<const sockaddr*>(&address_), address_length_) != 0) {
     last_errno_ = errno;
     ::close(fd);
     return false;
   }
   const int flags = fcntl(fd, F_GETFL);
   fcntl(fd, F_SETFL, flags | O_NONBLOCK);
-  tune(fd, a.family);
+  tune(fd, address_.ss_family);
   peer_fd_ = fd;
   ++connects_;
   return true;

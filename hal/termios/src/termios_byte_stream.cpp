@@ -139,4 +139,10 @@ void TermiosByteStream::do_discard_input() {
   if (fd_ >= 0) ::tcflush(fd_, TCIFLUSH);
 }
 
+std::size_t TermiosByteStream::do_poll_fds(std::span<pollfd> out) const {
+  if (fd_ < 0 || out.empty()) return 0;
+  out[0] = {fd_, POLLIN, 0};
+  return 1;
+}
+
 }  // namespace twister::hal

@@ -54,13 +54,17 @@ std::string_view builtin_scenario_text(std::string_view name) {
   return {};
 }
 
-bool load_builtin_scenario(std::string_view name, Scenario& out, std::string& error) {
+hal::Expected<Scenario> load_builtin_scenario(std::string_view name) {
   const std::string_view text = builtin_scenario_text(name);
   if (text.empty()) {
-    error = "unknown built-in scenario '" + std::string(name) + "'";
-    return false;
+    return hal::make_error(StatusCode::invalid_argument,
+                           "unknown built-in scenario '" + std::string(name) + "'");
   }
-  return parse_scenario(text, out, error);
+  Scenario out;
+  if (std::string error; !parse_scenario(text, out, error)) {
+    return hal::make_error(StatusCode::invalid_argument, error);
+  }
+  return out;
 }
 
 }  // namespace twister::sim

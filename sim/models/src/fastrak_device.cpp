@@ -33,6 +33,8 @@ ports::TimestampUs cycle_time(std::int64_t k) { return (k * 25'000) / 3; }
 FastrakDevice::FastrakDevice(const FastrakDeviceConfig& config, Scenario scenario,
                              ports::TimestampUs start_us)
     : config_(config), scenario_(std::move(scenario)), start_us_(start_us), rng_(scenario_.seed) {
+  windows_.reserve(scenario_.faults.size());
+  pending_cmd_.reserve(96);
   power_up(start_us);
 }
 
@@ -90,12 +92,9 @@ void FastrakDevice::apply_faults(ports::TimestampUs now) {
     ++counters_.faults[static_cast<std::size_t>(f.kind)];
     const auto amount = static_cast<std::uint64_t>(f.amount);
     switch (f.kind) {
-      case FaultKind::noise: {
-        std::string noise(amount, '\0');
-        for (char& c : noise) c = static_cast<char>(rng_() & 0xFFu);
-        queue(noise, at);
+      case FaultKind::noise:
+        queue_noise(amount, at);
         break;
-      }
       case FaultKind::drop:
         drop_left_ += amount;
         break;
@@ -111,23 +110,41 @@ void FastrakDevice::apply_faults(ports::TimestampUs now) {
   }
 }
 
-std::vector<int> FastrakDevice::active_stations() const {
-  std::vector<int> out;
+FastrakDevice::ActiveStations FastrakDevice::active_stations() const {
+  ActiveStations out;
   for (int s = 1; s <= 4; ++s) {
     if (proto_.stations[static_cast<std::size_t>(s - 1)].enabled && s <= scenario_.receivers) {
-      out.push_back(s);
+      out.ids[out.count++] = s;
     }
   }
   return out;
 }
 
-void FastrakDevice::queue(const std::string& bytes, ports::TimestampUs now) {
+void FastrakDevice::queue(std::span<const std::byte> bytes, ports::TimestampUs now) {
+  const std::size_t n = std::min(bytes.size(), line_.room());
+  counters_.line_overflow += bytes.size() - n;
+  for (std::size_t i = 0; i < n; ++i) line_.push(bytes[i]);
   // The line sends one byte per 10 bit times (8N1); chunks queue behind each other.
   const ports::TimestampUs start = std::max(now, line_free_at_);
-  const auto duration = static_cast<ports::TimestampUs>(static_cast<double>(bytes.size()) * 10.0 *
-                                                        1e6 / config_.baud);
+  const auto duration =
+      static_cast<ports::TimestampUs>(static_cast<double>(n) * 10.0 * 1e6 / config_.baud);
   line_free_at_ = start + duration;
-  line_.push_back({line_free_at_, bytes});
+  line_.end_chunk(line_free_at_);
+}
+
+void FastrakDevice::queue(std::string_view text, ports::TimestampUs now) {
+  queue(std::as_bytes(std::span<const char>(text.data(), text.size())), now);
+}
+
+void FastrakDevice::queue_noise(std::uint64_t count, ports::TimestampUs now) {
+  // Random bytes, straight into the line (what does not fit is lost and counted).
+  std::array<std::byte, 256> block{};
+  while (count > 0) {
+    const std::size_t n = static_cast<std::size_t>(std::min<std::uint64_t>(count, block.size()));
+    for (std::size_t i = 0; i < n; ++i) block[i] = static_cast<std::byte>(rng_() & 0xFFu);
+    count -= n;
+    queue(std::span<const std::byte>(block.data(), n), now);
+  }
 }
 
 void FastrakDevice::queue_record(int station, ports::TimestampUs at) {
@@ -161,13 +178,13 @@ void FastrakDevice::queue_record(int station, ports::TimestampUs at) {
   std::array<std::byte, tracker::kMaxRecordBytes> buf{};
   auto n = tracker::encode_record(pose, proto_, buf);
   if (!n.ok()) return;
-  std::string bytes(reinterpret_cast<const char*>(buf.data()), *n);
-  if (truncate_left_ > 0 && bytes.size() > 2) {
+  std::size_t size = *n;
+  if (truncate_left_ > 0 && size > 2) {
     --truncate_left_;
-    bytes.resize(1 + rng_() % (bytes.size() - 2));
+    size = 1 + rng_() % (size - 2);
   }
   ++counters_.records;
-  queue(bytes, at);
+  queue(std::span<const std::byte>(buf.data(), size), at);
 }
 
 void FastrakDevice::send_error(const std::string& input, int code, ports::TimestampUs now) {
@@ -249,21 +266,19 @@ void FastrakDevice::receive(const std::byte* data, std::size_t size, ports::Time
   }
 }
 
-void FastrakDevice::advance(ports::TimestampUs now, std::vector<std::byte>& out) {
-  if (hung_up(now)) {  // applies the faults due by now
-    line_.clear();
-    return;
-  }
-  const bool stalled = in_window(now, FaultKind::stall);
-  // One station per 120 Hz cycle, in ascending order of the active stations.
+void FastrakDevice::generate(ports::TimestampUs now, bool stalled) {
+  // One station per 120 Hz cycle, in ascending order of the active stations. A
+  // cycle waits (is not lost) while the line queue has no room for a record: it
+  // runs at the next call, once the reader has taken bytes.
   for (ports::TimestampUs t = start_us_ + cycle_time(next_cycle_); t <= now;
        t = start_us_ + cycle_time(++next_cycle_)) {
+    if (line_.room() < tracker::kMaxRecordBytes) return;
     if (t < busy_until_ || stalled || in_window(t, FaultKind::stall)) continue;
     const HandSample s1 = sample(scenario_, 1, scenario_time_s(t));
     if (s1.button && !last_button_ && e_mode_ == 1 && continuous_) output_on_ = !output_on_;
     last_button_ = s1.button;
     if (!continuous_ || !output_on_) continue;
-    const auto act = active_stations();
+    const ActiveStations act = active_stations();
     if (act.empty()) continue;
     const int station = act[next_station_++ % act.size()];
     if (line_free_at_ > t) {
@@ -272,21 +287,45 @@ void FastrakDevice::advance(ports::TimestampUs now, std::vector<std::byte>& out)
     }
     queue_record(station, t);
   }
-  if (stalled) return;
-  while (!line_.empty() && line_.front().ready <= now) {
-    const Chunk& c = line_.front();
-    const bool garble = in_window(c.ready, FaultKind::wrong_baud);
-    for (char ch : c.bytes) {
+}
+
+std::size_t FastrakDevice::deliver(ports::TimestampUs now, std::span<std::byte> out) {
+  std::size_t n = 0;
+  while (!line_.empty() && line_.front_ready() <= now) {
+    // At the wrong baud every byte arrives as some other byte.
+    const bool garble = in_window(line_.front_ready(), FaultKind::wrong_baud);
+    while (line_.front_left() > 0 && n < out.size()) {
+      const std::byte b = line_.take();
       if (drop_left_ > 0) {
         --drop_left_;
         continue;
       }
-      // At the wrong baud every byte arrives as some other byte.
-      const auto b = garble ? static_cast<std::byte>(rng_() & 0xFFu) : static_cast<std::byte>(ch);
-      out.push_back(b);
+      out[n++] = garble ? static_cast<std::byte>(rng_() & 0xFFu) : b;
       ++counters_.bytes_out;
     }
+    if (line_.front_left() > 0) break;  // `out` is full
     line_.pop_front();
+  }
+  return n;
+}
+
+std::size_t FastrakDevice::advance(ports::TimestampUs now, std::span<std::byte> out) {
+  if (hung_up(now)) {  // applies the faults due by now
+    line_.clear();
+    return 0;
+  }
+  const bool stalled = in_window(now, FaultKind::stall);
+  generate(now, stalled);
+  if (stalled) return 0;
+  return deliver(now, out);
+}
+
+void FastrakDevice::advance(ports::TimestampUs now, std::vector<std::byte>& out) {
+  std::array<std::byte, 1024> block{};
+  for (;;) {
+    const std::size_t n = advance(now, block);
+    out.insert(out.end(), block.begin(), block.begin() + static_cast<std::ptrdiff_t>(n));
+    if (n == 0) return;
   }
 }
 

@@ -159,19 +159,16 @@ bool parse_scenario(std::string_view text, Scenario& out, std::string& error) {
   return true;
 }
 
-bool load_scenario_file(const std::string& path, Scenario& out, std::string& error) {
+hal::Expected<Scenario> load_scenario_file(const std::string& path) {
   std::ifstream in(path);
-  if (!in) {
-    error = "cannot read scenario file " + path;
-    return false;
-  }
+  if (!in) return hal::make_error(StatusCode::io_error, "cannot read scenario file " + path);
   std::stringstream text;
   text << in.rdbuf();
-  if (!parse_scenario(text.str(), out, error)) {
-    error = path + ": " + error;
-    return false;
+  Scenario out;
+  if (std::string error; !parse_scenario(text.str(), out, error)) {
+    return hal::make_error(StatusCode::invalid_argument, path + ": " + error);
   }
-  return true;
+  return out;
 }
 
 }  // namespace twister::sim

@@ -14,11 +14,10 @@ namespace {
 
 using test::bytes_of;
 using test::f32le;
-using test::one_station;
 using test::kDefaultAscii;
 using test::kDefaultList;
+using test::one_station;
 using test::parse_all;
-
 
 TEST(FastrakParser, GarbageBeforeRecordGivesOneResync) {
   FastrakParser p(one_station(Format::ascii, kDefaultList));

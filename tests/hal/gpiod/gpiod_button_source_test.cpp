@@ -126,7 +126,24 @@ TEST_F(GpiodButtonSourceTest, RequestsEachLineForEdgesActiveLow) {
   for (auto flags : chip_.requested_handle_flags) {
     EXPECT_NE(flags & GPIOHANDLE_REQUEST_ACTIVE_LOW, 0u);
   }
-  EXPECT_EQ(source_.poll_fds().size(), 2u);
+  std::array<pollfd, 8> fds{};
+  EXPECT_EQ(source_.poll_fds(fds), 2u);
+}
+
+// PollSource: the event fds while open; reopen() requests the same lines again.
+TEST_F(GpiodButtonSourceTest, PollFdsAndReopenRequestTheConfiguredLines) {
+  PollSource& poll_source = source_;
+  std::array<pollfd, 8> fds{};
+  EXPECT_EQ(poll_source.poll_fds(fds), 0u);
+  EXPECT_EQ(poll_source.reopen().code(), StatusCode::failed_precondition);  // never opened
+  ASSERT_TRUE(source_.open({.chip = "gpiochip0", .lines = {17, 27}}).ok());
+  ASSERT_EQ(poll_source.poll_fds(fds), 2u);
+  EXPECT_EQ(fds[0].events, POLLIN);
+  EXPECT_NE(fds[0].fd, fds[1].fd);
+  EXPECT_EQ(poll_source.poll_fds(std::span<pollfd>(fds.data(), 1)), 1u);  // no overrun
+  ASSERT_TRUE(poll_source.reopen().ok());
+  EXPECT_EQ(chip_.requested_offsets, (std::vector<std::uint32_t>{17, 27, 17, 27}));
+  EXPECT_EQ(poll_source.poll_fds(fds), 2u);
 }
 
 TEST_F(GpiodButtonSourceTest, EdgesCarryLineLevelAndKernelTimestamp) {

@@ -43,8 +43,19 @@ TEST(LibusbByteStreamTest, InitTwiceIsHarmless) {
   LibusbByteStream stream(kAbsent);
   ASSERT_TRUE(stream.init().ok());
   EXPECT_TRUE(stream.init().ok());
-  std::array<int, 8> fds{};
+  std::array<pollfd, 8> fds{};
   EXPECT_LE(stream.poll_fds(fds), fds.size());
+}
+
+// PollSource: nothing to wait on while the device is closed (nothing would handle
+// libusb's events); reopen() is the ByteStream's.
+TEST(LibusbByteStreamTest, PollSourceOffersNoDescriptorsWhileClosed) {
+  LibusbByteStream stream(kAbsent);
+  ASSERT_TRUE(stream.init().ok()) << "libusb error " << stream.last_error();
+  PollSource& poll_source = stream;
+  std::array<pollfd, 8> fds{};
+  EXPECT_EQ(poll_source.poll_fds(fds), 0u);
+  EXPECT_EQ(poll_source.reopen().code(), StatusCode::unavailable);
 }
 
 }  // namespace

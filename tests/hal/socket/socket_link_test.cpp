@@ -6,6 +6,8 @@
 #include <poll.h>
 #include <unistd.h>
 
+#include <array>
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -18,16 +20,23 @@ std::vector<std::byte> bytes(const std::string& s) {
   return b;
 }
 
-// Receives until `want` bytes arrived (bounded wait).
+// Waits (at most 20 ms) until the link's descriptors are ready: bytes, a peer, a hang-up.
+void wait_ready(const SocketLink& link) {
+  std::array<pollfd, 2> fds{};
+  ::poll(fds.data(), link.poll_fds(fds), 20);
+}
+
+// Receives until `want` bytes arrived (bounded wait, on readiness).
 std::string receive_all(SocketLink& link, std::size_t want) {
   std::string got;
   std::vector<std::byte> buf(256);
-  for (int i = 0; i < 200 && got.size() < want; ++i) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+  while (got.size() < want && std::chrono::steady_clock::now() < deadline) {
     const auto n = link.receive(buf);
     if (n.ok()) {
       for (std::size_t k = 0; k < *n; ++k) got.push_back(static_cast<char>(buf[k]));
     }
-    ::poll(nullptr, 0, 2);
+    if (got.size() < want) wait_ready(link);
   }
   return got;
 }
@@ -54,7 +63,7 @@ void exchange(const std::string& address) {
   Result<std::size_t> r = std::size_t{0};
   for (int i = 0; i < 100 && r.ok(); ++i) {
     r = client.receive(buf);  // the old peer sees the hang-up
-    ::poll(nullptr, 0, 2);
+    if (r.ok()) wait_ready(client);
   }
   EXPECT_EQ(r.status().code(), StatusCode::unavailable);
   // The client reconnects on its next use.
@@ -68,6 +77,37 @@ TEST(BridgeSocketLink, UnixSocketExchangeReconnectAndNewestPeerWins) {
 
 TEST(BridgeSocketLink, TcpLoopbackExchangeReconnectAndNewestPeerWins) {
   exchange("tcp:127.0.0.1:" + std::to_string(20000 + ::getpid() % 30000));
+}
+
+// PollSource: the server offers its listener, then the peer too; the client its
+// connection. reopen() binds again; the client then reconnects on use.
+TEST(BridgeSocketLink, PollFdsNameListenerAndPeerAndReopenRebinds) {
+  const std::string address =
+      "unix:/tmp/twister-bridge-poll-" + std::to_string(::getpid()) + ".sock";
+  SocketLink server({address, true, 0});
+  std::array<pollfd, 4> fds{};
+  EXPECT_EQ(server.poll_fds(fds), 0u);  // not open
+  ASSERT_TRUE(server.open().ok()) << "errno " << server.last_errno();
+  ASSERT_EQ(server.poll_fds(fds), 1u);
+  EXPECT_EQ(fds[0].events, POLLIN);
+  SocketLink client({address, false, 0});
+  ASSERT_TRUE(client.open().ok());
+  ASSERT_EQ(*client.send(bytes("hi")), 2u);
+  ASSERT_EQ(client.poll_fds(fds), 1u);
+  EXPECT_EQ(receive_all(server, 2), "hi");
+  EXPECT_EQ(server.poll_fds(fds), 2u);  // peer and listener (a newer bridge wakes it)
+  ASSERT_TRUE(static_cast<PollSource&>(server).reopen().ok());
+  EXPECT_EQ(server.poll_fds(fds), 1u);  // listening again, no peer
+  std::vector<std::byte> buf(8);
+  Result<std::size_t> r = std::size_t{0};
+  for (int i = 0; i < 100 && r.ok(); ++i) {
+    r = client.receive(buf);  // the client sees its connection go
+    if (r.ok()) wait_ready(client);
+  }
+  EXPECT_EQ(r.status().code(), StatusCode::unavailable);
+  ASSERT_EQ(*client.send(bytes("again")), 5u);
+  EXPECT_EQ(receive_all(server, 5), "again");
+  ::unlink(address.substr(5).c_str());
 }
 
 TEST(BridgeSocketLink, BadAddressesAreRefused) {

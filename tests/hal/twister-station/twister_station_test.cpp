@@ -80,8 +80,8 @@ std::string sim_config(const std::string& journal, const char* scenario, const c
 TEST(TwisterStationTest, SimConfigRunsAScriptedStrokeIntoTheJournal) {
   const std::string journal = temp_path("sim.bin");
   ::unlink(journal.c_str());
-  const auto r =
-      run(std::string("--config ") + TWISTER_DEPLOY_DIR + "/sim.toml --journal " + journal);
+  const auto r = run(std::string("--config ") + TWISTER_DEPLOY_DIR +
+                     "/sim.toml --log-level info --journal " + journal);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("stroke: hand 0 committed as journal record 0"), std::string::npos)
       << r.output;
@@ -156,7 +156,7 @@ TEST(TwisterStationTest, UnplugAndReplugDuringARunReinitialisesAndContinues) {
   const std::string journal = temp_path("unplug.bin");
   ::unlink(journal.c_str());
   const std::string cfg = write_file("unplug.toml", sim_config(journal, "unplug", "virtual"));
-  const auto r = run("--config " + cfg);
+  const auto r = run("--config " + cfg + " --log-level info");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("tracker: lost"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("tracker: streaming (start-up #2)"), std::string::npos) << r.output;
@@ -200,7 +200,7 @@ RunResult run_against_pty(const char* scenario, const std::string& journal, doub
                                  link +
                                  "\"\n"
                                  "[buttons]\nbackend = \"stylus\"\n[systemd]\nnotify = false\n");
-  r = run("--config " + cfg + " --duration " + std::to_string(seconds));
+  r = run("--config " + cfg + " --log-level info --duration " + std::to_string(seconds));
   ::pclose(sim);  // twister-sim stops at the end of its scenario
   ::unlink(cfg.c_str());
   ::unlink(link.c_str());

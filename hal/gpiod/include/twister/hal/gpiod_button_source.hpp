@@ -2,7 +2,9 @@
 // Lines are requested for both-edge events with the consumer name "twister-station";
 // active_low makes the kernel invert the level, so a rising event is always "pressed".
 // Edge times are the kernel's event timestamps (CLOCK_MONOTONIC on Linux >= 5.7, the
-// same base as MonotonicClock). poll() never blocks; wait on poll_fds() (POLLIN).
+// same base as MonotonicClock). poll() never blocks; as a PollSource it asks to
+// wait for POLLIN on each line's event fd, and reopen() requests the lines again
+// with the config of the last open().
 // Errors: open() -> unavailable (chip missing), io_error (line busy, no permission,
 // bias not supported by the kernel), invalid_argument (bad offsets);
 // poll() -> unavailable (no edge pending), io_error (chip gone).
@@ -15,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "twister/hal/poll_source.hpp"
 #include "twister/ports/button_source.hpp"
 
 struct gpiod_chip;
@@ -29,9 +32,9 @@ struct GpiodButtonConfig {
   enum class Bias : std::uint8_t { as_is, disable, pull_up, pull_down } bias = Bias::as_is;
 };
 
-class GpiodButtonSource final : public ports::ButtonSource {
+class GpiodButtonSource final : public ports::ButtonSource, public PollSource {
  public:
-  static constexpr std::size_t kMaxLines = 8;
+  static constexpr std::size_t kMaxLines = PollSource::kMaxFds;
 
   GpiodButtonSource() = default;
   ~GpiodButtonSource() override;
@@ -40,15 +43,17 @@ class GpiodButtonSource final : public ports::ButtonSource {
 
   Status open(const GpiodButtonConfig& config);
   void close();
-  // Event fds to wait on (one per line), valid after a successful open().
-  std::span<const int> poll_fds() const { return {fds_.data(), line_count_}; }
   // errno of the last failure, for the log at the composition root.
   int last_errno() const { return last_errno_; }
 
  private:
   Result<ports::ButtonEdge> do_poll() override;
   std::uint8_t do_line_count() const override { return static_cast<std::uint8_t>(line_count_); }
+  std::size_t do_poll_fds(std::span<pollfd> out) const override;
+  Status do_reopen() override;
 
+  GpiodButtonConfig config_;  // of the last open(), for reopen()
+  bool configured_ = false;
   gpiod_chip* chip_ = nullptr;
   std::array<gpiod_line*, kMaxLines> lines_{};
   std::array<int, kMaxLines> fds_{};

@@ -2,8 +2,9 @@
 // pedal) via hidapi's hidraw backend. Opened by hidraw path, or by vendor/product id
 // (first match). Reads are non-blocking; edges are stamped with the injected clock
 // when the report is read (HID reports carry no timestamp), so their time resolution
-// is the event loop's period. hidapi offers no fd, so the event loop polls this
-// source every loop_timeout_ms.
+// is the event loop's period. hidapi offers no fd, so as a PollSource it asks for
+// none (the event loop polls it every loop_timeout_ms); reopen() opens the device
+// again with the config of the last open().
 // Errors: open() -> unavailable (no such device), io_error (open failed: permissions),
 // invalid_argument (bad button map); poll() -> unavailable (no edge), io_error
 // (device unplugged: reopen with open()).
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "twister/hal/hid_report_decoder.hpp"
+#include "twister/hal/poll_source.hpp"
 #include "twister/ports/button_source.hpp"
 #include "twister/ports/clock.hpp"
 
@@ -29,7 +31,7 @@ struct HidapiButtonConfig {
   std::vector<HidButtonBitMap> buttons;  // button i = buttons[i]
 };
 
-class HidapiButtonSource final : public ports::ButtonSource {
+class HidapiButtonSource final : public ports::ButtonSource, public PollSource {
  public:
   explicit HidapiButtonSource(ports::Clock& clock) : clock_(clock) {}
   ~HidapiButtonSource() override;
@@ -44,6 +46,8 @@ class HidapiButtonSource final : public ports::ButtonSource {
   std::uint8_t do_line_count() const override {
     return static_cast<std::uint8_t>(decoder_.button_count());
   }
+  std::size_t do_poll_fds(std::span<pollfd>) const override { return 0; }
+  Status do_reopen() override;
 
   ports::Clock& clock_;
   hid_device_* device_ = nullptr;
@@ -52,6 +56,8 @@ class HidapiButtonSource final : public ports::ButtonSource {
   std::size_t pending_count_ = 0;
   std::size_t pending_pos_ = 0;
   std::array<std::uint8_t, 64> report_{};
+  HidapiButtonConfig config_;  // of the last open(), for reopen()
+  bool configured_ = false;
 };
 
 }  // namespace twister::hal

@@ -10,6 +10,10 @@
 // Errors: init() -> io_error (libusb_init failed), invalid_argument (endpoint
 // directions wrong); reopen() -> unavailable (not plugged in), io_error (cannot open or
 // claim: permissions, interface busy); read()/write() -> io_error (gone).
+// PollSource: while the device is open, libusb's descriptors with the events libusb
+// asks for (kept current by libusb's pollfd notifiers, so poll_fds() neither calls
+// into libusb nor allocates); none while closed, when nothing would handle their
+// events (the session's retry timer paces a re-plug).
 // Not thread-safe: one owner (the station loop) calls everything.
 #pragma once
 
@@ -17,6 +21,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "twister/hal/poll_source.hpp"
 #include "twister/ports/byte_stream.hpp"
 
 struct libusb_context;
@@ -34,8 +39,10 @@ struct LibusbConfig {
   unsigned timeout_ms = 100;         // per bulk OUT transfer
 };
 
-class LibusbByteStream final : public ports::ByteStream {
+class LibusbByteStream final : public ports::ByteStream, public PollSource {
  public:
+  using ports::ByteStream::reopen;  // the same as PollSource::reopen()
+
   explicit LibusbByteStream(const LibusbConfig& config) : config_(config) {}
   ~LibusbByteStream() override;
   LibusbByteStream(const LibusbByteStream&) = delete;
@@ -47,9 +54,6 @@ class LibusbByteStream final : public ports::ByteStream {
   // Hot-plug said the device arrived since the last reopen() (a hint to retry now).
   bool arrival_pending() const { return arrived_; }
   bool is_open() const { return handle_ != nullptr; }
-  // libusb's descriptors for an event loop's poll() (POLLIN/POLLOUT as libusb asks);
-  // returns how many were written to fds.
-  std::size_t poll_fds(std::span<int> fds) const;
   // The last LIBUSB_ERROR_* (0 if none), logged once by the caller.
   int last_error() const { return last_error_; }
   void close();
@@ -62,7 +66,10 @@ class LibusbByteStream final : public ports::ByteStream {
   Result<std::size_t> do_write(std::span<const std::byte> src) override;
   Status do_reopen() override;
   void do_discard_input() override;
+  std::size_t do_poll_fds(std::span<pollfd> out) const override;
   void pump_events();
+  void add_fd(int fd, short events);
+  void remove_fd(int fd);
   Status gone(int error);
   friend struct LibusbCallbacks;  // libusb's C callbacks (defined in the .cpp)
 
@@ -80,6 +87,8 @@ class LibusbByteStream final : public ports::ByteStream {
   std::size_t rx_head_ = 0;  // next byte to read
   std::size_t rx_count_ = 0;
   std::uint64_t rx_dropped_ = 0;  // ring full: oldest bytes kept, newest dropped
+  std::array<pollfd, PollSource::kMaxFds> usb_fds_{};  // libusb's descriptors
+  std::size_t usb_fd_count_ = 0;
 };
 
 }  // namespace twister::hal

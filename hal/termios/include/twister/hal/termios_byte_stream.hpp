@@ -3,11 +3,13 @@
 // non-blocking: read() never waits. A hang-up (POLLHUP/POLLERR or EIO, never a bare
 // read() == 0) closes the port and returns io_error ("disconnected"); reopen() opens
 // the same path again, so a symlink that the simulator or udev moves atomically on
-// re-plug is followed. Not thread-safe.
+// re-plug is followed. As a PollSource it asks to wait for input on its descriptor
+// while open (none while closed). Not thread-safe.
 #pragma once
 
 #include <string>
 
+#include "twister/hal/poll_source.hpp"
 #include "twister/ports/byte_stream.hpp"
 
 namespace twister::hal {
@@ -20,16 +22,16 @@ struct TermiosConfig {
   FlowControl flow = FlowControl::none;  // the Fastrak runs without flow control
 };
 
-class TermiosByteStream final : public ports::ByteStream {
+class TermiosByteStream final : public ports::ByteStream, public PollSource {
  public:
+  using ports::ByteStream::reopen;  // the same as PollSource::reopen()
+
   explicit TermiosByteStream(TermiosConfig config);
   ~TermiosByteStream() override;
   TermiosByteStream(const TermiosByteStream&) = delete;
   TermiosByteStream& operator=(const TermiosByteStream&) = delete;
 
   bool is_open() const { return fd_ >= 0; }
-  // The descriptor for an event loop's poll() (-1 when closed).
-  int fd() const { return fd_; }
   // errno of the last failure (0 if none), logged once by the caller.
   int last_errno() const { return last_errno_; }
   void close();
@@ -39,6 +41,7 @@ class TermiosByteStream final : public ports::ByteStream {
   Result<std::size_t> do_write(std::span<const std::byte> src) override;
   Status do_reopen() override;
   void do_discard_input() override;
+  std::size_t do_poll_fds(std::span<pollfd> out) const override;
   Status disconnected(int err);
 
   TermiosConfig config_;

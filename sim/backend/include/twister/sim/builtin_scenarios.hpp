@@ -14,6 +14,7 @@
 #include <string>
 #include <string_view>
 
+#include "twister/hal/expected.hpp"
 #include "twister/sim/scenario.hpp"
 
 namespace twister::sim {
@@ -21,7 +22,7 @@ namespace twister::sim {
 // The scenario text of a built-in name; empty view for an unknown name.
 std::string_view builtin_scenario_text(std::string_view name);
 
-// Parses a built-in scenario. false (and error set) for an unknown name.
-bool load_builtin_scenario(std::string_view name, Scenario& out, std::string& error);
+// Parses a built-in scenario (start-up). invalid_argument: unknown name.
+hal::Expected<Scenario> load_builtin_scenario(std::string_view name);
 
 }  // namespace twister::sim

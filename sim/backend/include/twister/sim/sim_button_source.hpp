@@ -5,6 +5,8 @@
 // up). poll() returns, oldest first, each event whose time has come; an event that
 // does not change the line's level is skipped (the port reports edges). Edges carry
 // the scripted time, not the poll time. Errors: unavailable when nothing is due.
+// PollSource: no descriptor (the loop's clock paces it); reopen() has nothing to do.
+// poll() never allocates.
 #pragma once
 
 #include <array>
@@ -12,13 +14,14 @@
 #include <cstdint>
 #include <vector>
 
+#include "twister/hal/poll_source.hpp"
 #include "twister/ports/button_source.hpp"
 #include "twister/ports/clock.hpp"
 #include "twister/sim/scenario.hpp"
 
 namespace twister::sim {
 
-class SimButtonSource final : public ports::ButtonSource {
+class SimButtonSource final : public ports::ButtonSource, public hal::PollSource {
  public:
   // clock must outlive the source. events must be sorted by time (parse_scenario
   // does). line_count: lines reported by line_count(), at least 1 + the highest
@@ -32,6 +35,8 @@ class SimButtonSource final : public ports::ButtonSource {
  private:
   Result<ports::ButtonEdge> do_poll() override;
   std::uint8_t do_line_count() const override { return line_count_; }
+  std::size_t do_poll_fds(std::span<pollfd>) const override { return 0; }
+  Status do_reopen() override { return ok_status(); }
 
   ports::Clock& clock_;
   std::vector<ButtonEvent> events_;

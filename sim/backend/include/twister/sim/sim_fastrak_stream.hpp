@@ -4,20 +4,24 @@
 // second and 120 Hz shared by the receivers). A scenario "hangup" fault looks like
 // an unplugged USB-serial adapter: read/write fail with io_error and reopen() is
 // unavailable until the fault ends, then the unit powers up from its defaults.
-// The device model uses the heap internally (it is a simulator, not station code).
+// Steady state (reads while streaming) uses no heap: bytes go from the model's
+// fixed line queue straight into the reader's buffer. Commands (start-up) may.
+// PollSource: no descriptor (the loop's clock paces it); reopen() is the stream's.
 #pragma once
 
 #include <cstddef>
-#include <vector>
 
+#include "twister/hal/poll_source.hpp"
 #include "twister/ports/byte_stream.hpp"
 #include "twister/ports/clock.hpp"
 #include "twister/sim/fastrak_device.hpp"
 
 namespace twister::sim {
 
-class SimFastrakStream final : public ports::ByteStream {
+class SimFastrakStream final : public ports::ByteStream, public hal::PollSource {
  public:
+  using ports::ByteStream::reopen;  // the same as PollSource::reopen()
+
   // clock must outlive the stream. The device starts powered up at clock.now_us().
   SimFastrakStream(ports::Clock& clock, const FastrakDeviceConfig& config, Scenario scenario);
 
@@ -29,11 +33,10 @@ class SimFastrakStream final : public ports::ByteStream {
   Result<std::size_t> do_write(std::span<const std::byte> src) override;
   Status do_reopen() override;
   void do_discard_input() override;
+  std::size_t do_poll_fds(std::span<pollfd>) const override { return 0; }
 
   ports::Clock& clock_;
   FastrakDevice device_;
-  std::vector<std::byte> pending_;
-  std::size_t pending_pos_ = 0;
   bool connected_ = false;
 };
 

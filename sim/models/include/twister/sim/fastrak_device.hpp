@@ -5,18 +5,22 @@
 // are dropped when the line is busy), models the stylus e-mode toggle (pitfall 4)
 // and the slow ^Y reset, and injects the scenario's faults. Time is passed in by the
 // caller (microseconds, any epoch fixed at construction), so it runs in virtual or
-// real time. Not thread-safe.
+// real time. Steady state (record generation, the line, advance) uses no heap: the
+// line is a fixed LineQueue; command handling (start-up) may allocate.
+// Not thread-safe.
 #pragma once
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <deque>
 #include <random>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "twister/ports/clock.hpp"
+#include "twister/sim/line_queue.hpp"
 #include "twister/sim/scenario.hpp"
 #include "twister/tracker/fastrak_event.hpp"
 #include "twister/tracker/fastrak_wire.hpp"
@@ -37,6 +41,7 @@ struct FastrakDeviceCounters {
   std::uint64_t command_errors = 0;       // error records sent
   std::uint64_t resets = 0;               // ^Y and power-ups
   std::uint64_t bytes_out = 0;            // bytes handed to the line
+  std::uint64_t line_overflow = 0;        // bytes lost because the line queue was full
   std::array<std::uint64_t, 6> faults{};  // injected, indexed by FaultKind
 };
 
@@ -46,8 +51,11 @@ class FastrakDevice {
 
   // Bytes from the host (commands). LF and stray CR around commands are ignored.
   void receive(const std::byte* data, std::size_t size, ports::TimestampUs now);
-  // Runs the model up to `now` and appends the bytes whose transmission has
-  // completed by then to `out`.
+  // Runs the model up to `now` and copies up to out.size() of the bytes whose
+  // transmission has completed by then into `out`; returns how many. Bytes that do
+  // not fit stay queued for the next call. No heap.
+  std::size_t advance(ports::TimestampUs now, std::span<std::byte> out);
+  // The same, appending every byte ready by `now` to `out` (twister-sim, tests).
   void advance(ports::TimestampUs now, std::vector<std::byte>& out);
   // True while a hang-up fault holds the line down (the server closes the port).
   bool hung_up(ports::TimestampUs now);
@@ -62,10 +70,24 @@ class FastrakDevice {
   void power_up(ports::TimestampUs now);
   void apply_faults(ports::TimestampUs now);
   void execute(char command, const std::string& args, ports::TimestampUs now);
-  void queue(const std::string& bytes, ports::TimestampUs now);
+  void queue(std::span<const std::byte> bytes, ports::TimestampUs now);
+  void queue(std::string_view text, ports::TimestampUs now);
+  void queue_noise(std::uint64_t count, ports::TimestampUs now);
   void queue_record(int station, ports::TimestampUs at);
+  void generate(ports::TimestampUs now, bool stalled);
+  std::size_t deliver(ports::TimestampUs now, std::span<std::byte> out);
   void send_error(const std::string& input, int code, ports::TimestampUs now);
-  std::vector<int> active_stations() const;
+  // Stations 1..4 that are enabled and plugged in, ascending.
+  struct ActiveStations {
+    std::array<int, 4> ids{};
+    std::size_t count = 0;
+    bool empty() const { return count == 0; }
+    std::size_t size() const { return count; }
+    int operator[](std::size_t i) const { return ids[i]; }
+    const int* begin() const { return ids.data(); }
+    const int* end() const { return ids.data() + count; }
+  };
+  ActiveStations active_stations() const;
   bool in_window(ports::TimestampUs now, FaultKind kind) const;
 
   FastrakDeviceConfig config_;
@@ -88,12 +110,8 @@ class FastrakDevice {
   std::string pending_cmd_;
   bool in_param_cmd_ = false;
 
-  // Line: chunks that finish transmitting at `ready`.
-  struct Chunk {
-    ports::TimestampUs ready;
-    std::string bytes;
-  };
-  std::deque<Chunk> line_;
+  // Line: chunks that finish transmitting at their ready time.
+  LineQueue line_;
   ports::TimestampUs line_free_at_ = 0;
 
   // Faults.
@@ -104,7 +122,7 @@ class FastrakDevice {
     FaultKind kind;
     ports::TimestampUs from, to;
   };
-  std::vector<Window> windows_;
+  std::vector<Window> windows_;  // reserved for every scenario fault: no growth later
   bool was_hung_up_ = false;
   FastrakDeviceCounters counters_{};
 };

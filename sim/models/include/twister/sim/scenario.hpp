@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include "twister/hal/expected.hpp"
+
 namespace twister::sim {
 
 // One key frame: time, position (inches, tracker frame), Euler angles (degrees),
@@ -84,8 +86,8 @@ HandSample sample(const Scenario& scenario, int station, double t_s);
 // "line N: message".
 bool parse_scenario(std::string_view text, Scenario& out, std::string& error);
 
-// Reads and parses a scenario file. On error returns false and sets `error` to
-// "cannot read scenario file PATH" or "PATH: line N: message".
-bool load_scenario_file(const std::string& path, Scenario& out, std::string& error);
+// Reads and parses a scenario file (start-up). Errors: io_error "cannot read
+// scenario file PATH"; invalid_argument "PATH: line N: message".
+hal::Expected<Scenario> load_scenario_file(const std::string& path);
 
 }  // namespace twister::sim

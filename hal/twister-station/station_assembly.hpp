@@ -1,0 +1,66 @@
+// StationParts: everything twister-station builds before its loop, in the order it
+// is built (and torn down in reverse): the backends, the journal file, the initial
+// model, the core's working memory sized once from the model's capacity, the core
+// Station (journal replayed onto the model) and the optional display link.
+// assemble_station() is the program's start-up: it allocates, the loop never does.
+// Every failure comes back as one hal::Error whose message names what failed.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "backend_factory.hpp"
+#include "config/station_config.hpp"
+#include "display_link.hpp"
+#include "twister/hal/expected.hpp"
+#include "twister/hal/posix_file_storage.hpp"
+#include "twister/input/sculpt_session.hpp"
+#include "twister/meshio/mesh_buffer.hpp"
+#include "twister/station/station.hpp"
+
+namespace twister::station_app {
+
+struct AssemblyOptions {
+  std::filesystem::path config_dir;  // a relative station.mesh is relative to it
+  std::string link_address;          // --link; empty: no display link
+};
+
+// The SculptSession's working memory for a mesh of `vertex_capacity` vertices.
+class WorkMemory {
+ public:
+  explicit WorkMemory(std::size_t vertex_capacity);
+  input::SculptStorage storage();
+
+ private:
+  std::vector<float> live_x_, live_y_, live_z_, weights1_, weights2_;
+  std::vector<std::uint32_t> plan_indices_;
+  std::vector<input::VertexChange> undo_changes_;
+  std::vector<input::UndoEntry> undo_entries_;
+};
+
+struct StationParts {
+  Backends backends;
+  hal::PosixFileStorage journal;
+  std::filesystem::path mesh_path;  // as opened (resolved against config_dir)
+  std::unique_ptr<meshio::MeshBuffer> model;
+  std::unique_ptr<WorkMemory> work;
+  std::unique_ptr<station::Station> core;  // started: the journal is replayed
+  DisplayLink display;                     // open when options.link_address is set
+};
+
+// Builds and starts everything. Errors (message for the log): the backends'
+// (make_backends), the journal's ("cannot open journal PATH (io_error, errno N)";
+// "journal PATH: is not a Twister journal, or does not fit this mesh (left
+// untouched)"), the mesh's ("mesh PATH: ..."), the link's ("link ADDRESS: ...").
+hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationConfig& config,
+                                                              const AssemblyOptions& options);
+
+// station.toml's model as a mesh with the configured spare capacity. Errors:
+// io_error / invalid_argument "mesh PATH: what tinyobjloader said".
+hal::Expected<std::unique_ptr<meshio::MeshBuffer>> load_station_mesh(
+    const std::filesystem::path& path, std::size_t spare_vertices);
+
+}  // namespace twister::station_app

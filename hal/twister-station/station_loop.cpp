@@ -1,0 +1,157 @@
+#include "station_loop.hpp"
+
+#include <pthread.h>
+#include <sys/signalfd.h>
+#include <systemd/sd-daemon.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <span>
+
+#include "station_event_log.hpp"
+
+namespace twister::station_app {
+
+StationLoopConfig make_loop_config(const StationConfig& config, double duration_s,
+                                   const Backends& backends) {
+  StationLoopConfig c;
+  c.timeout_ms = static_cast<int>(config.station.loop_timeout_ms);
+  c.stop_after_s = duration_s > 0.0 ? duration_s : backends.scenario_duration_s;
+  c.button_retry_us = static_cast<ports::TimestampUs>(config.tracker.reconnect_interval_ms) * 1000;
+  c.notify = config.systemd.notify;
+  c.watchdog = config.systemd.watchdog;
+  return c;
+}
+
+const char* stop_reason_name(StopReason reason) {
+  switch (reason) {
+    case StopReason::end_of_run:
+      return "end of run";
+    case StopReason::sigint:
+      return "SIGINT";
+    case StopReason::sigterm:
+      return "SIGTERM";
+    case StopReason::station_failed:
+      return "station failed";
+  }
+  return "unknown";
+}
+
+StationLoop::StationLoop(station::Station& core, Backends& backends, DisplayLink& display,
+                         hal::Logger& log, const StationLoopConfig& config)
+    : core_(core), backends_(backends), display_(display), log_(log), config_(config) {}
+
+StationLoop::~StationLoop() {
+  if (signal_fd_ >= 0) ::close(signal_fd_);
+  if (mask_saved_) pthread_sigmask(SIG_SETMASK, &old_mask_, nullptr);
+}
+
+hal::Expected<void> StationLoop::start() {
+  sigset_t mask;
+  sigemptyset(&mask);
+  sigaddset(&mask, SIGINT);
+  sigaddset(&mask, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &mask, &old_mask_);
+  mask_saved_ = true;
+  signal_fd_ = signalfd(-1, &mask, SFD_NONBLOCK | SFD_CLOEXEC);
+  if (signal_fd_ < 0) {
+    return hal::make_error(StatusCode::io_error,
+                           std::string("cannot create a signalfd: ") + std::strerror(errno));
+  }
+  std::uint64_t watchdog_usec = 0;
+  watchdog_ = config_.watchdog && sd_watchdog_enabled(0, &watchdog_usec) > 0;
+  watchdog_interval_us_ = static_cast<ports::TimestampUs>(watchdog_usec / 2);
+  if (config_.notify) sd_notify(0, "READY=1\nSTATUS=running");
+  start_us_ = backends_.clock->now_us();
+  last_watchdog_us_ = start_us_;
+  last_button_retry_us_ = start_us_;
+  return {};
+}
+
+std::size_t StationLoop::fill_poll_set() {
+  const std::span<pollfd> all(fds_);
+  std::size_t n = 0;
+  fds_[n++] = {signal_fd_, POLLIN, 0};
+  n += backends_.tracker_poll->poll_fds(all.subspan(n));
+  if (!buttons_broken_) n += backends_.buttons_poll->poll_fds(all.subspan(n));
+  n += display_.poll_fds(all.subspan(n));
+  return n;
+}
+
+bool StationLoop::signalled() {
+  if ((fds_[0].revents & POLLIN) == 0) return false;
+  signalfd_siginfo info{};
+  if (::read(signal_fd_, &info, sizeof info) != static_cast<ssize_t>(sizeof info)) return false;
+  stop_reason_ = info.ssi_signo == SIGINT ? StopReason::sigint : StopReason::sigterm;
+  return true;
+}
+
+bool StationLoop::step() {
+  ++passes_;
+  const std::size_t n = fill_poll_set();
+  // Virtual time: never wait; the clock steps instead.
+  ::poll(fds_.data(), n, backends_.virtual_clock != nullptr ? 0 : config_.timeout_ms);
+  if (signalled()) return false;
+  if (backends_.virtual_clock != nullptr)
+    backends_.virtual_clock->advance_us(config_.virtual_step_us);
+  const ports::TimestampUs now_us = backends_.clock->now_us();
+  if (!core_.poll().ok()) {
+    stop_reason_ = StopReason::station_failed;
+    return false;
+  }
+  display_.poll(core_.sculpt(), now_us);
+  log_events();
+  retry_buttons(now_us);
+  pet_watchdog(now_us);
+  if (time_is_up(now_us)) {
+    stop_reason_ = StopReason::end_of_run;
+    return false;
+  }
+  return true;
+}
+
+void StationLoop::log_events() {
+  for (auto e = core_.next_event(); e.ok(); e = core_.next_event()) {
+    if (e->kind == station::StationEventKind::button_source_error) buttons_broken_ = true;
+    log_station_event(log_, *e);
+  }
+}
+
+void StationLoop::retry_buttons(ports::TimestampUs now_us) {
+  if (!buttons_broken_ || now_us - last_button_retry_us_ < config_.button_retry_us) return;
+  last_button_retry_us_ = now_us;
+  if (backends_.buttons_poll->reopen().ok()) {
+    buttons_broken_ = false;
+    log_.notice("buttons", "reopened");
+  }
+}
+
+void StationLoop::pet_watchdog(ports::TimestampUs now_us) {
+  if (!watchdog_ || now_us - last_watchdog_us_ < watchdog_interval_us_) return;
+  sd_notify(0, "WATCHDOG=1");
+  last_watchdog_us_ = now_us;
+}
+
+bool StationLoop::time_is_up(ports::TimestampUs now_us) const {
+  return config_.stop_after_s > 0.0 &&
+         static_cast<double>(now_us - start_us_) / 1e6 >= config_.stop_after_s;
+}
+
+Status StationLoop::finish() {
+  if (config_.notify) sd_notify(0, "STOPPING=1");
+  display_.drain(core_.sculpt(), backends_.clock->now_us(), 2.0);
+  return core_.flush();
+}
+
+Status StationLoop::run() {
+  if (auto started = start(); !started) {
+    log_.error("", "%s", started.error().message.c_str());
+    return StatusCode::io_error;
+  }
+  while (step()) {
+  }
+  return finish();
+}
+
+}  // namespace twister::station_app
