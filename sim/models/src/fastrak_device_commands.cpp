@@ -47,143 +47,32 @@ int to_int(const std::string& s, int& v) {
 
 void FastrakDevice::execute(char command, const std::string& args, ports::TimestampUs now) {
   ++counters_.commands;
-  const std::string echo = std::string(1, command) + args;
-  switch (command) {
-    case 'P':
-      for (int s : active_stations()) queue_record(s, now);
-      return;
-    case 'C':
-      continuous_ = true;
-      output_on_ = true;
-      return;
-    case 'c':
-      continuous_ = false;
-      return;
-    case 'F':
-      proto_.format = Format::ascii;
-      return;
-    case 'f':
-      proto_.format = Format::binary;
-      return;
-    case 'U':
-      proto_.units = Units::inches;
-      return;
-    case 'u':
-      proto_.units = Units::centimetres;
-      return;
-    case 'S': {
-      tracker::FastrakStatus st;
-      const auto act = active_stations();
-      st.station = static_cast<std::uint8_t>(act.empty() ? 1 : act[next_station_ % act.size()]);
-      st.flags = 0x3F0;
-      st.binary = proto_.format == Format::binary;
-      st.centimetres = proto_.units == Units::centimetres;
-      st.continuous = continuous_;
-      std::array<std::byte, 64> buf{};
-      auto n = tracker::encode_status(st, buf);
-      if (n.ok()) queue(std::string(reinterpret_cast<const char*>(buf.data()), *n), now);
-      return;
-    }
-    case 'W': {
-      const bool cont = continuous_;
-      const ports::TimestampUs busy = busy_until_;
-      power_up(now);
-      --counters_.resets;
-      continuous_ = cont;
-      busy_until_ = busy;
-      return;
-    }
-    case kCtrlY:
-      power_up(now);
-      return;
-    default:
-      break;
+  if (execute_mode(command, now)) return;
+  if (std::string("OlHe").find(command) == std::string::npos) {
+    return;  // accepted, no effect on the model (A, R, B, b, G, N, I, x, v, Q, X, o, ...)
   }
+  const std::string echo = std::string(1, command) + args;
   const auto f = split(args);
   int station = 0;
-  auto station_arg = [&]() -> bool {
-    const int rc = to_int(f[0], station);
-    if (rc != 0) {
-      send_error(echo, rc, now);
-      return false;
-    }
-    if (station < 1 || station > 4) {
-      send_error(echo, -3, now);
-      return false;
-    }
-    return true;
-  };
+  if (const int rc = to_int(f[0], station); rc != 0) {
+    send_error(echo, rc, now);
+    return;
+  }
+  if (station < 1 || station > 4) {
+    send_error(echo, -3, now);
+    return;
+  }
   switch (command) {
-    case 'O': {
-      if (!station_arg()) return;
-      auto& st = proto_.stations[static_cast<std::size_t>(station - 1)];
-      if (f.size() == 1) {
-        std::string r = "2" + std::to_string(station) + "O";
-        char item[8];
-        for (std::size_t i = 0; i < st.list.count; ++i) {
-          std::snprintf(item, sizeof item, "%2d", static_cast<int>(st.list.items[i]));
-          r += item;
-        }
-        queue(r + "\r\n", now);
-        return;
-      }
-      OutputList list;
-      for (std::size_t i = 1; i < f.size(); ++i) {
-        int code = 0;
-        if (const int rc = to_int(f[i], code); rc != 0) {
-          send_error(echo, rc, now);
-          return;
-        }
-        if (code < 0 || code > 255 ||
-            !tracker::is_supported_item(static_cast<std::uint8_t>(code)) ||
-            list.count >= tracker::kMaxItems) {
-          send_error(echo, -3, now);
-          return;
-        }
-        list.items[list.count++] = static_cast<Item>(code);
-      }
-      if (tracker::record_length(list, proto_.format) > tracker::kMaxRecordBytes) {
-        send_error(echo, -5, now);
-        return;
-      }
-      st.list = list;
+    case 'O':
+      execute_output_list(station, f, echo, now);
       return;
-    }
-    case 'l': {
-      if (!station_arg()) return;
-      if (f.size() == 1) {
-        std::string r = "2" + std::to_string(station) + "l";
-        for (const auto& s : proto_.stations) r += s.enabled ? '1' : '0';
-        queue(r + "\r\n", now);
-        return;
-      }
-      int state = 0;
-      if (const int rc = to_int(f[1], state); rc != 0) {
-        send_error(echo, rc, now);
-        return;
-      }
-      proto_.stations[static_cast<std::size_t>(station - 1)].enabled = state != 0;
+    case 'l':
+      execute_station_state(station, f, echo, now);
       return;
-    }
-    case 'H': {
-      if (!station_arg()) return;
-      if (f.size() < 4) {
-        send_error(echo, -1, now);
-        return;
-      }
-      auto& h = hemisphere_[static_cast<std::size_t>(station - 1)];
-      for (std::size_t i = 0; i < 3; ++i) {
-        int v = 0;
-        if (const int rc = to_int(f[i + 1], v); rc != 0) {
-          send_error(echo, rc, now);
-          return;
-        }
-        h[i] = v;
-      }
+    case 'H':
+      execute_hemisphere(station, f, echo, now);
       return;
-    }
-    case 'e': {
-      if (!station_arg()) return;
+    default: {  // 'e': stylus mode 0 or 1
       int mode = 0;
       if (f.size() < 2 || to_int(f[1], mode) != 0 || (mode != 0 && mode != 1)) {
         send_error(echo, -3, now);
@@ -192,8 +81,130 @@ void FastrakDevice::execute(char command, const std::string& args, ports::Timest
       e_mode_ = mode;
       return;
     }
+  }
+}
+
+bool FastrakDevice::execute_mode(char command, ports::TimestampUs now) {
+  switch (command) {
+    case 'P':
+      for (const int station : active_stations()) queue_record(station, now);
+      return true;
+    case 'C':
+      continuous_ = true;
+      output_on_ = true;
+      return true;
+    case 'c':
+      continuous_ = false;
+      return true;
+    case 'F':
+      proto_.format = Format::ascii;
+      return true;
+    case 'f':
+      proto_.format = Format::binary;
+      return true;
+    case 'U':
+      proto_.units = Units::inches;
+      return true;
+    case 'u':
+      proto_.units = Units::centimetres;
+      return true;
+    case 'S':
+      send_status(now);
+      return true;
+    case 'W': {
+      const bool cont = continuous_;
+      const ports::TimestampUs busy = busy_until_;
+      power_up(now);
+      --counters_.resets;
+      continuous_ = cont;
+      busy_until_ = busy;
+      return true;
+    }
+    case kCtrlY:
+      power_up(now);
+      return true;
     default:
-      return;  // accepted, no effect on the model (A, R, B, b, G, N, I, x, v, Q, X, o, ...)
+      return false;
+  }
+}
+
+void FastrakDevice::send_status(ports::TimestampUs now) {
+  tracker::FastrakStatus st;
+  const ActiveStations act = active_stations();
+  st.station = static_cast<std::uint8_t>(act.empty() ? 1 : act[next_station_ % act.size()]);
+  st.flags = 0x3F0;
+  st.binary = proto_.format == Format::binary;
+  st.centimetres = proto_.units == Units::centimetres;
+  st.continuous = continuous_;
+  std::array<std::byte, 64> buf{};
+  auto n = tracker::encode_status(st, buf);
+  if (n.ok()) queue(std::string(reinterpret_cast<const char*>(buf.data()), *n), now);
+}
+
+void FastrakDevice::execute_output_list(int station, const std::vector<std::string>& f,
+                                        const std::string& echo, ports::TimestampUs now) {
+  auto& st = proto_.stations[static_cast<std::size_t>(station - 1)];
+  if (f.size() == 1) {
+    std::string r = "2" + std::to_string(station) + "O";
+    char item[8];
+    for (std::size_t i = 0; i < st.list.count; ++i) {
+      std::snprintf(item, sizeof item, "%2d", static_cast<int>(st.list.items[i]));
+      r += item;
+    }
+    queue(r + "\r\n", now);
+    return;
+  }
+  OutputList list;
+  for (std::size_t i = 1; i < f.size(); ++i) {
+    int code = 0;
+    if (const int rc = to_int(f[i], code); rc != 0) {
+      send_error(echo, rc, now);
+      return;
+    }
+    if (code < 0 || code > 255 || !tracker::is_supported_item(static_cast<std::uint8_t>(code)) ||
+        list.count >= tracker::kMaxItems) {
+      send_error(echo, -3, now);
+      return;
+    }
+    list.items[list.count++] = static_cast<Item>(code);
+  }
+  if (tracker::record_length(list, proto_.format) > tracker::kMaxRecordBytes) {
+    send_error(echo, -5, now);
+    return;
+  }
+  st.list = list;
+}
+
+void FastrakDevice::execute_station_state(int station, const std::vector<std::string>& f,
+                                          const std::string& echo, ports::TimestampUs now) {
+  if (f.size() == 1) {
+    std::string r = "2" + std::to_string(station) + "l";
+    for (const auto& s : proto_.stations) r += s.enabled ? '1' : '0';
+    queue(r + "\r\n", now);
+    return;
+  }
+  int state = 0;
+  if (const int rc = to_int(f[1], state); rc != 0) {
+    send_error(echo, rc, now);
+    return;
+  }
+  proto_.stations[static_cast<std::size_t>(station - 1)].enabled = state != 0;
+}
+
+void FastrakDevice::execute_hemisphere(int station, const std::vector<std::string>& f,
+                                       const std::string& echo, ports::TimestampUs now) {
+  if (f.size() < 4) {
+    send_error(echo, -1, now);
+    return;
+  }
+  auto& h = hemisphere_[static_cast<std::size_t>(station - 1)];
+  for (std::size_t i = 0; i < 3; ++i) {
+    int v = 0;
+    if (const int rc = to_int(f[i + 1], v); rc != 0) {
+      send_error(echo, rc, now);
+      return;
+    }
+    h[i] = v;
   }
 }
 

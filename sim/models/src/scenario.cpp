@@ -69,87 +69,129 @@ HandSample sample(const Scenario& scenario, int station, double t_s) {
   return s;
 }
 
+namespace {
+
+bool finite(double v) { return std::isfinite(v); }
+
+// Each keyword's reader: the rest of the line in `ls`; returns "" or the problem.
+std::string read_seed(std::istringstream& ls, Scenario& sc) {
+  long long v = 0;
+  if (!(ls >> v) || v < 0) return "seed needs a non-negative integer";
+  sc.seed = static_cast<std::uint32_t>(v);
+  return {};
+}
+
+std::string read_receivers(std::istringstream& ls, Scenario& sc) {
+  if (!(ls >> sc.receivers) || sc.receivers < 1 || sc.receivers > 4) {
+    return "receivers must be 1..4";
+  }
+  return {};
+}
+
+std::string read_duration(std::istringstream& ls, Scenario& sc) {
+  if (!(ls >> sc.duration_s) || !finite(sc.duration_s) || sc.duration_s < 0) {
+    return "duration needs seconds >= 0";
+  }
+  return {};
+}
+
+std::string read_key(std::istringstream& ls, Scenario& sc) {
+  KeyFrame k;
+  int st = 0;
+  if (!(ls >> k.t_s >> st >> k.position_in[0] >> k.position_in[1] >> k.position_in[2] >>
+        k.euler_deg[0] >> k.euler_deg[1] >> k.euler_deg[2])) {
+    return "key needs: t station x y z az el roll [button]";
+  }
+  int button = 0;
+  if (ls >> button) k.button = button != 0;
+  if (st < 1 || st > 4) return "station must be 1..4";
+  if (!finite(k.t_s) || k.t_s < 0) return "time must be >= 0";
+  auto& keys = sc.stations[static_cast<std::size_t>(st - 1)].keys;
+  if (!keys.empty() && k.t_s <= keys.back().t_s) return "key times must increase";
+  keys.push_back(k);
+  return {};
+}
+
+std::string read_circle(std::istringstream& ls, Scenario& sc) {
+  Circle c;
+  int st = 0;
+  if (!(ls >> st >> c.center_in[0] >> c.center_in[1] >> c.center_in[2] >> c.radius_in >>
+        c.period_s)) {
+    return "circle needs: station cx cy cz radius period";
+  }
+  if (st < 1 || st > 4) return "station must be 1..4";
+  if (!(c.period_s > 0)) return "period must be > 0";
+  c.enabled = true;
+  sc.stations[static_cast<std::size_t>(st - 1)].circle = c;
+  return {};
+}
+
+std::string read_fault(std::istringstream& ls, Scenario& sc) {
+  Fault f;
+  std::string kind;
+  if (!(ls >> f.t_s >> kind >> f.amount)) return "fault needs: t kind amount";
+  if (!finite(f.t_s) || f.t_s < 0 || !finite(f.amount) || f.amount < 0) {
+    return "fault time and amount must be >= 0";
+  }
+  const auto* named = std::find_if(std::begin(kFaultKinds), std::end(kFaultKinds),
+                                   [&](FaultKind k) { return kind == fault_kind_name(k); });
+  if (named == std::end(kFaultKinds)) return "unknown fault kind '" + kind + "'";
+  f.kind = *named;
+  sc.faults.push_back(f);
+  return {};
+}
+
+std::string read_button(std::istringstream& ls, Scenario& sc) {
+  ButtonEvent b;
+  int level = 0;
+  if (!(ls >> b.t_s >> b.line >> level)) return "button needs: t line 0|1";
+  if (!finite(b.t_s) || b.t_s < 0) return "button time must be >= 0";
+  if (b.line < 0 || b.line >= kMaxScenarioButtonLines) {
+    return "button line must be 0.." + std::to_string(kMaxScenarioButtonLines - 1);
+  }
+  if (level != 0 && level != 1) return "button level must be 0 or 1";
+  b.pressed = level == 1;
+  sc.buttons.push_back(b);
+  return {};
+}
+
+struct Keyword {
+  const char* word;
+  std::string (*read)(std::istringstream&, Scenario&);
+};
+constexpr Keyword kKeywords[] = {{"seed", read_seed},         {"receivers", read_receivers},
+                                 {"duration", read_duration}, {"key", read_key},
+                                 {"circle", read_circle},     {"fault", read_fault},
+                                 {"button", read_button}};
+
+// One line (comments already cut); "" or the problem.
+std::string read_line(const std::string& line, Scenario& sc) {
+  std::istringstream ls(line);
+  std::string word;
+  if (!(ls >> word)) return {};
+  const auto* keyword = std::find_if(std::begin(kKeywords), std::end(kKeywords),
+                                     [&](const Keyword& k) { return word == k.word; });
+  if (keyword == std::end(kKeywords)) return "unknown keyword '" + word + "'";
+  if (std::string problem = keyword->read(ls, sc); !problem.empty()) return problem;
+  std::string extra;
+  if (ls >> extra) return "unexpected '" + extra + "'";
+  return {};
+}
+
+}  // namespace
+
 bool parse_scenario(std::string_view text, Scenario& out, std::string& error) {
   Scenario sc;
   std::istringstream in{std::string(text)};
   std::string line;
   int line_no = 0;
-  auto fail = [&](const std::string& msg) {
-    error = "line " + std::to_string(line_no) + ": " + msg;
-    return false;
-  };
   while (std::getline(in, line)) {
     ++line_no;
     if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
-    std::istringstream ls(line);
-    std::string word;
-    if (!(ls >> word)) continue;
-    auto finite = [](double v) { return std::isfinite(v); };
-    if (word == "seed") {
-      long long v = 0;
-      if (!(ls >> v) || v < 0) return fail("seed needs a non-negative integer");
-      sc.seed = static_cast<std::uint32_t>(v);
-    } else if (word == "receivers") {
-      if (!(ls >> sc.receivers) || sc.receivers < 1 || sc.receivers > 4) {
-        return fail("receivers must be 1..4");
-      }
-    } else if (word == "duration") {
-      if (!(ls >> sc.duration_s) || !finite(sc.duration_s) || sc.duration_s < 0) {
-        return fail("duration needs seconds >= 0");
-      }
-    } else if (word == "key") {
-      KeyFrame k;
-      int st = 0;
-      if (!(ls >> k.t_s >> st >> k.position_in[0] >> k.position_in[1] >> k.position_in[2] >>
-            k.euler_deg[0] >> k.euler_deg[1] >> k.euler_deg[2])) {
-        return fail("key needs: t station x y z az el roll [button]");
-      }
-      int button = 0;
-      if (ls >> button) k.button = button != 0;
-      if (st < 1 || st > 4) return fail("station must be 1..4");
-      if (!finite(k.t_s) || k.t_s < 0) return fail("time must be >= 0");
-      auto& keys = sc.stations[static_cast<std::size_t>(st - 1)].keys;
-      if (!keys.empty() && k.t_s <= keys.back().t_s) return fail("key times must increase");
-      keys.push_back(k);
-    } else if (word == "circle") {
-      Circle c;
-      int st = 0;
-      if (!(ls >> st >> c.center_in[0] >> c.center_in[1] >> c.center_in[2] >> c.radius_in >>
-            c.period_s)) {
-        return fail("circle needs: station cx cy cz radius period");
-      }
-      if (st < 1 || st > 4) return fail("station must be 1..4");
-      if (!(c.period_s > 0)) return fail("period must be > 0");
-      c.enabled = true;
-      sc.stations[static_cast<std::size_t>(st - 1)].circle = c;
-    } else if (word == "fault") {
-      Fault f;
-      std::string kind;
-      if (!(ls >> f.t_s >> kind >> f.amount)) return fail("fault needs: t kind amount");
-      if (!finite(f.t_s) || f.t_s < 0 || !finite(f.amount) || f.amount < 0) {
-        return fail("fault time and amount must be >= 0");
-      }
-      const auto* named = std::find_if(std::begin(kFaultKinds), std::end(kFaultKinds),
-                                       [&](FaultKind k) { return kind == fault_kind_name(k); });
-      if (named == std::end(kFaultKinds)) return fail("unknown fault kind '" + kind + "'");
-      f.kind = *named;
-      sc.faults.push_back(f);
-    } else if (word == "button") {
-      ButtonEvent b;
-      int level = 0;
-      if (!(ls >> b.t_s >> b.line >> level)) return fail("button needs: t line 0|1");
-      if (!finite(b.t_s) || b.t_s < 0) return fail("button time must be >= 0");
-      if (b.line < 0 || b.line >= kMaxScenarioButtonLines) {
-        return fail("button line must be 0.." + std::to_string(kMaxScenarioButtonLines - 1));
-      }
-      if (level != 0 && level != 1) return fail("button level must be 0 or 1");
-      b.pressed = level == 1;
-      sc.buttons.push_back(b);
-    } else {
-      return fail("unknown keyword '" + word + "'");
+    if (std::string problem = read_line(line, sc); !problem.empty()) {
+      error = "line " + std::to_string(line_no) + ": " + problem;
+      return false;
     }
-    std::string extra;
-    if (ls >> extra) return fail("unexpected '" + extra + "'");
   }
   std::stable_sort(sc.faults.begin(), sc.faults.end(),
                    [](const Fault& a, const Fault& b) { return a.t_s < b.t_s; });

@@ -70,6 +70,18 @@ class FastrakDevice {
   void power_up(ports::TimestampUs now);
   void apply_faults(ports::TimestampUs now);
   void execute(char command, const std::string& args, ports::TimestampUs now);
+  // The commands without arguments (mode letters, status, resets); false when
+  // `command` is not one of them.
+  bool execute_mode(char command, ports::TimestampUs now);
+  void send_status(ports::TimestampUs now);
+  // The parameter commands, `fields` split at commas; `echo` is the command as
+  // received, for the error record.
+  void execute_output_list(int station, const std::vector<std::string>& fields,
+                           const std::string& echo, ports::TimestampUs now);
+  void execute_station_state(int station, const std::vector<std::string>& fields,
+                             const std::string& echo, ports::TimestampUs now);
+  void execute_hemisphere(int station, const std::vector<std::string>& fields,
+                          const std::string& echo, ports::TimestampUs now);
   void queue(std::span<const std::byte> bytes, ports::TimestampUs now);
   void queue(std::string_view text, ports::TimestampUs now);
   void queue_noise(std::uint64_t count, ports::TimestampUs now);
