@@ -53,7 +53,8 @@ sock="$out/link.sock"
   > "$out/station.log" 2>&1 &
 station_pid=$!
 trap 'kill "$station_pid" 2>/dev/null || true' EXIT
-for _ in $(seq 100); do [[ -S "$sock" ]] && break; sleep 0.05; done
+# No wait for the socket here: the bridge retries its connection (every 200 ms) until
+# the station listens, within its --timeout.
 # TWISTER_BRIDGE_MODE=window runs the bridge in a GLFW window on a virtual X server
 # (xvfb-run) instead: the same pictures through the windowed path.
 if [[ "${TWISTER_BRIDGE_MODE:-offscreen}" == window ]]; then

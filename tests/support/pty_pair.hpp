@@ -4,11 +4,13 @@
 
 #include <fcntl.h>
 #include <poll.h>
+#include <sched.h>
 #include <stdlib.h>
 #include <sys/ioctl.h>
 #include <termios.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <string>
 
 namespace twister::test {
@@ -35,18 +37,24 @@ struct PtyPair {
 
   // Waits (up to timeout_ms) until the slave side's input queue holds at least n
   // bytes: the PTY hands written bytes to the line discipline asynchronously, so a
-  // test must not assume they are there when write() returns.
+  // test must not assume they are there when write() returns. Blocks in poll() until
+  // the first byte is readable; the rest of one write follows within microseconds.
   bool wait_slave_pending(int n, int timeout_ms = 5000) const {
     const int fd = ::open(slave.c_str(), O_RDONLY | O_NOCTTY | O_NONBLOCK);
     if (fd < 0) return false;
+    const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
     bool ok = false;
-    for (int waited = 0; waited <= timeout_ms; ++waited) {
+    for (;;) {
       int pending = 0;
       if (::ioctl(fd, FIONREAD, &pending) == 0 && pending >= n) {
         ok = true;
         break;
       }
-      ::usleep(1000);
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+          end - std::chrono::steady_clock::now());
+      if (left.count() <= 0) break;
+      pollfd p{fd, POLLIN, 0};
+      if (::poll(&p, 1, static_cast<int>(left.count())) > 0 && pending > 0) ::sched_yield();
     }
     ::close(fd);
     return ok;

@@ -6,8 +6,8 @@
 
 #include <array>
 #include <chrono>
-#include <thread>
 
+#include "support/poll_wait.hpp"
 #include "support/pty_pair.hpp"
 
 namespace twister::hal {
@@ -18,11 +18,11 @@ std::string read_for(TermiosByteStream& s, std::size_t want, int ms = 5000) {
   std::string out;
   const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(ms);
   std::array<std::byte, 256> buf{};
-  while (out.size() < want && std::chrono::steady_clock::now() < end) {
+  while (out.size() < want) {
     auto n = s.read(buf);
     if (!n.ok()) break;
     out.append(reinterpret_cast<const char*>(buf.data()), *n);
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    if (out.size() < want && !test::wait_ready(s, test::ms_until(end))) break;
   }
   return out;
 }

@@ -6,8 +6,8 @@
 
 #include <array>
 #include <chrono>
-#include <thread>
 
+#include "support/poll_wait.hpp"
 #include "support/pty_pair.hpp"
 #include "twister/hal/termios_byte_stream.hpp"
 
@@ -21,16 +21,21 @@ void link_to(const std::string& target, const std::string& link) {
   ASSERT_EQ(::rename(tmp.c_str(), link.c_str()), 0);
 }
 
+// Everything the stream delivers within `ms` ("<io_error>" appended on a hang-up).
 std::string read_some(TermiosByteStream& s, int ms) {
   std::string out;
   std::array<std::byte, 64> buf{};
-  for (int i = 0; i < ms; ++i) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(ms);
+  for (;;) {
     auto n = s.read(buf);
     if (!n.ok()) return out + "<io_error>";
     out.append(reinterpret_cast<const char*>(buf.data()), *n);
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    const int left = test::ms_until(end);
+    if (left == 0) return out;
+    // Input or a hang-up wakes the wait; a stream that closed itself has no fd and
+    // its next read reports the hang-up.
+    if (!test::wait_ready(s, left) && s.is_open()) return out;
   }
-  return out;
 }
 
 TEST(TermiosReplug, HangUpAndReturnBehindAStableSymlink) {

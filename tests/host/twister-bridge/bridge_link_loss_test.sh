@@ -40,7 +40,8 @@ unset DISPLAY WAYLAND_DISPLAY
   > "$work/station.log" 2>&1 &
 station_pid=$!
 trap 'kill "$station_pid" 2>/dev/null || true' EXIT
-for _ in $(seq 100); do [[ -S "$sock" ]] && break; sleep 0.05; done
+# No wait for the socket here: the bridge retries its connection (every 200 ms) until
+# the station listens, within its --timeout.
 # Bridge 1 leaves right after the first commit (the link drops mid-session).
 "$build/bin/twister-bridge" --connect "unix:$sock" --offscreen --size 64x48 \
   --exit-after-commits 1 --timeout 30 -q 2> "$work/bridge1.log"

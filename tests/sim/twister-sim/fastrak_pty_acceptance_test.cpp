@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "device_server.hpp"
+#include "support/poll_wait.hpp"
 #include "twister/hal/monotonic_clock.hpp"
 #include "twister/hal/termios_byte_stream.hpp"
 #include "twister/sim/fastrak_device.hpp"
@@ -120,7 +121,9 @@ TEST_P(FastrakPtyAcceptance, SessionRecoversAndNoInvalidPoseReachesTheConsumer) 
       if (t > fc.fault_end_s + 0.5) ++after_fault[p->station - 1];
     }
     if (after_fault[0] > 60 && after_fault[1] > 60) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    // As the station's loop: wake on input, or after the session's timer tick (its
+    // command and reconnect timers need polling while the port is quiet or closed).
+    if (!test::wait_ready(port, 5) && !port.is_open()) ::poll(nullptr, 0, 5);
   }
   sim.join();
 
