@@ -135,7 +135,28 @@ Status Station::poll() {
   const input::SessionEvents events = sculpt_.step(now_us);
   counters_.session_events_dropped += events.dropped();
   for (const input::SessionEvent& e : events.items()) report(e, now_us);
+  if (now_us - rate_window_us_ >= 1'000'000) {
+    const double seconds = static_cast<double>(now_us - rate_window_us_) / 1e6;
+    rate_hz_ =
+        static_cast<float>(static_cast<double>(counters_.poses - rate_window_poses_) / seconds);
+    rate_window_us_ = now_us;
+    rate_window_poses_ = counters_.poses;
+  }
   return ok_status();
+}
+
+StationStatus Station::status() const {
+  StationStatus s;
+  if (session_.streaming()) {
+    s.tracker = TrackerLinkState::streaming;
+    s.tracker_rate_hz = rate_hz_;
+  } else if (session_.counters().streams_started > 0) {
+    s.tracker = TrackerLinkState::lost;
+  }
+  s.strokes_committed = counters_.strokes_committed;
+  s.strokes_not_saved = counters_.strokes_not_saved;
+  s.method = config_.sculpt.method;
+  return s;
 }
 
 void Station::report(const input::SessionEvent& e, ports::TimestampUs now_us) {

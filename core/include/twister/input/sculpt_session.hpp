@@ -115,6 +115,10 @@ class SculptSession {
 
   const mesh::Mesh& mesh() const { return mesh_.mesh(); }
   const math::Frame& object_pose() const { return poses_.object(); }
+  // The hands' latest samples (validity, pose in world and object frame) and their
+  // debounced button levels, for the display link.
+  const SessionPoses& poses() const { return poses_; }
+  const HandButtons& hand_buttons(std::uint8_t hand) const { return buttons_.hand(hand); }
   float radius_m() const { return machine_.radius_m(); }
   const InteractionMachine& machine() const { return machine_; }
   LiveWarp live() const { return strokes_.live(); }

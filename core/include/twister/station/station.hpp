@@ -27,6 +27,7 @@
 #include "twister/ports/clock.hpp"
 #include "twister/ports/storage.hpp"
 #include "twister/station/station_event.hpp"
+#include "twister/station/station_status.hpp"
 #include "twister/tracker/fastrak_session.hpp"
 #include "twister/tracker/pose_conversion.hpp"
 
@@ -59,6 +60,8 @@ struct StationCounters {
   std::uint64_t session_events_dropped = 0;
   std::uint64_t journal_errors = 0;
   std::uint64_t events_dropped = 0;  // event queue full (the log is behind)
+  std::uint64_t strokes_not_saved =
+      0;  // commits whose journal append failed (display: "stroke not saved")
 };
 
 class Station {
@@ -93,6 +96,8 @@ class Station {
   const mesh::Mesh& mesh() const { return sculpt_.mesh(); }
   std::uint32_t journal_records() const { return sculpt_.next_sequence(); }
   bool hand_valid(std::uint8_t hand, ports::TimestampUs now_us) const;
+  // What the display link reports about the station (as of the last poll()).
+  StationStatus status() const;
 
  private:
   struct Hand {
@@ -119,6 +124,10 @@ class Station {
   bool buttons_failed_ = false;
   bool was_streaming_ = false;
   StationCounters counters_{};
+  // Tracker rate: poses counted over windows of about a second.
+  ports::TimestampUs rate_window_us_ = 0;
+  std::uint64_t rate_window_poses_ = 0;
+  float rate_hz_ = 0.0F;
   static constexpr std::size_t kEventCapacity = 64;
   std::array<StationEvent, kEventCapacity> events_{};
   std::size_t event_head_ = 0;
