@@ -104,7 +104,7 @@ int run(const Options& opt, StationConfig cfg, hal::Logger& log, hal::Logger& re
                  parts.mesh_path.c_str(), mesh.vertex_count(), mesh.triangle_count(),
                  static_cast<unsigned long long>(mesh.checksum()));
   if (parts.display.is_open() && opt.link_wait_s > 0.0 &&
-      !parts.display.wait_for_peer(parts.core->sculpt(), opt.link_wait_s)) {
+      !parts.display.wait_for_peer(*parts.core, opt.link_wait_s)) {
     log.warning("", "no bridge on %s after %.1f s; running without", opt.link_address.c_str(),
                 opt.link_wait_s);
   }
@@ -136,7 +136,8 @@ void add_options(CLI::App& app, Options& opt) {
                "summary")
       ->excludes(level);
   app.add_option("--link", opt.link_address,
-                 "serve the display link to twister-bridge on unix:PATH or tcp:HOST:PORT");
+                 "serve the display link to twister-bridge on unix:PATH, tcp:HOST:PORT or "
+                 "serial:DEVICE (overrides [link] address)");
   app.add_option("--link-wait", opt.link_wait_s,
                  "seconds to wait for a bridge to connect and receive the mesh before running")
       ->check(CLI::NonNegativeNumber);

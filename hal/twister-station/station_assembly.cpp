@@ -76,8 +76,11 @@ hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationConfi
   if (auto started = start_core(*parts->core, config.station.journal); !started) {
     return started.error();
   }
-  if (!options.link_address.empty()) {
-    if (auto opened = parts->display.open(options.link_address, parts->core->sculpt()); !opened) {
+  LinkSection link = config.link;
+  if (!options.link_address.empty()) link.address = options.link_address;  // --link wins
+  if (!link.address.empty()) {
+    if (auto opened = parts->display.open(link, parts->core->sculpt(), hal::process_log());
+        !opened) {
       return opened.error();
     }
   }

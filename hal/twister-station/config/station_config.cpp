@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "config_reader.hpp"
+#include "link_config.hpp"
 
 namespace twister::station_app {
 namespace {
@@ -258,6 +259,7 @@ ConfigParseResult parse_station_config(std::string_view text, std::string_view f
   read_tracker(root, out.config);
   read_buttons(root, out.config);
   read_systemd(root, out.config);
+  internal::read_link(root, out.config);
   root.finish();
   std::stable_sort(out.errors.begin(), out.errors.end(),
                    [](const ConfigError& a, const ConfigError& b) { return a.line < b.line; });

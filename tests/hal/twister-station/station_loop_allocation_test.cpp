@@ -55,8 +55,8 @@ StationConfig loop_config(const std::string& journal) {
 class BridgePeer {
  public:
   explicit BridgePeer(const std::string& address)
-      : link_({address, false, 20}), app_(link_, nullptr, {""}, quiet_) {
-    EXPECT_TRUE(link_.open().ok());
+      : link_({address, false, 20}), app_(link_, nullptr, {}, quiet_) {
+    EXPECT_TRUE(link_.open());
     thread_ = std::thread([this] { run(); });
   }
   ~BridgePeer() {
@@ -124,7 +124,7 @@ TEST(StationLoopAllocation, SteadyStateWithStrokesButtonsLinkAndLogAllocatesNoth
   ASSERT_NE(parts.backends.virtual_clock, nullptr);
 
   BridgePeer peer(address);
-  ASSERT_TRUE(parts.display.wait_for_peer(parts.core->sculpt(), 10.0));
+  ASSERT_TRUE(parts.display.wait_for_peer(*parts.core, 10.0));
 
   FILE* log_file = std::fopen(log_path.c_str(), "w");
   ASSERT_NE(log_file, nullptr);
