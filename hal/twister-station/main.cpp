@@ -90,6 +90,21 @@ void log_summary(hal::Logger& results, const twister::station::Station& core,
                  static_cast<unsigned long long>(tc.io_errors));
 }
 
+void log_link_summary(hal::Logger& results, const app::DisplayLink& display) {
+  const twister::station::StationLinkCounters* l = display.counters();
+  if (l == nullptr) return;
+  results.notice("link",
+                 "displays admitted %llu, hands sent %llu, dropped %llu; commits %llu, full "
+                 "meshes %llu; refused %llu",
+                 static_cast<unsigned long long>(l->connects),
+                 static_cast<unsigned long long>(l->live_sent),
+                 static_cast<unsigned long long>(l->live_dropped),
+                 static_cast<unsigned long long>(l->commits_sent),
+                 static_cast<unsigned long long>(l->full_sends),
+                 static_cast<unsigned long long>(l->refused_unauthorised + l->refused_protocol +
+                                                 l->refused_version + l->refused_timeout));
+}
+
 int run(const Options& opt, StationConfig cfg, hal::Logger& log, hal::Logger& results) {
   if (!opt.journal_override.empty()) cfg.station.journal = opt.journal_override;
   auto assembled = app::assemble_station(
@@ -115,6 +130,7 @@ int run(const Options& opt, StationConfig cfg, hal::Logger& log, hal::Logger& re
                  cfg.station.journal.c_str());
   const twister::Status flushed = loop.run();
   log_summary(results, *parts.core, loop, flushed);
+  log_link_summary(results, parts.display);
   return flushed.ok() ? kExitOk : kExitFailure;
 }
 

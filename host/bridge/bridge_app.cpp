@@ -1,5 +1,6 @@
 #include "bridge_app.hpp"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 
@@ -57,6 +58,14 @@ void BridgeApp::handle(const link::LinkMessage& m) {
   last_frame_ms_ = std::chrono::duration_cast<std::chrono::milliseconds>(
                        std::chrono::steady_clock::now().time_since_epoch())
                        .count();
+  if (m.type == link::MessageType::hands) {
+    const std::int64_t second = last_frame_ms_ / 1000;
+    if (second != hands_second_) {
+      hands_second_ = second;
+      hands_in_second_ = 0;
+    }
+    counters_.hands_busiest_second = std::max(counters_.hands_busiest_second, ++hands_in_second_);
+  }
   switch (m.type) {
     case link::MessageType::hello:
       on_station_hello(m.hello);

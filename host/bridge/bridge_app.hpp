@@ -41,7 +41,8 @@ struct BridgeCounters {
   std::uint64_t disconnects = 0;
   std::uint64_t snapshots = 0;
   std::uint64_t hellos_sent = 0;
-  std::uint64_t ignored = 0;  // station messages before the handshake completed
+  std::uint64_t ignored = 0;               // station messages before the handshake completed
+  std::uint64_t hands_busiest_second = 0;  // most hands updates in one wall-clock second
 };
 
 // Why the bridge stopped using the link (none: it did not).
@@ -102,6 +103,8 @@ class BridgeApp {
   link::Nonce station_nonce_{};
   std::int64_t hello_sent_ms_ = 0;
   std::int64_t last_frame_ms_ = 0;
+  std::int64_t hands_second_ = 0;
+  std::uint64_t hands_in_second_ = 0;
   BridgeStop stop_ = BridgeStop::none;
   // Display.
   bool display_mesh_live_ = false;  // the renderer holds CPU-warped positions (scodef)

@@ -110,7 +110,11 @@ void BridgeApp::on_bye(const link::Bye& bye) {
       stop(BridgeStop::unauthorised);
       return;
     case link::ByeReason::shutdown:
+      // The station is gone (on a serial line no hang-up follows): a disconnect.
       log_.write(LogLevel::notice, "link", "the station is shutting down", {});
+      if (connected_) ++counters_.disconnects;
+      connected_ = false;
+      ready_ = false;
       return;
     case link::ByeReason::protocol:
     case link::ByeReason::timeout:

@@ -182,9 +182,11 @@ void log_summary(const BridgeApp& app) {
   const auto& d = app.decoder_counters();
   logger().notice("summary",
                   "mesh version %u; full meshes %llu, commits %llu, checksum mismatches %llu, "
-                  "resend requests %llu, live frames %llu, connects %llu, bad frames %llu",
+                  "resend requests %llu, live frames %llu (missed %llu, busiest second %llu), "
+                  "connects %llu, bad frames %llu",
                   app.replica().version(), c.full_meshes, c.commits, c.checksum_mismatches,
-                  c.resend_requests, c.live_frames, app.counters().connects,
+                  c.resend_requests, c.live_frames, c.live_missed,
+                  app.counters().hands_busiest_second, app.counters().connects,
                   d.bad_crc + d.bad_cobs + d.bad_payload);
 }
 
