@@ -19,6 +19,7 @@
 #include "station_loop.hpp"
 #include "station_setup.hpp"
 #include "twister/hal/logger.hpp"
+#include "twister/hal/sodium_authenticator.hpp"
 
 namespace {
 
@@ -70,6 +71,13 @@ int check_config(hal::Logger& log, const Options& opt, const StationConfig& cfg)
               opt.config_path.c_str(), app::to_string(cfg.buttons.backend));
     ++errors;
   }
+  if (!cfg.link.psk_file.empty()) {
+    // The key file is checked like at start (private regular file of 64 hex digits).
+    if (const auto key = hal::load_link_key(cfg.link.psk_file); !key) {
+      log.error("", "%s: link.psk_file: %s", opt.config_path.c_str(), key.error().message.c_str());
+      ++errors;
+    }
+  }
   return errors;
 }
 
@@ -93,16 +101,16 @@ void log_summary(hal::Logger& results, const twister::station::Station& core,
 void log_link_summary(hal::Logger& results, const app::DisplayLink& display) {
   const twister::station::StationLinkCounters* l = display.counters();
   if (l == nullptr) return;
-  results.notice("link",
-                 "displays admitted %llu, hands sent %llu, dropped %llu; commits %llu, full "
-                 "meshes %llu; refused %llu",
-                 static_cast<unsigned long long>(l->connects),
-                 static_cast<unsigned long long>(l->live_sent),
-                 static_cast<unsigned long long>(l->live_dropped),
-                 static_cast<unsigned long long>(l->commits_sent),
-                 static_cast<unsigned long long>(l->full_sends),
-                 static_cast<unsigned long long>(l->refused_unauthorised + l->refused_protocol +
-                                                 l->refused_version + l->refused_timeout));
+  const std::uint64_t refused =
+      l->refused_unauthorised + l->refused_protocol + l->refused_version + l->refused_timeout;
+  results.notice(
+      "link",
+      "displays admitted %llu, hands sent %llu, dropped %llu; commits %llu, full "
+      "meshes %llu; refused %llu",
+      static_cast<unsigned long long>(l->connects), static_cast<unsigned long long>(l->live_sent),
+      static_cast<unsigned long long>(l->live_dropped),
+      static_cast<unsigned long long>(l->commits_sent),
+      static_cast<unsigned long long>(l->full_sends), static_cast<unsigned long long>(refused));
 }
 
 int run(const Options& opt, StationConfig cfg, hal::Logger& log, hal::Logger& results) {

@@ -145,7 +145,7 @@ Expected<void> open_transport(const Options& opt, Transport& t) {
     config.baud = opt.baud;
     t.serial = std::make_unique<twister::hal::SerialLink>(config);
     t.port = t.serial.get();
-    const Expected<void> opened = t.serial->open();
+    Expected<void> opened = t.serial->open();
     // Not there yet: retried on use, like a socket's reconnect.
     if (!opened && opened.error().status.code() != StatusCode::unavailable) return opened;
     return {};

@@ -46,14 +46,14 @@ bool SerialLink::ensure_open() {
 
 Result<std::size_t> SerialLink::do_send(std::span<const std::byte> src) {
   if (!ensure_open()) return StatusCode::unavailable;
-  const Result<std::size_t> n = tty_.write(src);
+  Result<std::size_t> n = tty_.write(src);
   if (!n.ok()) return StatusCode::unavailable;  // unplugged: reopened later
   return n;
 }
 
 Result<std::size_t> SerialLink::do_receive(std::span<std::byte> dest) {
   if (!ensure_open()) return StatusCode::unavailable;
-  const Result<std::size_t> n = tty_.read(dest);
+  Result<std::size_t> n = tty_.read(dest);
   if (!n.ok()) return StatusCode::unavailable;
   return n;
 }
