@@ -87,19 +87,23 @@ void DisplayLink::log_changes() {
   if (c.displaced != logged_.displaced) {
     log_->notice("link", "a newly admitted display took over; the previous one was told so");
   }
-  if (c.refused_unauthorised != logged_.refused_unauthorised) {
-    log_->warning("link", "refused a peer: unauthorised (no or wrong key)");
-  }
-  if (c.refused_version != logged_.refused_version) {
-    log_->warning("link", "refused a peer speaking link protocol %u (this station: %u)",
-                  static_cast<unsigned>(link_->refused_version()),
-                  static_cast<unsigned>(link::kProtocolVersion));
-  }
-  if (c.refused_timeout != logged_.refused_timeout) {
-    log_->warning("link", "refused a peer: no handshake within 2 s");
-  }
-  if (c.refused_protocol != logged_.refused_protocol) {
-    log_->warning("link", "refused a peer: it broke the handshake");
+  // Refusals: at most one line per 10 s (a stranger may retry every 100 ms).
+  const std::uint64_t refused =
+      c.refused_unauthorised + c.refused_version + c.refused_timeout + c.refused_protocol;
+  const std::uint64_t before = logged_.refused_unauthorised + logged_.refused_version +
+                               logged_.refused_timeout + logged_.refused_protocol;
+  const auto now = Clock::now();
+  if (refused != before && now - last_refusal_log_ >= std::chrono::seconds(10)) {
+    const char* why = c.refused_unauthorised != logged_.refused_unauthorised
+                          ? "unauthorised (no or wrong key)"
+                      : c.refused_version != logged_.refused_version ? "another protocol version"
+                      : c.refused_timeout != logged_.refused_timeout ? "no handshake within 2 s"
+                                                                     : "it broke the handshake";
+    log_->warning(
+        "link", "refused a peer: %s (peer protocol %u, this station %u; %llu refused so far)", why,
+        static_cast<unsigned>(link_->refused_version()),
+        static_cast<unsigned>(link::kProtocolVersion), static_cast<unsigned long long>(refused));
+    last_refusal_log_ = now;
   }
   logged_ = c;
 }

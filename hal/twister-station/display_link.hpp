@@ -11,6 +11,7 @@
 
 #include <poll.h>
 
+#include <chrono>
 #include <memory>
 #include <span>
 #include <string>
@@ -67,6 +68,7 @@ class DisplayLink {
   std::unique_ptr<station::StationLink> link_;
   hal::Logger* log_ = nullptr;
   station::StationLinkCounters logged_{};
+  std::chrono::steady_clock::time_point last_refusal_log_{};
 };
 
 }  // namespace twister::station_app
