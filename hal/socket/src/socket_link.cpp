@@ -316,13 +316,13 @@ Result<std::size_t> SocketLink::do_receive(std::span<std::byte> dest) {
   return receive_on(peer_fd_, dest);
 }
 
+// Newcomers are accepted only in newcomer_id(), so the station sees every change of
+// newcomer (and starts its decoder afresh) before it reads from the new one.
 Result<std::size_t> SocketLink::do_send_newcomer(std::span<const std::byte> src) {
-  accept_newcomers();
   return send_on(newcomer_fd_, src);
 }
 
 Result<std::size_t> SocketLink::do_receive_newcomer(std::span<std::byte> dest) {
-  accept_newcomers();
   return receive_on(newcomer_fd_, dest);
 }
 
