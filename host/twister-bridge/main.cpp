@@ -20,6 +20,7 @@
 #include "bridge_app.hpp"
 #include "gl_context.hpp"
 #include "mesh_export.hpp"
+#include "scene_view.hpp"
 #include "twister/hal/expected.hpp"
 #include "twister/hal/logger.hpp"
 #include "twister/hal/serial_link.hpp"
@@ -76,6 +77,7 @@ Expected<Size> parse_size(const std::string& text) {
 struct Display {
   std::unique_ptr<twister::bridge::GlContext> context;
   twister::bridge::MeshRenderer renderer;
+  twister::bridge::SceneView view{renderer};
 };
 
 Expected<void> open_display(const Options& opt, Size size, Display& display) {
@@ -84,8 +86,12 @@ Expected<void> open_display(const Options& opt, Size size, Display& display) {
                      : twister::bridge::make_window_context(size.width, size.height, opt.kiosk);
   if (!context) return context.error();
   display.context = std::move(*context);
-  return display.renderer.init(display.context->width(), display.context->height(), opt.offscreen,
-                               opt.view);
+  if (Expected<void> ready = display.renderer.init(
+          display.context->width(), display.context->height(), opt.offscreen, opt.view);
+      !ready) {
+    return ready;
+  }
+  return display.view.init();
 }
 
 // Steps the app until the window closes, the awaited commits or disconnect came, or
@@ -224,6 +230,7 @@ int run(const Options& opt) {
   bridge_options.authenticator = auth.get();
   bridge_options.limits = opt.limits;
   BridgeApp app(*transport.port, &display.renderer, bridge_options, logger());
+  app.set_view(&display.view);
   int rc = run_loop(opt, app, display, transport.poll_fd());
   if (!opt.export_path.empty()) {
     if (const int exported = export_final_mesh(opt.export_path, app); exported != kExitOk) {
