@@ -1,8 +1,13 @@
 #include "mesh_export.hpp"
 
-#include <cstdio>
+#include <unistd.h>
 
+#include <cstdio>
+#include <filesystem>
+
+#include "gltf_export.hpp"
 #include "twister/meshio/obj_file.hpp"
+#include "vertex_normals.hpp"
 
 namespace twister::bridge {
 namespace {
@@ -30,11 +35,43 @@ hal::Expected<void> export_ply(const std::string& path, const MeshData& m) {
 
 }  // namespace
 
-hal::Expected<void> export_mesh(const std::string& path, const MeshData& m) {
+hal::Expected<void> check_export_path(const std::string& path) {
+  if (!path.ends_with(".obj") && !path.ends_with(".ply") && !path.ends_with(".glb") &&
+      !path.ends_with(".gltf")) {
+    return hal::make_error(StatusCode::invalid_argument,
+                           "unknown mesh format (use .obj, .ply, .glb or .gltf): " + path);
+  }
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    return hal::make_error(StatusCode::invalid_argument, "export path is a directory: " + path);
+  }
+  std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  if (folder.empty()) folder = ".";
+  if (!std::filesystem::is_directory(folder, ec)) {
+    return hal::make_error(StatusCode::io_error, "export folder does not exist: " +
+                                                     folder.string() + " (for " + path + ")");
+  }
+  if (::access(folder.c_str(), W_OK) != 0) {
+    return hal::make_error(StatusCode::io_error,
+                           "export folder is not writable: " + folder.string());
+  }
+  return {};
+}
+
+hal::Expected<void> export_mesh(const std::string& path, const MeshData& m,
+                                const std::vector<float>& normals) {
   if (path.ends_with(".ply")) return export_ply(path, m);
+  if (path.ends_with(".glb") || path.ends_with(".gltf")) {
+    if (normals.size() == 3 * m.vertex_count()) {
+      return export_gltf(path, m, normals, path.ends_with(".glb"));
+    }
+    std::vector<float> computed;
+    compute_vertex_normals(m, computed);
+    return export_gltf(path, m, computed, path.ends_with(".glb"));
+  }
   if (!path.ends_with(".obj")) {
     return hal::make_error(StatusCode::invalid_argument,
-                           "unknown mesh format (use .obj or .ply): " + path);
+                           "unknown mesh format (use .obj, .ply, .glb or .gltf): " + path);
   }
   const auto core = to_core_mesh(m);
   if (!core) {

@@ -172,7 +172,9 @@ int export_final_mesh(const std::string& path, const BridgeApp& app) {
     logger().error("export", "no mesh received; nothing exported");
     return kExitFailure;
   }
-  if (const Expected<void> done = twister::bridge::export_mesh(path, app.replica().mesh()); !done) {
+  if (const Expected<void> done =
+          twister::bridge::export_mesh(path, app.replica().mesh(), app.replica().normals());
+      !done) {
     logger().error("export", "%s", done.error().message.c_str());
     return kExitFailure;
   }
@@ -201,6 +203,13 @@ int run(const Options& opt) {
   if (!size) {
     logger().error("options", "%s", size.error().message.c_str());
     return kExitBadOptions;
+  }
+  // The export path is checked now, not after the session's work.
+  if (!opt.export_path.empty()) {
+    if (const Expected<void> ok = twister::bridge::check_export_path(opt.export_path); !ok) {
+      logger().error("options", "--export: %s", ok.error().message.c_str());
+      return kExitBadOptions;
+    }
   }
   if (!opt.snapshots.empty()) std::filesystem::create_directories(opt.snapshots);
   Display display;
@@ -262,7 +271,8 @@ void add_options(CLI::App& cli, Options& opt) {
   cli.add_option("--size", opt.size, "WxH in pixels (window or offscreen)");
   cli.add_option("--snapshots", opt.snapshots,
                  "directory for PNGs: rest.png, live-<version>.png, commit-<version>.png");
-  cli.add_option("--export", opt.export_path, "write the final mesh (.obj or .ply) at exit");
+  cli.add_option("--export", opt.export_path,
+                 "write the final mesh at exit: .obj, .ply, .glb or .gltf (checked at start)");
   cli.add_option("--exit-after-commits", opt.exit_after_commits,
                  "exit once this many commits were applied and verified");
   cli.add_flag("--exit-on-disconnect", opt.exit_on_disconnect,
