@@ -133,6 +133,17 @@ void BridgeApp::handle_scene(const link::LinkMessage& m) {
   }
 }
 
+bool BridgeApp::send_command(const link::Command& command) {
+  if (!ready()) return false;
+  link::LinkMessage m;
+  m.type = link::MessageType::command;
+  m.command = command;
+  send(m);
+  flush();
+  ++counters_.commands_sent;
+  return true;
+}
+
 void BridgeApp::send(const link::LinkMessage& m) {
   std::array<std::byte, link::kMaxFrameBytes> frame{};
   const auto n = link::encode_frame(m, frame);

@@ -45,6 +45,7 @@ struct BridgeCounters {
   std::uint64_t hellos_sent = 0;
   std::uint64_t ignored = 0;               // station messages before the handshake completed
   std::uint64_t hands_busiest_second = 0;  // most hands updates in one wall-clock second
+  std::uint64_t commands_sent = 0;         // keyboard commands sent to the station
 };
 
 // Why the bridge stopped using the link (none: it did not).
@@ -58,6 +59,10 @@ class BridgeApp {
             ports::LogSink& log);
   // One step: link I/O and replica updates (never blocks). Returns frames decoded.
   std::size_t step();
+  // Sends a sculptor's command (keys: undo, redo, method) to the station, which
+  // acts on it only from the admitted display. False when the link is not ready
+  // (nothing is queued for later: a stale undo must not fire on reconnect).
+  bool send_command(const link::Command& command);
   // Draws through `view` (mesh, cues, HUD) from now on; null: the mesh alone.
   void set_view(class SceneView* view) { view_ = view; }
   // Draws the current scene (window mode each frame; offscreen for snapshots).

@@ -18,6 +18,7 @@
 #include <string>
 
 #include "bridge_app.hpp"
+#include "camera_config.hpp"
 #include "gl_context.hpp"
 #include "mesh_export.hpp"
 #include "scene_view.hpp"
@@ -26,6 +27,7 @@
 #include "twister/hal/serial_link.hpp"
 #include "twister/hal/socket_link.hpp"
 #include "twister/hal/sodium_authenticator.hpp"
+#include "window_input.hpp"
 
 namespace {
 
@@ -47,7 +49,9 @@ struct Options {
   std::string export_path;
   unsigned exit_after_commits = 0;
   double timeout_s = 0.0;
-  twister::bridge::ViewConfig view;  // --azimuth, --elevation
+  twister::bridge::ViewConfig view;  // --azimuth, --elevation, or --camera FILE
+  std::string camera_file;           // a kiosk's fixed camera (TOML)
+  bool fixed_camera = false;
   bool exit_on_disconnect = false;
   std::string log_level = "notice";
   bool quiet = false;
@@ -212,8 +216,19 @@ int run(const Options& opt) {
     }
   }
   if (!opt.snapshots.empty()) std::filesystem::create_directories(opt.snapshots);
+  Options options = opt;
+  if (!opt.camera_file.empty()) {
+    const Expected<twister::bridge::CameraConfig> camera =
+        twister::bridge::load_camera_config(opt.camera_file);
+    if (!camera) {
+      logger().error("options", "--camera: %s", camera.error().message.c_str());
+      return kExitBadOptions;
+    }
+    options.view = camera->view;
+    options.fixed_camera = camera->fixed;
+  }
   Display display;
-  if (const Expected<void> opened = open_display(opt, *size, display); !opened) {
+  if (const Expected<void> opened = open_display(options, *size, display); !opened) {
     logger().error("display", "%s", opened.error().message.c_str());
     return kExitFailure;
   }
@@ -240,6 +255,8 @@ int run(const Options& opt) {
   bridge_options.limits = opt.limits;
   BridgeApp app(*transport.port, &display.renderer, bridge_options, logger());
   app.set_view(&display.view);
+  twister::bridge::WindowInput input(app, display.view, options.fixed_camera);
+  input.attach(display.context->window());
   int rc = run_loop(opt, app, display, transport.poll_fd());
   if (!opt.export_path.empty()) {
     if (const int exported = export_final_mesh(opt.export_path, app); exported != kExitOk) {
@@ -279,6 +296,9 @@ void add_options(CLI::App& cli, Options& opt) {
                "exit when the station closes the link (after a mesh was received)");
   cli.add_option("--timeout", opt.timeout_s, "give up after this many seconds (0 = never)")
       ->check(CLI::NonNegativeNumber);
+  cli.add_option("--camera", opt.camera_file,
+                 "camera file (TOML [camera]: azimuth_deg, elevation_deg, zoom, fov_deg, up, "
+                 "target, fixed): a kiosk's fixed view");
   cli.add_option("--azimuth", opt.view.azimuth_deg, "camera azimuth in degrees");
   cli.add_option("--elevation", opt.view.elevation_deg, "camera elevation in degrees");
   cli.add_option("--log-level", opt.log_level,
