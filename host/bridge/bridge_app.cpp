@@ -90,12 +90,17 @@ void BridgeApp::handle(const link::LinkMessage& m) {
 }
 
 void BridgeApp::handle_scene(const link::LinkMessage& m) {
-  // The live warp just before a commit is the stroke's final preview: picture it
-  // before the change set replaces the rest mesh.
-  if (m.type == link::MessageType::mesh_begin && !m.mesh_begin.full && replica_.live().active &&
-      !options_.snapshot_dir.empty()) {
+  // The live warp as the stroke ends (the hands leave it, or its commit arrives) is
+  // the stroke's final preview: picture it before the message ends it.
+  const LiveState& live = replica_.live();
+  const bool ends_live = (m.type == link::MessageType::mesh_begin && !m.mesh_begin.full) ||
+                         (m.type == link::MessageType::hands &&
+                          ((m.hands.flags & link::kStrokeActive) == 0 ||
+                           m.hands.stroke != static_cast<std::uint16_t>(live.stroke)));
+  if (ends_live && live.active && live.stroke != live_pictured_ && !options_.snapshot_dir.empty()) {
     refresh_display();
-    snapshot("live-" + std::to_string(m.mesh_begin.version));
+    snapshot("live-" + std::to_string(replica_.version() + 1));
+    live_pictured_ = live.stroke;
   }
   const std::uint64_t commits = replica_.counters().commits;
   const std::uint64_t fulls = replica_.counters().full_meshes;

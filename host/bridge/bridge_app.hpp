@@ -9,7 +9,7 @@
 // unauthorised, or a station speaking another protocol version stops all link
 // I/O for good (stopped() says why): two displays never fight over the link.
 // Snapshots (offscreen): the rest mesh when the first mesh arrives, the live warp
-// just before each commit is applied, and the committed mesh.
+// as each stroke segment ends (live-<next version>.png), and the committed mesh.
 // Messages go to the LogSink it is given (components "link", "replica",
 // "snapshot"): link loss and rejected change sets are warnings, being displaced a
 // warning, refusals errors, connects, meshes and commits notices, pictures info.
@@ -127,6 +127,7 @@ class BridgeApp {
   std::uint32_t shown_stroke_ = 0;
   std::uint64_t shown_live_frames_ = 0;  // replica live frames when the CPU warp was shown
   bool showing_live_weights_ = false;    // the renderer holds the stroke's weights
+  std::uint32_t live_pictured_ = 0;      // the stroke segment last pictured (live-<v>.png)
   WeightPreview preview_;                // weights before a grab
   std::uint64_t over_capacity_logged_ = 0;
   BridgeCounters counters_{};
