@@ -21,7 +21,9 @@
 #include "backend_factory.hpp"
 #include "config/station_config.hpp"
 #include "display_link.hpp"
+#include "station_log.hpp"
 #include "station_setup.hpp"
+#include "twister/hal/logger.hpp"
 #include "twister/hal/posix_file_storage.hpp"
 #include "twister/meshio/obj_file.hpp"
 #include "twister/station/station.hpp"
@@ -85,6 +87,9 @@ void log_event(const station::StationEvent& e) {
       break;
     case K::button_source_error:
       std::fprintf(stderr, "[%9.3f] buttons: device failed (%s); reopening\n", t, e.status.name());
+      break;
+    default:  // the sculptor's actions besides strokes (radius, clutch, undo, ...)
+      twister::station_app::log_station_event(e, twister::hal::process_log());
       break;
   }
 }
@@ -264,6 +269,8 @@ int station_main(int argc, char** argv) {
   CLI::App app{
       "twister-station: the Twister sculpting station (tracker + buttons -> strokes -> journal)"};
   Options opt;
+  twister::hal::process_log().configure(
+      {"twister-station", twister::hal::LogLevel::notice, twister::hal::stderr_is_journal(), 2});
   app.add_option("-c,--config", opt.config_path, "station.toml to use")->required();
   app.add_flag("--check", opt.check,
                "validate the config and exit (0 valid, 2 invalid); touches no hardware");
