@@ -56,7 +56,7 @@ std::string binding_key(const ButtonBindingConfig& b) {
   return std::string("sculpt.buttons.") + kHandNames[b.hand] + "." + to_string(b.action);
 }
 
-const char* kBindingForm =
+constexpr const char kBindingForm[] =
     "expected a button line from 0 to 15, or a chord [HELD, TRIGGER] / [HELD, HELD, "
     "TRIGGER] of distinct lines (hold the first ones, press the last)";
 
