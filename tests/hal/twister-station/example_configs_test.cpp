@@ -117,10 +117,12 @@ struct Press {
 // config's buttons are the stylus), run in virtual time to the scenario's end.
 class SimStation {
  public:
-  SimStation(StationConfig config, const std::vector<Press>& presses, double duration_s) {
+  // `keys`: more key frames (scenario text), e.g. a hand turning.
+  SimStation(StationConfig config, const std::vector<Press>& presses, double duration_s,
+             const std::string& keys = "") {
     const bool stylus = config.buttons.backend == ButtonBackend::stylus;
     std::string scn = "receivers 2\nduration " + std::to_string(duration_s) + "\n";
-    scn += "key 0 1 14 -4 5 0 0 0\nkey 0 2 14 4 5 0 0 0\n";
+    scn += "key 0 1 14 -4 5 0 0 0\nkey 0 2 14 4 5 0 0 0\n" + keys;
     if (!stylus) {
       for (const Press& p : presses) {
         for (std::size_t k = 0; k < p.lines.size(); ++k) {
@@ -316,6 +318,30 @@ TEST(ExampleConfigs, UndoRedoFromButtonsAndStrokesCountedOnce) {
   EXPECT_EQ(s.station().counters().undos, 1u);
   EXPECT_EQ(s.station().counters().redos, 1u);
   EXPECT_EQ(s.station().journal_records(), 3u);  // stroke, undo, redo
+}
+
+// One stroke turning on past the limit: the station holds and says so (a notice in the
+// log, station_log_test), and commits the turn at the limit, the long way round.
+TEST(ExampleConfigs, TheStationHoldsAtTheTurnLimitAndSaysSo) {
+  const ConfigParseResult parsed =
+      load_station_config(std::string(TWISTER_DEPLOY_DIR) + "/usb_hid.toml");
+  ASSERT_TRUE(parsed.ok());
+  // The right hand (receiver 2, line 3 = its grab) turns 350 degrees in azimuth.
+  SimStation s(parsed.config, {{3.0, {3}, 3.0}}, 7.0,
+               "key 3.3 2 14 4 5 0 0 0\nkey 5.5 2 14 4 5 350 0 0\n");
+  double most = 0.0;
+  s.run(7.0, [&](double, const input::SessionState& st) {
+    if (st.hands[1].in_stroke) most = std::max(most, st.hands[1].turn_rad);
+  });
+  ASSERT_EQ(s.count(StationEventKind::turn_limit_reached, 1, 3, 7), 1u);
+  for (const StationEvent& e : s.events) {
+    if (e.kind == StationEventKind::turn_limit_reached) {
+      EXPECT_NEAR(e.real * 180 / 3.14159265358979, 330.0, 1e-9);
+    }
+  }
+  EXPECT_EQ(s.count(StationEventKind::turn_limit_left, 1, 3, 7), 0u);
+  EXPECT_EQ(s.count(StationEventKind::stroke_committed, 1, 6, 7), 1u);
+  EXPECT_NEAR(most * 180 / 3.14159265358979, 350.0, 0.5);  // the hand's turn, unwrapped
 }
 
 }  // namespace
