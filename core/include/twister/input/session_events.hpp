@@ -57,7 +57,9 @@ struct SessionEvent {
   bool repeat = false;         // committed: reports a commit already counted
 };
 
-inline constexpr std::size_t kMaxEventsPerStep = 16;
+// A step's actions (at most 8, a few events each: a commit, the clutch, the turn
+// limit) plus its commands (at most 8 from buttons and 8 submitted) fit.
+inline constexpr std::size_t kMaxEventsPerStep = 32;
 
 class SessionEvents {
  public:
