@@ -9,7 +9,7 @@
 #include <cstring>
 #include <span>
 
-#include "station_event_log.hpp"
+#include "station_log.hpp"
 
 namespace twister::station_app {
 
@@ -114,7 +114,7 @@ bool StationLoop::step() {
 void StationLoop::log_events() {
   for (auto e = core_.next_event(); e.ok(); e = core_.next_event()) {
     if (e->kind == station::StationEventKind::button_source_error) buttons_broken_ = true;
-    log_station_event(log_, *e);
+    log_station_event(*e, log_);
   }
 }
 

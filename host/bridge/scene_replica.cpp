@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <memory>
+#include <numbers>
 
 #include "twister/link/math_conversion.hpp"
 #include "twister/math/warp_plan.hpp"
@@ -173,10 +174,16 @@ std::unique_ptr<PlanHolder> build_plan(const MeshData& mesh, const link::LiveWar
   std::array<math::Frame, 2> start{};
   std::array<math::Frame, 2> end{};
   std::size_t hands = 0;
+  std::uint8_t long_turns = 0;
   for (std::size_t k = 0; k < link::kLinkHands; ++k) {
     if ((l.hand_mask & (1u << k)) == 0) continue;
     start[hands] = link::to_frame(l.hands[k].start);
     end[hands] = link::to_frame(l.hands[k].end);
+    // The station's screw turns past a half turn (docs/unwrap.md): the same screw the
+    // long way round, which the poses alone cannot tell.
+    if (l.hands[k].screw.angle > std::numbers::pi) {
+      long_turns = static_cast<std::uint8_t>(long_turns | (1u << hands));
+    }
     ++hands;
   }
   const math::ConstVertexColumns rest{mesh.x, mesh.y, mesh.z};
@@ -186,7 +193,8 @@ std::unique_ptr<PlanHolder> build_plan(const MeshData& mesh, const link::LiveWar
            .ok()) {
     return nullptr;
   }
-  if (with_end && !h->plan->update(std::span<const math::Frame>(end.data(), hands)).ok()) {
+  if (with_end &&
+      !h->plan->update_turns(std::span<const math::Frame>(end.data(), hands), long_turns).ok()) {
     return nullptr;
   }
   return h;

@@ -14,7 +14,7 @@ constexpr std::size_t kPoseBytes = std::size_t{9} * 8;
 constexpr std::size_t kStrokeFixedBytes = 4 + 1 + 1 + 2 + 8;
 constexpr std::size_t kMoveBytes = 4 + 1 + 2 * kPoseBytes;
 constexpr std::size_t kSequenceOnlyBytes = 4;
-static_assert(kStrokeFixedBytes + 4 * kPoseBytes <= kMaxPayloadBytes);
+static_assert(kStrokeFixedBytes + 4 * kPoseBytes + 1 <= kMaxPayloadBytes);
 
 using twister::internal::ByteReader;
 using twister::internal::ByteWriter;
@@ -33,15 +33,21 @@ JournalPose read_pose(ByteReader& r) {
   return p;
 }
 
-std::size_t stroke_bytes(std::uint8_t hand_mask) {
+// Version 2 strokes end with the long_turns byte.
+std::size_t stroke_bytes(std::uint8_t hand_mask, std::uint8_t version) {
   const auto hands = static_cast<std::size_t>(std::popcount(static_cast<unsigned>(hand_mask)));
-  return kStrokeFixedBytes + 2 * hands * kPoseBytes;
+  return kStrokeFixedBytes + 2 * hands * kPoseBytes + (version == kRecordVersionLongTurns ? 1 : 0);
+}
+
+std::uint8_t record_version(const JournalRecord& r) {
+  return r.type == RecordType::stroke && r.stroke.long_turns != 0 ? kRecordVersionLongTurns
+                                                                  : kRecordVersion;
 }
 
 std::size_t payload_bytes(const JournalRecord& r) {
   switch (r.type) {
     case RecordType::stroke:
-      return stroke_bytes(r.stroke.hand_mask);
+      return stroke_bytes(r.stroke.hand_mask, record_version(r));
     case RecordType::object_move:
       return kMoveBytes;
     case RecordType::undo:
@@ -60,11 +66,16 @@ bool finite(const JournalPose& p) {
 
 bool valid_mask(std::uint8_t mask) { return mask >= 1 && mask <= 3; }
 
+bool valid_turns(std::uint8_t long_turns, std::uint8_t hand_mask) {
+  return (long_turns & ~hand_mask) == 0;
+}
+
 }  // namespace
 
 Result<std::size_t> encode_record(const JournalRecord& r, std::span<std::byte> out) {
   if (r.type == RecordType::stroke &&
-      (!valid_mask(r.stroke.hand_mask) || r.stroke.method >= kMethodCount)) {
+      (!valid_mask(r.stroke.hand_mask) || r.stroke.method >= kMethodCount ||
+       !valid_turns(r.stroke.long_turns, r.stroke.hand_mask))) {
     return StatusCode::invalid_argument;
   }
   if (r.type == RecordType::object_move && r.move.hand > 1) return StatusCode::invalid_argument;
@@ -75,7 +86,7 @@ Result<std::size_t> encode_record(const JournalRecord& r, std::span<std::byte> o
 
   ByteWriter w(out);
   w.u32(static_cast<std::uint32_t>(payload));
-  w.u8(kRecordVersion);
+  w.u8(record_version(r));
   w.u8(static_cast<std::uint8_t>(r.type));
   w.u16(0);
   w.u32(r.sequence);
@@ -90,6 +101,7 @@ Result<std::size_t> encode_record(const JournalRecord& r, std::span<std::byte> o
         write_pose(w, r.stroke.start[h]);
         write_pose(w, r.stroke.end[h]);
       }
+      if (r.stroke.long_turns != 0) w.u8(r.stroke.long_turns);
       break;
     case RecordType::object_move:
       w.u8(r.move.hand);
@@ -106,7 +118,9 @@ Result<std::size_t> encode_record(const JournalRecord& r, std::span<std::byte> o
 
 Result<JournalRecord> decode_payload(std::uint8_t version, std::uint8_t type,
                                      std::span<const std::byte> payload) {
-  if (version != kRecordVersion) return StatusCode::data_loss;
+  const bool long_turns =
+      version == kRecordVersionLongTurns && type == static_cast<std::uint8_t>(RecordType::stroke);
+  if (version != kRecordVersion && !long_turns) return StatusCode::data_loss;
   if (payload.size() < kSequenceOnlyBytes) return StatusCode::data_loss;
   JournalRecord r;
   ByteReader in(payload);
@@ -118,7 +132,7 @@ Result<JournalRecord> decode_payload(std::uint8_t version, std::uint8_t type,
       r.stroke.method = in.u8();
       r.stroke.hand_mask = in.u8();
       if (!valid_mask(r.stroke.hand_mask) || r.stroke.method >= kMethodCount ||
-          payload.size() != stroke_bytes(r.stroke.hand_mask)) {
+          payload.size() != stroke_bytes(r.stroke.hand_mask, version)) {
         return StatusCode::data_loss;
       }
       r.stroke.chain_step = in.u16();
@@ -130,6 +144,13 @@ Result<JournalRecord> decode_payload(std::uint8_t version, std::uint8_t type,
         r.stroke.start[h] = read_pose(in);
         r.stroke.end[h] = read_pose(in);
         if (!finite(r.stroke.start[h]) || !finite(r.stroke.end[h])) return StatusCode::data_loss;
+      }
+      if (long_turns) {
+        // Canonical: version 2 only when some hand turned the long way.
+        r.stroke.long_turns = in.u8();
+        if (r.stroke.long_turns == 0 || !valid_turns(r.stroke.long_turns, r.stroke.hand_mask)) {
+          return StatusCode::data_loss;
+        }
       }
       return r;
     }

@@ -140,32 +140,74 @@ Status Station::poll() {
 
 void Station::report(const input::SessionEvent& e, ports::TimestampUs now_us) {
   using K = input::SessionEventKind;
+  const auto reason = static_cast<std::uint64_t>(e.reason);
   switch (e.kind) {
     case K::grab_begin:
       push_event({StationEventKind::stroke_begin, e.hand, 0, 0, ok_status(), now_us});
       break;
     case K::committed:
-      ++counters_.strokes_committed;
-      push_event({StationEventKind::stroke_committed, e.hand, e.sequence,
-                  static_cast<std::uint64_t>(e.reason), ok_status(), now_us});
+      // One commit, however many hands it ends (repeat: already counted).
+      if (!e.repeat && e.status.ok()) ++counters_.strokes_committed;
+      push_event(
+          {StationEventKind::stroke_committed, e.hand, e.sequence, reason, e.status, now_us});
       break;
     case K::cancelled:
       ++counters_.strokes_cancelled;
-      push_event({StationEventKind::stroke_cancelled, e.hand, 0,
-                  static_cast<std::uint64_t>(e.reason), e.status, now_us});
+      push_event({StationEventKind::stroke_cancelled, e.hand, 0, reason, e.status, now_us});
       break;
     case K::refused:
       ++counters_.refused;
-      push_event({StationEventKind::refused, e.hand, 0, static_cast<std::uint64_t>(e.reason),
-                  e.status, now_us});
+      push_event({StationEventKind::refused, e.hand, 0, reason, e.status, now_us});
       break;
     case K::journal_failed:
       ++counters_.journal_errors;
       push_event({StationEventKind::journal_error, e.hand, e.sequence, 0, e.status, now_us});
       break;
     default:
-      break;  // tracking, radius, moves, undo/redo: visible in the session's state
+      report_sculpt(e, now_us);
+      break;
   }
+}
+
+void Station::report_sculpt(const input::SessionEvent& e, ports::TimestampUs now_us) {
+  using K = input::SessionEventKind;
+  StationEvent out{StationEventKind::radius_set, e.hand, e.sequence, 0, e.status, now_us, e.value};
+  switch (e.kind) {
+    case K::radius_set:
+      break;
+    case K::disengaged:
+      out.kind = StationEventKind::hand_disengaged;
+      break;
+    case K::engaged:
+      out.kind = StationEventKind::hand_engaged;
+      break;
+    case K::turn_limit_reached:
+      out.kind = StationEventKind::turn_limit_reached;
+      break;
+    case K::turn_limit_left:
+      out.kind = StationEventKind::turn_limit_left;
+      break;
+    case K::undone:
+      ++counters_.undos;
+      out.kind = StationEventKind::undone;
+      break;
+    case K::redone:
+      ++counters_.redos;
+      out.kind = StationEventKind::redone;
+      break;
+    case K::method_changed:
+      out.kind = StationEventKind::method_changed;
+      out.value = static_cast<std::uint64_t>(e.value);
+      break;
+    case K::command_refused:
+      out.kind = StationEventKind::command_refused;
+      out.value = static_cast<std::uint64_t>(e.value);
+      out.detail = static_cast<std::uint8_t>(e.reason);
+      break;
+    default:
+      return;  // tracking, each radius change, moves, overflow: in the session's state
+  }
+  push_event(out);
 }
 
 void Station::push_event(const StationEvent& event) {

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "config_reader.hpp"
+#include "sculpt_config.hpp"
 
 namespace twister::station_app {
 namespace {
@@ -257,6 +258,7 @@ ConfigParseResult parse_station_config(std::string_view text, std::string_view f
   read_station(root, out.config);
   read_tracker(root, out.config);
   read_buttons(root, out.config);
+  internal::read_sculpt(root, out.config);
   read_systemd(root, out.config);
   root.finish();
   std::stable_sort(out.errors.begin(), out.errors.end(),

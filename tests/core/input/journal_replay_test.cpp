@@ -25,7 +25,10 @@ struct ReplayRig {
     for (int k = 1; k <= freezes + 1; ++k) {
       EXPECT_TRUE(rig.poses.set_hand(1, true, z_turn({0.1, 0, 0}, turn * k / (freezes + 1))).ok());
       strokes.end_step();  // a step without actions: the plan follows the hand
-      if (k <= freezes) act(ActionKind::freeze);
+      if (k <= freezes) {  // the clutch: press (commit, disengage) and release (re-engage)
+        act(ActionKind::freeze);
+        act(ActionKind::unfreeze);
+      }
     }
     act(ActionKind::commit);
   }

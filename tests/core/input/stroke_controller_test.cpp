@@ -100,11 +100,13 @@ TEST(StrokeController, FreezeCommitsAndGoesOnWithTheNextChainStep) {
   s->hand(1, z_turn({0, 0, 0}, 1.0));
   (void)s->step({});
   const SessionEvents frozen = s->step({freeze(1)});
-  ASSERT_EQ(frozen.items().size(), 1u);
+  ASSERT_EQ(frozen.items().size(), 2u);
   EXPECT_EQ(frozen.items()[0].kind, SessionEventKind::committed);
-  EXPECT_EQ(frozen.items()[0].reason, Reason::none);  // the stroke goes on
+  EXPECT_EQ(frozen.items()[0].reason, Reason::none);                // the stroke goes on
+  EXPECT_EQ(frozen.items()[1].kind, SessionEventKind::disengaged);  // the clutch is in
   EXPECT_TRUE(s->strokes.active());
   EXPECT_EQ(s->strokes.chain_step(), 1);
+  (void)s->step({act(ActionKind::unfreeze, 1)});  // the clutch is out again, same pose
   s->hand(1, z_turn({0, 0, 0}, 2.0));
   (void)s->step({});
   (void)s->step({release(1)});

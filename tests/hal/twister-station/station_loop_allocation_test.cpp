@@ -154,9 +154,10 @@ TEST(StationLoopAllocation, SteadyStateWithStrokesButtonsLinkAndLogAllocatesNoth
   EXPECT_EQ(allocations, 0u);
   EXPECT_EQ(loop.stop_reason(), StopReason::end_of_run);
   EXPECT_GE(simulated_s, 10.0);
-  // Four two-hand strokes: one journal record each, a commit event per hand.
+  // Four two-hand strokes: one journal record each, counted once each (issue 12:
+  // strokes count as strokes, not hands).
   EXPECT_EQ(parts.core->journal_records(), 4u);
-  EXPECT_EQ(counters.strokes_committed, 8u);
+  EXPECT_EQ(counters.strokes_committed, 4u);
   EXPECT_EQ(counters.strokes_cancelled, 0u);
   std::printf(
       "steady state: %.1f s simulated, %llu passes, %u strokes committed, %zu "

@@ -9,11 +9,15 @@
 // the journal records exactly those poses, so replay is bit-identical.
 //
 // Strokes: a stroke segment is a period in which the set of grabbing hands is
-// constant. Release commits it; freeze commits it and rebases the plan (same
-// vertices and weights, chain_step + 1); a hand joining or leaving commits the
-// segment and starts a new one for the hands that still grab. A cancel (tracking
-// lost too long) drops the open segment: the model stays as at its start.
+// constant. Release commits it; freeze (the clutch) commits it and rebases the plan
+// (same vertices and weights, chain_step + 1) with the hand disengaged until freeze
+// is released; a hand joining or leaving commits the segment and starts a new one for
+// the hands that still grab. A cancel (tracking lost too long) drops the open segment:
+// the model stays as at its start. One stroke may turn past a half turn, up to the
+// turn limit (SculptSessionConfig::turns, docs/unwrap.md).
 // Each commit is one journal record (synced) and one undo entry.
+// Commands (undo, redo, warp method) come from buttons (ButtonMap roles and chords)
+// or submit() and run at the end of a step; state() is the display's snapshot.
 //
 // Structure (docs/interaction.md "SculptSession's parts"): a thin composition of
 // ButtonFrontEnd (debounce + map), SessionPoses (hands, object pose),
@@ -35,13 +39,16 @@
 #include "twister/input/button_debouncer.hpp"
 #include "twister/input/button_front_end.hpp"
 #include "twister/input/button_map.hpp"
+#include "twister/input/hand_drive.hpp"
 #include "twister/input/interaction_machine.hpp"
 #include "twister/input/journal_replay.hpp"
 #include "twister/input/live_mesh.hpp"
 #include "twister/input/object_mover.hpp"
+#include "twister/input/session_command.hpp"
 #include "twister/input/session_events.hpp"
 #include "twister/input/session_history.hpp"
 #include "twister/input/session_poses.hpp"
+#include "twister/input/session_state.hpp"
 #include "twister/input/stroke_controller.hpp"
 #include "twister/input/undo_history.hpp"
 #include "twister/journal/journal_reader.hpp"
@@ -66,6 +73,7 @@ struct SculptSessionConfig {
   ButtonDebouncerConfig debounce{};
   ButtonMap buttons = ButtonMap::paper_default();
   math::WarpMethod method = math::WarpMethod::twister;
+  TurnConfig turns{};  // how far one stroke may turn (unwrapped up to 330 degrees)
 };
 
 // Caller-owned working memory, sized once at start-up.
@@ -93,12 +101,19 @@ class SculptSession {
   // Latest pose of a hand (hand < kHandCount). An invalid sample means "lost".
   // invalid_argument: valid but not an orthonormal frame (treated as lost).
   Status set_hand(std::uint8_t hand, bool valid, const math::Frame& pose_in_world);
-  // One step at `now_us`: debounced buttons, interaction machine, warp, commits.
+  // One step at `now_us`: debounced buttons, interaction machine, warp, commits,
+  // then the commands of the step's button presses and those submitted since.
   SessionEvents step(ports::TimestampUs now_us);
 
-  // Undo / redo of committed strokes (journaled). failed_precondition: a stroke or
-  // move is active, or there is nothing to undo/redo. io_error: journal failed
-  // (the undo itself happened).
+  // Queues a command for the next step (its result comes as that step's event:
+  // undone / redone / method_changed, or command_refused with the reason).
+  // resource_exhausted: kMaxQueuedCommands already queued; invalid_argument: hand
+  // out of range.
+  Status submit(const SessionCommand& command);
+
+  // Undo / redo of committed strokes (journaled), at once, without events.
+  // failed_precondition: a stroke or move is active, or there is nothing to
+  // undo/redo. io_error: journal failed (the undo itself happened).
   Status undo();
   Status redo();
 
@@ -118,6 +133,9 @@ class SculptSession {
   float radius_m() const { return machine_.radius_m(); }
   const InteractionMachine& machine() const { return machine_; }
   LiveWarp live() const { return strokes_.live(); }
+  // What the display shows besides mesh and live warp (see SessionState).
+  SessionState state() const;
+  math::WarpMethod method() const { return strokes_.method(); }
   bool busy() const { return strokes_.active() || mover_.moving(); }  // stroke or move
   std::uint32_t next_sequence() const { return history_.next_sequence(); }
   const UndoHistory& history() const { return history_.undo_history(); }
@@ -128,6 +146,8 @@ class SculptSession {
   InteractionInputs inputs() const;
   // undo() (type undo) or redo() (type redo).
   Status step_history(journal::RecordType type);
+  void run_command(const SessionCommand& command, SessionEvents& out);
+  void run_history_command(const SessionCommand& command, SessionEvents& out);
 
   LiveMesh mesh_;
   SessionPoses poses_;
@@ -140,6 +160,8 @@ class SculptSession {
   StrokeController strokes_;
   ObjectMover mover_;
   JournalReplay replay_;
+  std::array<SessionCommand, kMaxQueuedCommands> queued_{};
+  std::size_t queued_count_ = 0;
 };
 
 // A session owning its working memory: kVertices = mesh vertex capacity,

@@ -53,8 +53,12 @@ struct StationCounters {
   std::uint64_t foreign_poses = 0;  // poses of receivers bound to no hand
   std::uint64_t button_edges = 0;   // from the ButtonSource and the stylus
   std::uint64_t button_errors = 0;  // ButtonSource io_error / out-of-range lines
+  // Committed warps (journal stroke records): one per release, freeze step or change
+  // of the grabbing hands, however many hands took part.
   std::uint64_t strokes_committed = 0;
-  std::uint64_t strokes_cancelled = 0;
+  std::uint64_t strokes_cancelled = 0;  // grabs dropped (per hand)
+  std::uint64_t undos = 0;
+  std::uint64_t redos = 0;
   std::uint64_t refused = 0;
   std::uint64_t session_events_dropped = 0;
   std::uint64_t journal_errors = 0;
@@ -104,6 +108,8 @@ class Station {
   void drain_tracker(ports::TimestampUs now_us);
   void drain_buttons(ports::TimestampUs now_us);
   void report(const input::SessionEvent& event, ports::TimestampUs now_us);
+  // The sculptor's other actions (radius, clutch, turn limit, undo/redo, method).
+  void report_sculpt(const input::SessionEvent& event, ports::TimestampUs now_us);
   void push_event(const StationEvent& event);
 
   ports::ButtonSource& buttons_;

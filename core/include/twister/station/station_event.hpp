@@ -1,6 +1,8 @@
 // StationEvent: what the station reports to the composition root's log (tracker
-// up/down, strokes committed or cancelled, refusals, journal and button failures).
-// Plain data; the station never formats text.
+// up/down, strokes committed or cancelled, refusals, journal and button failures, and
+// what the sculptor did besides strokes: radius, clutch, turn limit, undo/redo,
+// method). Plain data; the station never formats text (log lines:
+// hal/twister-station/station_log.hpp).
 #pragma once
 
 #include <cstdint>
@@ -20,6 +22,15 @@ enum class StationEventKind : std::uint8_t {
   refused,              // a press was refused; value = input::Reason
   journal_error,        // append failed; status says how (stroke not recorded)
   button_source_error,  // the button device failed; status says how
+  radius_set,           // the radius gesture ended; real = the radius (metres)
+  hand_disengaged,      // freeze pressed: committed (sequence), the hand moves freely
+  hand_engaged,         // freeze released: the hand warps again from where it is
+  turn_limit_reached,   // the hand turned past the limit (real, radians): the warp holds
+  turn_limit_left,      // back within the limit: the warp follows again
+  undone,               // undo; sequence = its record
+  redone,               // redo; sequence = its record
+  method_changed,       // value = the math::WarpMethod of strokes from now on
+  command_refused,      // value = input::SessionCommandKind, detail = input::Reason
 };
 
 const char* station_event_kind_name(StationEventKind kind);
@@ -31,6 +42,8 @@ struct StationEvent {
   std::uint64_t value = 0;  // kind-specific (see above; committed/cancelled/refused: input::Reason)
   Status status{};
   ports::TimestampUs time_us = 0;
+  double real = 0.0;        // kind-specific real (radius_set, turn_limit_reached)
+  std::uint8_t detail = 0;  // command_refused: input::Reason
 };
 
 }  // namespace twister::station
