@@ -185,7 +185,7 @@ int run_device(const DumpOptions& o, const FastrakConfig& config) {
     sc.reset_wait_us = 600'000;
     sc.settle_us = 50'000;
     sc.reply_timeout_us = 500'000;
-    sc.command_pause_us = 5'000;
+    sc.command_pause_us = 50'000;  // the simulator's default command times (40 ms)
   }
   hal::TermiosByteStream port({o.device, o.baud, hal::FlowControl::none});
   SteadyClock clock;
