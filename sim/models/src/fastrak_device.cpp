@@ -263,9 +263,12 @@ void FastrakDevice::generate(ports::TimestampUs now, bool stalled) {
     last_button_ = s1.button;
     const ActiveStations act = active_stations();
     if (act.empty()) continue;
+    if (!continuous_ || !output_on_) {  // polled: solutions (and filters) still run
+      solve(act[polled_station_++ % act.size()], t);
+      continue;
+    }
     const int station = act[next_station_++ % act.size()];
     solve(station, t);
-    if (!continuous_ || !output_on_) continue;
     if (line_free_at_ > t) {
       ++counters_.dropped_solutions;  // the previous record is still on the wire
       continue;

@@ -191,7 +191,8 @@ class FastrakDevice {
   ports::TimestampUs busy_until_ = 0;  // reset in progress until then (deaf and mute)
   ports::TimestampUs deaf_until_ = 0;  // a command is processed until then
   std::int64_t next_cycle_ = 0;
-  std::size_t next_station_ = 0;
+  std::size_t next_station_ = 0;    // next station to send (continuous mode)
+  std::size_t polled_station_ = 0;  // next station to solve while nothing is sent
 
   // Command input.
   std::string pending_cmd_;
