@@ -3,6 +3,7 @@
 #include "twister/tracker/fastrak_session.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace twister::tracker {
@@ -35,7 +36,7 @@ bool append_int(std::array<char, 1024>& buf, std::size_t& len, int v) {
 // Appends a value 0..1 with three decimals ("0.200", "1.000").
 bool append_unit3(std::array<char, 1024>& buf, std::size_t& len, float v) {
   const float c = v < 0.0f ? 0.0f : (v > 1.0f ? 1.0f : v);
-  const auto m = static_cast<unsigned>(static_cast<double>(c) * 1000.0 + 0.5);
+  const auto m = static_cast<unsigned>(std::lround(static_cast<double>(c) * 1000.0));
   if (len + 6 > buf.size()) return false;
   buf[len++] = static_cast<char>('0' + m / 1000);
   buf[len++] = '.';
