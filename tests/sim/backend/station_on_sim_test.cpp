@@ -87,11 +87,15 @@ TEST_P(StationOnSim, RecoversAndAppliesOnlyValidatedPoses) {
   std::array<double, 2> last_change_s{};
   std::array<glm::dvec3, 2> last_origin{};
   double worst_off_in = 0.0, worst_excess_in = -1e9;
+  double last_invalid_s = 0.0;  // the faults start at 3 s: recovery ends here
   std::uint64_t applied = 0;
   for (int tick = 0; tick < 14'000; ++tick) {  // 14 s in 1 ms steps
     ASSERT_TRUE(st.poll().ok());
     clock.advance_us(1'000);
     const double now_s = stream.device().scenario_time_s(clock.now_us());
+    if (!st.hand_valid(0, clock.now_us()) || !st.hand_valid(1, clock.now_us())) {
+      last_invalid_s = now_s;
+    }
     for (std::uint8_t h = 0; h < 2; ++h) {
       const glm::dvec3 o = st.hand_pose(h).origin;
       if (o == last_origin[h] || !st.hand_valid(h, clock.now_us())) continue;
@@ -118,7 +122,7 @@ TEST_P(StationOnSim, RecoversAndAppliesOnlyValidatedPoses) {
   std::printf(
       "[station %s] applied=%llu streams=%llu silence=%llu garbage=%llu io=%llu "
       "parser_rejects=%llu jump_rejects=%llu resyncs=%llu corrupted=%llu misclock_junk=%llu "
-      "station_pose_errors=%llu worst_off=%.3f in\n",
+      "station_pose_errors=%llu worst_off=%.3f in hands_last_invalid=%.2f s\n",
       fc.name, static_cast<unsigned long long>(applied),
       static_cast<unsigned long long>(c.streams_started),
       static_cast<unsigned long long>(c.silence_faults),
@@ -128,7 +132,7 @@ TEST_P(StationOnSim, RecoversAndAppliesOnlyValidatedPoses) {
       static_cast<unsigned long long>(c.jump_rejects), static_cast<unsigned long long>(pc.resyncs),
       static_cast<unsigned long long>(d.corrupted_records),
       static_cast<unsigned long long>(d.misclock_junk),
-      static_cast<unsigned long long>(st.counters().pose_errors), worst_off_in);
+      static_cast<unsigned long long>(st.counters().pose_errors), worst_off_in, last_invalid_s);
   EXPECT_TRUE(valid_at_end) << "not recovered";
   EXPECT_TRUE(st.tracker_session().streaming());
   const std::string name = fc.name;
