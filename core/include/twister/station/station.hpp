@@ -97,6 +97,8 @@ class Station {
   const mesh::Mesh& mesh() const { return sculpt_.mesh(); }
   std::uint32_t journal_records() const { return sculpt_.next_sequence(); }
   bool hand_valid(std::uint8_t hand, ports::TimestampUs now_us) const;
+  // The frame last applied to `hand` (hand < kHandCount); see hand_valid().
+  const tracker::TrackedFrame& hand_pose(std::uint8_t hand) const { return hands_[hand].pose; }
 
  private:
   struct Hand {
