@@ -80,14 +80,19 @@ void log_summary(hal::Logger& results, const twister::station::Station& core,
   const auto& c = core.counters();
   const auto& tc = core.tracker_session().counters();
   results.notice("",
-                 "stopped (%s); journal %s (%u records); strokes committed %llu, cancelled %llu; "
-                 "tracker start-ups %llu, poses %llu, io errors %llu",
+                 "stopped (%s); journal %s (%u records); strokes committed %llu, cancelled %llu, "
+                 "not saved %llu; tracker start-ups %llu, poses %llu, io errors %llu",
                  app::stop_reason_name(loop.stop_reason()), flushed.ok() ? "synced" : "SYNC FAILED",
                  core.journal_records(), static_cast<unsigned long long>(c.strokes_committed),
                  static_cast<unsigned long long>(c.strokes_cancelled),
+                 static_cast<unsigned long long>(c.strokes_not_saved),
                  static_cast<unsigned long long>(tc.streams_started),
                  static_cast<unsigned long long>(c.poses),
                  static_cast<unsigned long long>(tc.io_errors));
+  if (c.strokes_not_saved > 0) {
+    results.error("", "%llu stroke(s) were not saved (see the errors above); exit status 1",
+                  static_cast<unsigned long long>(c.strokes_not_saved));
+  }
 }
 
 int run(const Options& opt, StationConfig cfg, hal::Logger& log, hal::Logger& results) {
@@ -113,9 +118,12 @@ int run(const Options& opt, StationConfig cfg, hal::Logger& log, hal::Logger& re
   results.notice("", "running (tracker %s, buttons %s, journal %s)",
                  parts.backends.tracker_name.c_str(), parts.backends.buttons_name.c_str(),
                  cfg.station.journal.c_str());
+  loop.watch_journal(&parts.journal);
   const twister::Status flushed = loop.run();
   log_summary(results, *parts.core, loop, flushed);
-  return flushed.ok() ? kExitOk : kExitFailure;
+  // A run that lost a stroke did not succeed, whatever else went well.
+  const bool all_saved = parts.core->counters().strokes_not_saved == 0;
+  return flushed.ok() && all_saved ? kExitOk : kExitFailure;
 }
 
 void add_options(CLI::App& app, Options& opt) {

@@ -1,10 +1,28 @@
 #include "station_event_log.hpp"
 
+#include <cerrno>
+#include <cstring>
+
 #include "twister/input/interaction_machine.hpp"
 
 namespace twister::station_app {
 
-void log_station_event(hal::Logger& log, const station::StationEvent& e) {
+const char* storage_error_text(int storage_errno) {
+  switch (storage_errno) {
+    case 0:
+      return "i/o failure";
+    case ENOSPC:
+      return "disk full";
+    case EFBIG:
+      return "file size limit reached";
+    case EDQUOT:
+      return "disk quota exceeded";
+    default:
+      return std::strerror(storage_errno);
+  }
+}
+
+void log_station_event(hal::Logger& log, const station::StationEvent& e, int storage_errno) {
   using K = station::StationEventKind;
   const double t = static_cast<double>(e.time_us) / 1e6;
   switch (e.kind) {
@@ -40,8 +58,17 @@ void log_station_event(hal::Logger& log, const station::StationEvent& e) {
                input::reason_name(static_cast<input::Reason>(e.value)), t);
       break;
     case K::journal_error:
-      log.error("journal", "append failed (%s); stroke not recorded [t=%.3f s]", e.status.name(),
-                t);
+      log.error("journal", "%s (%s) [t=%.3f s]", e.status.name(),
+                storage_error_text(storage_errno), t);
+      break;
+    case K::stroke_not_saved:
+      log.error("stroke",
+                "hand %u: stroke not saved: %s (%s); the model is back at the last saved "
+                "stroke [t=%.3f s]",
+                e.hand,
+                e.status.code() == StatusCode::io_error ? storage_error_text(storage_errno)
+                                                        : "the warp could not be applied",
+                e.status.name(), t);
       break;
     case K::button_source_error:
       log.warning("buttons", "device failed (%s); reopening [t=%.3f s]", e.status.name(), t);

@@ -23,6 +23,7 @@
 #include "display_link.hpp"
 #include "twister/hal/expected.hpp"
 #include "twister/hal/logger.hpp"
+#include "twister/hal/posix_file_storage.hpp"
 #include "twister/station/station.hpp"
 
 namespace twister::station_app {
@@ -68,6 +69,9 @@ class StationLoop {
   // start() error as io_error.
   Status run();
 
+  // The journal file whose errno names the reason of a stroke that was not saved.
+  void watch_journal(const hal::PosixFileStorage* journal) { journal_ = journal; }
+
   StopReason stop_reason() const { return stop_reason_; }
   std::uint64_t passes() const { return passes_; }
 
@@ -83,6 +87,7 @@ class StationLoop {
   Backends& backends_;
   DisplayLink& display_;
   hal::Logger& log_;
+  const hal::PosixFileStorage* journal_ = nullptr;
   StationLoopConfig config_;
   std::array<pollfd, kMaxPollFds> fds_{};
   int signal_fd_ = -1;

@@ -96,8 +96,9 @@ void SculptSession::apply_action(const Action& a, SessionEvents& out) {
 void SculptSession::commit_move(const Action& a, SessionEvents& out) {
   const Result<ObjectMove> move = mover_.commit();
   if (!move.ok()) return;  // no move open
-  const std::uint32_t sequence = history_.commit_move(a.hand, move->before, move->after, out);
-  out.push({SessionEventKind::move_committed, a.hand, Reason::released, ok_status(), sequence});
+  const CommitOutcome done = history_.commit_move(a.hand, move->before, move->after);
+  const auto kind = done.status.ok() ? SessionEventKind::move_committed : SessionEventKind::not_saved;
+  out.push({kind, a.hand, Reason::released, done.status, done.sequence});
 }
 
 Status SculptSession::undo() { return step_history(journal::RecordType::undo); }

@@ -61,7 +61,7 @@ void StrokeController::grab(std::uint8_t hand, SessionEvents& out) {
     // as one two-hand segment from the current poses. Hands grabbing in the same
     // step simply start together.
     mask = static_cast<std::uint8_t>(mask | hand_mask_);
-    if (segment_moved_ || chain_step_ != 0) commit_segment(hand, Reason::none, out);
+    if (segment_moved_ || chain_step_ != 0) commit_segment(hand, Reason::none, out, Reason::none);
     drop_segment();
   }
   const Status s = begin_segment(mask);
@@ -78,7 +78,21 @@ void StrokeController::grab(std::uint8_t hand, SessionEvents& out) {
 }
 
 void StrokeController::freeze(std::uint8_t hand, SessionEvents& out) {
-  commit_segment(hand, Reason::none, out);
+  const SessionEvent frozen = commit_segment(hand, Reason::none, out, Reason::released);
+  if (!frozen.status.ok()) {
+    // Not saved: the model is back at the last saved commit, so the chain cannot go
+    // on (its next step would rebase a warp the model does not hold): the stroke ends
+    // for every hand of the segment.
+    const auto others = static_cast<std::uint8_t>(hand_mask_ & ~(1u << hand));
+    drop_segment();
+    for (std::uint8_t h = 0; h < kHandCount; ++h) {
+      if ((others & (1u << h)) == 0) continue;
+      SessionEvent e = frozen;
+      e.hand = h;
+      out.push(e);
+    }
+    return;
+  }
   std::array<math::Frame, 2> frames{};
   const std::size_t n = plan_frames(frames);
   const Status rebased = plan_.rebase(std::span(frames).first(n));
@@ -96,7 +110,7 @@ void StrokeController::freeze(std::uint8_t hand, SessionEvents& out) {
 void StrokeController::end_grab(std::uint8_t hand, bool commit, SessionEvents& out) {
   auto remaining = static_cast<std::uint8_t>(hand_mask_ & ~(1u << hand));
   if (commit) {
-    SessionEvent committed = commit_segment(hand, Reason::released, out);
+    SessionEvent committed = commit_segment(hand, Reason::released, out, Reason::released);
     // The other hands of this segment released in the same step end with this very
     // commit (their own commit actions then find nothing open).
     const auto together = static_cast<std::uint8_t>(remaining & releasing_mask_);
@@ -132,7 +146,7 @@ Status StrokeController::begin_segment(std::uint8_t mask) {
 }
 
 SessionEvent StrokeController::commit_segment(std::uint8_t hand, Reason reason,
-                                              SessionEvents& out) {
+                                              SessionEvents& out, Reason reason_if_not_saved) {
   update_plan().ignore();  // on error the previous update stays in force
   journal::StrokeRecord r;
   r.method = static_cast<std::uint8_t>(plan_.method());
@@ -147,8 +161,12 @@ SessionEvent StrokeController::commit_segment(std::uint8_t hand, Reason reason,
     ++i;
   }
   const CommitOutcome done = commits_.commit(plan_, r, out);
-  const SessionEvent committed{SessionEventKind::committed, hand, reason, done.status,
-                               done.sequence};
+  // A commit that did not happen (journal failure, plan error) is `not_saved`.
+  const SessionEvent committed =
+      done.status.ok()
+          ? SessionEvent{SessionEventKind::committed, hand, reason, done.status, done.sequence}
+          : SessionEvent{SessionEventKind::not_saved, hand, reason_if_not_saved, done.status,
+                         done.sequence};
   out.push(committed);
   return committed;
 }

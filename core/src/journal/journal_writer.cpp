@@ -7,6 +7,7 @@ namespace twister::journal {
 Status JournalWriter::open() {
   opened_ = false;
   broken_ = false;
+  appended_ = 0;
   TWISTER_TRY_ASSIGN(size_, storage_.size());
   if (size_ == 0) {
     TWISTER_TRY(storage_.append(kFileHeader));
@@ -31,11 +32,21 @@ Status JournalWriter::append(const JournalRecord& record) {
   if (status.ok()) status = storage_.sync();
   if (status.ok()) {
     size_ += n;
+    ++appended_;
     return ok_status();
   }
   // Leave no torn record behind a later good one: cut back to the last good end.
   if (!storage_.truncate(size_).ok() || !storage_.sync().ok()) broken_ = true;
   return StatusCode::io_error;
+}
+
+Status JournalWriter::repair() {
+  if (!opened_) return StatusCode::failed_precondition;
+  if (!broken_) return ok_status();
+  TWISTER_TRY(storage_.truncate(size_));
+  TWISTER_TRY(storage_.sync());
+  broken_ = false;
+  return ok_status();
 }
 
 }  // namespace twister::journal

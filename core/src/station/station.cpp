@@ -1,6 +1,5 @@
 #include "twister/station/station.hpp"
 
-#include "twister/journal/journal_reader.hpp"
 
 namespace twister::station {
 namespace {
@@ -17,38 +16,15 @@ math::Frame to_frame(const tracker::TrackedFrame& f) {
 
 Station::Station(ports::ByteStream& tracker, ports::ButtonSource& buttons, ports::Clock& clock,
                  ports::Storage& storage, mesh::Mesh& mesh, input::SculptStorage work,
-                 const StationConfig& config)
+                 const StationConfig& config, StationFiles files)
     : buttons_(buttons),
       clock_(clock),
       storage_(storage),
+      files_(files),
       config_(config),
       session_(tracker, clock, config.session),
       writer_(storage),
       sculpt_(config.sculpt, mesh, work, &writer_) {}
-
-Status Station::start() {
-  const auto s0 = config_.hand_station[0];
-  const auto s1 = config_.hand_station[1];
-  if (s0 < 1 || s0 > tracker::kMaxStations || s1 < 1 || s1 > tracker::kMaxStations || s0 == s1) {
-    return StatusCode::failed_precondition;
-  }
-  // Replay through the session's own commit path, so the mesh is exactly the one
-  // the last run left; a torn tail (power cut mid-append) is cut so new records
-  // follow the last good one.
-  journal::JournalReader reader(storage_);
-  TWISTER_TRY(reader.open());
-  TWISTER_TRY_ASSIGN(const std::size_t applied, sculpt_.replay(reader));
-  std::uint64_t cut = 0;
-  if (reader.problem() != journal::TailProblem::none) {
-    cut = reader.tail_bytes();
-    TWISTER_TRY(reader.truncate_tail());
-  }
-  TWISTER_TRY(writer_.open());
-  started_ = true;
-  push_event({StationEventKind::journal_recovered, 0, static_cast<std::uint32_t>(applied), cut,
-              ok_status(), clock_.now_us()});
-  return ok_status();
-}
 
 bool Station::hand_valid(std::uint8_t hand, ports::TimestampUs now_us) const {
   const Hand& h = hands_[hand];
@@ -159,9 +135,10 @@ void Station::report(const input::SessionEvent& e, ports::TimestampUs now_us) {
       push_event({StationEventKind::refused, e.hand, 0, static_cast<std::uint64_t>(e.reason),
                   e.status, now_us});
       break;
-    case K::journal_failed:
-      ++counters_.journal_errors;
-      push_event({StationEventKind::journal_error, e.hand, e.sequence, 0, e.status, now_us});
+    case K::not_saved:
+      ++counters_.strokes_not_saved;
+      push_event({StationEventKind::stroke_not_saved, e.hand, e.sequence,
+                  static_cast<std::uint64_t>(e.reason), e.status, now_us});
       break;
     default:
       break;  // tracking, radius, moves, undo/redo: visible in the session's state

@@ -22,6 +22,8 @@ const char* station_event_kind_name(StationEventKind kind) {
       return "journal_error";
     case StationEventKind::button_source_error:
       return "button_source_error";
+    case StationEventKind::stroke_not_saved:
+      return "stroke_not_saved";
   }
   return "unknown";
 }

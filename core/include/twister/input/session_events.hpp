@@ -1,6 +1,6 @@
 // SessionEvents: what one SculptSession step (or part of it) reports to the station:
-// strokes beginning, committing or being cancelled, tracking, refusals, moves,
-// undo/redo and journal trouble, in the order they happened. Fixed capacity; events
+// strokes beginning, committing, not saved or being cancelled, tracking, refusals,
+// moves, undo/redo, in the order they happened. Fixed capacity; events
 // beyond it are counted and dropped.
 #pragma once
 
@@ -31,7 +31,12 @@ enum class SessionEventKind : std::uint8_t {
   move_cancelled,
   undone,
   redone,
-  journal_failed,    // the commit happened but its record is not durable (status)
+  not_saved,         // a commit was NOT made: its journal record could not be made
+                     // durable (status io_error) or the warp could not apply; the model
+                     // is as after the last saved commit. Strokes: reason released =
+                     // `hand`'s grab ends here, none = the hands go on in a new segment
+                     // (a hand joined); a failed freeze ends the stroke (released, for
+                     // every hand of it). Moves: the object is back where it was.
   history_overflow,  // the commit was too large to be undoable
 };
 const char* session_event_kind_name(SessionEventKind kind);

@@ -70,8 +70,10 @@ class StrokeController {
   void end_grab(std::uint8_t hand, bool commit, SessionEvents& out);
   Status begin_segment(std::uint8_t mask);
   // Commits the open segment; the committed event names `hand` and `reason`
-  // (released: the hand's grab ends; none: the stroke continues). Returns that event.
-  SessionEvent commit_segment(std::uint8_t hand, Reason reason, SessionEvents& out);
+  // (released: the hand's grab ends; none: the stroke continues), or, when the commit
+  // did not happen, a not_saved event with `reason_if_not_saved`. Returns that event.
+  SessionEvent commit_segment(std::uint8_t hand, Reason reason, SessionEvents& out,
+                              Reason reason_if_not_saved);
   // Reports the grabs of `mask` as ended (cancelled with `status`).
   static void end_hands(std::uint8_t mask, Status status, SessionEvents& out);
   void drop_segment();

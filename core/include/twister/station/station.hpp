@@ -9,8 +9,11 @@
 // Hands are valid only while the tracker streams and their pose is fresh: on a loss
 // the session holds the stroke (tracking_lost) and cancels it after lost_timeout, so
 // an unplug never commits a stroke from stale or missing poses.
-// start() replays the journal into the mesh (the same code path as live commits),
-// cuts a torn tail, and opens the journal for appending.
+// start() checks the whole journal (JournalScanner), refuses a corrupt one (a damaged
+// record with valid records after it: the file is left untouched), restores the last
+// checkpoint when one fits, replays the records after it into the mesh (the same code
+// path as live commits), cuts a torn tail (keeping its bytes through a FileSink) and
+// opens the journal for appending.
 // No heap; all working memory is given at construction. Not thread-safe.
 #pragma once
 
@@ -20,11 +23,13 @@
 
 #include "twister/base/result.hpp"
 #include "twister/input/sculpt_session.hpp"
+#include "twister/journal/journal_scanner.hpp"
 #include "twister/journal/journal_writer.hpp"
 #include "twister/mesh/mesh.hpp"
 #include "twister/ports/button_source.hpp"
 #include "twister/ports/byte_stream.hpp"
 #include "twister/ports/clock.hpp"
+#include "twister/ports/file_sink.hpp"
 #include "twister/ports/storage.hpp"
 #include "twister/station/station_event.hpp"
 #include "twister/tracker/fastrak_session.hpp"
@@ -55,11 +60,43 @@ struct StationCounters {
   std::uint64_t button_errors = 0;  // ButtonSource io_error / out-of-range lines
   std::uint64_t strokes_committed = 0;
   std::uint64_t strokes_cancelled = 0;
+  // Commits (stroke segments per hand, object moves) whose journal record could not
+  // be made durable: not made, the model went back to the last saved record.
+  std::uint64_t strokes_not_saved = 0;
   std::uint64_t refused = 0;
   std::uint64_t session_events_dropped = 0;
   std::uint64_t journal_errors = 0;
   std::uint64_t events_dropped = 0;  // event queue full (the log is behind)
 };
+
+// The station's files besides the journal (all optional).
+struct StationFiles {
+  // Receives the bytes of a torn journal tail before start() cuts it (a new file,
+  // never an existing one). Null: the tail is cut without a copy.
+  ports::FileSink* tail_archive = nullptr;
+};
+
+// What start() found in the journal (for the start-up log and its error messages).
+struct JournalRecovery {
+  enum class Outcome : std::uint8_t {
+    not_started,
+    ok,             // replayed (a torn tail, if any, was cut: tail_cut bytes)
+    not_a_journal,  // foreign file: left alone
+    corrupt,        // damage followed by valid records: refused, left untouched
+    does_not_fit,   // a record cannot be applied to this mesh (record_index, status)
+    tail_not_kept,  // the torn tail could not be copied aside: refused, left untouched
+    io_error,       // storage failed
+  };
+  Outcome outcome = Outcome::not_started;
+  journal::JournalSurvey survey{};
+  std::uint64_t replayed = 0;      // records applied by start()
+  std::uint64_t tail_cut = 0;      // bytes of a torn tail cut (kept when tail_archive is set)
+  bool tail_kept = false;          // they went to the tail archive
+  std::uint64_t record_index = 0;  // does_not_fit: the record (0-based, in file order)
+  std::uint32_t record_sequence = 0;
+  Status record_status{};
+};
+const char* recovery_outcome_name(JournalRecovery::Outcome outcome);
 
 class Station {
  public:
@@ -68,15 +105,17 @@ class Station {
   // Nothing happens until start().
   Station(ports::ByteStream& tracker, ports::ButtonSource& buttons, ports::Clock& clock,
           ports::Storage& storage, mesh::Mesh& mesh, input::SculptStorage work,
-          const StationConfig& config);
+          const StationConfig& config, StationFiles files = {});
 
-  // Replays the journal onto the mesh, cuts a torn tail and opens the journal for
-  // appending. data_loss: the file is not a journal (it is left alone), or a record
-  // does not fit this mesh (wrong initial mesh: nothing is written);
-  // invalid_argument / resource_exhausted: a record was refused by the warp plan;
-  // io_error: storage failed; failed_precondition: hand_station out of 1..4 or both
-  // hands on one receiver.
+  // Checks and replays the journal onto the mesh, cuts a torn tail (after copying it
+  // to files.tail_archive) and opens the journal for appending. recovery() says what
+  // was found. data_loss: the file is not a journal, is corrupt (a damaged record with
+  // valid records after it), or a record does not fit this mesh; in each case the file
+  // is left byte-identical. invalid_argument / resource_exhausted: a record was refused
+  // by the warp plan; io_error: storage failed or the torn tail could not be kept;
+  // failed_precondition: hand_station out of 1..4 or both hands on one receiver.
   Status start();
+  const JournalRecovery& recovery() const { return recovery_; }
 
   // One loop iteration (never blocks). failed_precondition: start() did not succeed.
   Status poll();
@@ -91,7 +130,11 @@ class Station {
   const tracker::FastrakSession& tracker_session() const { return session_; }
   const input::SculptSession& sculpt() const { return sculpt_; }
   const mesh::Mesh& mesh() const { return sculpt_.mesh(); }
-  std::uint32_t journal_records() const { return sculpt_.next_sequence(); }
+  // Records in the journal file: the ones found at start() plus every record
+  // appended (and synced) since.
+  std::uint32_t journal_records() const {
+    return static_cast<std::uint32_t>(records_at_start_ + writer_.appended());
+  }
   bool hand_valid(std::uint8_t hand, ports::TimestampUs now_us) const;
 
  private:
@@ -101,6 +144,9 @@ class Station {
     bool has_pose = false;
   };
 
+  // start()'s steps (station_start.cpp).
+  Status replay_journal(journal::JournalReader& reader);
+  Status keep_torn_tail();
   void drain_tracker(ports::TimestampUs now_us);
   void drain_buttons(ports::TimestampUs now_us);
   void report(const input::SessionEvent& event, ports::TimestampUs now_us);
@@ -109,6 +155,8 @@ class Station {
   ports::ButtonSource& buttons_;
   ports::Clock& clock_;
   ports::Storage& storage_;
+  StationFiles files_;
+  JournalRecovery recovery_{};
   StationConfig config_;
   tracker::FastrakSession session_;
   journal::JournalWriter writer_;  // before sculpt_, which keeps a pointer to it
@@ -116,6 +164,7 @@ class Station {
   std::array<Hand, input::kHandCount> hands_{};
   std::array<bool, tracker::kMaxStations> stylus_down_{};
   bool started_ = false;
+  std::uint64_t records_at_start_ = 0;
   bool buttons_failed_ = false;
   bool was_streaming_ = false;
   StationCounters counters_{};

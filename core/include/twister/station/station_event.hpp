@@ -18,8 +18,12 @@ enum class StationEventKind : std::uint8_t {
   stroke_committed,     // journal record `sequence` appended and synced
   stroke_cancelled,     // dropped (tracking lost too long); model unchanged
   refused,              // a press was refused; value = input::Reason
-  journal_error,        // append failed; status says how (stroke not recorded)
+  journal_error,        // a journal operation failed; status says how
   button_source_error,  // the button device failed; status says how
+  stroke_not_saved,     // a commit (stroke segment or object move; `hand`) was NOT made:
+                        // its record could not be made durable (status, e.g. io_error
+                        // for a full disk); the model is back at the last saved record.
+                        // value: input::Reason (released: the hand's grab ended)
 };
 
 const char* station_event_kind_name(StationEventKind kind);
