@@ -7,21 +7,59 @@ namespace twister::station_app {
 namespace {
 
 hal::Expected<void> open_journal(hal::PosixFileStorage& journal, const std::string& path) {
-  if (const Status s = journal.open({.path = path}); !s.ok()) {
+  const Status s = journal.open({.path = path, .lock = true});
+  if (s.code() == StatusCode::failed_precondition) {
+    const int pid = journal.lock_holder_pid();
+    return hal::Error{s, "journal " + path + " is in use by another twister-station (" +
+                             (pid > 0 ? "PID " + std::to_string(pid) : "PID unknown") +
+                             "); refusing to start (the file was not changed)"};
+  }
+  if (!s.ok()) {
     return hal::Error{s, "cannot open journal " + path + " (" + s.name() + ", errno " +
                              std::to_string(journal.last_errno()) + ")"};
   }
   return {};
 }
 
-hal::Expected<void> start_core(station::Station& core, const std::string& journal_path) {
+std::string corrupt_message(const station::JournalRecovery& r) {
+  const journal::JournalSurvey& v = r.survey;
+  return "damaged record at offset " + std::to_string(v.good_end) + " (" +
+         journal::tail_problem_name(v.problem) + "); " + std::to_string(v.later_records) +
+         " valid record(s) follow it (the first at offset " + std::to_string(v.first_later_offset) +
+         "), so it is not a torn tail: refusing to start; the file is left untouched. "
+         "`twister journal check` lists the damage, `twister journal salvage` writes a copy "
+         "that keeps every valid record";
+}
+
+hal::Expected<void> start_core(station::Station& core, const std::string& journal_path,
+                               const hal::PosixFileSink& archive) {
   const Status s = core.start();
   if (s.ok()) return {};
-  const char* why = s.name();
-  if (s.code() == StatusCode::data_loss) {
-    why = "is not a Twister journal, or does not fit this mesh (left untouched)";
+  using O = station::JournalRecovery::Outcome;
+  const station::JournalRecovery& r = core.recovery();
+  std::string why = s.name();
+  if (r.outcome == O::corrupt) {
+    why = corrupt_message(r);
+  } else if (r.outcome == O::not_a_journal) {
+    why = "is not a Twister journal, or does not fit this mesh (left untouched): not a journal";
+  } else if (r.outcome == O::does_not_fit) {
+    why = "is not a Twister journal, or does not fit this mesh (left untouched): record " +
+          std::to_string(r.record_index) + " (sequence " + std::to_string(r.record_sequence) +
+          ") cannot be applied to this mesh (" + r.record_status.name() + ")";
+  } else if (r.outcome == O::tail_not_kept) {
+    why = "a torn tail of " + std::to_string(r.survey.file_size - r.survey.good_end) +
+          " bytes at offset " + std::to_string(r.survey.good_end) + " could not be kept in " +
+          archive.path() + " (" + archive.last_error() +
+          "); refusing to cut it (the file is left untouched)";
   }
   return hal::Error{s, "journal " + journal_path + ": " + why};
+}
+
+std::string recovery_note(const station::JournalRecovery& r, const hal::PosixFileSink& archive) {
+  if (r.tail_cut == 0) return {};
+  return "cut a torn tail of " + std::to_string(r.tail_cut) + " bytes (" +
+         journal::tail_problem_name(r.survey.problem) + ") at offset " +
+         std::to_string(r.survey.good_end) + "; its bytes are kept in " + archive.committed_path();
 }
 
 }  // namespace
@@ -45,11 +83,13 @@ input::SculptStorage WorkMemory::storage() {
 
 hal::Expected<std::unique_ptr<meshio::MeshBuffer>> load_station_mesh(
     const std::filesystem::path& path, std::size_t spare_vertices) {
-  meshio::ObjLoad loaded = meshio::load_obj(path, spare_vertices);
-  if (!loaded.status.ok()) {
-    return hal::Error{loaded.status, "mesh " + path.string() + ": " + loaded.message};
+  meshio::ObjOptions options;
+  options.spare_vertices = spare_vertices;
+  auto loaded = meshio::load_obj(path, options);
+  if (!loaded) {
+    return hal::Error{loaded.error().status, "mesh " + path.string() + ": " + loaded.error().message};
   }
-  return std::move(loaded.buffer);
+  return std::move(loaded->buffer);
 }
 
 hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationConfig& config,
@@ -71,11 +111,19 @@ hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationConfi
   mesh::Mesh& mesh = parts->model->mesh();
   parts->work = std::make_unique<WorkMemory>(mesh.vertex_capacity());
   Backends& b = parts->backends;
+  hal::PosixFileSinkConfig archive;
+  archive.path = config.station.journal + ".torn-tail";
+  archive.replace = hal::PosixFileSinkConfig::Replace::never;
+  parts->tail_archive = std::make_unique<hal::PosixFileSink>(archive);
+  station::StationFiles files;
+  files.tail_archive = parts->tail_archive.get();
   parts->core = std::make_unique<station::Station>(*b.tracker, *b.buttons, *b.clock, parts->journal,
-                                                   mesh, parts->work->storage(), *setup);
-  if (auto started = start_core(*parts->core, config.station.journal); !started) {
+                                                   mesh, parts->work->storage(), *setup, files);
+  if (auto started = start_core(*parts->core, config.station.journal, *parts->tail_archive);
+      !started) {
     return started.error();
   }
+  parts->recovery_note = recovery_note(parts->core->recovery(), *parts->tail_archive);
   if (!options.link_address.empty()) {
     if (auto opened = parts->display.open(options.link_address, parts->core->sculpt()); !opened) {
       return opened.error();

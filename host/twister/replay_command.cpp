@@ -74,10 +74,13 @@ void to_world(mesh::Mesh& m, const math::Frame& pose) {
 }
 
 void run_replay(const Options& o) {
-  meshio::ObjLoad loaded = meshio::load_obj(o.mesh_in);
-  if (!loaded.status.ok()) fail(kExitBadInput, o.mesh_in + ": " + loaded.message);
-  if (!loaded.message.empty()) cli_log().warning("", "%s", loaded.message.c_str());
-  mesh::Mesh& mesh = loaded.buffer->mesh();
+  auto loaded = meshio::load_obj(o.mesh_in);
+  if (!loaded) fail(kExitBadInput, o.mesh_in + ": " + loaded.error().message);
+  if (loaded->skipped_lines > 0) {
+    cli_log().warning("", "%s: %zu unsupported lines skipped", o.mesh_in.c_str(),
+                      loaded->skipped_lines);
+  }
+  mesh::Mesh& mesh = loaded->buffer->mesh();
 
   ReadOnlyStorage storage(read_file(o.journal));
   journal::JournalReader reader(storage);
@@ -125,8 +128,9 @@ void run_replay(const Options& o) {
                       reader.good_end());
   }
   if (o.world) to_world(mesh, session.object_pose());
-  std::string message;
-  if (!meshio::save_obj(o.mesh_out, mesh, message).ok()) fail(kExitFailure, message);
+  if (auto saved = meshio::save_obj(o.mesh_out, mesh); !saved) {
+    fail(kExitFailure, saved.error().message);
+  }
   const input::ReplayStats& st = session.replay_stats();
   const math::Frame& pose = session.object_pose();
   std::printf("replayed %zu records (strokes %zu, moves %zu, undos %zu, redos %zu)\n", applied,
