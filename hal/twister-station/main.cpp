@@ -9,6 +9,9 @@
 // mesh checksum, stopped) are the run's results and are always printed.
 // Exit codes: 0 clean stop, 1 runtime failure, 2 invalid config or options.
 #include <CLI/CLI.hpp>
+#include <pthread.h>
+
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -16,6 +19,7 @@
 
 #include "config/station_config.hpp"
 #include "station_assembly.hpp"
+#include "station_checks.hpp"
 #include "station_loop.hpp"
 #include "station_setup.hpp"
 #include "twister/hal/logger.hpp"
@@ -56,6 +60,17 @@ hal::Logger& configure_logs(const Options& opt, hal::Logger& results) {
 
 int check_config(hal::Logger& log, const Options& opt, const StationConfig& cfg) {
   int errors = 0;
+  const auto dir = std::filesystem::path(opt.config_path).parent_path();
+  for (const std::string& problem : app::referenced_file_problems(cfg, dir)) {
+    log.error("", "%s: %s", opt.config_path.c_str(), problem.c_str());
+    ++errors;
+  }
+  if (!opt.link_address.empty()) {
+    if (const std::string why = app::link_address_problem(opt.link_address); !why.empty()) {
+      log.error("", "--link %s: %s", opt.link_address.c_str(), why.c_str());
+      ++errors;
+    }
+  }
   if (const auto setup = app::make_station_setup(cfg); !setup) {
     log.error("", "%s: %s", opt.config_path.c_str(), setup.error().message.c_str());
     ++errors;
@@ -95,8 +110,7 @@ void log_summary(hal::Logger& results, const twister::station::Station& core,
   }
 }
 
-int run(const Options& opt, StationConfig cfg, hal::Logger& log, hal::Logger& results) {
-  if (!opt.journal_override.empty()) cfg.station.journal = opt.journal_override;
+int run(const Options& opt, const StationConfig& cfg, hal::Logger& log, hal::Logger& results) {
   auto assembled = app::assemble_station(
       cfg, {std::filesystem::path(opt.config_path).parent_path(), opt.link_address});
   if (!assembled) {
@@ -104,6 +118,7 @@ int run(const Options& opt, StationConfig cfg, hal::Logger& log, hal::Logger& re
     return kExitFailure;
   }
   app::StationParts& parts = **assembled;
+  if (!parts.recovery_note.empty()) log.warning("journal", "%s", parts.recovery_note.c_str());
   const auto& mesh = parts.core->mesh();
   results.notice("", "mesh %s: %zu vertices, %zu triangles, checksum %016llx",
                  parts.mesh_path.c_str(), mesh.vertex_count(), mesh.triangle_count(),
@@ -152,6 +167,15 @@ void add_options(CLI::App& app, Options& opt) {
 }
 
 int station_main(int argc, char** argv) {
+  // A file size limit (RLIMIT_FSIZE) must fail the write (EFBIG: "stroke not saved"),
+  // not kill the station with SIGXFSZ.
+  std::signal(SIGXFSZ, SIG_IGN);
+  // A stop signal during start-up waits for the loop's first pass (then the stop
+  // policy and the summary run) instead of killing the station half-started.
+  sigset_t stop_signals;
+  sigemptyset(&stop_signals);
+  for (const int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&stop_signals, sig);
+  pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
   CLI::App cli{
       "twister-station: the Twister sculpting station (tracker + buttons -> strokes -> journal)"};
   Options opt;
@@ -164,15 +188,17 @@ int station_main(int argc, char** argv) {
   }
   hal::Logger results({kProgram});
   hal::Logger& log = configure_logs(opt, results);
-  const auto parsed = app::load_station_config(opt.config_path);
+  auto parsed = app::load_station_config(opt.config_path);
   for (const auto& e : parsed.errors) log.error("", "%s", e.to_string().c_str());
   if (!parsed.ok()) {
     log.error("", "%zu error(s) in %s; refusing to start", parsed.errors.size(),
               opt.config_path.c_str());
     return kExitBadConfig;
   }
+  if (!opt.journal_override.empty()) parsed.config.station.journal = opt.journal_override;
+  // Every option and file is checked before anything is opened or replayed.
   if (check_config(log, opt, parsed.config) > 0) {
-    log.error("", "%s cannot run with this binary; refusing to start", opt.config_path.c_str());
+    log.error("", "%s cannot run (see above); refusing to start", opt.config_path.c_str());
     return kExitBadConfig;
   }
   if (opt.check) {

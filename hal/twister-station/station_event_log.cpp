@@ -50,8 +50,14 @@ void log_station_event(hal::Logger& log, const station::StationEvent& e, int sto
                t);
       break;
     case K::stroke_cancelled:
-      log.info("stroke", "hand %u cancelled (tracking lost too long); model unchanged [t=%.3f s]",
-               e.hand, t);
+      if (static_cast<input::Reason>(e.value) == input::Reason::none) {
+        log.notice("stroke", "hand %u cancelled (station stopping); model unchanged [t=%.3f s]",
+                   e.hand, t);
+      } else {
+        log.info("stroke",
+                 "hand %u cancelled (tracking lost too long); model unchanged [t=%.3f s]", e.hand,
+                 t);
+      }
       break;
     case K::refused:
       log.info("stroke", "press refused: hand %u (%s) [t=%.3f s]", e.hand,

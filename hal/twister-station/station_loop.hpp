@@ -1,15 +1,17 @@
 // StationLoop: twister-station's event loop, the program's steady state. One pass:
-//   wait in poll(2) on a fixed set of descriptors (a signalfd for SIGINT/SIGTERM,
+//   wait in poll(2) on a fixed set of descriptors (a signalfd for SIGINT/SIGTERM/SIGHUP,
 //   then each backend's PollSource: tracker, buttons unless they failed, display
 //   link) for at most loop_timeout_ms, or not at all in virtual time, where the
 //   simulator's clock steps 1 ms per pass instead;
 //   Station::poll(); the display link; the station's events to the log; a reopen
 //   of failed buttons every reconnect interval; the systemd watchdog.
-// It stops on SIGINT/SIGTERM, after the run's length (--duration, else the
-// simulator scenario's), or when the core fails. No pass allocates: the poll set is
+// It stops on SIGINT, SIGTERM or SIGHUP (all three end the run the same way:
+// Station::stop()'s policy for an open stroke, then the summary), after the run's
+// length (--duration, else the simulator scenario's), or when the core fails. No pass allocates: the poll set is
 // a std::array, events are logged through hal::Logger (no heap), and every backend,
 // the core and the link work in memory sized before the loop.
-// One thread; start() blocks SIGINT/SIGTERM in it (the destructor restores the mask).
+// One thread; start() blocks SIGINT/SIGTERM/SIGHUP in it (the destructor restores
+// the mask).
 #pragma once
 
 #include <poll.h>
@@ -42,7 +44,7 @@ struct StationLoopConfig {
 StationLoopConfig make_loop_config(const StationConfig& config, double duration_s,
                                    const Backends& backends);
 
-enum class StopReason : std::uint8_t { end_of_run, sigint, sigterm, station_failed };
+enum class StopReason : std::uint8_t { end_of_run, sigint, sigterm, sighup, station_failed };
 const char* stop_reason_name(StopReason reason);
 
 class StationLoop {
@@ -57,13 +59,13 @@ class StationLoop {
   StationLoop(const StationLoop&) = delete;
   StationLoop& operator=(const StationLoop&) = delete;
 
-  // Routes SIGINT/SIGTERM to a signalfd, tells systemd READY=1 and starts the
+  // Routes SIGINT/SIGTERM/SIGHUP to a signalfd, tells systemd READY=1 and starts the
   // clock of the run. io_error: no signalfd.
   hal::Expected<void> start();
   // One pass. false once the loop stops (stop_reason() says why).
   bool step();
-  // Ends the run: STOPPING=1, the display link drained (up to 2 s), the journal
-  // flushed; returns the flush status.
+  // Ends the run: STOPPING=1, Station::stop() (an open stroke is cancelled), the
+  // display link drained (up to 2 s), the journal flushed; returns the flush status.
   Status finish();
   // start(), step() until the loop stops, finish(). The flush status, or the
   // start() error as io_error.

@@ -101,6 +101,20 @@ void SculptSession::commit_move(const Action& a, SessionEvents& out) {
   out.push({kind, a.hand, Reason::released, done.status, done.sequence});
 }
 
+SessionEvents SculptSession::cancel_open() {
+  SessionEvents out;
+  for (std::uint8_t h = 0; h < kHandCount; ++h) {
+    if ((strokes_.hand_mask() & (1u << h)) != 0) {
+      strokes_.apply({ActionKind::cancel, h, Reason::none, 0.0f}, out);
+    }
+  }
+  const std::uint8_t mover = mover_.hand();
+  if (mover_.cancel()) {
+    out.push({SessionEventKind::move_cancelled, mover, Reason::none, ok_status(), 0});
+  }
+  return out;
+}
+
 Status SculptSession::undo() { return step_history(journal::RecordType::undo); }
 
 Status SculptSession::redo() { return step_history(journal::RecordType::redo); }

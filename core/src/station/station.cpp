@@ -162,6 +162,18 @@ Result<StationEvent> Station::next_event() {
   return e;
 }
 
+void Station::stop() {
+  if (!started_) return;
+  const ports::TimestampUs now_us = clock_.now_us();
+  const input::SessionEvents events = sculpt_.cancel_open();
+  for (const input::SessionEvent& e : events.items()) {
+    if (e.kind != input::SessionEventKind::cancelled) continue;
+    ++counters_.strokes_cancelled;
+    push_event({StationEventKind::stroke_cancelled, e.hand, 0,
+                static_cast<std::uint64_t>(input::Reason::none), ok_status(), now_us});
+  }
+}
+
 Status Station::flush() { return storage_.sync(); }
 
 }  // namespace twister::station

@@ -6,6 +6,7 @@
 // Init-time code: allocates freely, never throws.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -118,7 +119,11 @@ struct ConfigParseResult {
 // Parses TOML text. file_name only labels the messages.
 ConfigParseResult parse_station_config(std::string_view text, std::string_view file_name);
 
-// Reads and parses a file; an unreadable file is one error with line 0.
+// Longest config file read (a station config is a few KiB).
+inline constexpr std::size_t kMaxConfigBytes = std::size_t{1} << 20;
+
+// Reads and parses a file; an unreadable file, one that is not a regular file (FIFO,
+// device, directory) or one larger than kMaxConfigBytes is one error with line 0.
 ConfigParseResult load_station_config(const std::string& path);
 
 // Short names used in logs and messages ("serial", "gpiod", ...).

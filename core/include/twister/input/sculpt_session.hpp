@@ -96,6 +96,11 @@ class SculptSession {
   // One step at `now_us`: debounced buttons, interaction machine, warp, commits.
   SessionEvents step(ports::TimestampUs now_us);
 
+  // Ends what is open without committing it (the station stopping): every hand of an
+  // open stroke is cancelled (the model stays as after the last commit) and an open
+  // object move is cancelled (the object goes back). Returns those events.
+  SessionEvents cancel_open();
+
   // Undo / redo of committed strokes (journaled). failed_precondition: a stroke or
   // move is active, or there is nothing to undo/redo. io_error: journal failed
   // (the undo itself happened).

@@ -123,6 +123,14 @@ class Station {
   // Next event for the log (oldest first). unavailable: none pending.
   Result<StationEvent> next_event();
 
+  // The stop policy (SIGTERM, SIGHUP, SIGINT, end of run): an open stroke is
+  // cancelled, never committed (the model stays as after the last commit; the sculptor
+  // did not release it), an open object move is cancelled (the object goes back).
+  // Each cancelled hand counts in strokes_cancelled and is reported as
+  // stroke_cancelled with value input::Reason::none ("station stopping"). Afterwards
+  // poll() is not called again.
+  void stop();
+
   // Makes the journal durable (shutdown path); appends already sync each record.
   Status flush();
 
