@@ -118,7 +118,13 @@ int run(const Options& opt, const StationConfig& cfg, hal::Logger& log, hal::Log
     return kExitFailure;
   }
   app::StationParts& parts = **assembled;
-  if (!parts.recovery_note.empty()) log.warning("journal", "%s", parts.recovery_note.c_str());
+  for (const auto& note : parts.recovery_notes) {
+    if (note.warning) {
+      log.warning("journal", "%s", note.text.c_str());
+    } else {
+      log.notice("journal", "%s", note.text.c_str());
+    }
+  }
   const auto& mesh = parts.core->mesh();
   results.notice("", "mesh %s: %zu vertices, %zu triangles, checksum %016llx",
                  parts.mesh_path.c_str(), mesh.vertex_count(), mesh.triangle_count(),

@@ -1,6 +1,7 @@
 #include "station_assembly.hpp"
 
 #include "station_setup.hpp"
+#include "twister/input/session_checkpoint.hpp"
 #include "twister/meshio/obj_file.hpp"
 
 namespace twister::station_app {
@@ -55,11 +56,40 @@ hal::Expected<void> start_core(station::Station& core, const std::string& journa
   return hal::Error{s, "journal " + journal_path + ": " + why};
 }
 
-std::string recovery_note(const station::JournalRecovery& r, const hal::PosixFileSink& archive) {
-  if (r.tail_cut == 0) return {};
-  return "cut a torn tail of " + std::to_string(r.tail_cut) + " bytes (" +
-         journal::tail_problem_name(r.survey.problem) + ") at offset " +
-         std::to_string(r.survey.good_end) + "; its bytes are kept in " + archive.committed_path();
+std::vector<StationParts::Note> recovery_notes(const station::JournalRecovery& r,
+                                               const StationParts& parts) {
+  std::vector<StationParts::Note> notes;
+  if (r.tail_cut > 0) {
+    notes.push_back({true, "cut a torn tail of " + std::to_string(r.tail_cut) + " bytes (" +
+                    journal::tail_problem_name(r.survey.problem) + ") at offset " +
+                    std::to_string(r.survey.good_end) + "; its bytes are kept in " +
+                    parts.tail_archive->committed_path()});
+  }
+  using C = station::JournalRecovery::Checkpoint;
+  if (r.checkpoint == C::used) {
+    notes.push_back({false, "restored the checkpoint of " + std::to_string(r.checkpoint_records) +
+                                " records; replayed " + std::to_string(r.replayed) + " after it"});
+  } else if (r.checkpoint != C::none) {
+    notes.push_back({true, "checkpoint " + parts.checkpoint_out->path() + " ignored (" +
+                               station::checkpoint_use_name(r.checkpoint) + "); replayed all " +
+                               std::to_string(r.replayed) + " records"});
+  }
+  return notes;
+}
+
+// JOURNAL.ckpt for reading, when there is one (a failure to open it only means a
+// full replay), and the sink that writes new ones.
+void open_checkpoint_files(StationParts& parts, const std::string& journal) {
+  hal::PosixFileSinkConfig out;
+  out.path = journal + ".ckpt";
+  out.replace = hal::PosixFileSinkConfig::Replace::own_magic;
+  out.magic.assign(input::kCheckpointMagic.begin(), input::kCheckpointMagic.end());
+  out.writeback_bytes = std::size_t{1} << 20;
+  parts.checkpoint_out = std::make_unique<hal::PosixFileSink>(out);
+  auto in = std::make_unique<hal::PosixFileStorage>();
+  if (in->open({.path = out.path, .create_if_missing = false, .read_only = true}).ok()) {
+    parts.checkpoint_in = std::move(in);
+  }
 }
 
 }  // namespace
@@ -115,15 +145,19 @@ hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationConfi
   archive.path = config.station.journal + ".torn-tail";
   archive.replace = hal::PosixFileSinkConfig::Replace::never;
   parts->tail_archive = std::make_unique<hal::PosixFileSink>(archive);
+  open_checkpoint_files(*parts, config.station.journal);
   station::StationFiles files;
   files.tail_archive = parts->tail_archive.get();
+  files.checkpoint_in = parts->checkpoint_in.get();
+  files.checkpoint_out = parts->checkpoint_out.get();
   parts->core = std::make_unique<station::Station>(*b.tracker, *b.buttons, *b.clock, parts->journal,
                                                    mesh, parts->work->storage(), *setup, files);
   if (auto started = start_core(*parts->core, config.station.journal, *parts->tail_archive);
       !started) {
     return started.error();
   }
-  parts->recovery_note = recovery_note(parts->core->recovery(), *parts->tail_archive);
+  parts->recovery_notes = recovery_notes(parts->core->recovery(), *parts);
+  parts->checkpoint_in.reset();  // read: the next checkpoint replaces it
   if (!options.link_address.empty()) {
     if (auto opened = parts->display.open(options.link_address, parts->core->sculpt()); !opened) {
       return opened.error();

@@ -48,7 +48,17 @@ struct StationParts {
   // Where the bytes of a torn journal tail go before it is cut: JOURNAL.torn-tail
   // (or .1, .2, ...: never an existing file).
   std::unique_ptr<hal::PosixFileSink> tail_archive;
-  std::string recovery_note;  // what start-up recovery did, for the log (empty: nothing)
+  // JOURNAL.ckpt: read at start when present, replaced by each new checkpoint (only
+  // when it is a checkpoint this program wrote).
+  std::unique_ptr<hal::PosixFileStorage> checkpoint_in;
+  std::unique_ptr<hal::PosixFileSink> checkpoint_out;
+  // What start-up recovery did, for the log: a notice (checkpoint restored) or a
+  // warning (torn tail cut, checkpoint ignored) each.
+  struct Note {
+    bool warning = false;
+    std::string text;
+  };
+  std::vector<Note> recovery_notes;
   std::filesystem::path mesh_path;  // as opened (resolved against config_dir)
   std::unique_ptr<meshio::MeshBuffer> model;
   std::unique_ptr<WorkMemory> work;

@@ -34,6 +34,14 @@ void log_station_event(hal::Logger& log, const station::StationEvent& e, int sto
                    e.sequence, static_cast<unsigned long long>(e.value), t);
       }
       break;
+    case K::checkpoint_written:
+      log.info("journal", "checkpoint of %u records written (%llu bytes) [t=%.3f s]", e.sequence,
+               static_cast<unsigned long long>(e.value), t);
+      break;
+    case K::checkpoint_failed:
+      log.warning("journal", "checkpoint not written (%s); the previous one stays [t=%.3f s]",
+                  e.status.name(), t);
+      break;
     case K::tracker_streaming:
       log.notice("tracker", "streaming (start-up #%llu) [t=%.3f s]",
                  static_cast<unsigned long long>(e.value), t);

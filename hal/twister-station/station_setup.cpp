@@ -29,6 +29,7 @@ hal::Expected<station::StationConfig> make_station_setup(const StationConfig& co
   c.conversion.units = proto.units;
   c.conversion.format = proto.format;
   c.pose_stale_us = std::max<std::int64_t>(200'000, c.session.silence_timeout_us / 2);
+  c.checkpoint_interval = config.station.checkpoint_interval;
   c.sculpt.debounce.interval_us.fill(static_cast<ports::TimestampUs>(config.buttons.debounce_ms) *
                                      1000);
   if (stylus) {

@@ -110,7 +110,7 @@ Result<ScanItem> JournalScanner::next() {
   return item;
 }
 
-Result<JournalSurvey> survey_journal(ports::Storage& storage) {
+Result<JournalSurvey> survey_journal(ports::Storage& storage, std::uint64_t probe) {
   JournalScanner scanner(storage);
   TWISTER_TRY(scanner.open());
   JournalSurvey s;
@@ -126,6 +126,10 @@ Result<JournalSurvey> survey_journal(ports::Storage& storage) {
       continue;
     }
     if (s.problem == TailProblem::none) {
+      if (item->offset == probe) {
+        s.probe_is_boundary = true;
+        s.probe_records = s.records;
+      }
       ++s.records;
       s.good_end = item->offset + item->bytes;
       s.has_records = true;
@@ -134,6 +138,10 @@ Result<JournalSurvey> survey_journal(ports::Storage& storage) {
       if (s.later_records == 0) s.first_later_offset = item->offset;
       ++s.later_records;
     }
+  }
+  if (probe == s.good_end && s.good_end >= kFileHeaderBytes) {
+    s.probe_is_boundary = true;
+    s.probe_records = s.records;
   }
   return s;
 }

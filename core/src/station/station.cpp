@@ -24,7 +24,8 @@ Station::Station(ports::ByteStream& tracker, ports::ButtonSource& buttons, ports
       config_(config),
       session_(tracker, clock, config.session),
       writer_(storage),
-      sculpt_(config.sculpt, mesh, work, &writer_) {}
+      sculpt_(config.sculpt, mesh, work, &writer_),
+      checkpoint_(files.checkpoint_out) {}
 
 bool Station::hand_valid(std::uint8_t hand, ports::TimestampUs now_us) const {
   const Hand& h = hands_[hand];
@@ -111,6 +112,7 @@ Status Station::poll() {
   const input::SessionEvents events = sculpt_.step(now_us);
   counters_.session_events_dropped += events.dropped();
   for (const input::SessionEvent& e : events.items()) report(e, now_us);
+  checkpoint_step();
   return ok_status();
 }
 
@@ -172,6 +174,7 @@ void Station::stop() {
     push_event({StationEventKind::stroke_cancelled, e.hand, 0,
                 static_cast<std::uint64_t>(input::Reason::none), ok_status(), now_us});
   }
+  final_checkpoint();
 }
 
 Status Station::flush() { return storage_.sync(); }

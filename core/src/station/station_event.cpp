@@ -24,6 +24,10 @@ const char* station_event_kind_name(StationEventKind kind) {
       return "button_source_error";
     case StationEventKind::stroke_not_saved:
       return "stroke_not_saved";
+    case StationEventKind::checkpoint_written:
+      return "checkpoint_written";
+    case StationEventKind::checkpoint_failed:
+      return "checkpoint_failed";
   }
   return "unknown";
 }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 
+#include "twister/input/session_checkpoint.hpp"
 #include "twister/journal/journal_reader.hpp"
 #include "twister/station/station.hpp"
 
@@ -38,7 +39,14 @@ Status Station::start() {
     return StatusCode::failed_precondition;
   }
   recovery_ = {};
-  auto survey = journal::survey_journal(storage_);
+  base_checksum_ = sculpt_.mesh().checksum();
+  // The checkpoint's anchor is checked against the journal in the same scan.
+  Result<input::CheckpointHeader> header = StatusCode::unavailable;
+  if (files_.checkpoint_in != nullptr) header = input::read_checkpoint_header(*files_.checkpoint_in);
+  if (files_.checkpoint_in != nullptr && !header.ok()) {
+    recovery_.checkpoint = JournalRecovery::Checkpoint::damaged;
+  }
+  auto survey = journal::survey_journal(storage_, header.ok() ? header->journal_offset : 0);
   if (!survey.ok()) {
     recovery_.outcome = survey.status().code() == StatusCode::data_loss ? O::not_a_journal
                                                                          : O::io_error;
@@ -58,6 +66,15 @@ Status Station::start() {
     recovery_.outcome = s.code() == StatusCode::data_loss ? O::not_a_journal : O::io_error;
     return s;
   }
+  if (header.ok()) {
+    if (const Status s = use_checkpoint(*header, *survey); !s.ok()) {
+      recovery_.outcome = O::io_error;
+      return s;
+    }
+    if (recovery_.checkpoint == JournalRecovery::Checkpoint::used) {
+      TWISTER_TRY(reader.seek(header->journal_offset));
+    }
+  }
   TWISTER_TRY(replay_journal(reader));
   // A torn tail (power cut mid-append) is cut so new records follow the last good one.
   if (survey->torn_tail()) {
@@ -76,10 +93,65 @@ Status Station::start() {
     return opened;
   }
   records_at_start_ = survey->records;
+  records_at_checkpoint_ = recovery_.checkpoint_records;
   recovery_.outcome = O::ok;
   started_ = true;
-  push_event({StationEventKind::journal_recovered, 0, static_cast<std::uint32_t>(recovery_.replayed),
+  push_event({StationEventKind::journal_recovered, 0, static_cast<std::uint32_t>(survey->records),
               recovery_.tail_cut, ok_status(), clock_.now_us()});
+  return ok_status();
+}
+
+const char* checkpoint_use_name(JournalRecovery::Checkpoint use) {
+  using C = JournalRecovery::Checkpoint;
+  switch (use) {
+    case C::none:
+      return "none";
+    case C::used:
+      return "used";
+    case C::damaged:
+      return "damaged";
+    case C::other_model:
+      return "made from another model or history size";
+    case C::other_journal:
+      return "made for another journal (or a longer one)";
+  }
+  return "unknown";
+}
+
+Status Station::use_checkpoint(const input::CheckpointHeader& h,
+                               const journal::JournalSurvey& survey) {
+  using C = JournalRecovery::Checkpoint;
+  ports::Storage& file = *files_.checkpoint_in;
+  const input::UndoHistory& history = sculpt_.history();
+  if (h.base_checksum != base_checksum_ || h.change_capacity != history.change_capacity() ||
+      h.entry_capacity != history.entry_capacity()) {
+    recovery_.checkpoint = C::other_model;
+    return ok_status();
+  }
+  // Its anchor: a record boundary of the good prefix, after exactly its records, and
+  // the record before it carries the CRC it names.
+  bool anchored = survey.probe_is_boundary && survey.probe_records == h.journal_records;
+  if (anchored && h.journal_records > 0) {
+    std::array<std::byte, journal::kRecordCrcBytes> crc{};
+    const auto n = storage_.read_at(h.journal_offset - crc.size(), crc);
+    anchored = n.ok() && *n == crc.size() &&
+               static_cast<std::uint32_t>(crc[0]) + (static_cast<std::uint32_t>(crc[1]) << 8) +
+                       (static_cast<std::uint32_t>(crc[2]) << 16) +
+                       (static_cast<std::uint32_t>(crc[3]) << 24) ==
+                   h.last_record_crc;
+  }
+  if (!anchored) {
+    recovery_.checkpoint = C::other_journal;
+    return ok_status();
+  }
+  if (!input::verify_checkpoint(file, h, sculpt_).ok()) {
+    recovery_.checkpoint = C::damaged;
+    return ok_status();
+  }
+  // Verified: from here a failure leaves the model half written, so start-up fails.
+  TWISTER_TRY(input::restore_checkpoint(file, h, sculpt_));
+  recovery_.checkpoint = C::used;
+  recovery_.checkpoint_records = h.journal_records;
   return ok_status();
 }
 
@@ -95,7 +167,7 @@ Status Station::replay_journal(journal::JournalReader& reader) {
     }
     if (const Status s = sculpt_.apply_record(*record); !s.ok()) {
       recovery_.outcome = JournalRecovery::Outcome::does_not_fit;
-      recovery_.record_index = recovery_.replayed;
+      recovery_.record_index = recovery_.checkpoint_records + recovery_.replayed;
       recovery_.record_sequence = record->sequence;
       recovery_.record_status = s;
       return s;

@@ -186,6 +186,7 @@ void read_station(ConfigReader& root, StationConfig& cfg) {
   s.string("mesh", s.present(), cfg.station.mesh);
   read_u(s, "spare_vertices", false, 0, 4'000'000, cfg.station.spare_vertices);
   read_u(s, "loop_timeout_ms", false, 1, 1000, cfg.station.loop_timeout_ms);
+  read_u(s, "checkpoint_interval", false, 0, 1'000'000, cfg.station.checkpoint_interval);
   s.finish();
 }
 

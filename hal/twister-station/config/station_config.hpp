@@ -87,6 +87,7 @@ struct StationSection {
   std::string mesh;                    // initial model (OBJ, metres); relative = to the config file
   std::uint32_t spare_vertices = 0;    // extra mesh capacity beyond the OBJ's vertices
   std::uint32_t loop_timeout_ms = 10;  // poll() timeout of the event loop
+  std::uint32_t checkpoint_interval = 256;  // journal records between checkpoints (0: at stop)
 };
 
 struct SystemdConfig {

@@ -103,5 +103,74 @@ TEST(StationRecovery, WhenTheTailCannotBeKeptNothingIsCut) {
   EXPECT_EQ(rig.storage.bytes().size(), size);
 }
 
+// A checkpoint the station wrote at stop, for the journal as it stands.
+std::vector<std::byte> checkpoint_of(Rig& rig) {
+  test::FakeFileSink out;
+  EXPECT_TRUE(rig.station({nullptr, nullptr, &out}).start().ok());
+  rig.core->stop();
+  EXPECT_EQ(rig.core->counters().checkpoints_written, 1u);
+  return {out.bytes().begin(), out.bytes().end()};
+}
+
+JournalRecovery::Checkpoint restart_with(Rig& rig, const std::vector<std::byte>& checkpoint) {
+  test::FakeStorage in;
+  in.load(checkpoint);
+  EXPECT_TRUE(rig.station({nullptr, &in, nullptr}).start().ok());
+  return rig.core->recovery().checkpoint;
+}
+
+TEST(StationRecovery, ACheckpointIsUsedOnlyForItsJournalAndModel) {
+  using C = JournalRecovery::Checkpoint;
+  Rig rig;
+  rig.write_moves(5);
+  const auto checkpoint = checkpoint_of(rig);
+  const math::Frame pose = rig.core->sculpt().object_pose();
+  EXPECT_EQ(restart_with(rig, checkpoint), C::used);
+  EXPECT_EQ(rig.core->recovery().checkpoint_records, 5u);
+  EXPECT_EQ(rig.core->recovery().replayed, 0u);
+  EXPECT_EQ(rig.core->sculpt().object_pose().origin, pose.origin);
+  EXPECT_EQ(rig.core->journal_records(), 5u);
+  EXPECT_EQ(rig.core->sculpt().next_sequence(), 5u);
+
+  // More records after it: restored, then those replayed.
+  Rig longer;
+  longer.write_moves(8);
+  EXPECT_EQ(restart_with(longer, checkpoint), C::used);
+  EXPECT_EQ(longer.core->recovery().replayed, 3u);
+  EXPECT_EQ(longer.core->sculpt().next_sequence(), 8u);
+
+  // Another journal of the same length (other records), a shorter one, another model,
+  // a damaged checkpoint: ignored, everything replayed.
+  Rig other;
+  other.write_moves(6);
+  other.storage = test::FakeStorage();
+  {
+    journal::JournalWriter w(other.storage);
+    ASSERT_TRUE(w.open().ok());
+    for (std::uint32_t i = 0; i < 5; ++i) {
+      journal::JournalRecord r;
+      r.type = journal::RecordType::object_move;
+      r.sequence = i;
+      r.move.object_after.origin_m = {0.0, 0.2 * i, 0};
+      ASSERT_TRUE(w.append(r).ok());
+    }
+  }
+  EXPECT_EQ(restart_with(other, checkpoint), C::other_journal);
+  EXPECT_EQ(other.core->recovery().replayed, 5u);
+  Rig shorter;
+  shorter.write_moves(4);
+  EXPECT_EQ(restart_with(shorter, checkpoint), C::other_journal);
+  Rig moved_model;
+  moved_model.write_moves(5);
+  moved_model.mesh.set_position(3, {9, 9, 9});
+  EXPECT_EQ(restart_with(moved_model, checkpoint), C::other_model);
+  Rig damaged;
+  damaged.write_moves(5);
+  auto flipped = checkpoint;
+  flipped[flipped.size() / 2] ^= std::byte{1};
+  EXPECT_EQ(restart_with(damaged, flipped), C::damaged);
+  EXPECT_EQ(damaged.core->sculpt().object_pose().origin, pose.origin);  // by full replay
+}
+
 }  // namespace
 }  // namespace twister::station

@@ -127,6 +127,16 @@ class SculptSession {
   std::uint32_t next_sequence() const { return history_.next_sequence(); }
   const UndoHistory& history() const { return history_.undo_history(); }
 
+  // For SessionCheckpoint's restore only: the state a checkpoint holds (mesh
+  // positions, undo history, object pose, next sequence), as parts to write into.
+  struct RestoreTarget {
+    mesh::Mesh& mesh;
+    UndoHistory& history;
+    SessionPoses& poses;
+    SessionHistory& commits;
+  };
+  RestoreTarget restore_target() { return {mesh_.mesh(), history_.restorable(), poses_, history_}; }
+
  private:
   void apply_action(const Action& action, SessionEvents& out);
   void commit_move(const Action& action, SessionEvents& out);

@@ -64,6 +64,8 @@ class SessionHistory final : public StrokeCommitSink {
 
   std::uint32_t next_sequence() const { return next_sequence_; }
   const UndoHistory& undo_history() const { return history_; }
+  // The history, to restore a checkpoint into (SessionCheckpoint only).
+  UndoHistory& restorable() { return history_; }
 
  private:
   CommitOutcome do_commit(const math::WarpPlan& plan, const journal::StrokeRecord& stroke,

@@ -72,6 +72,11 @@ struct JournalSurvey {
   std::uint64_t later_records = 0;          // valid records after the first damage
   std::uint64_t first_later_offset = 0;     // where the first of them starts
 
+  // The probe offset given to survey_journal(): it starts a record of the good prefix
+  // or is its end (a checkpoint's anchor), with probe_records records before it.
+  bool probe_is_boundary = false;
+  std::uint64_t probe_records = 0;
+
   bool clean() const { return problem == TailProblem::none; }
   // Damage with no valid record after it: an interrupted append; cut [good_end, end).
   bool torn_tail() const { return problem != TailProblem::none && later_records == 0; }
@@ -80,6 +85,7 @@ struct JournalSurvey {
 };
 
 // Scans the whole file. data_loss: not a journal; io_error: storage failure.
-Result<JournalSurvey> survey_journal(ports::Storage& storage);
+// `probe`: an offset to check against the good prefix (see probe_is_boundary).
+Result<JournalSurvey> survey_journal(ports::Storage& storage, std::uint64_t probe = 0);
 
 }  // namespace twister::journal

@@ -37,6 +37,9 @@ class JournalWriter {
   std::uint64_t size() const { return size_; }
   // Records appended (and synced) since open().
   std::uint64_t appended() const { return appended_; }
+  // The CRC field of the last record in the file (0 when there is none): with size()
+  // it pins a position in this journal (a checkpoint's anchor).
+  std::uint32_t last_crc() const { return last_crc_; }
 
  private:
   ports::Storage& storage_;
@@ -44,6 +47,7 @@ class JournalWriter {
   bool broken_ = false;
   std::uint64_t size_ = 0;
   std::uint64_t appended_ = 0;
+  std::uint32_t last_crc_ = 0;
   std::array<std::byte, kMaxRecordBytes> buffer_{};
 };
 

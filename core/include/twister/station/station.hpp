@@ -23,6 +23,7 @@
 
 #include "twister/base/result.hpp"
 #include "twister/input/sculpt_session.hpp"
+#include "twister/input/session_checkpoint.hpp"
 #include "twister/journal/journal_scanner.hpp"
 #include "twister/journal/journal_writer.hpp"
 #include "twister/mesh/mesh.hpp"
@@ -50,6 +51,11 @@ struct StationConfig {
   std::array<std::int8_t, tracker::kMaxStations> stylus_line{-1, -1, -1, -1};
   // Debounce, button map, interaction timing, warp method.
   input::SculptSessionConfig sculpt{};
+  // A checkpoint is written once this many journal records were added since the last
+  // one (and at stop); 0: only at stop. Written a chunk per poll(), while the model
+  // stays unchanged (a commit meanwhile starts it over later).
+  std::uint32_t checkpoint_interval = 256;
+  std::size_t checkpoint_bytes_per_poll = std::size_t{256} << 10;
 };
 
 struct StationCounters {
@@ -66,6 +72,9 @@ struct StationCounters {
   std::uint64_t refused = 0;
   std::uint64_t session_events_dropped = 0;
   std::uint64_t journal_errors = 0;
+  std::uint64_t checkpoints_written = 0;
+  std::uint64_t checkpoints_failed = 0;   // the sink failed (the previous one stays)
+  std::uint64_t checkpoints_restarted = 0;  // the model changed while one was written
   std::uint64_t events_dropped = 0;  // event queue full (the log is behind)
 };
 
@@ -74,6 +83,11 @@ struct StationFiles {
   // Receives the bytes of a torn journal tail before start() cuts it (a new file,
   // never an existing one). Null: the tail is cut without a copy.
   ports::FileSink* tail_archive = nullptr;
+  // The last checkpoint, read by start() (null: none). Ignored when it does not fit
+  // the journal or the model (JournalRecovery::checkpoint says why).
+  ports::Storage* checkpoint_in = nullptr;
+  // Where checkpoints go (null: none are written).
+  ports::FileSink* checkpoint_out = nullptr;
 };
 
 // What start() found in the journal (for the start-up log and its error messages).
@@ -92,11 +106,21 @@ struct JournalRecovery {
   std::uint64_t replayed = 0;      // records applied by start()
   std::uint64_t tail_cut = 0;      // bytes of a torn tail cut (kept when tail_archive is set)
   bool tail_kept = false;          // they went to the tail archive
+  enum class Checkpoint : std::uint8_t {
+    none,           // no checkpoint file
+    used,           // restored: checkpoint_records came from it, `replayed` after it
+    damaged,        // ignored: not a checkpoint, or its checks (CRC, values) fail
+    other_model,    // ignored: made from another initial model or history size
+    other_journal,  // ignored: its anchor is not a record boundary of this journal
+  };
+  Checkpoint checkpoint = Checkpoint::none;
+  std::uint64_t checkpoint_records = 0;
   std::uint64_t record_index = 0;  // does_not_fit: the record (0-based, in file order)
   std::uint32_t record_sequence = 0;
   Status record_status{};
 };
 const char* recovery_outcome_name(JournalRecovery::Outcome outcome);
+const char* checkpoint_use_name(JournalRecovery::Checkpoint use);
 
 class Station {
  public:
@@ -127,8 +151,9 @@ class Station {
   // cancelled, never committed (the model stays as after the last commit; the sculptor
   // did not release it), an open object move is cancelled (the object goes back).
   // Each cancelled hand counts in strokes_cancelled and is reported as
-  // stroke_cancelled with value input::Reason::none ("station stopping"). Afterwards
-  // poll() is not called again.
+  // stroke_cancelled with value input::Reason::none ("station stopping"). Then a
+  // checkpoint of the final model is written (when the journal grew since the last
+  // one; checkpoint_written / checkpoint_failed). Afterwards poll() is not called again.
   void stop();
 
   // Makes the journal durable (shutdown path); appends already sync each record.
@@ -155,6 +180,12 @@ class Station {
   // start()'s steps (station_start.cpp).
   Status replay_journal(journal::JournalReader& reader);
   Status keep_torn_tail();
+  // Restores files_.checkpoint_in when it fits the survey's journal and the model.
+  Status use_checkpoint(const input::CheckpointHeader& header, const journal::JournalSurvey& survey);
+  // Checkpoints (station_checkpoint.cpp): one chunk per poll(); the final one at stop().
+  void checkpoint_step();
+  void final_checkpoint();
+  Status begin_checkpoint();
   void drain_tracker(ports::TimestampUs now_us);
   void drain_buttons(ports::TimestampUs now_us);
   void report(const input::SessionEvent& event, ports::TimestampUs now_us);
@@ -173,6 +204,9 @@ class Station {
   std::array<bool, tracker::kMaxStations> stylus_down_{};
   bool started_ = false;
   std::uint64_t records_at_start_ = 0;
+  std::uint64_t base_checksum_ = 0;           // the initial model's, before any record
+  std::uint64_t records_at_checkpoint_ = 0;   // records the last checkpoint holds
+  input::CheckpointWriter checkpoint_;
   bool buttons_failed_ = false;
   bool was_streaming_ = false;
   StationCounters counters_{};

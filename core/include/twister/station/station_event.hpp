@@ -24,6 +24,8 @@ enum class StationEventKind : std::uint8_t {
                         // its record could not be made durable (status, e.g. io_error
                         // for a full disk); the model is back at the last saved record.
                         // value: input::Reason (released: the hand's grab ended)
+  checkpoint_written,   // a checkpoint holding the first `sequence` records; value: bytes
+  checkpoint_failed,    // writing a checkpoint failed (status); the previous one stays
 };
 
 const char* station_event_kind_name(StationEventKind kind);
