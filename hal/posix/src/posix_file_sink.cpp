@@ -129,7 +129,7 @@ Status PosixFileSink::link_new_name() {
   // link(2) never replaces: EEXIST sends us to the next name.
   std::array<char, 64> proc{};
   std::snprintf(proc.data(), proc.size(), "/proc/self/fd/%d", fd_);
-  for (int suffix = 0; suffix < 1000; ++suffix) {
+  for (int suffix = 0; suffix < 1000000; ++suffix) {
     if (suffix == 0) {
       std::snprintf(committed_path_.data(), committed_path_.size(), "%s", config_.path.c_str());
     } else {
