@@ -94,23 +94,6 @@ void open_checkpoint_files(StationParts& parts, const std::string& journal) {
 
 }  // namespace
 
-WorkMemory::WorkMemory(std::size_t vertex_capacity)
-    : live_x_(vertex_capacity),
-      live_y_(vertex_capacity),
-      live_z_(vertex_capacity),
-      weights1_(vertex_capacity),
-      weights2_(vertex_capacity),
-      plan_indices_(vertex_capacity),
-      undo_changes_(input::kDefaultUndoChanges),
-      undo_entries_(input::kDefaultUndoEntries) {}
-
-input::SculptStorage WorkMemory::storage() {
-  return input::SculptStorage{
-      live_x_,       live_y_,
-      live_z_,       math::WarpPlanStorage{plan_indices_, weights1_, weights2_},
-      undo_changes_, undo_entries_};
-}
-
 hal::Expected<std::unique_ptr<meshio::MeshBuffer>> load_station_mesh(
     const std::filesystem::path& path, std::size_t spare_vertices) {
   meshio::ObjOptions options;

@@ -15,6 +15,7 @@
 #include "backend_factory.hpp"
 #include "config/station_config.hpp"
 #include "display_link.hpp"
+#include "station_memory.hpp"
 #include "twister/hal/expected.hpp"
 #include "twister/hal/posix_file_sink.hpp"
 #include "twister/hal/posix_file_storage.hpp"
@@ -27,19 +28,6 @@ namespace twister::station_app {
 struct AssemblyOptions {
   std::filesystem::path config_dir;  // a relative station.mesh is relative to it
   std::string link_address;          // --link; empty: no display link
-};
-
-// The SculptSession's working memory for a mesh of `vertex_capacity` vertices.
-class WorkMemory {
- public:
-  explicit WorkMemory(std::size_t vertex_capacity);
-  input::SculptStorage storage();
-
- private:
-  std::vector<float> live_x_, live_y_, live_z_, weights1_, weights2_;
-  std::vector<std::uint32_t> plan_indices_;
-  std::vector<input::VertexChange> undo_changes_;
-  std::vector<input::UndoEntry> undo_entries_;
 };
 
 struct StationParts {
