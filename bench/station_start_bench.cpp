@@ -84,10 +84,12 @@ void prepare() {
   const std::vector<std::byte> bytes = journal_bytes();
   for (const char* name : {"full.twj", "checkpointed.twj"}) {
     std::ofstream(folder() / name, std::ios::binary)
-        .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+        .write(reinterpret_cast<const char*>(bytes.data()),
+               static_cast<std::streamsize>(bytes.size()));
   }
   std::ofstream(folder() / "empty.twj", std::ios::binary)
-      .write(reinterpret_cast<const char*>(journal::kFileHeader.data()), journal::kFileHeader.size());
+      .write(reinterpret_cast<const char*>(journal::kFileHeader.data()),
+             journal::kFileHeader.size());
   auto parts = station_app::assemble_station(config_for((folder() / "checkpointed.twj").string()),
                                              {folder(), ""});
   if (!parts) {

@@ -63,8 +63,8 @@ bool ObjReader::check_numbers(Words& words, std::string_view keyword, float* xyz
     if (++count > 7) break;
   }
   const bool vertex = keyword == "v";
-  const bool ok = vertex ? (count == 3 || count == 4 || count == 6 || count == 7)
-                         : (count >= 1 && count <= 3);
+  const bool ok =
+      vertex ? (count == 3 || count == 4 || count == 6 || count == 7) : (count >= 1 && count <= 3);
   if (!ok) {
     problem_ = vertex ? "a vertex needs x y z (and optionally w, or r g b)"
                       : std::string(keyword) + " needs 1 to 3 numbers";
@@ -85,9 +85,9 @@ bool ObjReader::element(std::string_view text, std::int64_t defined, std::int64_
   }
   constexpr std::int64_t kMax = std::numeric_limits<std::uint32_t>::max();
   if (ec == std::errc::result_out_of_range || value == 0 || value > kMax || value < -kMax) {
-    problem_ = std::string(what) + " index " + std::string(text.substr(0, 40)) +
-               (value == 0 && ec == std::errc() ? " is 0 (indices start at 1)"
-                                                : " is beyond 32 bits");
+    problem_ =
+        std::string(what) + " index " + std::string(text.substr(0, 40)) +
+        (value == 0 && ec == std::errc() ? " is 0 (indices start at 1)" : " is beyond 32 bits");
     return false;
   }
   // Relative indices count back from the elements defined so far; absolute ones may
@@ -103,9 +103,9 @@ bool ObjReader::element(std::string_view text, std::int64_t defined, std::int64_
 }
 
 bool ObjReader::reference(std::string_view word, std::uint32_t& vertex) {
-  constexpr auto npos = std::string_view::npos;
+  constexpr auto kNpos = std::string_view::npos;
   const std::size_t s1 = word.find('/');
-  const std::size_t s2 = s1 == npos ? npos : word.find('/', s1 + 1);
+  const std::size_t s2 = s1 == kNpos ? kNpos : word.find('/', s1 + 1);
   // Before the count is known, positive indices are checked against the whole file
   // in the next pass.
   const std::int64_t any = std::numeric_limits<std::int64_t>::max();
@@ -114,10 +114,10 @@ bool ObjReader::reference(std::string_view word, std::uint32_t& vertex) {
     return false;
   }
   vertex = static_cast<std::uint32_t>(index);
-  if (s1 == npos) return true;
-  const std::string_view vt = word.substr(s1 + 1, s2 == npos ? npos : s2 - s1 - 1);
-  const std::string_view vn = s2 == npos ? std::string_view{} : word.substr(s2 + 1);
-  if ((s2 == npos && vt.empty()) || (s2 != npos && vn.empty())) {
+  if (s1 == kNpos) return true;
+  const std::string_view vt = word.substr(s1 + 1, s2 == kNpos ? kNpos : s2 - s1 - 1);
+  const std::string_view vn = s2 == kNpos ? std::string_view{} : word.substr(s2 + 1);
+  if ((s2 == kNpos && vt.empty()) || (s2 != kNpos && vn.empty())) {
     problem_ = "face reference '" + std::string(word.substr(0, 40)) + "' is incomplete";
     return false;
   }

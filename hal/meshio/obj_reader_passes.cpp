@@ -47,7 +47,7 @@ bool FileLines::next(std::string_view& line) {
              std::to_string(kBufferBytes) + " bytes";
     return false;
   }
-  if (begin_ == end_) return false;  // the end
+  if (begin_ == end_) return false;                          // the end
   line = trim_cr({buffer_.data() + begin_, end_ - begin_});  // a last line without '\n'
   begin_ = end_;
   ++line_number_;
@@ -129,8 +129,8 @@ bool ObjReader::add_polygon(mesh::Mesh& mesh) {
   for (std::size_t i = 0; i < n; ++i) {
     const glm::dvec3 a(mesh.position(polygon_[i]));
     const glm::dvec3 b(mesh.position(polygon_[(i + 1) % n]));
-    normal += glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x),
-                         (a.x - b.x) * (a.y + b.y));
+    normal +=
+        glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
   }
   const double area = glm::length(normal);
   bool convex = area > 0.0 && std::isfinite(area);
@@ -203,10 +203,12 @@ bool ObjReader::fill_pass(mesh::Mesh& mesh, bool faces) {
 
 hal::Expected<ObjMesh> ObjReader::read() {
   if (!count_pass()) return error();
-  if (total_.v == 0) return hal::make_error(StatusCode::invalid_argument, "the file has no vertices");
+  if (total_.v == 0)
+    return hal::make_error(StatusCode::invalid_argument, "the file has no vertices");
   ObjMesh out;
-  out.buffer = std::make_unique<MeshBuffer>(static_cast<std::size_t>(total_.v) + options_.spare_vertices,
-                                            triangles_ + options_.spare_triangles);
+  out.buffer =
+      std::make_unique<MeshBuffer>(static_cast<std::size_t>(total_.v) + options_.spare_vertices,
+                                   triangles_ + options_.spare_triangles);
   // Faces may name vertices defined after them: positions first, then the faces.
   polygon_.reserve(options_.max_polygon);
   if (!fill_pass(out.buffer->mesh(), false) || !fill_pass(out.buffer->mesh(), true)) {
@@ -228,8 +230,8 @@ hal::Expected<ObjMesh> load_obj(const std::filesystem::path& path, const ObjOpti
   // O_NONBLOCK: a FIFO must not block the open; only a regular file is read.
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) {
-    return hal::make_error(StatusCode::io_error, "cannot open " + path.string() + ": " +
-                                                     std::strerror(errno));
+    return hal::make_error(StatusCode::io_error,
+                           "cannot open " + path.string() + ": " + std::strerror(errno));
   }
   struct stat st {};
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {

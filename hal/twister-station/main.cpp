@@ -1,16 +1,19 @@
 // twister-station: the composition root. Reads station.toml, assembles the
 // backends, the journal, the model and the core once (the only place that
 // allocates), then hands over to StationLoop (poll(2) on the backends' descriptors
-// and a signalfd; Station::poll() each pass; SIGINT/SIGTERM end it cleanly with the
-// journal synced; optional sd_notify READY / WATCHDOG / STOPPING).
+// and a signalfd; Station::poll() each pass; SIGINT/SIGTERM/SIGHUP end it cleanly:
+// an open stroke is cancelled, a final checkpoint, the journal synced, the summary;
+// optional sd_notify READY / WATCHDOG / STOPPING).
 // Logging goes through hal::Logger ("twister-station: ..."; sd-daemon priority
 // prefixes when stderr is the journal): --log-level error|warning|notice|info|debug
 // (default notice; -q = warning). The start and stop summary lines (mesh, running,
 // mesh checksum, stopped) are the run's results and are always printed.
-// Exit codes: 0 clean stop, 1 runtime failure, 2 invalid config or options.
-#include <CLI/CLI.hpp>
+// Exit codes: 0 clean stop with every stroke saved, 1 runtime failure or a stroke not
+// saved, 2 invalid config or options, or a missing file the config names (all checked
+// before the journal is opened).
 #include <pthread.h>
 
+#include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdio>
 #include <exception>

@@ -61,9 +61,9 @@ std::vector<StationParts::Note> recovery_notes(const station::JournalRecovery& r
   std::vector<StationParts::Note> notes;
   if (r.tail_cut > 0) {
     notes.push_back({true, "cut a torn tail of " + std::to_string(r.tail_cut) + " bytes (" +
-                    journal::tail_problem_name(r.survey.problem) + ") at offset " +
-                    std::to_string(r.survey.good_end) + "; its bytes are kept in " +
-                    parts.tail_archive->committed_path()});
+                               journal::tail_problem_name(r.survey.problem) + ") at offset " +
+                               std::to_string(r.survey.good_end) + "; its bytes are kept in " +
+                               parts.tail_archive->committed_path()});
   }
   using C = station::JournalRecovery::Checkpoint;
   if (r.checkpoint == C::used) {
@@ -100,7 +100,8 @@ hal::Expected<std::unique_ptr<meshio::MeshBuffer>> load_station_mesh(
   options.spare_vertices = spare_vertices;
   auto loaded = meshio::load_obj(path, options);
   if (!loaded) {
-    return hal::Error{loaded.error().status, "mesh " + path.string() + ": " + loaded.error().message};
+    return hal::Error{loaded.error().status,
+                      "mesh " + path.string() + ": " + loaded.error().message};
   }
   return std::move(loaded->buffer);
 }

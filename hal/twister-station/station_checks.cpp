@@ -35,7 +35,8 @@ std::vector<std::string> referenced_file_problems(const StationConfig& config,
   const std::filesystem::path journal = config.station.journal;
   struct stat st {};
   if (::stat(journal.c_str(), &st) == 0) {
-    if (!S_ISREG(st.st_mode)) out.push_back("station.journal: " + journal.string() + ": is not a regular file");
+    if (!S_ISREG(st.st_mode))
+      out.push_back("station.journal: " + journal.string() + ": is not a regular file");
   } else {
     const std::filesystem::path dir = journal.has_parent_path() ? journal.parent_path() : ".";
     if (::stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
@@ -56,7 +57,8 @@ std::string link_address_problem(const std::string& address) {
   if (address.rfind("tcp:", 0) == 0) {
     const std::string rest = address.substr(4);
     const auto colon = rest.rfind(':');
-    if (colon == std::string::npos || colon == 0) return "tcp: needs HOST:PORT (tcp:127.0.0.1:7070)";
+    if (colon == std::string::npos || colon == 0)
+      return "tcp: needs HOST:PORT (tcp:127.0.0.1:7070)";
     unsigned port = 0;
     const char* first = rest.data() + colon + 1;
     const char* last = rest.data() + rest.size();

@@ -62,9 +62,8 @@ void log_station_event(hal::Logger& log, const station::StationEvent& e, int sto
         log.notice("stroke", "hand %u cancelled (station stopping); model unchanged [t=%.3f s]",
                    e.hand, t);
       } else {
-        log.info("stroke",
-                 "hand %u cancelled (tracking lost too long); model unchanged [t=%.3f s]", e.hand,
-                 t);
+        log.info("stroke", "hand %u cancelled (tracking lost too long); model unchanged [t=%.3f s]",
+                 e.hand, t);
       }
       break;
     case K::refused:
@@ -72,8 +71,8 @@ void log_station_event(hal::Logger& log, const station::StationEvent& e, int sto
                input::reason_name(static_cast<input::Reason>(e.value)), t);
       break;
     case K::journal_error:
-      log.error("journal", "%s (%s) [t=%.3f s]", e.status.name(),
-                storage_error_text(storage_errno), t);
+      log.error("journal", "%s (%s) [t=%.3f s]", e.status.name(), storage_error_text(storage_errno),
+                t);
       break;
     case K::stroke_not_saved:
       log.error("stroke",

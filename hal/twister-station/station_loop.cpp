@@ -86,9 +86,9 @@ bool StationLoop::signalled() {
   if ((fds_[0].revents & POLLIN) == 0) return false;
   signalfd_siginfo info{};
   if (::read(signal_fd_, &info, sizeof info) != static_cast<ssize_t>(sizeof info)) return false;
-  stop_reason_ = info.ssi_signo == SIGINT    ? StopReason::sigint
-                 : info.ssi_signo == SIGHUP  ? StopReason::sighup
-                                             : StopReason::sigterm;
+  stop_reason_ = info.ssi_signo == SIGINT   ? StopReason::sigint
+                 : info.ssi_signo == SIGHUP ? StopReason::sighup
+                                            : StopReason::sigterm;
   return true;
 }
 

@@ -7,8 +7,8 @@
 //   of failed buttons every reconnect interval; the systemd watchdog.
 // It stops on SIGINT, SIGTERM or SIGHUP (all three end the run the same way:
 // Station::stop()'s policy for an open stroke, then the summary), after the run's
-// length (--duration, else the simulator scenario's), or when the core fails. No pass allocates: the poll set is
-// a std::array, events are logged through hal::Logger (no heap), and every backend,
+// length (--duration, else the simulator scenario's), or when the core fails. No pass allocates:
+// the poll set is a std::array, events are logged through hal::Logger (no heap), and every backend,
 // the core and the link work in memory sized before the loop.
 // One thread; start() blocks SIGINT/SIGTERM/SIGHUP in it (the destructor restores
 // the mask).

@@ -14,12 +14,12 @@ namespace {
 hal::Expected<void> export_ply(const std::string& path, const MeshData& m) {
   std::string out;
   char header[512];
-  const int n = std::snprintf(
-      header, sizeof header,
-      "ply\nformat binary_little_endian 1.0\ncomment twister-bridge export (metres)\n"
-      "element vertex %zu\nproperty float x\nproperty float y\nproperty float z\n"
-      "element face %zu\nproperty list uchar uint vertex_indices\nend_header\n",
-      m.vertex_count(), m.triangle_count());
+  const int n =
+      std::snprintf(header, sizeof header,
+                    "ply\nformat binary_little_endian 1.0\ncomment twister-bridge export (metres)\n"
+                    "element vertex %zu\nproperty float x\nproperty float y\nproperty float z\n"
+                    "element face %zu\nproperty list uchar uint vertex_indices\nend_header\n",
+                    m.vertex_count(), m.triangle_count());
   out.append(header, static_cast<std::size_t>(n));
   auto put = [&out](const void* data, std::size_t bytes) {
     out.append(static_cast<const char*>(data), bytes);

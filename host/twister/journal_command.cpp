@@ -82,27 +82,28 @@ void note_record(Findings& f, const journal::ScanItem& item, ModelSession* model
 }
 
 void print_verdict(const Findings& f, const journal::JournalSurvey& s) {
-  std::printf("%llu records (strokes %llu, moves %llu, undos %llu, redos %llu)",
-              static_cast<unsigned long long>(f.records),
-              static_cast<unsigned long long>(f.by_type[1]),
-              static_cast<unsigned long long>(f.by_type[2]),
-              static_cast<unsigned long long>(f.by_type[3]),
-              static_cast<unsigned long long>(f.by_type[4]));
+  std::printf(
+      "%llu records (strokes %llu, moves %llu, undos %llu, redos %llu)",
+      static_cast<unsigned long long>(f.records), static_cast<unsigned long long>(f.by_type[1]),
+      static_cast<unsigned long long>(f.by_type[2]), static_cast<unsigned long long>(f.by_type[3]),
+      static_cast<unsigned long long>(f.by_type[4]));
   if (f.first_sequence) std::printf(", sequences %u..%u", *f.first_sequence, *f.last_sequence);
   std::printf("\n");
   if (s.clean()) {
     std::printf("verdict: clean\n");
   } else if (s.torn_tail()) {
-    std::printf("verdict: torn tail of %llu bytes at offset %llu (%s): twister-station cuts it "
-                "on start and keeps its bytes in JOURNAL.torn-tail\n",
-                static_cast<unsigned long long>(s.file_size - s.good_end),
-                static_cast<unsigned long long>(s.good_end), journal::tail_problem_name(s.problem));
+    std::printf(
+        "verdict: torn tail of %llu bytes at offset %llu (%s): twister-station cuts it "
+        "on start and keeps its bytes in JOURNAL.torn-tail\n",
+        static_cast<unsigned long long>(s.file_size - s.good_end),
+        static_cast<unsigned long long>(s.good_end), journal::tail_problem_name(s.problem));
   } else {
-    std::printf("verdict: corrupt: damage at offset %llu (%s) with %llu valid record(s) after "
-                "it; twister-station refuses this journal; `twister journal salvage` writes a "
-                "copy that keeps every valid record\n",
-                static_cast<unsigned long long>(s.good_end), journal::tail_problem_name(s.problem),
-                static_cast<unsigned long long>(s.later_records));
+    std::printf(
+        "verdict: corrupt: damage at offset %llu (%s) with %llu valid record(s) after "
+        "it; twister-station refuses this journal; `twister journal salvage` writes a "
+        "copy that keeps every valid record\n",
+        static_cast<unsigned long long>(s.good_end), journal::tail_problem_name(s.problem),
+        static_cast<unsigned long long>(s.later_records));
   }
 }
 
@@ -119,16 +120,16 @@ void run_check(const Options& o) {
   for (auto item = scanner.next(); item.ok(); item = scanner.next()) {
     if (item->kind == journal::ScanItem::Kind::damage) {
       ++f.damaged;
-      std::printf("damage at offset %llu: %llu bytes (%s)\n",
-                  static_cast<unsigned long long>(item->offset),
-                  static_cast<unsigned long long>(item->bytes),
-                  journal::tail_problem_name(item->problem));
+      std::printf(
+          "damage at offset %llu: %llu bytes (%s)\n", static_cast<unsigned long long>(item->offset),
+          static_cast<unsigned long long>(item->bytes), journal::tail_problem_name(item->problem));
       continue;
     }
     note_record(f, *item, model.get());
   }
   const auto survey = journal::survey_journal(storage);
-  if (!survey.ok()) fail(kExitFailure, std::string("reading the journal: ") + survey.status().name());
+  if (!survey.ok())
+    fail(kExitFailure, std::string("reading the journal: ") + survey.status().name());
   print_verdict(f, *survey);
   if (model) {
     std::printf("model %s: %s; mesh checksum %016llx\n", o.mesh.c_str(),
@@ -193,14 +194,14 @@ void run_salvage(const Options& o) {
     fail(kExitFailure, "cannot write " + o.out + ": " + sink.last_error());
   }
   const journal::SalvageReport& r = *report;
-  std::printf("salvaged %llu of %llu valid records into %s; lost %llu damaged range(s) (%llu "
-              "bytes), dropped %llu broken-chain and %llu non-applying record(s)\n",
-              static_cast<unsigned long long>(r.records_kept),
-              static_cast<unsigned long long>(r.records_found), sink.committed_path(),
-              static_cast<unsigned long long>(r.damaged_ranges),
-              static_cast<unsigned long long>(r.damaged_bytes),
-              static_cast<unsigned long long>(r.broken_chain),
-              static_cast<unsigned long long>(r.refused));
+  std::printf(
+      "salvaged %llu of %llu valid records into %s; lost %llu damaged range(s) (%llu "
+      "bytes), dropped %llu broken-chain and %llu non-applying record(s)\n",
+      static_cast<unsigned long long>(r.records_kept),
+      static_cast<unsigned long long>(r.records_found), sink.committed_path(),
+      static_cast<unsigned long long>(r.damaged_ranges),
+      static_cast<unsigned long long>(r.damaged_bytes),
+      static_cast<unsigned long long>(r.broken_chain), static_cast<unsigned long long>(r.refused));
 }
 
 }  // namespace

@@ -15,8 +15,7 @@ meshio::ObjMesh load(const std::string& path) {
     throw Exit{kExitBadInput};
   }
   if (loaded->skipped_lines > 0) {
-    cli_log().warning("", "%s: %zu unsupported lines skipped", path.c_str(),
-                      loaded->skipped_lines);
+    cli_log().warning("", "%s: %zu unsupported lines skipped", path.c_str(), loaded->skipped_lines);
   }
   return std::move(*loaded);
 }
@@ -33,8 +32,8 @@ ModelSession::ModelSession(const std::string& obj_path, std::size_t undo_changes
   entries_.resize(std::max<std::size_t>(undo_entries, 1));
   const input::SculptStorage work{
       lx_, ly_, lz_, math::WarpPlanStorage{plan_indices_, w1_, w2_}, changes_, entries_};
-  session_ = std::make_unique<input::SculptSession>(input::SculptSessionConfig{}, mesh(), work,
-                                                    nullptr);
+  session_ =
+      std::make_unique<input::SculptSession>(input::SculptSessionConfig{}, mesh(), work, nullptr);
 }
 
 }  // namespace twister::cli

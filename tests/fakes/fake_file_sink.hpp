@@ -31,7 +31,8 @@ class FakeFileSinkWithStorage final : public ports::FileSink {
   }
   Status do_write(std::span<const std::byte> src) override {
     if (!open_) return StatusCode::failed_precondition;
-    const std::size_t room = std::min(kCapacity, limit_) - std::min(size_, std::min(kCapacity, limit_));
+    const std::size_t room =
+        std::min(kCapacity, limit_) - std::min(size_, std::min(kCapacity, limit_));
     if (src.size() > room) return StatusCode::io_error;
     std::memcpy(temp_.data() + size_, src.data(), src.size());
     size_ += src.size();

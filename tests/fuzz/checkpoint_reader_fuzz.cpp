@@ -31,10 +31,12 @@ void check(bool ok) {
 void make_grid(mesh::Mesh& m) {
   m.clear();
   for (int j = 0; j < 9; ++j) {
-    for (int i = 0; i < 9; ++i) (void)m.add_vertex({0.25f * float(i) - 1.0f, 0.25f * float(j) - 1.0f, 0.0f});
+    for (int i = 0; i < 9; ++i)
+      (void)m.add_vertex({0.25f * float(i) - 1.0f, 0.25f * float(j) - 1.0f, 0.0f});
   }
   for (std::uint32_t j = 0; j < 8; ++j) {
-    for (std::uint32_t i = 0; i < 8; ++i) (void)m.add_triangle(j * 9 + i, j * 9 + i + 1, j * 9 + i + 9);
+    for (std::uint32_t i = 0; i < 8; ++i)
+      (void)m.add_triangle(j * 9 + i, j * 9 + i + 1, j * 9 + i + 9);
   }
 }
 
@@ -71,7 +73,8 @@ void sculpt(Session& s) {
 
 bool finite(const mesh::Mesh& m) {
   for (std::size_t i = 0; i < m.vertex_count(); ++i) {
-    if (!std::isfinite(m.x()[i]) || !std::isfinite(m.y()[i]) || !std::isfinite(m.z()[i])) return false;
+    if (!std::isfinite(m.x()[i]) || !std::isfinite(m.y()[i]) || !std::isfinite(m.z()[i]))
+      return false;
   }
   return true;
 }

@@ -61,7 +61,8 @@ Result<CheckpointHeader> decode_header(std::span<const std::byte> in) {
   if (std::memcmp(in.data(), kCheckpointMagic.data(), kCheckpointMagic.size()) != 0) {
     return StatusCode::data_loss;
   }
-  ByteReader r(in.subspan(kCheckpointMagic.size(), kCheckpointHeaderBytes - kCheckpointMagic.size()));
+  ByteReader r(
+      in.subspan(kCheckpointMagic.size(), kCheckpointHeaderBytes - kCheckpointMagic.size()));
   if (r.u32() != kCheckpointVersion) return StatusCode::data_loss;
   CheckpointHeader h;
   h.journal_offset = r.u64();

@@ -41,7 +41,7 @@ class Input {
 
  private:
   ports::Storage& storage_;
-  std::array<std::byte, 16 * 1024> window_{};
+  std::array<std::byte, std::size_t{16} * 1024> window_{};
   std::size_t pos_ = 0;
   std::size_t size_ = 0;
   std::uint64_t offset_ = 0;

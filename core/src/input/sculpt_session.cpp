@@ -97,7 +97,8 @@ void SculptSession::commit_move(const Action& a, SessionEvents& out) {
   const Result<ObjectMove> move = mover_.commit();
   if (!move.ok()) return;  // no move open
   const CommitOutcome done = history_.commit_move(a.hand, move->before, move->after);
-  const auto kind = done.status.ok() ? SessionEventKind::move_committed : SessionEventKind::not_saved;
+  const auto kind =
+      done.status.ok() ? SessionEventKind::move_committed : SessionEventKind::not_saved;
   out.push({kind, a.hand, Reason::released, done.status, done.sequence});
 }
 

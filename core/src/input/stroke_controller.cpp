@@ -145,8 +145,8 @@ Status StrokeController::begin_segment(std::uint8_t mask) {
   return plan_.apply(mesh_.rest(), mesh_.live());
 }
 
-SessionEvent StrokeController::commit_segment(std::uint8_t hand, Reason reason,
-                                              SessionEvents& out, Reason reason_if_not_saved) {
+SessionEvent StrokeController::commit_segment(std::uint8_t hand, Reason reason, SessionEvents& out,
+                                              Reason reason_if_not_saved) {
   update_plan().ignore();  // on error the previous update stays in force
   journal::StrokeRecord r;
   r.method = static_cast<std::uint8_t>(plan_.method());

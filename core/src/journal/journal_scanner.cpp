@@ -23,7 +23,8 @@ Status JournalScanner::open() {
   TWISTER_TRY_ASSIGN(file_size_, storage_.size());
   pos_ = 0;
   if (file_size_ > 0) {
-    const auto header = static_cast<std::size_t>(std::min<std::uint64_t>(file_size_, kFileHeaderBytes));
+    const auto header =
+        static_cast<std::size_t>(std::min<std::uint64_t>(file_size_, kFileHeaderBytes));
     if (!load(0, header)) return StatusCode::io_error;
     if (std::memcmp(window_.data(), kFileHeader.data(), header) != 0) return StatusCode::data_loss;
     // A complete header is skipped; a torn one is reported as damage by next().

@@ -42,7 +42,8 @@ Status JournalWriter::append(const JournalRecord& record) {
   if (status.ok()) {
     size_ += n;
     ++appended_;
-    last_crc_ = twister::internal::ByteReader(std::span<const std::byte>(buffer_).subspan(n - 4)).u32();
+    last_crc_ =
+        twister::internal::ByteReader(std::span<const std::byte>(buffer_).subspan(n - 4)).u32();
     return ok_status();
   }
   // Leave no torn record behind a later good one: cut back to the last good end.

@@ -1,6 +1,5 @@
 #include "twister/station/station.hpp"
 
-
 namespace twister::station {
 namespace {
 

@@ -44,8 +44,9 @@ void Station::checkpoint_step() {
   const input::CheckpointHeader& h = checkpoint_.header();
   records_at_checkpoint_ = h.journal_records;
   ++counters_.checkpoints_written;
-  push_event({StationEventKind::checkpoint_written, 0, static_cast<std::uint32_t>(h.journal_records),
-              input::checkpoint_bytes(h), ok_status(), clock_.now_us()});
+  push_event({StationEventKind::checkpoint_written, 0,
+              static_cast<std::uint32_t>(h.journal_records), input::checkpoint_bytes(h),
+              ok_status(), clock_.now_us()});
 }
 
 void Station::final_checkpoint() {
@@ -65,8 +66,9 @@ void Station::final_checkpoint() {
   const input::CheckpointHeader& h = checkpoint_.header();
   records_at_checkpoint_ = h.journal_records;
   ++counters_.checkpoints_written;
-  push_event({StationEventKind::checkpoint_written, 0, static_cast<std::uint32_t>(h.journal_records),
-              input::checkpoint_bytes(h), ok_status(), clock_.now_us()});
+  push_event({StationEventKind::checkpoint_written, 0,
+              static_cast<std::uint32_t>(h.journal_records), input::checkpoint_bytes(h),
+              ok_status(), clock_.now_us()});
 }
 
 }  // namespace twister::station

@@ -42,14 +42,15 @@ Status Station::start() {
   base_checksum_ = sculpt_.mesh().checksum();
   // The checkpoint's anchor is checked against the journal in the same scan.
   Result<input::CheckpointHeader> header = StatusCode::unavailable;
-  if (files_.checkpoint_in != nullptr) header = input::read_checkpoint_header(*files_.checkpoint_in);
+  if (files_.checkpoint_in != nullptr)
+    header = input::read_checkpoint_header(*files_.checkpoint_in);
   if (files_.checkpoint_in != nullptr && !header.ok()) {
     recovery_.checkpoint = JournalRecovery::Checkpoint::damaged;
   }
   auto survey = journal::survey_journal(storage_, header.ok() ? header->journal_offset : 0);
   if (!survey.ok()) {
-    recovery_.outcome = survey.status().code() == StatusCode::data_loss ? O::not_a_journal
-                                                                         : O::io_error;
+    recovery_.outcome =
+        survey.status().code() == StatusCode::data_loss ? O::not_a_journal : O::io_error;
     return survey.status();
   }
   recovery_.survey = *survey;
@@ -188,8 +189,7 @@ Status Station::keep_torn_tail() {
       sink.abort();
       return StatusCode::io_error;
     }
-    const auto bytes = static_cast<std::size_t>(
-        std::min<std::uint64_t>(*n, survey.file_size - at));
+    const auto bytes = static_cast<std::size_t>(std::min<std::uint64_t>(*n, survey.file_size - at));
     if (const Status w = sink.write(std::span(chunk).first(bytes)); !w.ok()) {
       sink.abort();
       return w;

@@ -115,7 +115,8 @@ Status PosixFileSink::check_target() {
   const int fd = ::open(config_.path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
   const ssize_t n = fd >= 0 ? ::read(fd, head.data(), want) : -1;
   if (fd >= 0) ::close(fd);
-  if (n != static_cast<ssize_t>(want) || std::memcmp(head.data(), config_.magic.data(), want) != 0) {
+  if (n != static_cast<ssize_t>(want) ||
+      std::memcmp(head.data(), config_.magic.data(), want) != 0) {
     std::snprintf(last_error_.data(), last_error_.size(),
                   "%s exists and was not written by this program; it is not replaced",
                   config_.path.c_str());
@@ -133,13 +134,12 @@ Status PosixFileSink::link_new_name() {
     if (suffix == 0) {
       std::snprintf(committed_path_.data(), committed_path_.size(), "%s", config_.path.c_str());
     } else {
-      std::snprintf(committed_path_.data(), committed_path_.size(), "%s.%d",
-                    config_.path.c_str(), suffix);
+      std::snprintf(committed_path_.data(), committed_path_.size(), "%s.%d", config_.path.c_str(),
+                    suffix);
     }
-    const int rc = temp_path_[0] != '\0'
-                       ? ::link(temp_path_.data(), committed_path_.data())
-                       : ::linkat(AT_FDCWD, proc.data(), AT_FDCWD, committed_path_.data(),
-                                  AT_SYMLINK_FOLLOW);
+    const int rc = temp_path_[0] != '\0' ? ::link(temp_path_.data(), committed_path_.data())
+                                         : ::linkat(AT_FDCWD, proc.data(), AT_FDCWD,
+                                                    committed_path_.data(), AT_SYMLINK_FOLLOW);
     if (rc == 0) {
       if (temp_path_[0] != '\0') ::unlink(temp_path_.data());
       return ok_status();
@@ -159,8 +159,10 @@ Status PosixFileSink::place() {
     std::snprintf(proc.data(), proc.size(), "/proc/self/fd/%d", fd_);
     for (int attempt = 0; attempt < 100 && temp_path_[0] == '\0'; ++attempt) {
       std::snprintf(temp_path_.data(), temp_path_.size(), "%s.tmp-%ld-%llu", config_.path.c_str(),
-                    static_cast<long>(::getpid()), static_cast<unsigned long long>(temp_counter_++));
-      if (::linkat(AT_FDCWD, proc.data(), AT_FDCWD, temp_path_.data(), AT_SYMLINK_FOLLOW) == 0) break;
+                    static_cast<long>(::getpid()),
+                    static_cast<unsigned long long>(temp_counter_++));
+      if (::linkat(AT_FDCWD, proc.data(), AT_FDCWD, temp_path_.data(), AT_SYMLINK_FOLLOW) == 0)
+        break;
       const int err = errno;
       temp_path_[0] = '\0';
       if (err != EEXIST) return fail(err, "cannot name the file");

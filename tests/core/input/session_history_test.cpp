@@ -138,8 +138,9 @@ TEST(SessionHistory, AnUndoWhoseRecordIsNotDurableIsTakenBack) {
   auto r = std::make_unique<PartsRig<>>();
   build_lift(*r, 0.25);
   SessionEvents out;
-  ASSERT_TRUE(
-      static_cast<StrokeCommitSink&>(r->history).commit(r->plan, one_hand_stroke(), out).status.ok());
+  ASSERT_TRUE(static_cast<StrokeCommitSink&>(r->history)
+                  .commit(r->plan, one_hand_stroke(), out)
+                  .status.ok());
   const auto committed = r->mesh.checksum();
   // Power gone: the undo's record cannot be written, and the partial record cannot be
   // cut off (the writer is broken): the undo is taken back.

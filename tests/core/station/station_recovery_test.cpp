@@ -76,9 +76,9 @@ TEST(StationRecovery, CorruptionIsRefusedAndTheFileStaysByteIdentical) {
 TEST(StationRecovery, ATornTailIsKeptThenCut) {
   Rig rig;
   const auto at = rig.write_moves(3);
-  const std::array<std::byte, 9> torn{std::byte{92}, std::byte{0}, std::byte{0}, std::byte{0},
-                                      std::byte{1},  std::byte{2}, std::byte{0}, std::byte{0},
-                                      std::byte{7}};
+  const std::array<std::byte, 9> torn{std::byte{92}, std::byte{0}, std::byte{0},
+                                      std::byte{0},  std::byte{1}, std::byte{2},
+                                      std::byte{0},  std::byte{0}, std::byte{7}};
   ASSERT_TRUE(rig.storage.append(torn).ok());
   test::FakeFileSink archive;
   ASSERT_TRUE(rig.station({&archive}).start().ok());

@@ -30,9 +30,9 @@ std::string error_of(const std::string& text) {
   return r.error().message;
 }
 
-#define EXPECT_REFUSED(text, words)                                                     \
-  do {                                                                                  \
-    const std::string m = error_of(text);                                               \
+#define EXPECT_REFUSED(text, words)                                                          \
+  do {                                                                                       \
+    const std::string m = error_of(text);                                                    \
     EXPECT_NE(m.find(words), std::string::npos) << "text: " << (text) << "\nmessage: " << m; \
   } while (0)
 

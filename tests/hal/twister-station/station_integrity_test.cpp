@@ -74,7 +74,9 @@ TEST_F(StationIntegrity, ABitFlipInRecord5Of20IsRefusedTheFileIsUntouchedAndSalv
   EXPECT_FALSE(fs::exists(journal + ".torn-tail"));
   // `twister replay` refuses too (exit 2), and salvage keeps the other 19.
   EXPECT_EQ(cli("replay " + journal + " --mesh " TWISTER_DEPLOY_DIR "/sim_sphere.obj --out " +
-                path("o.obj")).exit_code, 2);
+                path("o.obj"))
+                .exit_code,
+            2);
   const RunResult check = cli("journal check " + journal);
   EXPECT_EQ(check.exit_code, 1);
   EXPECT_NE(check.output.find("verdict: corrupt"), std::string::npos) << check.output;
@@ -171,8 +173,7 @@ TEST_F(StationIntegrity, SighupAndSigtermDuringAStrokeCancelItCountItAndPrintThe
     EXPECT_EQ(WEXITSTATUS(status), 0) << log;
     EXPECT_NE(log.find("hand 1 cancelled (station stopping); model unchanged"), std::string::npos)
         << log;
-    EXPECT_NE(log.find(sig == SIGHUP ? "stopped (SIGHUP)" : "stopped (SIGTERM)"),
-              std::string::npos)
+    EXPECT_NE(log.find(sig == SIGHUP ? "stopped (SIGHUP)" : "stopped (SIGTERM)"), std::string::npos)
         << log;
     // The freezes before the signal are committed; the open segment is not.
     const Journal j = read_journal(journal);
@@ -203,9 +204,9 @@ TEST_F(StationIntegrity, OptionAndFileErrorsExitTwoBeforeTheJournalIsTouched) {
   write_file(missing, sim_config(journal, path("no_such.scn")));
   const RunResult check = station("--config " + missing + " --check");
   EXPECT_EQ(check.exit_code, 2) << check.output;
-  EXPECT_NE(check.output.find("tracker.sim.scenario_file: " + path("no_such.scn") +
-                              ": does not exist"),
-            std::string::npos)
+  EXPECT_NE(
+      check.output.find("tracker.sim.scenario_file: " + path("no_such.scn") + ": does not exist"),
+      std::string::npos)
       << check.output;
   EXPECT_EQ(read_file(journal), "not a journal at all");
 }
@@ -227,10 +228,9 @@ TEST_F(StationIntegrity, AFileSizeLimitMidChainLosesNoSavedStrokeAndRestartWorks
   for (const std::size_t limit : {size / 3, size / 2 + 37, 3 * size / 4 + 101}) {
     SCOPED_TRACE(limit);
     const std::string journal = path("limit" + std::to_string(limit) + ".twj");
-    const RunResult r = run_with_file_limit(
-        std::string(TWISTER_STATION_BIN) + " --config " + cfg + " --journal " + journal +
-            " --log-level info",
-        limit);
+    const RunResult r = run_with_file_limit(std::string(TWISTER_STATION_BIN) + " --config " + cfg +
+                                                " --journal " + journal + " --log-level info",
+                                            limit);
     EXPECT_EQ(r.exit_code, 1) << r.output;
     EXPECT_NE(r.output.find("stroke not saved: file size limit reached"), std::string::npos)
         << r.output;

@@ -26,8 +26,8 @@ TEST(StationMemory, TheArenaIsExactlyTheFormula) {
   // The documented sizes of one undo step's parts.
   EXPECT_EQ(sizeof(input::VertexChange), 28u);
   EXPECT_EQ(sizeof(input::UndoEntry), 216u);
-  for (const std::size_t v : {std::size_t{1}, std::size_t{266}, std::size_t{10'000},
-                              std::size_t{1'000'000}}) {
+  for (const std::size_t v :
+       {std::size_t{1}, std::size_t{266}, std::size_t{10'000}, std::size_t{1'000'000}}) {
     const MemoryBudget b = memory_budget(v, 2 * v);
     EXPECT_EQ(b.mesh, 12 * v + 12 * 2 * v);
     EXPECT_EQ(b.live, 12 * v);
@@ -102,8 +102,9 @@ TEST(StationMemory, AMillionVerticesPeakWithinTheBudgetAndUnder256MB) {
   const double peak = station_peak_mb({"--config", cfg});
   const double peak_link =
       station_peak_mb({"--config", cfg, "--link", "unix:" + (dir / "link.sock").string()});
-  std::printf("1M vertices: peak RSS %.1f MB (budget %.1f MB), with --link %.1f MB (budget %.1f MB)\n",
-              peak, budget, peak_link, budget_link);
+  std::printf(
+      "1M vertices: peak RSS %.1f MB (budget %.1f MB), with --link %.1f MB (budget %.1f MB)\n",
+      peak, budget, peak_link, budget_link);
   constexpr double kAllowanceMb = 32.0;  // code, libraries, stack, allocator, I/O buffers
   EXPECT_GT(peak, budget * 0.9);         // the budget is what is really used
   EXPECT_LT(peak, budget + kAllowanceMb);

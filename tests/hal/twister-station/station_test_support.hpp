@@ -122,7 +122,8 @@ inline std::string chain_scenario(int strokes, int freezes) {
 // (virtual time) and its buttons.
 inline std::string sim_config(const std::string& journal, const std::string& scenario_path,
                               const char* time = "virtual") {
-  return std::string("[station]\njournal = \"") + journal + "\"\nmesh = \"" TWISTER_DEPLOY_DIR
+  return std::string("[station]\njournal = \"") + journal +
+         "\"\nmesh = \"" TWISTER_DEPLOY_DIR
          "/sim_sphere.obj\"\n[tracker]\nbackend = \"sim\"\n[tracker.sim]\nscenario_file = \"" +
          scenario_path + "\"\ntime = \"" + time +
          "\"\n[buttons]\nbackend = \"sim\"\n[systemd]\nnotify = false\nwatchdog = false\n";

@@ -104,7 +104,7 @@ class CheckpointWriter {
   int section_ = 0;
   std::uint64_t index_ = 0;
   std::uint32_t crc_ = 0;
-  std::array<std::byte, 16 * 1024> chunk_{};
+  std::array<std::byte, std::size_t{16} * 1024> chunk_{};
 };
 
 // The header of a checkpoint file. data_loss: not a checkpoint (magic, version,

@@ -30,7 +30,8 @@ struct SalvageReport {
 class SalvageObserver {
  public:
   virtual ~SalvageObserver() = default;
-  virtual void damaged(std::uint64_t /*offset*/, std::uint64_t /*bytes*/, TailProblem /*problem*/) {}
+  virtual void damaged(std::uint64_t /*offset*/, std::uint64_t /*bytes*/, TailProblem /*problem*/) {
+  }
   enum class Drop : std::uint8_t { broken_chain, refused };
   virtual void dropped(const ScanItem& /*record*/, Drop /*why*/) {}
 };

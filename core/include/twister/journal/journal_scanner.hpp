@@ -23,8 +23,8 @@ namespace twister::journal {
 struct ScanItem {
   enum class Kind : std::uint8_t { record, damage };
   Kind kind = Kind::record;
-  std::uint64_t offset = 0;  // where the record or the damaged range starts
-  std::uint64_t bytes = 0;   // its length in the file
+  std::uint64_t offset = 0;                 // where the record or the damaged range starts
+  std::uint64_t bytes = 0;                  // its length in the file
   TailProblem problem = TailProblem::none;  // damage: what was wrong at `offset`
   JournalRecord record{};                   // record: the decoded record
 };
@@ -66,7 +66,7 @@ struct JournalSurvey {
   std::uint64_t records = 0;   // valid records before the first damage
   std::uint64_t good_end = 0;  // end of those (0 for an empty file or a torn file header)
   bool has_records = false;
-  std::uint32_t last_sequence = 0;  // of the last of them (when has_records)
+  std::uint32_t last_sequence = 0;          // of the last of them (when has_records)
   TailProblem problem = TailProblem::none;  // the first damage, at good_end
   std::uint64_t damaged_bytes = 0;          // damaged bytes in the whole file
   std::uint64_t later_records = 0;          // valid records after the first damage

@@ -73,9 +73,9 @@ struct StationCounters {
   std::uint64_t session_events_dropped = 0;
   std::uint64_t journal_errors = 0;
   std::uint64_t checkpoints_written = 0;
-  std::uint64_t checkpoints_failed = 0;   // the sink failed (the previous one stays)
+  std::uint64_t checkpoints_failed = 0;     // the sink failed (the previous one stays)
   std::uint64_t checkpoints_restarted = 0;  // the model changed while one was written
-  std::uint64_t events_dropped = 0;  // event queue full (the log is behind)
+  std::uint64_t events_dropped = 0;         // event queue full (the log is behind)
 };
 
 // The station's files besides the journal (all optional).
@@ -103,9 +103,9 @@ struct JournalRecovery {
   };
   Outcome outcome = Outcome::not_started;
   journal::JournalSurvey survey{};
-  std::uint64_t replayed = 0;      // records applied by start()
-  std::uint64_t tail_cut = 0;      // bytes of a torn tail cut (kept when tail_archive is set)
-  bool tail_kept = false;          // they went to the tail archive
+  std::uint64_t replayed = 0;  // records applied by start()
+  std::uint64_t tail_cut = 0;  // bytes of a torn tail cut (kept when tail_archive is set)
+  bool tail_kept = false;      // they went to the tail archive
   enum class Checkpoint : std::uint8_t {
     none,           // no checkpoint file
     used,           // restored: checkpoint_records came from it, `replayed` after it
@@ -181,7 +181,8 @@ class Station {
   Status replay_journal(journal::JournalReader& reader);
   Status keep_torn_tail();
   // Restores files_.checkpoint_in when it fits the survey's journal and the model.
-  Status use_checkpoint(const input::CheckpointHeader& header, const journal::JournalSurvey& survey);
+  Status use_checkpoint(const input::CheckpointHeader& header,
+                        const journal::JournalSurvey& survey);
   // Checkpoints (station_checkpoint.cpp): one chunk per poll(); the final one at stop().
   void checkpoint_step();
   void final_checkpoint();
@@ -204,8 +205,8 @@ class Station {
   std::array<bool, tracker::kMaxStations> stylus_down_{};
   bool started_ = false;
   std::uint64_t records_at_start_ = 0;
-  std::uint64_t base_checksum_ = 0;           // the initial model's, before any record
-  std::uint64_t records_at_checkpoint_ = 0;   // records the last checkpoint holds
+  std::uint64_t base_checksum_ = 0;          // the initial model's, before any record
+  std::uint64_t records_at_checkpoint_ = 0;  // records the last checkpoint holds
   input::CheckpointWriter checkpoint_;
   bool buttons_failed_ = false;
   bool was_streaming_ = false;
