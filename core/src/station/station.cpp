@@ -138,6 +138,7 @@ void Station::report(const input::SessionEvent& e, ports::TimestampUs now_us) {
       break;
     case K::not_saved:
       ++counters_.strokes_not_saved;
+      ++counters_.journal_errors;
       push_event({StationEventKind::stroke_not_saved, e.hand, e.sequence,
                   static_cast<std::uint64_t>(e.reason), e.status, now_us});
       break;

@@ -22,6 +22,7 @@ void Station::checkpoint_step() {
     }
     if (const Status s = begin_checkpoint(); !s.ok()) {
       ++counters_.checkpoints_failed;
+      ++counters_.journal_errors;
       records_at_checkpoint_ = journal_records();  // try again one interval later
       push_event({StationEventKind::checkpoint_failed, 0, 0, 0, s, clock_.now_us()});
       return;
@@ -36,6 +37,7 @@ void Station::checkpoint_step() {
   const auto done = checkpoint_.step(sculpt_, config_.checkpoint_bytes_per_poll);
   if (!done.ok()) {
     ++counters_.checkpoints_failed;
+    ++counters_.journal_errors;
     records_at_checkpoint_ = journal_records();
     push_event({StationEventKind::checkpoint_failed, 0, 0, 0, done.status(), clock_.now_us()});
     return;
@@ -60,6 +62,7 @@ void Station::final_checkpoint() {
   }
   if (!s.ok()) {
     ++counters_.checkpoints_failed;
+    ++counters_.journal_errors;
     push_event({StationEventKind::checkpoint_failed, 0, 0, 0, s, clock_.now_us()});
     return;
   }

@@ -71,7 +71,7 @@ struct StationCounters {
   std::uint64_t strokes_not_saved = 0;
   std::uint64_t refused = 0;
   std::uint64_t session_events_dropped = 0;
-  std::uint64_t journal_errors = 0;
+  std::uint64_t journal_errors = 0;  // failed journal appends and checkpoint writes
   std::uint64_t checkpoints_written = 0;
   std::uint64_t checkpoints_failed = 0;     // the sink failed (the previous one stays)
   std::uint64_t checkpoints_restarted = 0;  // the model changed while one was written
