@@ -1,5 +1,7 @@
 #include "station_log.hpp"
 
+#include <cerrno>
+#include <cstring>
 #include <numbers>
 
 #include "twister/input/interaction_machine.hpp"
@@ -19,6 +21,11 @@ const char* reason_text(std::uint64_t value) {
 
 double degrees(double rad) { return rad * 180.0 / std::numbers::pi; }
 
+// Station::stop() cancels an open stroke with reason none and no error.
+bool station_stopping(const StationEvent& e) {
+  return e.status.ok() && static_cast<input::Reason>(e.value) == input::Reason::none;
+}
+
 const char* method_text(std::uint64_t value) {
   return value < 3 ? math::warp_method_name(static_cast<math::WarpMethod>(value)).data() : "?";
 }
@@ -29,8 +36,8 @@ const char* command_text(std::uint64_t value) {
              : "?";
 }
 
-// Trouble and the station's own life (tracker, journal) first.
-bool log_station_side(const StationEvent& e, ports::LogSink& log) {
+// The journal: recovery, checkpoints, commits that were not saved, failures.
+bool log_journal(const StationEvent& e, ports::LogSink& log, int storage_errno) {
   const LogLevel level = station_event_level(e);
   switch (e.kind) {
     case StationEventKind::journal_recovered:
@@ -41,15 +48,40 @@ bool log_station_side(const StationEvent& e, ports::LogSink& log) {
                   {e.sequence, e.value});
       }
       return true;
+    case StationEventKind::checkpoint_written:
+      log.write(level, "journal", "checkpoint of %u records written (%u bytes)",
+                {e.sequence, e.value});
+      return true;
+    case StationEventKind::checkpoint_failed:
+      log.write(level, "journal", "checkpoint not written (%s); the previous one stays",
+                {e.status.name()});
+      return true;
+    case StationEventKind::journal_error:
+      log.write(level, "journal", "%s (%s)", {e.status.name(), storage_error_text(storage_errno)});
+      return true;
+    case StationEventKind::stroke_not_saved:
+      log.write(level, "stroke",
+                "hand %u: stroke not saved: %s (%s); the model is back at the last saved stroke",
+                {static_cast<unsigned>(e.hand),
+                 e.status.code() == StatusCode::io_error ? storage_error_text(storage_errno)
+                                                         : "the warp could not be applied",
+                 e.status.name()});
+      return true;
+    default:
+      return false;
+  }
+}
+
+// Trouble and the station's own life (tracker, buttons).
+bool log_station_side(const StationEvent& e, ports::LogSink& log) {
+  const LogLevel level = station_event_level(e);
+  switch (e.kind) {
     case StationEventKind::tracker_streaming:
       log.write(level, "tracker", "streaming (start-up #%u)", {e.value});
       return true;
     case StationEventKind::tracker_lost:
       log.write(level, "tracker",
                 "lost (unplugged, silent or garbled); waiting and re-initialising");
-      return true;
-    case StationEventKind::journal_error:
-      log.write(level, "journal", "append failed (%s); stroke not recorded", {e.status.name()});
       return true;
     case StationEventKind::button_source_error:
       log.write(level, "buttons", "device failed (%s); reopening", {e.status.name()});
@@ -70,7 +102,9 @@ void log_strokes(const StationEvent& e, ports::LogSink& log) {
       log.write(level, "stroke", "hand %u committed as journal record %u", {hand, e.sequence});
       return;
     case StationEventKind::stroke_cancelled:
-      if (e.status.ok()) {
+      if (station_stopping(e)) {
+        log.write(level, "stroke", "hand %u cancelled (station stopping); model unchanged", {hand});
+      } else if (e.status.ok()) {
         log.write(level, "stroke", "hand %u cancelled (tracking lost too long); model unchanged",
                   {hand});
       } else {
@@ -105,7 +139,7 @@ void log_strokes(const StationEvent& e, ports::LogSink& log) {
   }
 }
 
-void log_session(const StationEvent& e, ports::LogSink& log) {
+void log_session(const StationEvent& e, ports::LogSink& log, int storage_errno) {
   const LogLevel level = station_event_level(e);
   switch (e.kind) {
     case StationEventKind::radius_set:
@@ -121,8 +155,13 @@ void log_session(const StationEvent& e, ports::LogSink& log) {
       log.write(level, "history", "redo (journal record %u)", {e.sequence});
       return;
     case StationEventKind::command_refused:
-      log.write(level, "history", "%s refused (%s)",
-                {command_text(e.value), reason_text(e.detail)});
+      if (e.status.code() == StatusCode::io_error) {
+        log.write(level, "history", "%s not saved: %s (%s); the model is unchanged",
+                  {command_text(e.value), storage_error_text(storage_errno), e.status.name()});
+      } else {
+        log.write(level, "history", "%s refused (%s)",
+                  {command_text(e.value), reason_text(e.detail)});
+      }
       return;
     default:
       return;
@@ -131,14 +170,34 @@ void log_session(const StationEvent& e, ports::LogSink& log) {
 
 }  // namespace
 
+const char* storage_error_text(int storage_errno) {
+  switch (storage_errno) {
+    case 0:
+      return "i/o failure";
+    case ENOSPC:
+      return "disk full";
+    case EFBIG:
+      return "file size limit reached";
+    case EDQUOT:
+      return "disk quota exceeded";
+    default:
+      return std::strerror(storage_errno);
+  }
+}
+
 LogLevel station_event_level(const StationEvent& e) {
   switch (e.kind) {
     case StationEventKind::journal_error:
+    case StationEventKind::stroke_not_saved:  // the sculptor's work was lost
       return LogLevel::error;
     case StationEventKind::button_source_error:  // reopened by the loop: trouble, not failure
     case StationEventKind::tracker_lost:
-    case StationEventKind::stroke_cancelled:
+    case StationEventKind::checkpoint_failed:  // the previous one stays; start-up replays more
       return LogLevel::warning;
+    case StationEventKind::stroke_cancelled:  // the stop policy is no trouble
+      return station_stopping(e) ? LogLevel::notice : LogLevel::warning;
+    case StationEventKind::command_refused:  // io_error: an undo/redo not saved
+      return e.status.code() == StatusCode::io_error ? LogLevel::error : LogLevel::notice;
     case StationEventKind::journal_recovered:
     case StationEventKind::tracker_streaming:
     case StationEventKind::refused:
@@ -147,10 +206,10 @@ LogLevel station_event_level(const StationEvent& e) {
     case StationEventKind::undone:
     case StationEventKind::redone:
     case StationEventKind::method_changed:
-    case StationEventKind::command_refused:
       return LogLevel::notice;
     case StationEventKind::stroke_begin:
     case StationEventKind::stroke_committed:
+    case StationEventKind::checkpoint_written:
     case StationEventKind::hand_disengaged:
     case StationEventKind::hand_engaged:
     case StationEventKind::turn_limit_left:
@@ -159,10 +218,10 @@ LogLevel station_event_level(const StationEvent& e) {
   return LogLevel::notice;
 }
 
-void log_station_event(const StationEvent& e, ports::LogSink& log) {
-  if (log_station_side(e, log)) return;
+void log_station_event(const StationEvent& e, ports::LogSink& log, int storage_errno) {
+  if (log_journal(e, log, storage_errno) || log_station_side(e, log)) return;
   log_strokes(e, log);
-  log_session(e, log);
+  log_session(e, log, storage_errno);
 }
 
 }  // namespace twister::station_app

@@ -124,6 +124,7 @@ std::string set_stylus(const StationConfig& config, station::StationConfig& c) {
 hal::Expected<station::StationConfig> make_station_setup(const StationConfig& config) {
   station::StationConfig c;
   set_tracker(config, c);
+  c.checkpoint_interval = config.station.checkpoint_interval;
   c.sculpt.debounce.interval_us.fill(static_cast<ports::TimestampUs>(config.buttons.debounce_ms) *
                                      1000);
   std::string error;

@@ -1,5 +1,6 @@
 #include "mesh_command.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <glm/vec3.hpp>
 #include <memory>
@@ -23,7 +24,18 @@ struct Options {
   std::vector<float> center_m{0.0f, 0.0f, 0.0f};  // translation of the whole mesh
 };
 
+// CLI11's number checks let "nan" and "inf" through: every size must be finite.
+void check_finite(const Options& o) {
+  bool finite = std::isfinite(o.size_m);
+  for (const float c : o.center_m) finite = finite && std::isfinite(c);
+  if (!finite) {
+    cli_log().error("", "--size and --center must be finite numbers");
+    throw Exit{kExitBadInput};
+  }
+}
+
 void run_mesh(const Options& o) {
+  check_finite(o);
   const bool grid = o.shape == "grid";
   const std::size_t vertices =
       grid ? meshio::grid_vertices(o.n) : meshio::sphere_vertices(o.n, o.segments);
@@ -41,9 +53,8 @@ void run_mesh(const Options& o) {
   for (std::uint32_t i = 0; i < buffer.mesh().vertex_count(); ++i) {
     buffer.mesh().set_position(i, buffer.mesh().position(i) + center);
   }
-  std::string message;
-  if (!meshio::save_obj(o.out, buffer.mesh(), message).ok()) {
-    cli_log().error("", "%s", message.c_str());
+  if (auto saved = meshio::save_obj(o.out, buffer.mesh()); !saved) {
+    cli_log().error("", "%s", saved.error().message.c_str());
     throw Exit{kExitFailure};
   }
   std::printf("%s: %zu vertices, %zu triangles\n", o.out.c_str(), buffer.mesh().vertex_count(),

@@ -12,8 +12,10 @@
 
 #include "cli_exit.hpp"
 #include "cli_log.hpp"
+#include "model_session.hpp"
 #include "twister/input/sculpt_session.hpp"
 #include "twister/journal/journal_reader.hpp"
+#include "twister/journal/journal_scanner.hpp"
 #include "twister/meshio/obj_file.hpp"
 
 namespace twister::cli {
@@ -74,24 +76,24 @@ void to_world(mesh::Mesh& m, const math::Frame& pose) {
 }
 
 void run_replay(const Options& o) {
-  meshio::ObjLoad loaded = meshio::load_obj(o.mesh_in);
-  if (!loaded.status.ok()) fail(kExitBadInput, o.mesh_in + ": " + loaded.message);
-  if (!loaded.message.empty()) cli_log().warning("", "%s", loaded.message.c_str());
-  mesh::Mesh& mesh = loaded.buffer->mesh();
+  ModelSession model(o.mesh_in, o.undo_changes, o.undo_entries);
+  mesh::Mesh& mesh = model.mesh();
+  input::SculptSession& session = model.session();
 
   ReadOnlyStorage storage(read_file(o.journal));
   journal::JournalReader reader(storage);
   if (!reader.open().ok()) fail(kExitBadInput, "'" + o.journal + "' is not a Twister journal");
   const std::uint64_t total_bytes = storage.size().value_or(0);
-
-  const std::size_t n = mesh.vertex_count();
-  std::vector<float> lx(n), ly(n), lz(n), w1(n), w2(n);
-  std::vector<std::uint32_t> plan_indices(n);
-  std::vector<input::VertexChange> changes(o.undo_changes);
-  std::vector<input::UndoEntry> entries(std::max<std::size_t>(o.undo_entries, 1));
-  input::SculptStorage work{lx,      ly,     lz, math::WarpPlanStorage{plan_indices, w1, w2},
-                            changes, entries};
-  input::SculptSession session(input::SculptSessionConfig{}, mesh, work, nullptr);
+  // A damaged record with valid records after it is corruption, not a torn tail:
+  // replaying up to it would silently drop the later strokes.
+  if (const auto survey = journal::survey_journal(storage); survey.ok() && survey->corrupt()) {
+    fail(kExitBadInput, o.journal + ": damaged record at offset " +
+                            std::to_string(survey->good_end) + " (" +
+                            journal::tail_problem_name(survey->problem) + ") with " +
+                            std::to_string(survey->later_records) +
+                            " valid record(s) after it; nothing written "
+                            "(`twister journal salvage` makes a copy that keeps them)");
+  }
 
   // Progress for long journals: a line per 10% of the file, on stderr (notice).
   const bool show_progress = o.progress || total_bytes > (std::uint64_t{1} << 16);
@@ -125,8 +127,9 @@ void run_replay(const Options& o) {
                       reader.good_end());
   }
   if (o.world) to_world(mesh, session.object_pose());
-  std::string message;
-  if (!meshio::save_obj(o.mesh_out, mesh, message).ok()) fail(kExitFailure, message);
+  if (auto saved = meshio::save_obj(o.mesh_out, mesh); !saved) {
+    fail(kExitFailure, saved.error().message);
+  }
   const input::ReplayStats& st = session.replay_stats();
   const math::Frame& pose = session.object_pose();
   std::printf("replayed %zu records (strokes %zu, moves %zu, undos %zu, redos %zu)\n", applied,

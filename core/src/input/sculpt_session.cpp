@@ -152,8 +152,24 @@ void SculptSession::apply_action(const Action& a, SessionEvents& out) {
 void SculptSession::commit_move(const Action& a, SessionEvents& out) {
   const Result<ObjectMove> move = mover_.commit();
   if (!move.ok()) return;  // no move open
-  const std::uint32_t sequence = history_.commit_move(a.hand, move->before, move->after, out);
-  out.push({SessionEventKind::move_committed, a.hand, Reason::released, ok_status(), sequence});
+  const CommitOutcome done = history_.commit_move(a.hand, move->before, move->after);
+  const auto kind =
+      done.status.ok() ? SessionEventKind::move_committed : SessionEventKind::not_saved;
+  out.push({kind, a.hand, Reason::released, done.status, done.sequence});
+}
+
+SessionEvents SculptSession::cancel_open() {
+  SessionEvents out;
+  for (std::uint8_t h = 0; h < kHandCount; ++h) {
+    if ((strokes_.hand_mask() & (1u << h)) != 0) {
+      strokes_.apply({ActionKind::cancel, h, Reason::none, 0.0f}, out);
+    }
+  }
+  const std::uint8_t mover = mover_.hand();
+  if (mover_.cancel()) {
+    out.push({SessionEventKind::move_cancelled, mover, Reason::none, ok_status(), 0});
+  }
+  return out;
 }
 
 void SculptSession::run_command(const SessionCommand& c, SessionEvents& out) {
@@ -184,13 +200,14 @@ void SculptSession::run_history_command(const SessionCommand& c, SessionEvents& 
   const bool undo = c.kind == SessionCommandKind::undo;
   const std::uint32_t sequence = history_.next_sequence();
   const Status s = step_history(undo ? journal::RecordType::undo : journal::RecordType::redo);
-  if (s.ok() || s.code() == StatusCode::io_error) {
+  if (s.ok()) {
     out.push({undo ? SessionEventKind::undone : SessionEventKind::redone, c.hand, Reason::none,
               ok_status(), sequence});
-    if (!s.ok()) out.push({SessionEventKind::journal_failed, c.hand, Reason::none, s, sequence});
     return;
   }
-  Reason reason = Reason::none;  // out_of_range: the history does not fit the mesh
+  // io_error: its record could not be saved, so the step was taken back (reason none);
+  // out_of_range: the history does not fit the mesh.
+  Reason reason = Reason::none;
   if (busy()) {
     reason = Reason::busy;
   } else if (s.code() == StatusCode::failed_precondition) {
@@ -206,7 +223,7 @@ Status SculptSession::redo() { return step_history(journal::RecordType::redo); }
 Status SculptSession::step_history(journal::RecordType type) {
   if (busy()) return StatusCode::failed_precondition;
   const Status s = history_.commit_history_step(type);
-  // io_error means the step happened and only its record is not durable.
+  // io_error: not saved (the step was taken back); the chain is broken all the same.
   if (s.ok() || s.code() == StatusCode::io_error) replay_.break_chain();
   return s;
 }

@@ -28,8 +28,8 @@ const char* session_event_kind_name(SessionEventKind kind) {
       return "undone";
     case SessionEventKind::redone:
       return "redone";
-    case SessionEventKind::journal_failed:
-      return "journal_failed";
+    case SessionEventKind::not_saved:
+      return "not_saved";
     case SessionEventKind::history_overflow:
       return "history_overflow";
     case SessionEventKind::radius_set:

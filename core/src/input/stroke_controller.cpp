@@ -78,7 +78,7 @@ void StrokeController::grab(std::uint8_t hand, SessionEvents& out) {
     // step simply start together; a disengaged hand has nothing to commit.
     mask = static_cast<std::uint8_t>(mask | hand_mask_);
     if ((segment_moved_ || chain_step_ != 0) && segment_can_change()) {
-      commit_segment(hand, Reason::none, out);
+      commit_segment(hand, Reason::none, out, Reason::none);
     }
     drop_segment();
   }
@@ -96,7 +96,8 @@ void StrokeController::grab(std::uint8_t hand, SessionEvents& out) {
 }
 
 void StrokeController::freeze(std::uint8_t hand, SessionEvents& out) {
-  commit_segment(hand, Reason::none, out);
+  const SessionEvent frozen = commit_segment(hand, Reason::none, out, Reason::released);
+  if (!frozen.status.ok()) return end_not_saved(hand, frozen, out);
   // Restarted while still engaged: its start pose is where the hand is now, the point
   // its grabbed material went to; disengaged, it stays there (its anchor).
   restart_segment(true, out);
@@ -111,11 +112,32 @@ void StrokeController::unfreeze(std::uint8_t hand, SessionEvents& out) {
   // its record keeps the poses its weights were built from, and the rebase below
   // becomes the next chain step, as a replay needs it.
   const bool commit = chain_step_ == 0 || (segment_can_change() && segment_moved_);
-  if (commit) commit_segment(hand, Reason::none, out);
+  if (commit) {
+    const SessionEvent done = commit_segment(hand, Reason::none, out, Reason::released);
+    if (!done.status.ok()) return end_not_saved(hand, done, out);
+  }
   drives_[hand].set_engaged(true);
   restart_segment(commit, out);
   if ((hand_mask_ & bit_of(hand)) != 0) {
     out.push({SessionEventKind::engaged, hand, Reason::none, ok_status(), 0});
+  }
+}
+
+void StrokeController::end_not_saved(std::uint8_t hand, const SessionEvent& failed,
+                                     SessionEvents& out) {
+  // Not saved: the model is back at the last saved commit, so the chain cannot go on
+  // (its next step would rebase a warp the model does not hold): the stroke ends for
+  // every hand of the segment, each off the clutch. One commit was not made, however
+  // many hands it ends (the others' events are repeats).
+  const auto others = static_cast<std::uint8_t>(hand_mask_ & ~bit_of(hand));
+  drop_segment();
+  SessionEvent e = failed;
+  e.repeat = true;
+  for (std::uint8_t h = 0; h < kHandCount; ++h) {
+    drives_[h].set_engaged(true);
+    if ((others & bit_of(h)) == 0) continue;
+    e.hand = h;
+    out.push(e);
   }
 }
 
@@ -139,7 +161,7 @@ void StrokeController::end_grab(std::uint8_t hand, bool commit, SessionEvents& o
     SessionEvent committed{SessionEventKind::committed, hand, Reason::released, ok_status(),
                            last_sequence_};
     if (segment_can_change()) {
-      committed = commit_segment(hand, Reason::released, out);
+      committed = commit_segment(hand, Reason::released, out, Reason::released);
     } else {
       // Every hand is on the clutch: the freeze step before was the last commit.
       committed.repeat = true;
@@ -181,8 +203,8 @@ Status StrokeController::begin_segment(std::uint8_t mask) {
   return plan_.apply(mesh_.rest(), mesh_.live());
 }
 
-SessionEvent StrokeController::commit_segment(std::uint8_t hand, Reason reason,
-                                              SessionEvents& out) {
+SessionEvent StrokeController::commit_segment(std::uint8_t hand, Reason reason, SessionEvents& out,
+                                              Reason reason_if_not_saved) {
   update_plan(&out).ignore();  // on error the previous update stays in force
   journal::StrokeRecord r;
   r.method = static_cast<std::uint8_t>(plan_.method());
@@ -199,8 +221,12 @@ SessionEvent StrokeController::commit_segment(std::uint8_t hand, Reason reason,
   }
   const CommitOutcome done = commits_.commit(plan_, r, out);
   if (done.status.ok()) last_sequence_ = done.sequence;
-  const SessionEvent committed{SessionEventKind::committed, hand, reason, done.status,
-                               done.sequence};
+  // A commit that did not happen (journal failure, plan error) is `not_saved`.
+  const SessionEvent committed =
+      done.status.ok()
+          ? SessionEvent{SessionEventKind::committed, hand, reason, done.status, done.sequence}
+          : SessionEvent{SessionEventKind::not_saved, hand, reason_if_not_saved, done.status,
+                         done.sequence};
   out.push(committed);
   return committed;
 }

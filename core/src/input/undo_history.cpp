@@ -116,4 +116,23 @@ Result<UndoStep> UndoHistory::redo(mesh::Mesh& mesh) {
   return UndoStep{e.object_move, e.object_after, e.change_count};
 }
 
+Status UndoHistory::adopt(std::size_t entry_count, std::size_t undo_count, std::size_t dropped) {
+  bool ok = !open_ && entry_count <= entries_.size() && undo_count <= entry_count;
+  std::size_t next = 0;
+  for (std::size_t i = 0; ok && i < entry_count; ++i) {
+    const UndoEntry& e = entries_[i];
+    ok = e.first_change == next && e.change_count <= changes_.size() - next;
+    next += ok ? e.change_count : 0;
+  }
+  if (!ok) {
+    clear();
+    return StatusCode::invalid_argument;
+  }
+  entry_count_ = entry_count;
+  undo_count_ = undo_count;
+  dropped_ = dropped;
+  overflow_ = false;
+  return ok_status();
+}
+
 }  // namespace twister::input

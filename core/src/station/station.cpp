@@ -1,7 +1,5 @@
 #include "twister/station/station.hpp"
 
-#include "twister/journal/journal_reader.hpp"
-
 namespace twister::station {
 namespace {
 
@@ -17,38 +15,16 @@ math::Frame to_frame(const tracker::TrackedFrame& f) {
 
 Station::Station(ports::ByteStream& tracker, ports::ButtonSource& buttons, ports::Clock& clock,
                  ports::Storage& storage, mesh::Mesh& mesh, input::SculptStorage work,
-                 const StationConfig& config)
+                 const StationConfig& config, StationFiles files)
     : buttons_(buttons),
       clock_(clock),
       storage_(storage),
+      files_(files),
       config_(config),
       session_(tracker, clock, config.session),
       writer_(storage),
-      sculpt_(config.sculpt, mesh, work, &writer_) {}
-
-Status Station::start() {
-  const auto s0 = config_.hand_station[0];
-  const auto s1 = config_.hand_station[1];
-  if (s0 < 1 || s0 > tracker::kMaxStations || s1 < 1 || s1 > tracker::kMaxStations || s0 == s1) {
-    return StatusCode::failed_precondition;
-  }
-  // Replay through the session's own commit path, so the mesh is exactly the one
-  // the last run left; a torn tail (power cut mid-append) is cut so new records
-  // follow the last good one.
-  journal::JournalReader reader(storage_);
-  TWISTER_TRY(reader.open());
-  TWISTER_TRY_ASSIGN(const std::size_t applied, sculpt_.replay(reader));
-  std::uint64_t cut = 0;
-  if (reader.problem() != journal::TailProblem::none) {
-    cut = reader.tail_bytes();
-    TWISTER_TRY(reader.truncate_tail());
-  }
-  TWISTER_TRY(writer_.open());
-  started_ = true;
-  push_event({StationEventKind::journal_recovered, 0, static_cast<std::uint32_t>(applied), cut,
-              ok_status(), clock_.now_us()});
-  return ok_status();
-}
+      sculpt_(config.sculpt, mesh, work, &writer_),
+      checkpoint_(files.checkpoint_out) {}
 
 bool Station::hand_valid(std::uint8_t hand, ports::TimestampUs now_us) const {
   const Hand& h = hands_[hand];
@@ -135,6 +111,7 @@ Status Station::poll() {
   const input::SessionEvents events = sculpt_.step(now_us);
   counters_.session_events_dropped += events.dropped();
   for (const input::SessionEvent& e : events.items()) report(e, now_us);
+  checkpoint_step();
   return ok_status();
 }
 
@@ -159,9 +136,14 @@ void Station::report(const input::SessionEvent& e, ports::TimestampUs now_us) {
       ++counters_.refused;
       push_event({StationEventKind::refused, e.hand, 0, reason, e.status, now_us});
       break;
-    case K::journal_failed:
-      ++counters_.journal_errors;
-      push_event({StationEventKind::journal_error, e.hand, e.sequence, 0, e.status, now_us});
+    case K::not_saved:
+      // One commit not made, however many hands it ends (repeat: already counted).
+      if (!e.repeat) {
+        ++counters_.strokes_not_saved;
+        ++counters_.journal_errors;
+      }
+      push_event(
+          {StationEventKind::stroke_not_saved, e.hand, e.sequence, reason, e.status, now_us});
       break;
     default:
       report_sculpt(e, now_us);
@@ -200,6 +182,8 @@ void Station::report_sculpt(const input::SessionEvent& e, ports::TimestampUs now
       out.value = static_cast<std::uint64_t>(e.value);
       break;
     case K::command_refused:
+      // io_error: an undo/redo whose record could not be saved (taken back).
+      if (e.status.code() == StatusCode::io_error) ++counters_.journal_errors;
       out.kind = StationEventKind::command_refused;
       out.value = static_cast<std::uint64_t>(e.value);
       out.detail = static_cast<std::uint8_t>(e.reason);
@@ -225,6 +209,19 @@ Result<StationEvent> Station::next_event() {
   event_head_ = (event_head_ + 1) % kEventCapacity;
   --event_count_;
   return e;
+}
+
+void Station::stop() {
+  if (!started_) return;
+  const ports::TimestampUs now_us = clock_.now_us();
+  const input::SessionEvents events = sculpt_.cancel_open();
+  for (const input::SessionEvent& e : events.items()) {
+    if (e.kind != input::SessionEventKind::cancelled) continue;
+    ++counters_.strokes_cancelled;
+    push_event({StationEventKind::stroke_cancelled, e.hand, 0,
+                static_cast<std::uint64_t>(input::Reason::none), ok_status(), now_us});
+  }
+  final_checkpoint();
 }
 
 Status Station::flush() { return storage_.sync(); }

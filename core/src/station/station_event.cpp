@@ -22,6 +22,12 @@ const char* station_event_kind_name(StationEventKind kind) {
       return "journal_error";
     case StationEventKind::button_source_error:
       return "button_source_error";
+    case StationEventKind::stroke_not_saved:
+      return "stroke_not_saved";
+    case StationEventKind::checkpoint_written:
+      return "checkpoint_written";
+    case StationEventKind::checkpoint_failed:
+      return "checkpoint_failed";
     case StationEventKind::radius_set:
       return "radius_set";
     case StationEventKind::hand_disengaged:

@@ -6,6 +6,7 @@
 // Init-time code: allocates freely, never throws.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -86,6 +87,7 @@ struct StationSection {
   std::string mesh;                    // initial model (OBJ, metres); relative = to the config file
   std::uint32_t spare_vertices = 0;    // extra mesh capacity beyond the OBJ's vertices
   std::uint32_t loop_timeout_ms = 10;  // poll() timeout of the event loop
+  std::uint32_t checkpoint_interval = 256;  // journal records between checkpoints (0: at stop)
 };
 
 enum class SculptMethod : std::uint8_t { twister, rottran, scodef };
@@ -164,7 +166,11 @@ struct ConfigParseResult {
 // Parses TOML text. file_name only labels the messages.
 ConfigParseResult parse_station_config(std::string_view text, std::string_view file_name);
 
-// Reads and parses a file; an unreadable file is one error with line 0.
+// Longest config file read (a station config is a few KiB).
+inline constexpr std::size_t kMaxConfigBytes = std::size_t{1} << 20;
+
+// Reads and parses a file; an unreadable file, one that is not a regular file (FIFO,
+// device, directory) or one larger than kMaxConfigBytes is one error with line 0.
 ConfigParseResult load_station_config(const std::string& path);
 
 // How many button lines the configured button backend provides: gpiod lines, hidapi

@@ -57,8 +57,7 @@ TEST(JournalReplay, AFrozenStrokeAndAMoveReplayToTheSameModel) {
   auto live = std::make_unique<ReplayRig>();
   live->stroke(2.0, 2);
   const math::Frame moved = z_turn({0.5, 0.25, 0}, 0.5);
-  SessionEvents out;
-  (void)live->rig.history.commit_move(0, live->rig.poses.object(), moved, out);
+  (void)live->rig.history.commit_move(0, live->rig.poses.object(), moved);
   live->rig.poses.set_object(moved);
   ASSERT_TRUE(live->rig.history.commit_history_step(journal::RecordType::undo).ok());
   std::array<journal::JournalRecord, 16> records{};

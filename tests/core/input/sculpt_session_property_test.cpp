@@ -128,7 +128,7 @@ RC_GTEST_PROP(SculptSessionProperty, GrabsEndOnceUndoRedoExactReplayIdentical, (
         RC_ASSERT(open[e.hand]);
         open[e.hand] = false;
       }
-      RC_ASSERT(e.kind != SessionEventKind::journal_failed);
+      RC_ASSERT(e.kind != SessionEventKind::not_saved);
     }
     for (std::uint8_t h = 0; h < 2; ++h) {
       const HandState st = s.session->machine().state(h);

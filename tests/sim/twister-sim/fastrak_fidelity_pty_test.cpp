@@ -78,7 +78,7 @@ TEST(FastrakFidelityPty, FilterRepliesAndStepResponse) {
     if (e.kind == EventKind::pose) x.push_back(e.pose.position[0]);
   }
   ASSERT_GT(x.size(), 300u);  // 3.5 s of records; the step comes about 2 s in
-  std::size_t step = 0;  // first record after the step
+  std::size_t step = 0;       // first record after the step
   while (step < x.size() && x[step] < 10.001) ++step;
   ASSERT_GT(step, 10u);
   ASSERT_LT(step + 20, x.size());

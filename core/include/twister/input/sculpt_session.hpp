@@ -15,7 +15,9 @@
 // the hands that still grab. A cancel (tracking lost too long) drops the open segment:
 // the model stays as at its start. One stroke may turn past a half turn, up to the
 // turn limit (SculptSessionConfig::turns, docs/unwrap.md).
-// Each commit is one journal record (synced) and one undo entry.
+// Each commit is one journal record and one undo entry; the record is appended and
+// synced before the model changes, and a commit whose record cannot be saved is not
+// made (not_saved; at a freeze press or release the stroke ends there).
 // Commands (undo, redo, warp method) come from buttons (ButtonMap roles and chords)
 // or submit() and run at the end of a step; state() is the display's snapshot.
 //
@@ -111,9 +113,15 @@ class SculptSession {
   // out of range.
   Status submit(const SessionCommand& command);
 
+  // Ends what is open without committing it (the station stopping): every hand of an
+  // open stroke is cancelled (the model stays as after the last commit) and an open
+  // object move is cancelled (the object goes back). Returns those events.
+  SessionEvents cancel_open();
+
   // Undo / redo of committed strokes (journaled), at once, without events.
   // failed_precondition: a stroke or move is active, or there is nothing to
-  // undo/redo. io_error: journal failed (the undo itself happened).
+  // undo/redo. io_error: its record could not be saved, so the step was taken back
+  // (the model is unchanged).
   Status undo();
   Status redo();
 
@@ -139,6 +147,16 @@ class SculptSession {
   bool busy() const { return strokes_.active() || mover_.moving(); }  // stroke or move
   std::uint32_t next_sequence() const { return history_.next_sequence(); }
   const UndoHistory& history() const { return history_.undo_history(); }
+
+  // For SessionCheckpoint's restore only: the state a checkpoint holds (mesh
+  // positions, undo history, object pose, next sequence), as parts to write into.
+  struct RestoreTarget {
+    mesh::Mesh& mesh;
+    UndoHistory& history;
+    SessionPoses& poses;
+    SessionHistory& commits;
+  };
+  RestoreTarget restore_target() { return {mesh_.mesh(), history_.restorable(), poses_, history_}; }
 
  private:
   void apply_action(const Action& action, SessionEvents& out);

@@ -1,9 +1,9 @@
 // SessionEvents: what one SculptSession step (or part of it) reports to the station
-// and, through it, the log and the display: strokes beginning, committing or being
-// cancelled, the clutch, the turn limit, tracking, refusals, the radius, moves,
-// undo/redo, method changes and journal trouble, in the order they happened. The
-// display reads the lasting state from SculptSession::state(); events say when it
-// changed. Fixed capacity; events beyond it are counted and dropped.
+// and, through it, the log and the display: strokes beginning, committing, not saved
+// or being cancelled, the clutch, the turn limit, tracking, refusals, the radius,
+// moves, undo/redo and method changes, in the order they happened. The display reads
+// the lasting state from SculptSession::state(); events say when it changed. Fixed
+// capacity; events beyond it are counted and dropped.
 #pragma once
 
 #include <array>
@@ -35,7 +35,13 @@ enum class SessionEventKind : std::uint8_t {
   move_cancelled,
   undone,              // sequence = the undo record
   redone,              // sequence = the redo record
-  journal_failed,      // the commit happened but its record is not durable (status)
+  not_saved,           // a commit was NOT made: its journal record could not be made
+                       // durable (status io_error) or the warp could not apply; the
+                       // model is as after the last saved commit. Strokes: reason
+                       // released = `hand`'s grab ends here, none = the hands go on in
+                       // a new segment (a hand joined); a failed freeze press or release
+                       // (a chain step) ends the stroke (released, for every hand of it;
+                       // `repeat` for all but the first). Moves: the object is back.
   history_overflow,    // the commit was too large to be undoable
   radius_set,          // the radius gesture ended (value = the radius, metres)
   disengaged,          // freeze pressed: committed, `hand` moves freely (same weights)
@@ -43,7 +49,9 @@ enum class SessionEventKind : std::uint8_t {
   turn_limit_reached,  // `hand` turned past the limit (value = limit, radians): holds
   turn_limit_left,     // `hand` turned back within the limit: follows again
   method_changed,      // value = the new math::WarpMethod (for strokes begun from now)
-  command_refused,     // value = the SessionCommandKind; reason busy / nothing_to_*
+  command_refused,     // value = the SessionCommandKind; reason busy / nothing_to_*, or
+                       // status io_error: an undo/redo whose record could not be saved
+                       // (taken back: the model is unchanged)
 };
 const char* session_event_kind_name(SessionEventKind kind);
 
@@ -54,7 +62,7 @@ struct SessionEvent {
   Status status{};
   std::uint32_t sequence = 0;  // journal sequence of committed / undone / redone
   double value = 0.0;          // kind-specific number (see the kinds)
-  bool repeat = false;         // committed: reports a commit already counted
+  bool repeat = false;         // committed / not_saved: reports a commit already counted
 };
 
 // A step's actions (at most 8, a few events each: a commit, the clutch, the turn

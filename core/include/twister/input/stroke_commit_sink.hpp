@@ -16,7 +16,8 @@
 namespace twister::input {
 
 struct CommitOutcome {
-  Status status{};             // not ok: nothing was committed (the plan could not apply)
+  Status status{};             // not ok: nothing was committed (the plan could not apply,
+                               // or io_error: its journal record could not be saved)
   std::uint32_t sequence = 0;  // the commit's journal sequence
 };
 
@@ -24,8 +25,8 @@ class StrokeCommitSink {
  public:
   virtual ~StrokeCommitSink() = default;
 
-  // Commits the plan's warp. Events of the commit itself (history_overflow,
-  // journal_failed) go to `out`; the `committed` event is the caller's.
+  // Commits the plan's warp. Events of the commit itself (history_overflow) go to
+  // `out`; the `committed` / `not_saved` event is the caller's.
   CommitOutcome commit(const math::WarpPlan& plan, const journal::StrokeRecord& stroke,
                        SessionEvents& out) {
     return do_commit(plan, stroke, out);

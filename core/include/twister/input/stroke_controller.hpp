@@ -16,6 +16,9 @@
 // 120-degree twists with the hand turned back in between make a 360-degree twist.
 // A disengaged hand in a segment built or rebased meanwhile (another hand joining,
 // leaving or freezing) keeps its anchor: the pose it disengaged at.
+// A commit that is not saved (write-ahead journal full or failing) is reported as
+// not_saved and changes nothing; at a freeze press or release (a chain step) it ends
+// the stroke for every hand of the segment, so a chain never skips a step.
 // How a hand's motion becomes its end pose (the clutch, turns past a half turn, the
 // turn limit) is its HandDrive. Hand poses are taken in the object frame at the
 // moment they are used. No allocation; not thread-safe.
@@ -93,8 +96,13 @@ class StrokeController {
   // step advances when `committed`. On failure the stroke ends (cancelled events).
   void restart_segment(bool committed, SessionEvents& out);
   // Commits the open segment; the committed event names `hand` and `reason`
-  // (released: the hand's grab ends; none: the stroke continues). Returns that event.
-  SessionEvent commit_segment(std::uint8_t hand, Reason reason, SessionEvents& out);
+  // (released: the hand's grab ends; none: the stroke continues), or, when the commit
+  // did not happen, a not_saved event with `reason_if_not_saved`. Returns that event.
+  SessionEvent commit_segment(std::uint8_t hand, Reason reason, SessionEvents& out,
+                              Reason reason_if_not_saved);
+  // A chain step (freeze or unfreeze) of `hand` was not saved (`failed`): the stroke
+  // ends for every hand of the segment (not_saved repeats for the others).
+  void end_not_saved(std::uint8_t hand, const SessionEvent& failed, SessionEvents& out);
   // Some hand of the open segment is engaged: the segment may have warped something.
   bool segment_can_change() const;
   // Reports the grabs of `mask` as ended (cancelled with `status`).

@@ -1,8 +1,8 @@
 // StationEvent: what the station reports to the composition root's log (tracker
-// up/down, strokes committed or cancelled, refusals, journal and button failures, and
-// what the sculptor did besides strokes: radius, clutch, turn limit, undo/redo,
-// method). Plain data; the station never formats text (log lines:
-// hal/twister-station/station_log.hpp).
+// up/down, strokes committed, not saved or cancelled, refusals, checkpoints, journal
+// and button failures, and what the sculptor did besides strokes: radius, clutch,
+// turn limit, undo/redo, method). Plain data; the station never formats text (log
+// lines: hal/twister-station/station_log.hpp).
 #pragma once
 
 #include <cstdint>
@@ -13,15 +13,24 @@
 namespace twister::station {
 
 enum class StationEventKind : std::uint8_t {
-  journal_recovered,    // start(): `sequence` good records; `value` torn-tail bytes cut
+  journal_recovered,    // start(): `sequence` records in the journal (all of them, also
+                        // those a checkpoint restored); `value` torn-tail bytes cut
   tracker_streaming,    // the Fastrak session reached streaming (value = start-ups so far)
   tracker_lost,         // streaming stopped (unplug, silence, garbage); re-init follows
   stroke_begin,         // hand grabbed
   stroke_committed,     // journal record `sequence` appended and synced
-  stroke_cancelled,     // dropped (tracking lost too long); model unchanged
+  stroke_cancelled,     // dropped; model unchanged. value = input::Reason: tracking_timeout
+                        // (tracking lost too long), none (the station stopping, or a
+                        // warp-plan error: status not ok)
   refused,              // a press was refused; value = input::Reason
-  journal_error,        // append failed; status says how (stroke not recorded)
+  journal_error,        // a journal operation failed; status says how
   button_source_error,  // the button device failed; status says how
+  stroke_not_saved,     // a commit (stroke segment or object move; `hand`) was NOT made:
+                        // its record could not be made durable (status, e.g. io_error
+                        // for a full disk); the model is back at the last saved record.
+                        // value: input::Reason (released: the hand's grab ended)
+  checkpoint_written,   // a checkpoint holding the first `sequence` records; value: bytes
+  checkpoint_failed,    // writing a checkpoint failed (status); the previous one stays
   radius_set,           // the radius gesture ended; real = the radius (metres)
   hand_disengaged,      // freeze pressed: committed (sequence), the hand moves freely
   hand_engaged,         // freeze released: the hand warps again from where it is
@@ -30,7 +39,9 @@ enum class StationEventKind : std::uint8_t {
   undone,               // undo; sequence = its record
   redone,               // redo; sequence = its record
   method_changed,       // value = the math::WarpMethod of strokes from now on
-  command_refused,      // value = input::SessionCommandKind, detail = input::Reason
+  command_refused,      // value = input::SessionCommandKind, detail = input::Reason;
+                        // status io_error: an undo/redo not saved (taken back)
+                        // (the last kind: tests iterate up to it)
 };
 
 const char* station_event_kind_name(StationEventKind kind);

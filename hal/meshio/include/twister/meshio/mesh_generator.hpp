@@ -9,7 +9,8 @@
 namespace twister::meshio {
 
 // n x n vertices over [-half, half]^2 at z = 0, two triangles per cell (n >= 2).
-// resource_exhausted: does not fit (mesh left cleared); invalid_argument: n < 2.
+// resource_exhausted: does not fit (mesh left cleared); invalid_argument: n < 2 or a
+// size that is not finite (both generators).
 Status make_grid(mesh::Mesh& mesh, std::size_t n, float half_size_m);
 inline constexpr std::size_t grid_vertices(std::size_t n) { return n * n; }
 inline constexpr std::size_t grid_triangles(std::size_t n) { return 2 * (n - 1) * (n - 1); }
