@@ -1,0 +1,63 @@
+#include "twister/mesh/triangle_adjacency.hpp"
+
+namespace twister::mesh {
+namespace {
+
+bool degenerate(const std::array<std::uint32_t, 3>& v) {
+  return v[0] == v[1] || v[1] == v[2] || v[2] == v[0];
+}
+
+}  // namespace
+
+bool TriangleAdjacency::fits(const Mesh& mesh) const {
+  const std::size_t half_edges = 3 * mesh.triangle_capacity();
+  return storage_.twins.size() >= half_edges && storage_.incident.size() >= half_edges &&
+         storage_.vertex_offsets.size() >= mesh.vertex_capacity() + 1;
+}
+
+Status TriangleAdjacency::build(const Mesh& mesh) {
+  if (!fits(mesh)) return StatusCode::resource_exhausted;
+  const std::size_t n = mesh.vertex_count();
+  const auto indices = mesh.triangle_indices();
+  std::span<std::uint32_t> offsets = storage_.vertex_offsets.first(n + 1);
+  for (std::uint32_t& o : offsets) o = 0;
+  for (const std::uint32_t v : indices) ++offsets[v + 1];
+  for (std::size_t v = 0; v < n; ++v) offsets[v + 1] += offsets[v];
+  // Fill with offsets[v] as v's write cursor, then shift the cursors back to starts.
+  for (std::size_t k = 0; k < indices.size(); ++k) {
+    storage_.incident[offsets[indices[k]]++] = static_cast<std::uint32_t>(k / 3);
+  }
+  for (std::size_t v = n; v > 0; --v) offsets[v] = offsets[v - 1];
+  offsets[0] = 0;
+  for (std::uint32_t h = 0; h < indices.size(); ++h) storage_.twins[h] = find_twin(mesh, h);
+  return ok_status();
+}
+
+std::uint32_t TriangleAdjacency::find_twin(const Mesh& mesh, std::uint32_t h) const {
+  const std::uint32_t t = h / 3;
+  const auto tv = mesh.triangle(t);
+  if (degenerate(tv)) return kNonManifold;
+  const std::uint32_t a = tv[h % 3];
+  const std::uint32_t b = tv[(h % 3 + 1) % 3];
+  std::uint32_t found = kBoundary;
+  for (std::uint32_t k = storage_.vertex_offsets[a]; k < storage_.vertex_offsets[a + 1]; ++k) {
+    const std::uint32_t u = storage_.incident[k];
+    if (u == t) continue;
+    const auto uv = mesh.triangle(u);
+    for (std::uint32_t j = 0; j < 3; ++j) {
+      const std::uint32_t p = uv[j];
+      const std::uint32_t q = uv[(j + 1) % 3];
+      if (!((p == a && q == b) || (p == b && q == a))) continue;
+      if (found != kBoundary || degenerate(uv)) return kNonManifold;
+      found = 3 * u + j;
+    }
+  }
+  return found;
+}
+
+void TriangleAdjacency::link(std::uint32_t h, std::uint32_t g) {
+  storage_.twins[h] = g;
+  if (g != kBoundary && g != kNonManifold) storage_.twins[g] = h;
+}
+
+}  // namespace twister::mesh
