@@ -67,13 +67,17 @@ const char* session_command_name(SessionCommandKind kind) {
 SculptSession::SculptSession(const SculptSessionConfig& config, mesh::Mesh& mesh,
                              SculptStorage storage, journal::JournalWriter* journal)
     : mesh_(mesh, storage.live_x, storage.live_y, storage.live_z),
+      refinement_(mesh_, storage.refine, config.refine),
       buttons_(config.debounce, config.buttons),
       machine_(config.interaction),
       plan_(storage.plan),
-      history_(mesh_, poses_, storage.undo_changes, storage.undo_entries, journal),
+      history_(mesh_, poses_, storage.undo_changes, storage.undo_entries, journal,
+               storage.undo_triangle_changes),
       strokes_(plan_, mesh_, poses_, history_, config.method, config.turns),
       mover_(poses_),
-      replay_(plan_, mesh_, history_, poses_) {}
+      replay_(plan_, mesh_, history_, poses_) {
+  history_.set_refinement(&refinement_);
+}
 
 Status SculptSession::feed_button(const ports::ButtonEdge& edge) { return buttons_.feed(edge); }
 
@@ -225,6 +229,7 @@ SessionState SculptSession::state() const {
   st.undo_depth = history_.undo_history().undo_depth();
   st.redo_depth = history_.undo_history().redo_depth();
   st.next_sequence = history_.next_sequence();
+  st.refine = refinement_.status();
   for (std::uint8_t h = 0; h < kHandCount; ++h) {
     HandView& v = st.hands[h];
     const HandDrive& drive = strokes_.drive(h);

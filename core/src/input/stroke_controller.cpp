@@ -96,7 +96,7 @@ void StrokeController::grab(std::uint8_t hand, SessionEvents& out) {
 }
 
 void StrokeController::freeze(std::uint8_t hand, SessionEvents& out) {
-  commit_segment(hand, Reason::none, out);
+  commit_segment(hand, Reason::none, out, true);
   // Restarted while still engaged: its start pose is where the hand is now, the point
   // its grabbed material went to; disengaged, it stays there (its anchor).
   restart_segment(true, out);
@@ -111,7 +111,7 @@ void StrokeController::unfreeze(std::uint8_t hand, SessionEvents& out) {
   // its record keeps the poses its weights were built from, and the rebase below
   // becomes the next chain step, as a replay needs it.
   const bool commit = chain_step_ == 0 || (segment_can_change() && segment_moved_);
-  if (commit) commit_segment(hand, Reason::none, out);
+  if (commit) commit_segment(hand, Reason::none, out, true);
   drives_[hand].set_engaged(true);
   restart_segment(commit, out);
   if ((hand_mask_ & bit_of(hand)) != 0) {
@@ -181,8 +181,8 @@ Status StrokeController::begin_segment(std::uint8_t mask) {
   return plan_.apply(mesh_.rest(), mesh_.live());
 }
 
-SessionEvent StrokeController::commit_segment(std::uint8_t hand, Reason reason,
-                                              SessionEvents& out) {
+SessionEvent StrokeController::commit_segment(std::uint8_t hand, Reason reason, SessionEvents& out,
+                                              bool plan_goes_on) {
   update_plan(&out).ignore();  // on error the previous update stays in force
   journal::StrokeRecord r;
   r.method = static_cast<std::uint8_t>(plan_.method());
@@ -197,7 +197,7 @@ SessionEvent StrokeController::commit_segment(std::uint8_t hand, Reason reason,
     if ((plan_.long_turns() & (1u << i)) != 0) r.long_turns |= bit_of(h);
     ++i;
   }
-  const CommitOutcome done = commits_.commit(plan_, r, out);
+  const CommitOutcome done = commits_.commit(plan_, r, out, plan_goes_on);
   if (done.status.ok()) last_sequence_ = done.sequence;
   const SessionEvent committed{SessionEventKind::committed, hand, reason, done.status,
                                done.sequence};

@@ -15,7 +15,9 @@
 // the hands that still grab. A cancel (tracking lost too long) drops the open segment:
 // the model stays as at its start. One stroke may turn past a half turn, up to the
 // turn limit (SculptSessionConfig::turns, docs/unwrap.md).
-// Each commit is one journal record (synced) and one undo entry.
+// Each commit is one journal record (synced) and one undo entry. With refinement on
+// (SculptSessionConfig::refine), a commit that ends its stroke refines the mesh
+// into its spare capacity (CommitRefinement, docs/refinement.md).
 // Commands (undo, redo, warp method) come from buttons (ButtonMap roles and chords)
 // or submit() and run at the end of a step; state() is the display's snapshot.
 //
@@ -39,6 +41,7 @@
 #include "twister/input/button_debouncer.hpp"
 #include "twister/input/button_front_end.hpp"
 #include "twister/input/button_map.hpp"
+#include "twister/input/commit_refinement.hpp"
 #include "twister/input/hand_drive.hpp"
 #include "twister/input/interaction_machine.hpp"
 #include "twister/input/journal_replay.hpp"
@@ -73,7 +76,8 @@ struct SculptSessionConfig {
   ButtonDebouncerConfig debounce{};
   ButtonMap buttons = ButtonMap::paper_default();
   math::WarpMethod method = math::WarpMethod::twister;
-  TurnConfig turns{};  // how far one stroke may turn (unwrapped up to 330 degrees)
+  TurnConfig turns{};     // how far one stroke may turn (unwrapped up to 330 degrees)
+  RefineConfig refine{};  // adaptive refinement at commit (off by default)
 };
 
 // Caller-owned working memory, sized once at start-up.
@@ -85,6 +89,10 @@ struct SculptStorage {
   math::WarpPlanStorage plan;  // capacity = most vertices one stroke may move
   std::span<VertexChange> undo_changes;
   std::span<UndoEntry> undo_entries;
+  // Refinement (optional; empty: commits are never refined): the refiner's memory for
+  // the mesh's capacities and the undo pool of refined commits' triangles.
+  mesh::MeshRefinerStorage refine{};
+  std::span<TriangleChange> undo_triangle_changes{};
 };
 
 class SculptSession {
@@ -150,6 +158,7 @@ class SculptSession {
   void run_history_command(const SessionCommand& command, SessionEvents& out);
 
   LiveMesh mesh_;
+  CommitRefinement refinement_;
   SessionPoses poses_;
   ButtonFrontEnd buttons_;
   InteractionMachine machine_;
@@ -165,11 +174,15 @@ class SculptSession {
 };
 
 // A session owning its working memory: kVertices = mesh vertex capacity,
-// kInfluenced = plan capacity, kUndoChanges / kUndoEntries = history size.
+// kInfluenced = plan capacity, kUndoChanges / kUndoEntries = history size,
+// kTriangles = mesh triangle capacity for refinement (0: no refinement memory; else
+// also kUndoChanges triangle changes for its undo).
 // Large: place it in static storage or the start-up arena.
 template <std::size_t kVertices, std::size_t kInfluenced, std::size_t kUndoChanges,
-          std::size_t kUndoEntries>
+          std::size_t kUndoEntries, std::size_t kTriangles = 0>
 struct SculptStorageArrays {
+  static constexpr std::size_t kRefineVertices = kTriangles == 0 ? 0 : kVertices;
+  static constexpr std::size_t kTriangleChanges = kTriangles == 0 ? 0 : kUndoChanges;
   std::array<float, kVertices> live_x{};
   std::array<float, kVertices> live_y{};
   std::array<float, kVertices> live_z{};
@@ -178,19 +191,22 @@ struct SculptStorageArrays {
   std::array<float, kInfluenced> plan_weights2{};
   std::array<VertexChange, kUndoChanges> undo_changes{};
   std::array<UndoEntry, kUndoEntries> undo_entries{};
+  mesh::internal::MeshRefinerArrays<kRefineVertices, kTriangles> refiner{};
+  std::array<TriangleChange, kTriangleChanges> undo_triangle_changes{};
 
   SculptStorage spans() {
     return SculptStorage{
-        live_x,       live_y,
-        live_z,       math::WarpPlanStorage{plan_indices, plan_weights1, plan_weights2},
-        undo_changes, undo_entries};
+        live_x,          live_y,
+        live_z,          math::WarpPlanStorage{plan_indices, plan_weights1, plan_weights2},
+        undo_changes,    undo_entries,
+        refiner.spans(), undo_triangle_changes};
   }
 };
 
 template <std::size_t kVertices, std::size_t kInfluenced, std::size_t kUndoChanges,
-          std::size_t kUndoEntries>
+          std::size_t kUndoEntries, std::size_t kTriangles = 0>
 class SculptSessionWithStorage
-    : private SculptStorageArrays<kVertices, kInfluenced, kUndoChanges, kUndoEntries>,
+    : private SculptStorageArrays<kVertices, kInfluenced, kUndoChanges, kUndoEntries, kTriangles>,
       public SculptSession {
  public:
   SculptSessionWithStorage(const SculptSessionConfig& config, mesh::Mesh& mesh,

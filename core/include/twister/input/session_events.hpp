@@ -44,6 +44,10 @@ enum class SessionEventKind : std::uint8_t {
   turn_limit_left,     // `hand` turned back within the limit: follows again
   method_changed,      // value = the new math::WarpMethod (for strokes begun from now)
   command_refused,     // value = the SessionCommandKind; reason busy / nothing_to_*
+  refined,             // the commit `sequence` refined the mesh (value = vertices added)
+  refine_stopped,      // its refinement stopped at a capacity (value = mesh::RefineStop;
+                       // status resource_exhausted): the commit stands, the mesh is
+                       // conforming, edges over the threshold are left
 };
 const char* session_event_kind_name(SessionEventKind kind);
 

@@ -8,6 +8,9 @@
 // A failed journal append is reported (journal_failed event or io_error) but the
 // in-memory change stands; a commit too large for the history is applied but not
 // undoable (history_overflow event).
+// Refinement (CommitRefinement, optional): a stroke commit whose record carries a
+// threshold refines the mesh in apply_plan, live and replayed alike (refined and,
+// at a capacity, refine_stopped events).
 // Memory: the mesh, poses, history storage and journal are the caller's and must
 // outlive this object; no allocation. Not thread-safe.
 #pragma once
@@ -16,6 +19,7 @@
 #include <span>
 
 #include "twister/base/status.hpp"
+#include "twister/input/commit_refinement.hpp"
 #include "twister/input/live_mesh.hpp"
 #include "twister/input/session_events.hpp"
 #include "twister/input/session_poses.hpp"
@@ -31,8 +35,10 @@ namespace twister::input {
 class SessionHistory final : public StrokeCommitSink {
  public:
   // `journal` may be null (no recording; sequence numbers still count).
+  // `triangle_changes`: the undo pool for refined commits' topology.
   SessionHistory(LiveMesh& mesh, SessionPoses& poses, std::span<VertexChange> changes,
-                 std::span<UndoEntry> entries, journal::JournalWriter* journal);
+                 std::span<UndoEntry> entries, journal::JournalWriter* journal,
+                 std::span<TriangleChange> triangle_changes = {});
   SessionHistory(const SessionHistory&) = delete;
   SessionHistory& operator=(const SessionHistory&) = delete;
 
@@ -46,9 +52,14 @@ class SessionHistory final : public StrokeCommitSink {
   // the mesh. io_error: the step happened but its record is not durable.
   Status commit_history_step(journal::RecordType type);
 
-  // Replay, not journaled. The warp of `plan` (updated to its end poses); errors of
-  // WarpPlan::apply (then nothing changed).
-  Status apply_stroke(const math::WarpPlan& plan);
+  // Commits refine through `refinement` (may be null: never); it must outlive this.
+  void set_refinement(CommitRefinement* refinement) { refinement_ = refinement; }
+
+  // Replay, not journaled. The warp of `plan` (updated to its end poses), refined to
+  // the record's threshold (0: not refined); errors of WarpPlan::apply, or
+  // failed_precondition for a threshold without refinement storage (then nothing
+  // changed).
+  Status apply_stroke(const math::WarpPlan& plan, double refine_threshold_m = 0.0);
   // An undo entry for an object move (the caller sets the pose).
   void apply_move(const math::Frame& before, const math::Frame& after);
   // Undo or redo without a record; errors as commit_history_step.
@@ -61,10 +72,10 @@ class SessionHistory final : public StrokeCommitSink {
 
  private:
   CommitOutcome do_commit(const math::WarpPlan& plan, const journal::StrokeRecord& stroke,
-                          SessionEvents& out) override;
-  // The commit of a warp, live and replayed alike: live columns into the mesh, one
-  // undo entry. Commit-time work on the mesh (refinement) hooks in here.
-  Status apply_plan(const math::WarpPlan& plan, SessionEvents* out);
+                          SessionEvents& out, bool plan_goes_on) override;
+  // The commit of a warp, live and replayed alike: the mesh refined at rest (when
+  // `refine_threshold_m` > 0), live columns into the mesh, one undo entry.
+  Status apply_plan(const math::WarpPlan& plan, double refine_threshold_m, SessionEvents* out);
   // Gives `record` the next sequence and appends it (when journaling).
   void append(journal::JournalRecord& record, SessionEvents* out);
 
@@ -72,6 +83,7 @@ class SessionHistory final : public StrokeCommitSink {
   SessionPoses& poses_;
   UndoHistory history_;
   journal::JournalWriter* journal_;
+  CommitRefinement* refinement_ = nullptr;
   std::uint32_t next_sequence_ = 0;
 };
 

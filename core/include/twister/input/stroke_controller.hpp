@@ -93,8 +93,10 @@ class StrokeController {
   // step advances when `committed`. On failure the stroke ends (cancelled events).
   void restart_segment(bool committed, SessionEvents& out);
   // Commits the open segment; the committed event names `hand` and `reason`
-  // (released: the hand's grab ends; none: the stroke continues). Returns that event.
-  SessionEvent commit_segment(std::uint8_t hand, Reason reason, SessionEvents& out);
+  // (released: the hand's grab ends; none: the stroke continues). `plan_goes_on`: a
+  // freeze step, the plan is rebased next. Returns that event.
+  SessionEvent commit_segment(std::uint8_t hand, Reason reason, SessionEvents& out,
+                              bool plan_goes_on = false);
   // Some hand of the open segment is engaged: the segment may have warped something.
   bool segment_can_change() const;
   // Reports the grabs of `mask` as ended (cancelled with `status`).
