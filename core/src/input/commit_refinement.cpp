@@ -68,6 +68,7 @@ RefineReport CommitRefinement::refine(const math::WarpPlan& plan, double thresho
   ++totals_.refined_commits;
   totals_.vertices_added += report.result.edges_split;
   totals_.last_stop = report.result.stop;
+  if (report.result.stop != mesh::RefineStop::done) ++totals_.capacity_stops;
   totals_.last_vertices_added = report.result.edges_split;
   totals_.last_blocked = report.result.blocked;
   return report;

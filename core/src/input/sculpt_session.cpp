@@ -75,8 +75,28 @@ SculptSession::SculptSession(const SculptSessionConfig& config, mesh::Mesh& mesh
                storage.undo_triangle_changes),
       strokes_(plan_, mesh_, poses_, history_, config.method, config.turns),
       mover_(poses_),
-      replay_(plan_, mesh_, history_, poses_) {
+      replay_(plan_, mesh_, history_, poses_),
+      normals_(storage.normals) {
   history_.set_refinement(&refinement_);
+  const std::size_t capacity = mesh.vertex_capacity();
+  if (normals_.x.size() < capacity || normals_.y.size() < capacity ||
+      normals_.z.size() < capacity) {
+    normals_ = {};  // too small for the mesh: no normals rather than stale ones
+  }
+  normals_sequence_ = history_.next_sequence() + 1;  // forces the first computation
+  refresh_normals();
+}
+
+void SculptSession::refresh_normals() {
+  if (normals_.x.empty() || normals_sequence_ == history_.next_sequence()) return;
+  compute_vertex_normals(mesh_.mesh(), normals_).ignore();  // sized for the capacity
+  normals_sequence_ = history_.next_sequence();
+}
+
+mesh::NormalColumns SculptSession::normals() const {
+  if (normals_.x.empty()) return {};
+  const std::size_t n = mesh_.mesh().vertex_count();
+  return {normals_.x.first(n), normals_.y.first(n), normals_.z.first(n)};
 }
 
 Status SculptSession::feed_button(const ports::ButtonEdge& edge) { return buttons_.feed(edge); }
@@ -98,6 +118,7 @@ SessionEvents SculptSession::step(ports::TimestampUs now_us) {
   }
   for (std::size_t i = 0; i < queued_count_; ++i) run_command(queued_[i], out);
   queued_count_ = 0;
+  refresh_normals();
   return out;
 }
 
@@ -212,6 +233,7 @@ Status SculptSession::step_history(journal::RecordType type) {
   const Status s = history_.commit_history_step(type);
   // io_error means the step happened and only its record is not durable.
   if (s.ok() || s.code() == StatusCode::io_error) replay_.break_chain();
+  refresh_normals();
   return s;
 }
 
@@ -256,6 +278,7 @@ Result<std::size_t> SculptSession::replay(journal::JournalReader& reader) {
     auto record = reader.next();
     if (record.status().code() == StatusCode::unavailable ||
         record.status().code() == StatusCode::data_loss) {
+      refresh_normals();
       return applied;  // clean end, or a tail the caller reports and truncates
     }
     if (!record.ok()) return record.status();

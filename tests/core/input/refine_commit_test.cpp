@@ -9,12 +9,14 @@
 #include <cstdio>
 #include <memory>
 #include <numbers>
+#include <vector>
 
 #include "allocation_counter.hpp"
 #include "mesh_checks.hpp"
 #include "refine_harness.hpp"
 #include "twister/input/journal_pose.hpp"
 #include "twister/mesh/mesh_refiner.hpp"
+#include "twister/mesh/vertex_normals.hpp"
 
 namespace twister::input {
 namespace {
@@ -199,6 +201,27 @@ TEST(RefineCommit, ReplayWithoutRefinementMemoryRefusesARefinedRecord) {
             StatusCode::failed_precondition);
   EXPECT_EQ(plain->next_sequence(), 0u);
   EXPECT_EQ(mesh->checksum(), before);
+}
+
+// The session keeps vertex normals of the refined mesh: after the commit, undo, redo.
+TEST(RefineCommit, NormalsFollowEveryChangeOfTheModel) {
+  RefineStation s(3, 15'000, refine_config(0.003));
+  const auto same = [&s] {
+    std::vector<float> x(s.mesh().vertex_count()), y(x.size()), z(x.size());
+    EXPECT_TRUE(mesh::compute_vertex_normals(s.mesh(), {x, y, z}).ok());
+    const mesh::NormalColumns n = s.session->normals();
+    return n.x.size() == x.size() && std::equal(x.begin(), x.end(), n.x.begin()) &&
+           std::equal(y.begin(), y.end(), n.y.begin()) &&
+           std::equal(z.begin(), z.end(), n.z.begin());
+  };
+  EXPECT_TRUE(same());
+  (void)twist_box(s, kTurn170);
+  ASSERT_GT(s.mesh().vertex_count(), 26u);
+  EXPECT_TRUE(same());
+  ASSERT_TRUE(s.session->undo().ok());
+  EXPECT_TRUE(same());
+  ASSERT_TRUE(s.session->redo().ok());
+  EXPECT_TRUE(same());
 }
 
 TEST(RefineCommit, ARefinedCommitDoesNotAllocate) {

@@ -56,6 +56,7 @@ struct RefineStatus {
   std::size_t spare_triangles = 0;
   std::uint64_t refined_commits = 0;
   std::uint64_t vertices_added = 0;  // by every refined commit so far (undo aside)
+  std::uint64_t capacity_stops = 0;  // refined commits stopped by a capacity
   mesh::RefineStop last_stop = mesh::RefineStop::done;  // of the last refined commit
   std::uint32_t last_vertices_added = 0;
   std::uint32_t last_blocked = 0;  // edges over the threshold it could not split

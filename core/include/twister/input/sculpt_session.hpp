@@ -61,6 +61,7 @@
 #include "twister/math/warp_method.hpp"
 #include "twister/math/warp_plan.hpp"
 #include "twister/mesh/mesh.hpp"
+#include "twister/mesh/vertex_normals.hpp"
 #include "twister/ports/button_source.hpp"
 #include "twister/ports/clock.hpp"
 
@@ -70,6 +71,8 @@ namespace twister::input {
 // the same sizes to reproduce undo records exactly once the history has overflowed.
 inline constexpr std::size_t kDefaultUndoChanges = std::size_t{1} << 18;
 inline constexpr std::size_t kDefaultUndoEntries = 64;
+// Triangle changes of refined commits (about four per vertex a refinement adds).
+inline constexpr std::size_t kDefaultUndoTriangleChanges = std::size_t{1} << 18;
 
 struct SculptSessionConfig {
   InteractionConfig interaction{};
@@ -93,6 +96,8 @@ struct SculptStorage {
   // the mesh's capacities and the undo pool of refined commits' triangles.
   mesh::MeshRefinerStorage refine{};
   std::span<TriangleChange> undo_triangle_changes{};
+  // Vertex normals kept up to date (optional; each column the mesh's vertex capacity).
+  mesh::NormalColumns normals{};
 };
 
 class SculptSession {
@@ -137,6 +142,10 @@ class SculptSession {
   const ReplayStats& replay_stats() const { return replay_.stats(); }
 
   const mesh::Mesh& mesh() const { return mesh_.mesh(); }
+  // Vertex normals of mesh() (mesh::compute_vertex_normals), vertex_count() long; empty
+  // without normal storage. Current after construction, step(), undo(), redo() and
+  // replay(); after apply_record() from the next of these.
+  mesh::NormalColumns normals() const;
   const math::Frame& object_pose() const { return poses_.object(); }
   float radius_m() const { return machine_.radius_m(); }
   const InteractionMachine& machine() const { return machine_; }
@@ -156,6 +165,8 @@ class SculptSession {
   Status step_history(journal::RecordType type);
   void run_command(const SessionCommand& command, SessionEvents& out);
   void run_history_command(const SessionCommand& command, SessionEvents& out);
+  // Recomputes the normals when the model changed since they were computed.
+  void refresh_normals();
 
   LiveMesh mesh_;
   CommitRefinement refinement_;
@@ -171,12 +182,14 @@ class SculptSession {
   JournalReplay replay_;
   std::array<SessionCommand, kMaxQueuedCommands> queued_{};
   std::size_t queued_count_ = 0;
+  mesh::NormalColumns normals_{};
+  std::uint32_t normals_sequence_ = 0;  // next_sequence() when they were computed
 };
 
 // A session owning its working memory: kVertices = mesh vertex capacity,
 // kInfluenced = plan capacity, kUndoChanges / kUndoEntries = history size,
 // kTriangles = mesh triangle capacity for refinement (0: no refinement memory; else
-// also kUndoChanges triangle changes for its undo).
+// also kUndoChanges triangle changes for its undo, and vertex normals).
 // Large: place it in static storage or the start-up arena.
 template <std::size_t kVertices, std::size_t kInfluenced, std::size_t kUndoChanges,
           std::size_t kUndoEntries, std::size_t kTriangles = 0>
@@ -193,13 +206,20 @@ struct SculptStorageArrays {
   std::array<UndoEntry, kUndoEntries> undo_entries{};
   mesh::internal::MeshRefinerArrays<kRefineVertices, kTriangles> refiner{};
   std::array<TriangleChange, kTriangleChanges> undo_triangle_changes{};
+  std::array<float, kRefineVertices> normal_x{};
+  std::array<float, kRefineVertices> normal_y{};
+  std::array<float, kRefineVertices> normal_z{};
 
   SculptStorage spans() {
-    return SculptStorage{
-        live_x,          live_y,
-        live_z,          math::WarpPlanStorage{plan_indices, plan_weights1, plan_weights2},
-        undo_changes,    undo_entries,
-        refiner.spans(), undo_triangle_changes};
+    return SculptStorage{live_x,
+                         live_y,
+                         live_z,
+                         math::WarpPlanStorage{plan_indices, plan_weights1, plan_weights2},
+                         undo_changes,
+                         undo_entries,
+                         refiner.spans(),
+                         undo_triangle_changes,
+                         mesh::NormalColumns{normal_x, normal_y, normal_z}};
   }
 };
 

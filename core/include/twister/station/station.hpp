@@ -59,6 +59,8 @@ struct StationCounters {
   std::uint64_t strokes_cancelled = 0;  // grabs dropped (per hand)
   std::uint64_t undos = 0;
   std::uint64_t redos = 0;
+  std::uint64_t refined_commits = 0;  // commits that refined the mesh
+  std::uint64_t refine_stops = 0;     // of them, stopped at the mesh's capacity
   std::uint64_t refused = 0;
   std::uint64_t session_events_dropped = 0;
   std::uint64_t journal_errors = 0;
@@ -95,6 +97,11 @@ class Station {
   const tracker::FastrakSession& tracker_session() const { return session_; }
   const input::SculptSession& sculpt() const { return sculpt_; }
   const mesh::Mesh& mesh() const { return sculpt_.mesh(); }
+  // Vertex normals of mesh(), up to date after every poll() (empty without storage).
+  mesh::NormalColumns normals() const { return sculpt_.normals(); }
+  // Refinement: on, threshold, spare capacity, how the last refined commit ended
+  // (what a display shows; the link does not carry it yet).
+  input::RefineStatus refinement() const { return sculpt_.state().refine; }
   std::uint32_t journal_records() const { return sculpt_.next_sequence(); }
   bool hand_valid(std::uint8_t hand, ports::TimestampUs now_us) const;
 
