@@ -26,7 +26,7 @@ hal::Expected<void> start_core(station::Station& core, const std::string& journa
 
 }  // namespace
 
-WorkMemory::WorkMemory(std::size_t vertex_capacity)
+WorkMemory::WorkMemory(std::size_t vertex_capacity, std::size_t triangle_capacity)
     : live_x_(vertex_capacity),
       live_y_(vertex_capacity),
       live_z_(vertex_capacity),
@@ -34,18 +34,28 @@ WorkMemory::WorkMemory(std::size_t vertex_capacity)
       weights2_(vertex_capacity),
       plan_indices_(vertex_capacity),
       undo_changes_(input::kDefaultUndoChanges),
-      undo_entries_(input::kDefaultUndoEntries) {}
+      undo_entries_(input::kDefaultUndoEntries),
+      refiner_(vertex_capacity, triangle_capacity),
+      undo_triangles_(input::kDefaultUndoTriangleChanges),
+      normal_x_(vertex_capacity),
+      normal_y_(vertex_capacity),
+      normal_z_(vertex_capacity) {}
 
 input::SculptStorage WorkMemory::storage() {
-  return input::SculptStorage{
-      live_x_,       live_y_,
-      live_z_,       math::WarpPlanStorage{plan_indices_, weights1_, weights2_},
-      undo_changes_, undo_entries_};
+  return input::SculptStorage{live_x_,
+                              live_y_,
+                              live_z_,
+                              math::WarpPlanStorage{plan_indices_, weights1_, weights2_},
+                              undo_changes_,
+                              undo_entries_,
+                              refiner_.storage(),
+                              undo_triangles_,
+                              mesh::NormalColumns{normal_x_, normal_y_, normal_z_}};
 }
 
 hal::Expected<std::unique_ptr<meshio::MeshBuffer>> load_station_mesh(
     const std::filesystem::path& path, std::size_t spare_vertices) {
-  meshio::ObjLoad loaded = meshio::load_obj(path, spare_vertices);
+  meshio::ObjLoad loaded = meshio::load_obj(path, spare_vertices, 2 * spare_vertices);
   if (!loaded.status.ok()) {
     return hal::Error{loaded.status, "mesh " + path.string() + ": " + loaded.message};
   }
@@ -69,7 +79,7 @@ hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationConfi
   if (!model) return model.error();
   parts->model = std::move(*model);
   mesh::Mesh& mesh = parts->model->mesh();
-  parts->work = std::make_unique<WorkMemory>(mesh.vertex_capacity());
+  parts->work = std::make_unique<WorkMemory>(mesh.vertex_capacity(), mesh.triangle_capacity());
   Backends& b = parts->backends;
   parts->core = std::make_unique<station::Station>(*b.tracker, *b.buttons, *b.clock, parts->journal,
                                                    mesh, parts->work->storage(), *setup);

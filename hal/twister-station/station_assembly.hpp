@@ -19,6 +19,7 @@
 #include "twister/hal/posix_file_storage.hpp"
 #include "twister/input/sculpt_session.hpp"
 #include "twister/meshio/mesh_buffer.hpp"
+#include "twister/meshio/refiner_buffer.hpp"
 #include "twister/station/station.hpp"
 
 namespace twister::station_app {
@@ -28,10 +29,11 @@ struct AssemblyOptions {
   std::string link_address;          // --link; empty: no display link
 };
 
-// The SculptSession's working memory for a mesh of `vertex_capacity` vertices.
+// The SculptSession's working memory for a mesh of these capacities: live columns,
+// plan, undo history, refinement (its refiner and undo triangles) and normals.
 class WorkMemory {
  public:
-  explicit WorkMemory(std::size_t vertex_capacity);
+  WorkMemory(std::size_t vertex_capacity, std::size_t triangle_capacity);
   input::SculptStorage storage();
 
  private:
@@ -39,6 +41,9 @@ class WorkMemory {
   std::vector<std::uint32_t> plan_indices_;
   std::vector<input::VertexChange> undo_changes_;
   std::vector<input::UndoEntry> undo_entries_;
+  meshio::RefinerBuffer refiner_;
+  std::vector<input::TriangleChange> undo_triangles_;
+  std::vector<float> normal_x_, normal_y_, normal_z_;
 };
 
 struct StationParts {
@@ -58,7 +63,9 @@ struct StationParts {
 hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationConfig& config,
                                                               const AssemblyOptions& options);
 
-// station.toml's model as a mesh with the configured spare capacity. Errors:
+// station.toml's model as a mesh with the configured spare capacity (spare_vertices
+// more vertices, twice as many more triangles: what refinement of a closed mesh
+// needs). Errors:
 // io_error / invalid_argument "mesh PATH: what tinyobjloader said".
 hal::Expected<std::unique_ptr<meshio::MeshBuffer>> load_station_mesh(
     const std::filesystem::path& path, std::size_t spare_vertices);

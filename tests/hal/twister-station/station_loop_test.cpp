@@ -71,7 +71,8 @@ struct Rig {
     backends.buttons_poll = flaky.get();
     backends.buttons = std::move(flaky);
     model = std::move(*load_station_mesh(TWISTER_DEPLOY_DIR "/sim_sphere.obj", 0));
-    work = std::make_unique<WorkMemory>(model->mesh().vertex_capacity());
+    work = std::make_unique<WorkMemory>(model->mesh().vertex_capacity(),
+                                        model->mesh().triangle_capacity());
     core = std::make_unique<station::Station>(*backends.tracker, *backends.buttons, *backends.clock,
                                               storage, model->mesh(), work->storage(),
                                               *make_station_setup(config));
