@@ -3,9 +3,10 @@
 namespace twister::mesh {
 namespace {
 
-bool degenerate(const std::array<std::uint32_t, 3>& v) {
-  return v[0] == v[1] || v[1] == v[2] || v[2] == v[0];
-}
+// Not yet linked (build() only; never a twin value).
+constexpr std::uint32_t kUnset = 0xfffffffdu;
+
+bool degenerate(const std::uint32_t* v) { return v[0] == v[1] || v[1] == v[2] || v[2] == v[0]; }
 
 }  // namespace
 
@@ -29,24 +30,30 @@ Status TriangleAdjacency::build(const Mesh& mesh) {
   }
   for (std::size_t v = n; v > 0; --v) offsets[v] = offsets[v - 1];
   offsets[0] = 0;
-  for (std::uint32_t h = 0; h < indices.size(); ++h) storage_.twins[h] = find_twin(mesh, h);
+  std::span<std::uint32_t> twins = storage_.twins.first(indices.size());
+  for (std::uint32_t& t : twins) t = kUnset;
+  // Twins are symmetric: a half-edge found as the twin of an earlier one is done.
+  for (std::uint32_t h = 0; h < twins.size(); ++h) {
+    if (twins[h] == kUnset) link(h, find_twin(indices, h));
+  }
   return ok_status();
 }
 
-std::uint32_t TriangleAdjacency::find_twin(const Mesh& mesh, std::uint32_t h) const {
+std::uint32_t TriangleAdjacency::find_twin(std::span<const std::uint32_t> indices,
+                                           std::uint32_t h) const {
   const std::uint32_t t = h / 3;
-  const auto tv = mesh.triangle(t);
+  const std::uint32_t* tv = indices.data() + 3 * std::size_t{t};
   if (degenerate(tv)) return kNonManifold;
   const std::uint32_t a = tv[h % 3];
-  const std::uint32_t b = tv[(h % 3 + 1) % 3];
+  const std::uint32_t b = tv[h % 3 == 2 ? 0 : h % 3 + 1];
   std::uint32_t found = kBoundary;
   for (std::uint32_t k = storage_.vertex_offsets[a]; k < storage_.vertex_offsets[a + 1]; ++k) {
     const std::uint32_t u = storage_.incident[k];
     if (u == t) continue;
-    const auto uv = mesh.triangle(u);
+    const std::uint32_t* uv = indices.data() + 3 * std::size_t{u};
     for (std::uint32_t j = 0; j < 3; ++j) {
       const std::uint32_t p = uv[j];
-      const std::uint32_t q = uv[(j + 1) % 3];
+      const std::uint32_t q = uv[j == 2 ? 0 : j + 1];
       if (!((p == a && q == b) || (p == b && q == a))) continue;
       if (found != kBoundary || degenerate(uv)) return kNonManifold;
       found = 3 * u + j;

@@ -42,7 +42,7 @@ class TriangleAdjacency {
   void link(std::uint32_t h, std::uint32_t g);
 
  private:
-  std::uint32_t find_twin(const Mesh& mesh, std::uint32_t h) const;
+  std::uint32_t find_twin(std::span<const std::uint32_t> indices, std::uint32_t h) const;
 
   TriangleAdjacencyStorage storage_;
 };
