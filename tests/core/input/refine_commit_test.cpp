@@ -101,7 +101,7 @@ TEST(RefineCommit, CoarseBoxTwisted170DegreesHasEveryEdgeWithinTheThreshold) {
   }
   std::printf(
       "170-degree twist of a 26-vertex box, threshold %g m: %u edges split, %zu -> %zu "
-      "vertices, %zu triangles; max midpoint error %.3g m before, %.3g m after\n",
+      "vertices, %zu triangles; max midpoint error %.4g m before, %.6g m after\n",
       kThreshold, result->edges_split, std::size_t{26}, s.mesh().vertex_count(),
       s.mesh().triangle_count(), before, after);
   EXPECT_EQ(s.session->state().refine.last_vertices_added, result->edges_split);
