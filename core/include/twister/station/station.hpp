@@ -104,6 +104,8 @@ class Station {
   input::RefineStatus refinement() const { return sculpt_.state().refine; }
   std::uint32_t journal_records() const { return sculpt_.next_sequence(); }
   bool hand_valid(std::uint8_t hand, ports::TimestampUs now_us) const;
+  // The frame last applied to `hand` (hand < kHandCount); see hand_valid().
+  const tracker::TrackedFrame& hand_pose(std::uint8_t hand) const { return hands_[hand].pose; }
 
  private:
   struct Hand {
