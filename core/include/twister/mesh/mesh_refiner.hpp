@@ -79,8 +79,11 @@ struct MeshRefinerStorage {
 };
 
 // Bytes of MeshRefinerStorage per vertex and per triangle of capacity.
-inline constexpr std::size_t kRefinerBytesPerVertex = 3 * sizeof(double) + 2 * 4;
-inline constexpr std::size_t kRefinerBytesPerTriangle = 3 * 4 + 3 * 4 + 3 + 1 + 4;
+// (S cache and its stamp, the vertex table; twins, incidence, edge states, flags, queue)
+inline constexpr std::size_t kRefinerBytesPerVertex =
+    3 * sizeof(double) + 2 * sizeof(std::uint32_t);
+inline constexpr std::size_t kRefinerBytesPerTriangle =
+    6 * sizeof(std::uint32_t) + 3 + 1 + sizeof(std::uint32_t);
 
 class MeshRefiner {
  public:
