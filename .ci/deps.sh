@@ -17,7 +17,7 @@ packages=(
   libcli11-dev umockdev libumockdev-dev
   systemd  # systemd-analyze checks the deployment unit (tests/hal/twister-station)
   # host tools and display
-  libpng-dev libtinyobjloader-dev libglfw3-dev libepoxy-dev libegl-dev
+  libpng-dev libglfw3-dev libepoxy-dev libegl-dev
   libgl1-mesa-dri xvfb xauth  # xvfb: the bridge's window path is tested on a virtual X server
   libcairo2-dev fonts-dejavu-core  # twister figure8 draws its SVG/PNG with cairo, text in DejaVu Sans
 )

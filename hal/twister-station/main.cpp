@@ -132,6 +132,10 @@ int run(const Options& opt, const StationConfig& cfg, hal::Logger& log, hal::Log
   results.notice("", "mesh %s: %zu vertices, %zu triangles, checksum %016llx",
                  parts.mesh_path.c_str(), mesh.vertex_count(), mesh.triangle_count(),
                  static_cast<unsigned long long>(mesh.checksum()));
+  if (const auto refine = parts.core->refinement(); refine.enabled) {
+    log.notice("refine", "on: edges split above %g m, room for %zu more vertices",
+               refine.threshold_m, refine.spare_vertices);
+  }
   if (parts.display.is_open() && opt.link_wait_s > 0.0 &&
       !parts.display.wait_for_peer(parts.core->sculpt(), opt.link_wait_s)) {
     log.warning("", "no bridge on %s after %.1f s; running without", opt.link_address.c_str(),

@@ -98,6 +98,7 @@ hal::Expected<std::unique_ptr<meshio::MeshBuffer>> load_station_mesh(
     const std::filesystem::path& path, std::size_t spare_vertices) {
   meshio::ObjOptions options;
   options.spare_vertices = spare_vertices;
+  options.spare_triangles = 2 * spare_vertices;  // what refinement of a closed mesh needs
   auto loaded = meshio::load_obj(path, options);
   if (!loaded) {
     return hal::Error{loaded.error().status,
@@ -124,6 +125,12 @@ hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationConfi
   parts->model = std::move(*model);
   mesh::Mesh& mesh = parts->model->mesh();
   parts->work = std::make_unique<WorkMemory>(mesh.vertex_capacity());
+  input::SculptStorage storage = parts->work->storage();
+  if (config.sculpt.refine) {
+    parts->refine =
+        std::make_unique<RefineMemory>(mesh.vertex_capacity(), mesh.triangle_capacity());
+    storage = parts->refine->attach(storage);
+  }
   Backends& b = parts->backends;
   hal::PosixFileSinkConfig archive;
   archive.path = config.station.journal + ".torn-tail";
@@ -135,7 +142,7 @@ hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationConfi
   files.checkpoint_in = parts->checkpoint_in.get();
   files.checkpoint_out = parts->checkpoint_out.get();
   parts->core = std::make_unique<station::Station>(*b.tracker, *b.buttons, *b.clock, parts->journal,
-                                                   mesh, parts->work->storage(), *setup, files);
+                                                   mesh, storage, *setup, files);
   if (auto started = start_core(*parts->core, config.station.journal, *parts->tail_archive);
       !started) {
     return started.error();

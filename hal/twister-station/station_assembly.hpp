@@ -50,6 +50,7 @@ struct StationParts {
   std::filesystem::path mesh_path;  // as opened (resolved against config_dir)
   std::unique_ptr<meshio::MeshBuffer> model;
   std::unique_ptr<WorkMemory> work;
+  std::unique_ptr<RefineMemory> refine;    // [sculpt] refine on
   std::unique_ptr<station::Station> core;  // started: the journal is replayed
   DisplayLink display;                     // open when options.link_address is set
 };
@@ -63,8 +64,10 @@ struct StationParts {
 hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationConfig& config,
                                                               const AssemblyOptions& options);
 
-// station.toml's model as a mesh with the configured spare capacity. Errors:
-// io_error / invalid_argument "mesh PATH: line N: what is wrong" (meshio::load_obj).
+// station.toml's model as a mesh with the configured spare capacity (spare_vertices
+// more vertices, twice as many more triangles: what refinement of a closed mesh
+// needs). Errors: io_error / invalid_argument "mesh PATH: line N: what is wrong"
+// (meshio::load_obj).
 hal::Expected<std::unique_ptr<meshio::MeshBuffer>> load_station_mesh(
     const std::filesystem::path& path, std::size_t spare_vertices);
 

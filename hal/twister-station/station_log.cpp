@@ -7,6 +7,7 @@
 #include "twister/input/interaction_machine.hpp"
 #include "twister/input/session_command.hpp"
 #include "twister/math/warp_method.hpp"
+#include "twister/mesh/mesh_refiner.hpp"
 
 namespace twister::station_app {
 namespace {
@@ -28,6 +29,19 @@ bool station_stopping(const StationEvent& e) {
 
 const char* method_text(std::uint64_t value) {
   return value < 3 ? math::warp_method_name(static_cast<math::WarpMethod>(value)).data() : "?";
+}
+
+// Which capacity stopped a refinement, in station.toml's words.
+const char* capacity_text(std::uint64_t value) {
+  switch (static_cast<mesh::RefineStop>(value)) {
+    case mesh::RefineStop::vertex_capacity:
+      return "vertex capacity";
+    case mesh::RefineStop::triangle_capacity:
+      return "triangle capacity";
+    case mesh::RefineStop::done:
+      break;
+  }
+  return "capacity";
 }
 
 const char* command_text(std::uint64_t value) {
@@ -86,6 +100,13 @@ bool log_station_side(const StationEvent& e, ports::LogSink& log) {
     case StationEventKind::button_source_error:
       log.write(level, "buttons", "device failed (%s); reopening", {e.status.name()});
       return true;
+    case StationEventKind::refinement_stopped:
+      log.write(level, "refine",
+                "journal record %u: refinement stopped, the mesh's %s is used up "
+                "(station.spare_vertices); the stroke is committed and the mesh conforming, "
+                "some edges stay coarser than sculpt.refine_threshold_m",
+                {e.sequence, capacity_text(e.value)});
+      return true;
     default:
       return false;
   }
@@ -133,6 +154,10 @@ void log_strokes(const StationEvent& e, ports::LogSink& log) {
     case StationEventKind::turn_limit_left:
       log.write(level, "stroke", "hand %u back within the turn limit; the warp follows again",
                 {hand});
+      return;
+    case StationEventKind::stroke_refined:
+      log.write(level, "refine", "journal record %u refined: %u vertices added",
+                {e.sequence, e.value});
       return;
     default:
       return;
@@ -193,6 +218,7 @@ LogLevel station_event_level(const StationEvent& e) {
     case StationEventKind::button_source_error:  // reopened by the loop: trouble, not failure
     case StationEventKind::tracker_lost:
     case StationEventKind::checkpoint_failed:  // the previous one stays; start-up replays more
+    case StationEventKind::refinement_stopped:
       return LogLevel::warning;
     case StationEventKind::stroke_cancelled:  // the stop policy is no trouble
       return station_stopping(e) ? LogLevel::notice : LogLevel::warning;
@@ -213,6 +239,7 @@ LogLevel station_event_level(const StationEvent& e) {
     case StationEventKind::hand_disengaged:
     case StationEventKind::hand_engaged:
     case StationEventKind::turn_limit_left:
+    case StationEventKind::stroke_refined:
       return LogLevel::info;
   }
   return LogLevel::notice;

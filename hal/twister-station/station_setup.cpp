@@ -51,6 +51,8 @@ void set_sculpt(const StationConfig& config, input::SculptSessionConfig& s, std:
                          ? input::TurnTracking::unwrapped
                          : input::TurnTracking::minimal;
   s.turns.limit_rad = sc.turn_limit_deg * input::kDegree;
+  s.refine.enabled = sc.refine;
+  s.refine.threshold_m = sc.refine_threshold_m;
   if (!sc.buttons_configured) return;
   s.buttons = input::ButtonMap{};
   for (const ButtonBindingConfig& b : sc.buttons) {

@@ -1,5 +1,6 @@
 #include "replay_command.hpp"
 
+#include <algorithm>
 #include <cinttypes>
 #include <cstdio>
 #include <cstring>
@@ -48,6 +49,7 @@ struct Options {
   std::string mesh_out;
   std::size_t undo_changes = input::kDefaultUndoChanges;
   std::size_t undo_entries = input::kDefaultUndoEntries;
+  std::size_t spare_vertices = 0;  // refinement's room: the station's station.spare_vertices
   bool world = false;
   bool quiet = false;
   bool progress = false;
@@ -75,8 +77,24 @@ void to_world(mesh::Mesh& m, const math::Frame& pose) {
   }
 }
 
+// Refined commits: what they added, and a warning when the capacity stopped one (the
+// station's was larger, or the result differs from the station's).
+void report_refinement(const input::RefineStatus& r, const Options& o) {
+  if (r.refined_commits == 0) return;
+  std::printf("refined %llu commits, %llu vertices added\n",
+              static_cast<unsigned long long>(r.refined_commits),
+              static_cast<unsigned long long>(r.vertices_added));
+  if (r.capacity_stops > 0) {
+    cli_log().warning(
+        "",
+        "refinement stopped at this mesh's capacity in %llu commits (--spare-vertices "
+        "%zu); the station's result differs unless it had the same spare capacity",
+        static_cast<unsigned long long>(r.capacity_stops), o.spare_vertices);
+  }
+}
+
 void run_replay(const Options& o) {
-  ModelSession model(o.mesh_in, o.undo_changes, o.undo_entries);
+  ModelSession model(o.mesh_in, o.spare_vertices, o.undo_changes, o.undo_entries);
   mesh::Mesh& mesh = model.mesh();
   input::SculptSession& session = model.session();
 
@@ -134,6 +152,7 @@ void run_replay(const Options& o) {
   const math::Frame& pose = session.object_pose();
   std::printf("replayed %zu records (strokes %zu, moves %zu, undos %zu, redos %zu)\n", applied,
               st.strokes, st.moves, st.undos, st.redos);
+  report_refinement(session.state().refine, o);
   std::printf("mesh %zu vertices %zu triangles checksum %016" PRIx64 "\n", mesh.vertex_count(),
               mesh.triangle_count(), mesh.checksum());
   std::printf("object origin %.9g %.9g %.9g u %.9g %.9g %.9g v %.9g %.9g %.9g\n", pose.origin.x,
@@ -157,6 +176,9 @@ void add_replay_command(CLI::App& app) {
   cmd->add_option("--undo-entries", options->undo_entries,
                   "Undo history size in strokes (must match the station's)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--spare-vertices", options->spare_vertices,
+                  "Room for refinement beyond the OBJ's vertices, and twice as many triangles "
+                  "(the station's station.spare_vertices; default 0)");
   cmd->add_flag("--world", options->world, "Write world coordinates (apply the object pose)");
   cmd->add_flag("--progress", options->progress,
                 "Always print progress (default: journals > 64 KiB)");

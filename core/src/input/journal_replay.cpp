@@ -44,6 +44,8 @@ Status JournalReplay::apply_stroke(const journal::StrokeRecord& s) {
       long_turns = static_cast<std::uint8_t>(long_turns | (1u << n));
     ++n;
   }
+  // Only a fresh plan that ends with its commit is refined (CommitRefinement).
+  if (s.refine_threshold_m > 0.0 && s.chain_step != 0) return StatusCode::data_loss;
   if (s.chain_step == 0) {
     TWISTER_TRY(plan_.build(mesh_.rest(), std::span(start).first(n), s.radius_m,
                             static_cast<math::WarpMethod>(s.method)));
@@ -59,8 +61,8 @@ Status JournalReplay::apply_stroke(const journal::StrokeRecord& s) {
   // The screws from the poses alone (and the turn sense the record gives): the same
   // numbers the live stroke computed, minimal or unwrapped.
   TWISTER_TRY(plan_.update_turns(std::span(end).first(n), long_turns));
-  TWISTER_TRY(history_.apply_stroke(plan_));
-  chain_open_ = true;
+  TWISTER_TRY(history_.apply_stroke(plan_, s.refine_threshold_m));
+  chain_open_ = s.refine_threshold_m == 0.0;  // a refined commit ended its chain
   chain_step_ = s.chain_step;
   ++stats_.strokes;
   return ok_status();

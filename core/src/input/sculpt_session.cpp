@@ -67,13 +67,37 @@ const char* session_command_name(SessionCommandKind kind) {
 SculptSession::SculptSession(const SculptSessionConfig& config, mesh::Mesh& mesh,
                              SculptStorage storage, journal::JournalWriter* journal)
     : mesh_(mesh, storage.live_x, storage.live_y, storage.live_z),
+      refinement_(mesh_, storage.refine, config.refine),
       buttons_(config.debounce, config.buttons),
       machine_(config.interaction),
       plan_(storage.plan),
-      history_(mesh_, poses_, storage.undo_changes, storage.undo_entries, journal),
+      history_(mesh_, poses_, storage.undo_changes, storage.undo_entries, journal,
+               storage.undo_triangle_changes),
       strokes_(plan_, mesh_, poses_, history_, config.method, config.turns),
       mover_(poses_),
-      replay_(plan_, mesh_, history_, poses_) {}
+      replay_(plan_, mesh_, history_, poses_),
+      normals_(storage.normals) {
+  history_.set_refinement(&refinement_);
+  const std::size_t capacity = mesh.vertex_capacity();
+  if (normals_.x.size() < capacity || normals_.y.size() < capacity ||
+      normals_.z.size() < capacity) {
+    normals_ = {};  // too small for the mesh: no normals rather than stale ones
+  }
+  normals_sequence_ = history_.next_sequence() + 1;  // forces the first computation
+  refresh_normals();
+}
+
+void SculptSession::refresh_normals() {
+  if (normals_.x.empty() || normals_sequence_ == history_.next_sequence()) return;
+  compute_vertex_normals(mesh_.mesh(), normals_).ignore();  // sized for the capacity
+  normals_sequence_ = history_.next_sequence();
+}
+
+mesh::NormalColumns SculptSession::normals() const {
+  if (normals_.x.empty()) return {};
+  const std::size_t n = mesh_.mesh().vertex_count();
+  return {normals_.x.first(n), normals_.y.first(n), normals_.z.first(n)};
+}
 
 Status SculptSession::feed_button(const ports::ButtonEdge& edge) { return buttons_.feed(edge); }
 
@@ -94,6 +118,7 @@ SessionEvents SculptSession::step(ports::TimestampUs now_us) {
   }
   for (std::size_t i = 0; i < queued_count_; ++i) run_command(queued_[i], out);
   queued_count_ = 0;
+  refresh_normals();
   return out;
 }
 
@@ -225,6 +250,7 @@ Status SculptSession::step_history(journal::RecordType type) {
   const Status s = history_.commit_history_step(type);
   // io_error: not saved (the step was taken back); the chain is broken all the same.
   if (s.ok() || s.code() == StatusCode::io_error) replay_.break_chain();
+  refresh_normals();
   return s;
 }
 
@@ -242,6 +268,7 @@ SessionState SculptSession::state() const {
   st.undo_depth = history_.undo_history().undo_depth();
   st.redo_depth = history_.undo_history().redo_depth();
   st.next_sequence = history_.next_sequence();
+  st.refine = refinement_.status();
   for (std::uint8_t h = 0; h < kHandCount; ++h) {
     HandView& v = st.hands[h];
     const HandDrive& drive = strokes_.drive(h);
@@ -268,6 +295,7 @@ Result<std::size_t> SculptSession::replay(journal::JournalReader& reader) {
     auto record = reader.next();
     if (record.status().code() == StatusCode::unavailable ||
         record.status().code() == StatusCode::data_loss) {
+      refresh_normals();
       return applied;  // clean end, or a tail the caller reports and truncates
     }
     if (!record.ok()) return record.status();

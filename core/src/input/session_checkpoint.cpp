@@ -25,6 +25,11 @@ Status CheckpointWriter::begin(const SculptSession& session, const CheckpointAnc
   abort();
   if (sink_ == nullptr || session.busy()) return StatusCode::failed_precondition;
   const UndoHistory& history = session.history();
+  // Format version 1 holds no triangles: a model whose topology a refined commit
+  // changed (in the history) is not checkpointed; start-up replays the journal instead.
+  for (const UndoEntry& e : history.entries()) {
+    if (e.topology) return StatusCode::not_supported;
+  }
   CheckpointHeader& h = header_;
   h = {};
   h.journal_offset = anchor.journal_offset;

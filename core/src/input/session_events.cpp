@@ -46,6 +46,10 @@ const char* session_event_kind_name(SessionEventKind kind) {
       return "method_changed";
     case SessionEventKind::command_refused:
       return "command_refused";
+    case SessionEventKind::refined:
+      return "refined";
+    case SessionEventKind::refine_stopped:
+      return "refine_stopped";
   }
   return "unknown";
 }

@@ -7,21 +7,41 @@
 
 namespace twister::input {
 
+namespace {
+
+void report_refinement(const RefineReport& refined, std::uint32_t sequence, SessionEvents& out) {
+  if (!refined.ran) return;
+  out.push({SessionEventKind::refined, 0, Reason::none, ok_status(), sequence,
+            static_cast<double>(refined.result.edges_split)});
+  if (refined.result.stop != mesh::RefineStop::done) {
+    out.push({SessionEventKind::refine_stopped, 0, Reason::none,
+              Status(StatusCode::resource_exhausted), sequence,
+              static_cast<double>(refined.result.stop)});
+  }
+}
+
+}  // namespace
+
 SessionHistory::SessionHistory(LiveMesh& mesh, SessionPoses& poses, std::span<VertexChange> changes,
-                               std::span<UndoEntry> entries, journal::JournalWriter* journal)
-    : mesh_(mesh), poses_(poses), history_(changes, entries), journal_(journal) {}
+                               std::span<UndoEntry> entries, journal::JournalWriter* journal,
+                               std::span<TriangleChange> triangle_changes)
+    : mesh_(mesh), poses_(poses), history_(changes, entries, triangle_changes), journal_(journal) {}
 
 CommitOutcome SessionHistory::do_commit(const math::WarpPlan& plan,
-                                        const journal::StrokeRecord& stroke, SessionEvents& out) {
+                                        const journal::StrokeRecord& stroke, SessionEvents& out,
+                                        bool plan_goes_on) {
   const std::uint32_t sequence = next_sequence_;
+  const double threshold =
+      refinement_ != nullptr ? refinement_->threshold_for(stroke, plan_goes_on) : 0.0;
   // The warp into the live columns first (it may fail: nothing is written), then the
   // record, then the mesh: a stroke whose record is not durable never reaches it.
   if (const Status s = plan.apply(mesh_.rest(), mesh_.live()); !s.ok()) return {s, sequence};
   journal::JournalRecord r;
   r.type = journal::RecordType::stroke;
   r.stroke = stroke;
+  r.stroke.refine_threshold_m = threshold;
   if (const Status saved = append(r); !saved.ok()) return {saved, sequence};
-  commit_live(plan, sequence, &out);
+  commit_live(plan, threshold, sequence, &out);
   return {ok_status(), sequence};
 }
 
@@ -55,8 +75,8 @@ Status SessionHistory::commit_history_step(journal::RecordType type) {
   return saved;
 }
 
-Status SessionHistory::apply_stroke(const math::WarpPlan& plan) {
-  return apply_plan(plan, nullptr);
+Status SessionHistory::apply_stroke(const math::WarpPlan& plan, double refine_threshold_m) {
+  return apply_plan(plan, refine_threshold_m, nullptr);
 }
 
 void SessionHistory::apply_move(const math::Frame& before, const math::Frame& after) {
@@ -74,18 +94,26 @@ Status SessionHistory::apply_history_step(journal::RecordType type) {
   return ok_status();
 }
 
-Status SessionHistory::apply_plan(const math::WarpPlan& plan, SessionEvents* out) {
+Status SessionHistory::apply_plan(const math::WarpPlan& plan, double refine_threshold_m,
+                                  SessionEvents* out) {
+  if (refine_threshold_m > 0.0 && (refinement_ == nullptr || !refinement_->available())) {
+    return StatusCode::failed_precondition;
+  }
   TWISTER_TRY(plan.apply(mesh_.rest(), mesh_.live()));
-  commit_live(plan, next_sequence_, out);
+  commit_live(plan, refine_threshold_m, next_sequence_, out);
   return ok_status();
 }
 
-void SessionHistory::commit_live(const math::WarpPlan& plan, std::uint32_t sequence,
-                                 SessionEvents* out) {
+void SessionHistory::commit_live(const math::WarpPlan& plan, double refine_threshold_m,
+                                 std::uint32_t sequence, SessionEvents* out) {
   const math::VertexColumns live = mesh_.live();
   mesh::Mesh& mesh = mesh_.mesh();
   history_.begin_entry();
-  bool undoable = true;
+  // Refinement first: it needs the rest positions the plan's vertices still hold.
+  const RefineReport refined = refinement_ != nullptr
+                                   ? refinement_->refine(plan, refine_threshold_m, history_)
+                                   : RefineReport{};
+  bool undoable = refined.undoable;
   for (const std::uint32_t i : plan.indices()) {
     const glm::vec3 after{live.x[i], live.y[i], live.z[i]};
     if (!history_.record(i, mesh.position(i), after).ok()) undoable = false;
@@ -96,6 +124,7 @@ void SessionHistory::commit_live(const math::WarpPlan& plan, std::uint32_t seque
     out->push({SessionEventKind::history_overflow, 0, Reason::none,
                Status(StatusCode::resource_exhausted), sequence});
   }
+  if (out != nullptr) report_refinement(refined, sequence, *out);
 }
 
 Status SessionHistory::append(journal::JournalRecord& record) {

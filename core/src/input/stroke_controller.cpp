@@ -96,7 +96,8 @@ void StrokeController::grab(std::uint8_t hand, SessionEvents& out) {
 }
 
 void StrokeController::freeze(std::uint8_t hand, SessionEvents& out) {
-  const SessionEvent frozen = commit_segment(hand, Reason::none, out, Reason::released);
+  const SessionEvent frozen =
+      commit_segment(hand, Reason::none, out, Reason::released, /*plan_goes_on=*/true);
   if (!frozen.status.ok()) return end_not_saved(hand, frozen, out);
   // Restarted while still engaged: its start pose is where the hand is now, the point
   // its grabbed material went to; disengaged, it stays there (its anchor).
@@ -113,7 +114,8 @@ void StrokeController::unfreeze(std::uint8_t hand, SessionEvents& out) {
   // becomes the next chain step, as a replay needs it.
   const bool commit = chain_step_ == 0 || (segment_can_change() && segment_moved_);
   if (commit) {
-    const SessionEvent done = commit_segment(hand, Reason::none, out, Reason::released);
+    const SessionEvent done =
+        commit_segment(hand, Reason::none, out, Reason::released, /*plan_goes_on=*/true);
     if (!done.status.ok()) return end_not_saved(hand, done, out);
   }
   drives_[hand].set_engaged(true);
@@ -204,7 +206,7 @@ Status StrokeController::begin_segment(std::uint8_t mask) {
 }
 
 SessionEvent StrokeController::commit_segment(std::uint8_t hand, Reason reason, SessionEvents& out,
-                                              Reason reason_if_not_saved) {
+                                              Reason reason_if_not_saved, bool plan_goes_on) {
   update_plan(&out).ignore();  // on error the previous update stays in force
   journal::StrokeRecord r;
   r.method = static_cast<std::uint8_t>(plan_.method());
@@ -219,7 +221,7 @@ SessionEvent StrokeController::commit_segment(std::uint8_t hand, Reason reason, 
     if ((plan_.long_turns() & (1u << i)) != 0) r.long_turns |= bit_of(h);
     ++i;
   }
-  const CommitOutcome done = commits_.commit(plan_, r, out);
+  const CommitOutcome done = commits_.commit(plan_, r, out, plan_goes_on);
   if (done.status.ok()) last_sequence_ = done.sequence;
   // A commit that did not happen (journal failure, plan error) is `not_saved`.
   const SessionEvent committed =

@@ -14,7 +14,8 @@ constexpr std::size_t kPoseBytes = std::size_t{9} * 8;
 constexpr std::size_t kStrokeFixedBytes = 4 + 1 + 1 + 2 + 8;
 constexpr std::size_t kMoveBytes = 4 + 1 + 2 * kPoseBytes;
 constexpr std::size_t kSequenceOnlyBytes = 4;
-static_assert(kStrokeFixedBytes + 4 * kPoseBytes + 1 <= kMaxPayloadBytes);
+constexpr std::size_t kRefinedTailBytes = 1 + 8;  // long_turns, refine_threshold_m
+static_assert(kStrokeFixedBytes + 4 * kPoseBytes + kRefinedTailBytes <= kMaxPayloadBytes);
 
 using twister::internal::ByteReader;
 using twister::internal::ByteWriter;
@@ -33,16 +34,22 @@ JournalPose read_pose(ByteReader& r) {
   return p;
 }
 
-// Version 2 strokes end with the long_turns byte.
+// Version 2 strokes end with the long_turns byte, version 3 with it and the threshold.
 std::size_t stroke_bytes(std::uint8_t hand_mask, std::uint8_t version) {
   const auto hands = static_cast<std::size_t>(std::popcount(static_cast<unsigned>(hand_mask)));
-  return kStrokeFixedBytes + 2 * hands * kPoseBytes + (version == kRecordVersionLongTurns ? 1 : 0);
+  const std::size_t tail = version == kRecordVersionRefined     ? kRefinedTailBytes
+                           : version == kRecordVersionLongTurns ? 1
+                                                                : 0;
+  return kStrokeFixedBytes + 2 * hands * kPoseBytes + tail;
 }
 
 std::uint8_t record_version(const JournalRecord& r) {
-  return r.type == RecordType::stroke && r.stroke.long_turns != 0 ? kRecordVersionLongTurns
-                                                                  : kRecordVersion;
+  if (r.type != RecordType::stroke) return kRecordVersion;
+  if (r.stroke.refine_threshold_m > 0.0) return kRecordVersionRefined;
+  return r.stroke.long_turns != 0 ? kRecordVersionLongTurns : kRecordVersion;
 }
+
+bool valid_threshold(double t) { return std::isfinite(t) && t >= 0.0; }
 
 std::size_t payload_bytes(const JournalRecord& r) {
   switch (r.type) {
@@ -70,12 +77,27 @@ bool valid_turns(std::uint8_t long_turns, std::uint8_t hand_mask) {
   return (long_turns & ~hand_mask) == 0;
 }
 
+// The versioned end of a stroke. Canonical: version 2 only when some hand turned the
+// long way, version 3 only with a threshold.
+bool read_stroke_tail(ByteReader& in, std::uint8_t version, StrokeRecord& s) {
+  if (version == kRecordVersion) return true;
+  s.long_turns = in.u8();
+  if ((version == kRecordVersionLongTurns && s.long_turns == 0) ||
+      !valid_turns(s.long_turns, s.hand_mask)) {
+    return false;
+  }
+  if (version != kRecordVersionRefined) return true;
+  s.refine_threshold_m = in.f64();
+  return valid_threshold(s.refine_threshold_m) && s.refine_threshold_m > 0.0;
+}
+
 }  // namespace
 
 Result<std::size_t> encode_record(const JournalRecord& r, std::span<std::byte> out) {
   if (r.type == RecordType::stroke &&
       (!valid_mask(r.stroke.hand_mask) || r.stroke.method >= kMethodCount ||
-       !valid_turns(r.stroke.long_turns, r.stroke.hand_mask))) {
+       !valid_turns(r.stroke.long_turns, r.stroke.hand_mask) ||
+       !valid_threshold(r.stroke.refine_threshold_m))) {
     return StatusCode::invalid_argument;
   }
   if (r.type == RecordType::object_move && r.move.hand > 1) return StatusCode::invalid_argument;
@@ -101,7 +123,8 @@ Result<std::size_t> encode_record(const JournalRecord& r, std::span<std::byte> o
         write_pose(w, r.stroke.start[h]);
         write_pose(w, r.stroke.end[h]);
       }
-      if (r.stroke.long_turns != 0) w.u8(r.stroke.long_turns);
+      if (record_version(r) != kRecordVersion) w.u8(r.stroke.long_turns);
+      if (record_version(r) == kRecordVersionRefined) w.f64(r.stroke.refine_threshold_m);
       break;
     case RecordType::object_move:
       w.u8(r.move.hand);
@@ -118,9 +141,11 @@ Result<std::size_t> encode_record(const JournalRecord& r, std::span<std::byte> o
 
 Result<JournalRecord> decode_payload(std::uint8_t version, std::uint8_t type,
                                      std::span<const std::byte> payload) {
-  const bool long_turns =
-      version == kRecordVersionLongTurns && type == static_cast<std::uint8_t>(RecordType::stroke);
-  if (version != kRecordVersion && !long_turns) return StatusCode::data_loss;
+  const bool stroke = type == static_cast<std::uint8_t>(RecordType::stroke);
+  if (version != kRecordVersion &&
+      !(stroke && (version == kRecordVersionLongTurns || version == kRecordVersionRefined))) {
+    return StatusCode::data_loss;
+  }
   if (payload.size() < kSequenceOnlyBytes) return StatusCode::data_loss;
   JournalRecord r;
   ByteReader in(payload);
@@ -145,13 +170,7 @@ Result<JournalRecord> decode_payload(std::uint8_t version, std::uint8_t type,
         r.stroke.end[h] = read_pose(in);
         if (!finite(r.stroke.start[h]) || !finite(r.stroke.end[h])) return StatusCode::data_loss;
       }
-      if (long_turns) {
-        // Canonical: version 2 only when some hand turned the long way.
-        r.stroke.long_turns = in.u8();
-        if (r.stroke.long_turns == 0 || !valid_turns(r.stroke.long_turns, r.stroke.hand_mask)) {
-          return StatusCode::data_loss;
-        }
-      }
+      if (!read_stroke_tail(in, version, r.stroke)) return StatusCode::data_loss;
       return r;
     }
     case static_cast<std::uint8_t>(RecordType::object_move):

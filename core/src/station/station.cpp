@@ -188,6 +188,16 @@ void Station::report_sculpt(const input::SessionEvent& e, ports::TimestampUs now
       out.value = static_cast<std::uint64_t>(e.value);
       out.detail = static_cast<std::uint8_t>(e.reason);
       break;
+    case K::refined:
+      ++counters_.refined_commits;
+      out.kind = StationEventKind::stroke_refined;
+      out.value = static_cast<std::uint64_t>(e.value);
+      break;
+    case K::refine_stopped:
+      ++counters_.refine_stops;
+      out.kind = StationEventKind::refinement_stopped;
+      out.value = static_cast<std::uint64_t>(e.value);
+      break;
     default:
       return;  // tracking, each radius change, moves, overflow: in the session's state
   }

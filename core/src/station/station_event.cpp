@@ -46,6 +46,10 @@ const char* station_event_kind_name(StationEventKind kind) {
       return "method_changed";
     case StationEventKind::command_refused:
       return "command_refused";
+    case StationEventKind::stroke_refined:
+      return "stroke_refined";
+    case StationEventKind::refinement_stopped:
+      return "refinement_stopped";
   }
   return "unknown";
 }

@@ -201,6 +201,8 @@ void read_sculpt(ConfigReader& root, StationConfig& cfg) {
   if (s.integer("lost_timeout_ms", false, 50, 10000, timeout)) {
     sc.lost_timeout_ms = static_cast<std::uint32_t>(timeout);
   }
+  s.boolean("refine", sc.refine);
+  s.real("refine_threshold_m", false, 1e-5, 0.1, sc.refine_threshold_m);
   ConfigReader buttons = s.table("buttons", false);
   sc.buttons_configured = buttons.present();
   for (std::uint8_t hand = 0; hand < 2; ++hand) read_buttons_of(buttons, hand, cfg);

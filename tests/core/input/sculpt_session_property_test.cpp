@@ -164,9 +164,14 @@ RC_GTEST_PROP(SculptSessionProperty, GrabsEndOnceUndoRedoExactReplayIdentical, (
 }
 
 // Extended by the interaction issue to its actions: the clutch, turns past 180 degrees
-// and the limit, chords, button and submitted commands, method changes.
+// and the limit, chords, button and submitted commands, method changes; and by the
+// refinement issue: every commit that ends a stroke refines the grid until its spare
+// capacity runs out (then says so), undo and redo restore the topology.
 TEST(SculptSessionProperty, NoHeapAllocationOverALongRandomStrokeSequence) {
-  Station s(33, interaction_config());  // all storage is set up here, before counting starts
+  SculptSessionConfig config = interaction_config();
+  config.refine.enabled = true;
+  config.refine.threshold_m = 0.002;
+  Station s(33, config);  // all storage is set up here, before counting starts
   RandomSculptor sculptor(12345);
   std::array<bool, 8> levels{};
   int checked = 0;
@@ -184,7 +189,8 @@ TEST(SculptSessionProperty, NoHeapAllocationOverALongRandomStrokeSequence) {
        {SessionEventKind::disengaged, SessionEventKind::engaged,
         SessionEventKind::turn_limit_reached, SessionEventKind::turn_limit_left,
         SessionEventKind::undone, SessionEventKind::redone, SessionEventKind::method_changed,
-        SessionEventKind::command_refused, SessionEventKind::radius_set}) {
+        SessionEventKind::command_refused, SessionEventKind::radius_set, SessionEventKind::refined,
+        SessionEventKind::refine_stopped}) {
     EXPECT_GT(seen[static_cast<std::size_t>(kind)], 0u) << session_event_kind_name(kind);
   }
 }

@@ -17,15 +17,17 @@ using namespace test_support;
 class RecordingSink final : public StrokeCommitSink {
  public:
   std::array<journal::StrokeRecord, 128> records{};
+  std::array<bool, 128> plan_goes_on{};  // per record: a freeze step (the plan is rebased)
   std::size_t count = 0;
   std::uint32_t next_sequence = 0;
   Status fail{};  // not ok: every commit fails with it
 
  private:
   CommitOutcome do_commit(const math::WarpPlan& plan, const journal::StrokeRecord& stroke,
-                          SessionEvents& /*out*/) override {
+                          SessionEvents& /*out*/, bool goes_on) override {
     if (!fail.ok()) return {fail, next_sequence};
     EXPECT_TRUE(plan.built());
+    plan_goes_on[count] = goes_on;
     records[count++] = stroke;
     return {ok_status(), next_sequence++};
   }

@@ -50,7 +50,7 @@ Line line_of(const StationEvent& e) {
 }
 
 TEST(StationLog, EveryKindHasOneLineAtItsLevel) {
-  for (int k = 0; k <= static_cast<int>(StationEventKind::command_refused); ++k) {
+  for (int k = 0; k <= static_cast<int>(StationEventKind::refinement_stopped); ++k) {
     StationEvent e;
     e.kind = static_cast<StationEventKind>(k);
     const Line l = line_of(e);

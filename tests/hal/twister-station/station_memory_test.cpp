@@ -25,16 +25,22 @@ namespace fs = std::filesystem;
 TEST(StationMemory, TheArenaIsExactlyTheFormula) {
   // The documented sizes of one undo step's parts.
   EXPECT_EQ(sizeof(input::VertexChange), 28u);
-  EXPECT_EQ(sizeof(input::UndoEntry), 216u);
+  EXPECT_EQ(sizeof(input::UndoEntry), 248u);
   for (const std::size_t v :
        {std::size_t{1}, std::size_t{266}, std::size_t{10'000}, std::size_t{1'000'000}}) {
     const MemoryBudget b = memory_budget(v, 2 * v);
     EXPECT_EQ(b.mesh, 12 * v + 12 * 2 * v);
     EXPECT_EQ(b.live, 12 * v);
     EXPECT_EQ(b.plan, 12 * v);
-    EXPECT_EQ(b.undo, input::kDefaultUndoChanges * 28 + input::kDefaultUndoEntries * 216);
+    EXPECT_EQ(b.undo, input::kDefaultUndoChanges * 28 + input::kDefaultUndoEntries * 248);
     WorkMemory work(v);
-    EXPECT_EQ(work.arena_bytes(), b.live + b.plan + b.undo);
+    EXPECT_EQ(b.normals, 12 * v);
+    EXPECT_EQ(b.refine, 0u);  // refinement off
+    EXPECT_EQ(
+        memory_budget(v, 2 * v, input::kDefaultUndoChanges, input::kDefaultUndoEntries, false, true)
+            .refine,
+        32 * v + 32 * 2 * v + input::kDefaultUndoTriangleChanges * 28);
+    EXPECT_EQ(work.arena_bytes(), b.live + b.plan + b.undo + b.normals);
     const input::SculptStorage s = work.storage();
     EXPECT_EQ(s.live_x.size(), v);
     EXPECT_EQ(s.plan.indices.size(), v);
@@ -42,11 +48,11 @@ TEST(StationMemory, TheArenaIsExactlyTheFormula) {
     EXPECT_EQ(s.undo_entries.size(), input::kDefaultUndoEntries);
     // The spans lie in the arena, one after the other, without overlap.
     const auto* lo = reinterpret_cast<const std::byte*>(s.undo_entries.data());
-    const auto* hi = reinterpret_cast<const std::byte*>(s.plan.indices.data() + v);
+    const auto* hi = reinterpret_cast<const std::byte*>(s.normals.z.data() + v);
     EXPECT_EQ(static_cast<std::size_t>(hi - lo), work.arena_bytes());
   }
-  // A smaller history shrinks the undo part by 28 B per change and 216 B per entry.
-  EXPECT_EQ(WorkMemory(1000, 1000, 10).arena_bytes(), 24'000u + 28'000u + 2'160u);
+  // A smaller history shrinks the undo part by 28 B per change and 248 B per entry.
+  EXPECT_EQ(WorkMemory(1000, 1000, 10).arena_bytes(), 36'000u + 28'000u + 2'480u);
   meshio::MeshBuffer model(1000, 2000);
   EXPECT_EQ(memory_budget(model.mesh().vertex_capacity(), model.mesh().triangle_capacity()).mesh,
             model.mesh().vertex_capacity() * 12 + model.mesh().triangle_capacity() * 12);

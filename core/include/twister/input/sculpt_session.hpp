@@ -17,7 +17,9 @@
 // turn limit (SculptSessionConfig::turns, docs/unwrap.md).
 // Each commit is one journal record and one undo entry; the record is appended and
 // synced before the model changes, and a commit whose record cannot be saved is not
-// made (not_saved; at a freeze press or release the stroke ends there).
+// made (not_saved; at a freeze press or release the stroke ends there). With
+// refinement on (SculptSessionConfig::refine), a commit that ends its stroke refines
+// the mesh into its spare capacity (CommitRefinement, docs/refinement.md).
 // Commands (undo, redo, warp method) come from buttons (ButtonMap roles and chords)
 // or submit() and run at the end of a step; state() is the display's snapshot.
 //
@@ -41,6 +43,7 @@
 #include "twister/input/button_debouncer.hpp"
 #include "twister/input/button_front_end.hpp"
 #include "twister/input/button_map.hpp"
+#include "twister/input/commit_refinement.hpp"
 #include "twister/input/hand_drive.hpp"
 #include "twister/input/interaction_machine.hpp"
 #include "twister/input/journal_replay.hpp"
@@ -60,6 +63,7 @@
 #include "twister/math/warp_method.hpp"
 #include "twister/math/warp_plan.hpp"
 #include "twister/mesh/mesh.hpp"
+#include "twister/mesh/vertex_normals.hpp"
 #include "twister/ports/button_source.hpp"
 #include "twister/ports/clock.hpp"
 
@@ -69,13 +73,16 @@ namespace twister::input {
 // the same sizes to reproduce undo records exactly once the history has overflowed.
 inline constexpr std::size_t kDefaultUndoChanges = std::size_t{1} << 18;
 inline constexpr std::size_t kDefaultUndoEntries = 64;
+// Triangle changes of refined commits (about four per vertex a refinement adds).
+inline constexpr std::size_t kDefaultUndoTriangleChanges = std::size_t{1} << 18;
 
 struct SculptSessionConfig {
   InteractionConfig interaction{};
   ButtonDebouncerConfig debounce{};
   ButtonMap buttons = ButtonMap::paper_default();
   math::WarpMethod method = math::WarpMethod::twister;
-  TurnConfig turns{};  // how far one stroke may turn (unwrapped up to 330 degrees)
+  TurnConfig turns{};     // how far one stroke may turn (unwrapped up to 330 degrees)
+  RefineConfig refine{};  // adaptive refinement at commit (off by default)
 };
 
 // Caller-owned working memory, sized once at start-up.
@@ -87,6 +94,12 @@ struct SculptStorage {
   math::WarpPlanStorage plan;  // capacity = most vertices one stroke may move
   std::span<VertexChange> undo_changes;
   std::span<UndoEntry> undo_entries;
+  // Refinement (optional; empty: commits are never refined): the refiner's memory for
+  // the mesh's capacities and the undo pool of refined commits' triangles.
+  mesh::MeshRefinerStorage refine{};
+  std::span<TriangleChange> undo_triangle_changes{};
+  // Vertex normals kept up to date (optional; each column the mesh's vertex capacity).
+  mesh::NormalColumns normals{};
 };
 
 class SculptSession {
@@ -137,6 +150,10 @@ class SculptSession {
   const ReplayStats& replay_stats() const { return replay_.stats(); }
 
   const mesh::Mesh& mesh() const { return mesh_.mesh(); }
+  // Vertex normals of mesh() (mesh::compute_vertex_normals), vertex_count() long; empty
+  // without normal storage. Current after construction, step(), undo(), redo() and
+  // replay(); after apply_record() from the next of these.
+  mesh::NormalColumns normals() const;
   const math::Frame& object_pose() const { return poses_.object(); }
   float radius_m() const { return machine_.radius_m(); }
   const InteractionMachine& machine() const { return machine_; }
@@ -166,8 +183,11 @@ class SculptSession {
   Status step_history(journal::RecordType type);
   void run_command(const SessionCommand& command, SessionEvents& out);
   void run_history_command(const SessionCommand& command, SessionEvents& out);
+  // Recomputes the normals when the model changed since they were computed.
+  void refresh_normals();
 
   LiveMesh mesh_;
+  CommitRefinement refinement_;
   SessionPoses poses_;
   ButtonFrontEnd buttons_;
   InteractionMachine machine_;
@@ -180,14 +200,20 @@ class SculptSession {
   JournalReplay replay_;
   std::array<SessionCommand, kMaxQueuedCommands> queued_{};
   std::size_t queued_count_ = 0;
+  mesh::NormalColumns normals_{};
+  std::uint32_t normals_sequence_ = 0;  // next_sequence() when they were computed
 };
 
 // A session owning its working memory: kVertices = mesh vertex capacity,
-// kInfluenced = plan capacity, kUndoChanges / kUndoEntries = history size.
+// kInfluenced = plan capacity, kUndoChanges / kUndoEntries = history size,
+// kTriangles = mesh triangle capacity for refinement (0: no refinement memory; else
+// also kUndoChanges triangle changes for its undo, and vertex normals).
 // Large: place it in static storage or the start-up arena.
 template <std::size_t kVertices, std::size_t kInfluenced, std::size_t kUndoChanges,
-          std::size_t kUndoEntries>
+          std::size_t kUndoEntries, std::size_t kTriangles = 0>
 struct SculptStorageArrays {
+  static constexpr std::size_t kRefineVertices = kTriangles == 0 ? 0 : kVertices;
+  static constexpr std::size_t kTriangleChanges = kTriangles == 0 ? 0 : kUndoChanges;
   std::array<float, kVertices> live_x{};
   std::array<float, kVertices> live_y{};
   std::array<float, kVertices> live_z{};
@@ -196,19 +222,29 @@ struct SculptStorageArrays {
   std::array<float, kInfluenced> plan_weights2{};
   std::array<VertexChange, kUndoChanges> undo_changes{};
   std::array<UndoEntry, kUndoEntries> undo_entries{};
+  mesh::internal::MeshRefinerArrays<kRefineVertices, kTriangles> refiner{};
+  std::array<TriangleChange, kTriangleChanges> undo_triangle_changes{};
+  std::array<float, kRefineVertices> normal_x{};
+  std::array<float, kRefineVertices> normal_y{};
+  std::array<float, kRefineVertices> normal_z{};
 
   SculptStorage spans() {
-    return SculptStorage{
-        live_x,       live_y,
-        live_z,       math::WarpPlanStorage{plan_indices, plan_weights1, plan_weights2},
-        undo_changes, undo_entries};
+    return SculptStorage{live_x,
+                         live_y,
+                         live_z,
+                         math::WarpPlanStorage{plan_indices, plan_weights1, plan_weights2},
+                         undo_changes,
+                         undo_entries,
+                         refiner.spans(),
+                         undo_triangle_changes,
+                         mesh::NormalColumns{normal_x, normal_y, normal_z}};
   }
 };
 
 template <std::size_t kVertices, std::size_t kInfluenced, std::size_t kUndoChanges,
-          std::size_t kUndoEntries>
+          std::size_t kUndoEntries, std::size_t kTriangles = 0>
 class SculptSessionWithStorage
-    : private SculptStorageArrays<kVertices, kInfluenced, kUndoChanges, kUndoEntries>,
+    : private SculptStorageArrays<kVertices, kInfluenced, kUndoChanges, kUndoEntries, kTriangles>,
       public SculptSession {
  public:
   SculptSessionWithStorage(const SculptSessionConfig& config, mesh::Mesh& mesh,

@@ -52,6 +52,10 @@ enum class SessionEventKind : std::uint8_t {
   command_refused,     // value = the SessionCommandKind; reason busy / nothing_to_*, or
                        // status io_error: an undo/redo whose record could not be saved
                        // (taken back: the model is unchanged)
+  refined,             // the commit `sequence` refined the mesh (value = vertices added)
+  refine_stopped,      // its refinement stopped at a capacity (value = mesh::RefineStop;
+                       // status resource_exhausted): the commit stands, the mesh is
+                       // conforming, edges over the threshold are left
 };
 const char* session_event_kind_name(SessionEventKind kind);
 

@@ -13,6 +13,9 @@
 // a failure (its partial record could not be cut off) is repaired before the next
 // append. A commit too large for the history is applied but not undoable
 // (history_overflow event).
+// Refinement (CommitRefinement, optional): a stroke commit whose record carries a
+// threshold refines the mesh in apply_plan, live and replayed alike (refined and,
+// at a capacity, refine_stopped events).
 // Memory: the mesh, poses, history storage and journal are the caller's and must
 // outlive this object; no allocation. Not thread-safe.
 #pragma once
@@ -21,6 +24,7 @@
 #include <span>
 
 #include "twister/base/status.hpp"
+#include "twister/input/commit_refinement.hpp"
 #include "twister/input/live_mesh.hpp"
 #include "twister/input/session_events.hpp"
 #include "twister/input/session_poses.hpp"
@@ -36,8 +40,10 @@ namespace twister::input {
 class SessionHistory final : public StrokeCommitSink {
  public:
   // `journal` may be null (no recording; sequence numbers still count).
+  // `triangle_changes`: the undo pool for refined commits' topology.
   SessionHistory(LiveMesh& mesh, SessionPoses& poses, std::span<VertexChange> changes,
-                 std::span<UndoEntry> entries, journal::JournalWriter* journal);
+                 std::span<UndoEntry> entries, journal::JournalWriter* journal,
+                 std::span<TriangleChange> triangle_changes = {});
   SessionHistory(const SessionHistory&) = delete;
   SessionHistory& operator=(const SessionHistory&) = delete;
 
@@ -52,9 +58,14 @@ class SessionHistory final : public StrokeCommitSink {
   // (mesh, pose and history as before the call).
   Status commit_history_step(journal::RecordType type);
 
-  // Replay, not journaled. The warp of `plan` (updated to its end poses); errors of
-  // WarpPlan::apply (then nothing changed).
-  Status apply_stroke(const math::WarpPlan& plan);
+  // Commits refine through `refinement` (may be null: never); it must outlive this.
+  void set_refinement(CommitRefinement* refinement) { refinement_ = refinement; }
+
+  // Replay, not journaled. The warp of `plan` (updated to its end poses), refined to
+  // the record's threshold (0: not refined); errors of WarpPlan::apply, or
+  // failed_precondition for a threshold without refinement storage (then nothing
+  // changed).
+  Status apply_stroke(const math::WarpPlan& plan, double refine_threshold_m = 0.0);
   // An undo entry for an object move (the caller sets the pose).
   void apply_move(const math::Frame& before, const math::Frame& after);
   // Undo or redo without a record; errors as commit_history_step.
@@ -69,13 +80,15 @@ class SessionHistory final : public StrokeCommitSink {
 
  private:
   CommitOutcome do_commit(const math::WarpPlan& plan, const journal::StrokeRecord& stroke,
-                          SessionEvents& out) override;
+                          SessionEvents& out, bool plan_goes_on) override;
   // The commit of a warp, live and replayed alike: the plan applied to the live
-  // columns, then commit_live(). Commit-time work on the mesh (refinement) hooks in here.
-  Status apply_plan(const math::WarpPlan& plan, SessionEvents* out);
-  // The live columns of the plan's vertices into the mesh, one undo entry (a
-  // history_overflow event with `sequence` when it is too large to undo).
-  void commit_live(const math::WarpPlan& plan, std::uint32_t sequence, SessionEvents* out);
+  // columns, then commit_live().
+  Status apply_plan(const math::WarpPlan& plan, double refine_threshold_m, SessionEvents* out);
+  // The mesh refined at rest (when `refine_threshold_m` > 0), the live columns of the
+  // plan's vertices into the mesh, one undo entry (a history_overflow event with
+  // `sequence` when it is too large to undo; refined / refine_stopped events).
+  void commit_live(const math::WarpPlan& plan, double refine_threshold_m, std::uint32_t sequence,
+                   SessionEvents* out);
   // Gives `record` the next sequence and appends and syncs it (when journaling); the
   // sequence advances only when it is durable. io_error: not saved.
   Status append(journal::JournalRecord& record);
@@ -84,6 +97,7 @@ class SessionHistory final : public StrokeCommitSink {
   SessionPoses& poses_;
   UndoHistory history_;
   journal::JournalWriter* journal_;
+  CommitRefinement* refinement_ = nullptr;
   std::uint32_t next_sequence_ = 0;
 };
 

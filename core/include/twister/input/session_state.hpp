@@ -11,6 +11,7 @@
 #include <cstdint>
 
 #include "twister/input/button_map.hpp"
+#include "twister/input/commit_refinement.hpp"
 #include "twister/input/hand_drive.hpp"
 #include "twister/input/interaction_machine.hpp"
 #include "twister/math/warp_method.hpp"
@@ -42,6 +43,7 @@ struct SessionState {
   std::size_t redo_depth = 0;
   std::uint32_t next_sequence = 0;  // journal records so far
   std::array<HandView, kHandCount> hands{};
+  RefineStatus refine{};  // refinement: on, threshold, spare capacity, the last stop
 };
 
 }  // namespace twister::input

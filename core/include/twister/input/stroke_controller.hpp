@@ -97,9 +97,10 @@ class StrokeController {
   void restart_segment(bool committed, SessionEvents& out);
   // Commits the open segment; the committed event names `hand` and `reason`
   // (released: the hand's grab ends; none: the stroke continues), or, when the commit
-  // did not happen, a not_saved event with `reason_if_not_saved`. Returns that event.
+  // did not happen, a not_saved event with `reason_if_not_saved`. `plan_goes_on`: a
+  // freeze step, the plan is rebased next (no refinement). Returns that event.
   SessionEvent commit_segment(std::uint8_t hand, Reason reason, SessionEvents& out,
-                              Reason reason_if_not_saved);
+                              Reason reason_if_not_saved, bool plan_goes_on = false);
   // A chain step (freeze or unfreeze) of `hand` was not saved (`failed`): the stroke
   // ends for every hand of the segment (not_saved repeats for the others).
   void end_not_saved(std::uint8_t hand, const SessionEvent& failed, SessionEvents& out);

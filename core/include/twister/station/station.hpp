@@ -74,6 +74,8 @@ struct StationCounters {
   std::uint64_t strokes_not_saved = 0;
   std::uint64_t undos = 0;
   std::uint64_t redos = 0;
+  std::uint64_t refined_commits = 0;  // commits that refined the mesh
+  std::uint64_t refine_stops = 0;     // of them, stopped at the mesh's capacity
   std::uint64_t refused = 0;
   std::uint64_t session_events_dropped = 0;
   std::uint64_t journal_errors = 0;  // failed journal appends and checkpoint writes
@@ -173,6 +175,11 @@ class Station {
   std::uint32_t journal_records() const {
     return static_cast<std::uint32_t>(records_at_start_ + writer_.appended());
   }
+  // Vertex normals of mesh(), up to date after every poll() (empty without storage).
+  mesh::NormalColumns normals() const { return sculpt_.normals(); }
+  // Refinement: on, threshold, spare capacity, how the last refined commit ended
+  // (what a display shows).
+  input::RefineStatus refinement() const { return sculpt_.state().refine; }
   bool hand_valid(std::uint8_t hand, ports::TimestampUs now_us) const;
   // The frame last applied to `hand` (hand < kHandCount); see hand_valid().
   const tracker::TrackedFrame& hand_pose(std::uint8_t hand) const { return hands_[hand].pose; }

@@ -1,8 +1,9 @@
 // StationEvent: what the station reports to the composition root's log (tracker
 // up/down, strokes committed, not saved or cancelled, refusals, checkpoints, journal
 // and button failures, and what the sculptor did besides strokes: radius, clutch,
-// turn limit, undo/redo, method). Plain data; the station never formats text (log
-// lines: hal/twister-station/station_log.hpp).
+// turn limit, undo/redo, method; adaptive refinement of a commit and where it
+// stopped). Plain data; the station never formats text (log lines:
+// hal/twister-station/station_log.hpp).
 #pragma once
 
 #include <cstdint>
@@ -41,6 +42,9 @@ enum class StationEventKind : std::uint8_t {
   method_changed,       // value = the math::WarpMethod of strokes from now on
   command_refused,      // value = input::SessionCommandKind, detail = input::Reason;
                         // status io_error: an undo/redo not saved (taken back)
+  stroke_refined,       // commit `sequence` refined the mesh: value = vertices added
+  refinement_stopped,   // its refinement stopped at a capacity: value = mesh::RefineStop
+                        // (status resource_exhausted); the stroke is committed
                         // (the last kind: tests iterate up to it)
 };
 
