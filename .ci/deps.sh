@@ -15,6 +15,7 @@ packages=(
   # hal backends and the station
   libusb-1.0-0-dev libgpiod-dev libhidapi-dev libsystemd-dev libtomlplusplus-dev
   libcli11-dev umockdev libumockdev-dev
+  libsodium-dev  # the display link's pre-shared-key challenge-response (hal/sodium)
   systemd  # systemd-analyze checks the deployment unit (tests/hal/twister-station)
   # host tools and display
   libpng-dev libglfw3-dev libepoxy-dev libegl-dev

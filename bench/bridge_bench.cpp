@@ -4,6 +4,7 @@
 // rest (baseline: the warp's cost is the difference) and vs a CPU warp + upload.
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <cstdlib>
 #include <cstring>
 #include <memory>
@@ -22,23 +23,21 @@ namespace {
 
 using namespace twister;
 
-link::LinkMessage live_message(std::uint8_t mask) {
-  link::LinkMessage m;
-  m.type = link::MessageType::live_warp;
-  m.live_warp.active = true;
-  m.live_warp.mesh_version = 1;
-  m.live_warp.hand_mask = mask;
-  m.live_warp.radius_m = 0.12;
+// Protocol 2: the stroke message once, then per update the compact hands message.
+bridge::LiveMessages live_messages(std::uint8_t mask) {
+  std::array<math::Frame, 2> start{};
+  std::array<math::Frame, 2> end{};
+  std::size_t k = 0;
   for (std::size_t h = 0; h < 2; ++h) {
-    auto& hand = m.live_warp.hands[h];
-    const math::Frame start = math::identity_frame({0.0, h == 0 ? -0.1 : 0.1, 0.0});
-    const math::Frame end = math::frame_from_uv({0.0, h == 0 ? -0.15 : 0.15, -0.03},
-                                                {1.0, 0.0, 0.0}, {0.0, 0.8253356149, 0.5646424734});
-    hand = {link::to_wire(start), link::to_wire(end),
-            link::to_wire(math::compute_screw(start, end))};
+    if ((mask & (1u << h)) == 0) continue;
+    start[k] = math::identity_frame({0.0, h == 0 ? -0.1 : 0.1, 0.0});
+    end[k++] = math::frame_from_uv({0.0, h == 0 ? -0.15 : 0.15, -0.03}, {1.0, 0.0, 0.0},
+                                   {0.0, 0.8253356149, 0.5646424734});
   }
-  return m;
+  return bridge::make_live_messages(1, 1, math::WarpMethod::twister, 0.12, mask, start, end);
 }
+
+link::LinkMessage live_message(std::uint8_t mask) { return live_messages(mask).hands; }
 
 void BM_LiveFrameEncodeDecode(benchmark::State& state) {
   const auto m = live_message(static_cast<std::uint8_t>(state.range(0)));
@@ -118,7 +117,8 @@ GlFixture& gl() {
   e.type = link::MessageType::mesh_end;
   e.mesh_end = {1, *bridge::mesh_checksum(d)};
   (void)f.replica.apply(e);
-  (void)f.replica.apply(live_message(3));
+  (void)f.replica.apply(live_messages(3).stroke);
+  (void)f.replica.apply(live_messages(3).hands);
   f.renderer.set_mesh(f.replica.mesh(), false);
   f.renderer.set_weights(f.replica.live().weight1, f.replica.live().weight2);
   f.ok = f.replica.live().active;
@@ -147,7 +147,7 @@ void BM_FrameLiveWarpInShader(benchmark::State& state) {
   f.renderer.set_mesh(f.replica.mesh(), true);
   f.renderer.set_weights(f.replica.live().weight1, f.replica.live().weight2);
   for (auto _ : state) {
-    f.renderer.set_live(&f.replica.live().message);
+    f.renderer.set_live(&f.replica.live());
     f.renderer.draw();
   }
 }

@@ -17,12 +17,47 @@ int ms_left(Clock::time_point until) {
 
 }  // namespace
 
-hal::Expected<void> DisplayLink::open(const std::string& address,
-                                      const input::SculptSession& session) {
-  socket_ = std::make_unique<hal::SocketLink>(hal::SocketLinkConfig{address, true, 200});
-  if (const Status s = socket_->open(); !s.ok()) {
-    return hal::Error{s, "link " + address + ": " + s.name() + " (errno " +
-                             std::to_string(socket_->last_errno()) + ")"};
+DisplayLink::DisplayLink() = default;
+DisplayLink::~DisplayLink() = default;
+
+hal::Expected<void> DisplayLink::open(const LinkSection& settings,
+                                      const input::SculptSession& session, hal::Logger& log) {
+  log_ = &log;
+  const std::string& address = settings.address;
+  if (!settings.psk_file.empty()) {
+    if (auto ready = hal::SodiumAuthenticator::init(); !ready) return ready.error();
+    auto key = hal::load_link_key(settings.psk_file);
+    if (!key) return key.error();
+    auth_ = std::make_unique<hal::SodiumAuthenticator>(*key);
+  } else if (settings.listen == LinkListen::network) {
+    return hal::make_error(StatusCode::invalid_argument,
+                           "link " + address + ": listen = \"network\" needs psk_file");
+  }
+  station::StationLinkOptions options;
+  options.authenticator = auth_.get();
+  if (address.rfind("serial:", 0) == 0) {
+    hal::SerialLinkConfig config;
+    config.path = address.substr(7);
+    config.baud = static_cast<int>(settings.baud);
+    serial_ = std::make_unique<hal::SerialLink>(config);
+    if (auto opened = serial_->open(); !opened) {
+      if (opened.error().status.code() != StatusCode::unavailable) return opened.error();
+      log.warning("link", "%s; retrying", opened.error().message.c_str());
+    }
+    port_ = serial_.get();
+    poll_ = serial_.get();
+  } else {
+    hal::SocketLinkConfig config(address, true, 200);
+    config.socket_mode = settings.socket_mode;
+    config.socket_group = settings.socket_group;
+    config.allow_network = settings.listen == LinkListen::network;
+    socket_ = std::make_unique<hal::SocketLink>(config);
+    if (auto opened = socket_->open(); !opened) {
+      return hal::Error{opened.error().status, "link: " + opened.error().message};
+    }
+    port_ = socket_.get();
+    poll_ = socket_.get();
+    options.newcomers = socket_.get();
   }
   const std::size_t n = session.mesh().vertex_capacity();
   x_.resize(n);
@@ -32,47 +67,76 @@ hal::Expected<void> DisplayLink::open(const std::string& address,
   // Room for a few hundred frames: a whole commit of a large stroke fits at once.
   out_.resize(512 * link::kMaxFrameBytes);
   link_ = std::make_unique<station::StationLink>(
-      *socket_, station::StationLinkStorage{x_, y_, z_, indices_, out_},
-      station::StationLinkConfig{});
+      *port_, station::StationLinkStorage{x_, y_, z_, indices_, out_}, station::StationLinkConfig{},
+      options);
   if (const Status s = link_->start(session); !s.ok()) {
     return hal::Error{s, std::string("link: ") + s.name()};
   }
   return {};
 }
 
-void DisplayLink::poll(const input::SculptSession& session, ports::TimestampUs now_us) {
-  if (link_) link_->poll(session, now_us);
+void DisplayLink::poll(const station::Station& core, ports::TimestampUs now_us) {
+  if (!link_) return;
+  link_->poll(core.sculpt(), core.status(), now_us);
+  log_changes();
+}
+
+void DisplayLink::log_changes() {
+  const station::StationLinkCounters& c = link_->counters();
+  if (c.connects != logged_.connects) log_->notice("link", "display admitted");
+  if (c.displaced != logged_.displaced) {
+    log_->notice("link", "a newly admitted display took over; the previous one was told so");
+  }
+  // Refusals: at most one line per 10 s (a stranger may retry every 100 ms).
+  const std::uint64_t refused =
+      c.refused_unauthorised + c.refused_version + c.refused_timeout + c.refused_protocol;
+  const std::uint64_t before = logged_.refused_unauthorised + logged_.refused_version +
+                               logged_.refused_timeout + logged_.refused_protocol;
+  const auto now = Clock::now();
+  if (refused != before && now - last_refusal_log_ >= std::chrono::seconds(10)) {
+    const char* why = c.refused_unauthorised != logged_.refused_unauthorised
+                          ? "unauthorised (no or wrong key)"
+                      : c.refused_version != logged_.refused_version ? "another protocol version"
+                      : c.refused_timeout != logged_.refused_timeout ? "no handshake within 2 s"
+                                                                     : "it broke the handshake";
+    log_->warning(
+        "link", "refused a peer: %s (peer protocol %u, this station %u; %llu refused so far)", why,
+        static_cast<unsigned>(link_->refused_version()),
+        static_cast<unsigned>(link::kProtocolVersion), static_cast<unsigned long long>(refused));
+    last_refusal_log_ = now;
+  }
+  logged_ = c;
 }
 
 void DisplayLink::wait_ready(int timeout_ms) const {
   std::array<pollfd, hal::PollSource::kMaxFds> fds{};
-  const std::size_t n = socket_->poll_fds(fds);
+  const std::size_t n = poll_->poll_fds(fds);
   // The peer's descriptor comes first; wait for room only while bytes are queued.
-  if (n > 0 && socket_->connected() && link_->pending_bytes() > 0) fds[0].events |= POLLOUT;
+  if (n > 0 && link_->connected() && link_->pending_bytes() > 0) fds[0].events |= POLLOUT;
   ::poll(fds.data(), n, timeout_ms);
 }
 
-bool DisplayLink::wait_for_peer(const input::SculptSession& session, double seconds) {
+bool DisplayLink::wait_for_peer(const station::Station& core, double seconds) {
   if (!link_) return false;
   const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                         std::chrono::duration<double>(seconds));
   while (Clock::now() < until) {
-    link_->poll(session, 0);
+    poll(core, 0);
     if (link_->peer_synced()) return true;
     wait_ready(ms_left(until));
   }
   return false;
 }
 
-void DisplayLink::drain(const input::SculptSession& session, ports::TimestampUs now_us,
-                        double seconds) {
+void DisplayLink::drain(const station::Station& core, ports::TimestampUs now_us, double seconds) {
   if (!link_) return;
   const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                         std::chrono::duration<double>(seconds));
   while (link_->connected() && !link_->idle() && Clock::now() < until) {
-    link_->poll(session, now_us);
+    poll(core, now_us);
     if (!link_->idle()) wait_ready(ms_left(until));
   }
+  link_->say_goodbye();
 }
 
 }  // namespace twister::station_app

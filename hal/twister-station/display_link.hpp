@@ -1,51 +1,74 @@
-// DisplayLink: twister-station's optional link to twister-bridge (--link ADDRESS):
-// a listening hal::SocketLink plus core's StationLink with its storage sized once from
-// the mesh capacity. The station never waits for it except where asked:
-// wait_for_peer() before the run (demo/tests in virtual time) and drain() at exit;
-// both wait on the socket's readiness. poll() and poll_fds() run in the station's
-// loop and never allocate.
+// DisplayLink: twister-station's optional link to twister-bridge ([link] in
+// station.toml, --link overrides the address): the transport (a listening
+// hal::SocketLink on unix:/tcp:, or a hal::SerialLink on serial:), the pre-shared
+// key when configured (hal::SodiumAuthenticator), and core's StationLink with its
+// storage sized once from the mesh capacity. The station never waits for it except
+// where asked: wait_for_peer() before the run (demo/tests in virtual time) and
+// drain() at exit (which also tells the display the station stops); both wait on
+// the transport's readiness. poll() and poll_fds() run in the station's loop and
+// never allocate; poll() logs admissions and refusals through the logger given.
 #pragma once
 
 #include <poll.h>
 
+#include <chrono>
 #include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "config/station_config.hpp"
 #include "twister/hal/expected.hpp"
+#include "twister/hal/logger.hpp"
+#include "twister/hal/serial_link.hpp"
 #include "twister/hal/socket_link.hpp"
+#include "twister/hal/sodium_authenticator.hpp"
+#include "twister/station/station.hpp"
 #include "twister/station/station_link.hpp"
 
 namespace twister::station_app {
 
 class DisplayLink {
  public:
-  // Binds `address` and takes the session's mesh as version 1. Errors: the
-  // socket's status (invalid_argument: bad address; io_error: bind failed) or the
-  // StationLink's (resource_exhausted), with a message naming the link.
-  hal::Expected<void> open(const std::string& address, const input::SculptSession& session);
+  DisplayLink();
+  ~DisplayLink();
+  DisplayLink(const DisplayLink&) = delete;
+  DisplayLink& operator=(const DisplayLink&) = delete;
+
+  // Opens `settings.address` and takes the session's mesh as version 1. Errors
+  // name the link: the key file's (load_link_key), the transport's (SocketLink /
+  // SerialLink open), or the StationLink's (resource_exhausted).
+  hal::Expected<void> open(const LinkSection& settings, const input::SculptSession& session,
+                           hal::Logger& log);
   bool is_open() const { return link_ != nullptr; }
-  void poll(const input::SculptSession& session, ports::TimestampUs now_us);
-  // The link's descriptors for the loop's poll set (none without --link).
-  std::size_t poll_fds(std::span<pollfd> out) const { return socket_ ? socket_->poll_fds(out) : 0; }
-  // Real-time wait: true when a peer holds our mesh within `seconds`.
-  bool wait_for_peer(const input::SculptSession& session, double seconds);
-  // Hands everything queued to the peer (up to `seconds`).
-  void drain(const input::SculptSession& session, ports::TimestampUs now_us, double seconds);
+  void poll(const station::Station& core, ports::TimestampUs now_us);
+  // The link's descriptors for the loop's poll set (none without a link).
+  std::size_t poll_fds(std::span<pollfd> out) const { return poll_ ? poll_->poll_fds(out) : 0; }
+  // Real-time wait: true when a display holds our mesh within `seconds`.
+  bool wait_for_peer(const station::Station& core, double seconds);
+  // Hands everything queued to the display (up to `seconds`), then says goodbye.
+  void drain(const station::Station& core, ports::TimestampUs now_us, double seconds);
   const station::StationLinkCounters* counters() const {
     return link_ ? &link_->counters() : nullptr;
   }
 
  private:
-  // Waits up to timeout_ms for the socket: input, a peer, or room for pending bytes.
+  // Waits up to timeout_ms for the transport: input, a peer, or room for pending bytes.
   void wait_ready(int timeout_ms) const;
+  void log_changes();
 
   std::unique_ptr<hal::SocketLink> socket_;
+  std::unique_ptr<hal::SerialLink> serial_;
+  ports::LinkPort* port_ = nullptr;
+  hal::PollSource* poll_ = nullptr;
+  std::unique_ptr<hal::SodiumAuthenticator> auth_;
   std::vector<float> x_, y_, z_;
   std::vector<std::uint32_t> indices_;
   std::vector<std::byte> out_;
   std::unique_ptr<station::StationLink> link_;
+  hal::Logger* log_ = nullptr;
+  station::StationLinkCounters logged_{};
+  std::chrono::steady_clock::time_point last_refusal_log_{};
 };
 
 }  // namespace twister::station_app

@@ -26,6 +26,7 @@
 #include "station_loop.hpp"
 #include "station_setup.hpp"
 #include "twister/hal/logger.hpp"
+#include "twister/hal/sodium_authenticator.hpp"
 
 namespace {
 
@@ -88,6 +89,13 @@ int check_config(hal::Logger& log, const Options& opt, const StationConfig& cfg)
               opt.config_path.c_str(), app::to_string(cfg.buttons.backend));
     ++errors;
   }
+  if (!cfg.link.psk_file.empty()) {
+    // The key file is checked like at start (private regular file of 64 hex digits).
+    if (const auto key = hal::load_link_key(cfg.link.psk_file); !key) {
+      log.error("", "%s: link.psk_file: %s", opt.config_path.c_str(), key.error().message.c_str());
+      ++errors;
+    }
+  }
   return errors;
 }
 
@@ -111,6 +119,21 @@ void log_summary(hal::Logger& results, const twister::station::Station& core,
     results.error("", "%llu stroke(s) were not saved (see the errors above); exit status 1",
                   static_cast<unsigned long long>(c.strokes_not_saved));
   }
+}
+
+void log_link_summary(hal::Logger& results, const app::DisplayLink& display) {
+  const twister::station::StationLinkCounters* l = display.counters();
+  if (l == nullptr) return;
+  const std::uint64_t refused =
+      l->refused_unauthorised + l->refused_protocol + l->refused_version + l->refused_timeout;
+  results.notice(
+      "link",
+      "displays admitted %llu, hands sent %llu, dropped %llu; commits %llu, full "
+      "meshes %llu; refused %llu",
+      static_cast<unsigned long long>(l->connects), static_cast<unsigned long long>(l->live_sent),
+      static_cast<unsigned long long>(l->live_dropped),
+      static_cast<unsigned long long>(l->commits_sent),
+      static_cast<unsigned long long>(l->full_sends), static_cast<unsigned long long>(refused));
 }
 
 int run(const Options& opt, const StationConfig& cfg, hal::Logger& log, hal::Logger& results) {
@@ -137,7 +160,7 @@ int run(const Options& opt, const StationConfig& cfg, hal::Logger& log, hal::Log
                refine.threshold_m, refine.spare_vertices);
   }
   if (parts.display.is_open() && opt.link_wait_s > 0.0 &&
-      !parts.display.wait_for_peer(parts.core->sculpt(), opt.link_wait_s)) {
+      !parts.display.wait_for_peer(*parts.core, opt.link_wait_s)) {
     log.warning("", "no bridge on %s after %.1f s; running without", opt.link_address.c_str(),
                 opt.link_wait_s);
   }
@@ -149,6 +172,7 @@ int run(const Options& opt, const StationConfig& cfg, hal::Logger& log, hal::Log
   loop.watch_journal(&parts.journal);
   const twister::Status flushed = loop.run();
   log_summary(results, *parts.core, loop, flushed);
+  log_link_summary(results, parts.display);
   // A run that lost a stroke did not succeed, whatever else went well.
   const bool all_saved = parts.core->counters().strokes_not_saved == 0;
   return flushed.ok() && all_saved ? kExitOk : kExitFailure;
@@ -172,7 +196,8 @@ void add_options(CLI::App& app, Options& opt) {
                "summary")
       ->excludes(level);
   app.add_option("--link", opt.link_address,
-                 "serve the display link to twister-bridge on unix:PATH or tcp:HOST:PORT");
+                 "serve the display link to twister-bridge on unix:PATH, tcp:HOST:PORT or "
+                 "serial:DEVICE (overrides [link] address)");
   app.add_option("--link-wait", opt.link_wait_s,
                  "seconds to wait for a bridge to connect and receive the mesh before running")
       ->check(CLI::NonNegativeNumber);

@@ -149,8 +149,11 @@ hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationConfi
   }
   parts->recovery_notes = recovery_notes(parts->core->recovery(), *parts);
   parts->checkpoint_in.reset();  // read: the next checkpoint replaces it
-  if (!options.link_address.empty()) {
-    if (auto opened = parts->display.open(options.link_address, parts->core->sculpt()); !opened) {
+  LinkSection link = config.link;
+  if (!options.link_address.empty()) link.address = options.link_address;  // --link wins
+  if (!link.address.empty()) {
+    if (auto opened = parts->display.open(link, parts->core->sculpt(), hal::process_log());
+        !opened) {
       return opened.error();
     }
   }

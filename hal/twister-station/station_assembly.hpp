@@ -27,7 +27,7 @@ namespace twister::station_app {
 
 struct AssemblyOptions {
   std::filesystem::path config_dir;  // a relative station.mesh is relative to it
-  std::string link_address;          // --link; empty: no display link
+  std::string link_address;          // --link (overrides [link] address); empty: config's
 };
 
 struct StationParts {
@@ -52,7 +52,7 @@ struct StationParts {
   std::unique_ptr<WorkMemory> work;
   std::unique_ptr<RefineMemory> refine;    // [sculpt] refine on
   std::unique_ptr<station::Station> core;  // started: the journal is replayed
-  DisplayLink display;                     // open when options.link_address is set
+  DisplayLink display;                     // open when a link address is set
 };
 
 // Builds and starts everything. Errors (message for the log): the backends'

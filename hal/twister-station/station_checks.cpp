@@ -1,9 +1,8 @@
 #include "station_checks.hpp"
 
 #include <sys/stat.h>
-#include <sys/un.h>
 
-#include <charconv>
+#include "config/link_config.hpp"
 
 namespace twister::station_app {
 namespace {
@@ -48,27 +47,9 @@ std::vector<std::string> referenced_file_problems(const StationConfig& config,
 }
 
 std::string link_address_problem(const std::string& address) {
-  if (address.rfind("unix:", 0) == 0) {
-    const std::string path = address.substr(5);
-    if (path.empty()) return "unix: needs a path (unix:/run/twister/link.sock)";
-    if (path.size() >= sizeof(sockaddr_un::sun_path)) return "the socket path is too long";
-    return "";
-  }
-  if (address.rfind("tcp:", 0) == 0) {
-    const std::string rest = address.substr(4);
-    const auto colon = rest.rfind(':');
-    if (colon == std::string::npos || colon == 0)
-      return "tcp: needs HOST:PORT (tcp:127.0.0.1:7070)";
-    unsigned port = 0;
-    const char* first = rest.data() + colon + 1;
-    const char* last = rest.data() + rest.size();
-    const auto [end, ec] = std::from_chars(first, last, port);
-    if (first == last || ec != std::errc() || end != last || port == 0 || port > 65535) {
-      return "the port must be a number from 1 to 65535";
-    }
-    return "";
-  }
-  return "expected unix:PATH or tcp:HOST:PORT";
+  bool loopback = true;
+  const std::string form = internal::check_link_address(address, loopback);
+  return form.empty() ? "" : "expected " + form;
 }
 
 }  // namespace twister::station_app

@@ -19,9 +19,9 @@ namespace twister::station_app {
 std::vector<std::string> referenced_file_problems(const StationConfig& config,
                                                   const std::filesystem::path& config_dir);
 
-// "" when `address` has the form --link takes (unix:PATH with a non-empty path that
-// fits a socket address, or tcp:HOST:PORT with a port from 1 to 65535), else what is
-// wrong. A syntax check only: nothing is opened or bound.
+// "" when `address` has the form --link takes (as [link] address: unix:PATH,
+// tcp:A.B.C.D:PORT or serial:DEVICE), else what is wrong. A syntax check only:
+// nothing is opened or bound.
 std::string link_address_problem(const std::string& address);
 
 }  // namespace twister::station_app

@@ -105,7 +105,7 @@ bool StationLoop::step() {
     stop_reason_ = StopReason::station_failed;
     return false;
   }
-  display_.poll(core_.sculpt(), now_us);
+  display_.poll(core_, now_us);
   log_events();
   retry_buttons(now_us);
   pet_watchdog(now_us);
@@ -147,7 +147,7 @@ Status StationLoop::finish() {
   if (config_.notify) sd_notify(0, "STOPPING=1");
   core_.stop();
   log_events();
-  display_.drain(core_.sculpt(), backends_.clock->now_us(), 2.0);
+  display_.drain(core_, backends_.clock->now_us(), 2.0);
   return core_.flush();
 }
 

@@ -1,6 +1,8 @@
 #include "bridge_app.hpp"
 
+#include <algorithm>
 #include <array>
+#include <chrono>
 
 namespace twister::bridge {
 
@@ -12,11 +14,13 @@ BridgeApp::BridgeApp(ports::LinkPort& port, MeshRenderer* renderer, BridgeOption
       renderer_(renderer),
       log_(log),
       options_(std::move(options)),
+      replica_(options_.limits),
       in_(std::size_t{64} * 1024) {}
 
 std::size_t BridgeApp::step() {
+  if (stop_ != BridgeStop::none) return 0;  // backed off: the link is left alone
   std::size_t frames = 0;
-  for (int round = 0; round < 64; ++round) {
+  for (int round = 0; round < 64 && stop_ == BridgeStop::none; ++round) {
     const Result<std::size_t> got = port_.receive(in_);
     if (!got.ok()) {
       if (connected_) {
@@ -24,35 +28,65 @@ std::size_t BridgeApp::step() {
         log_.write(LogLevel::warning, "link", "lost; reconnecting");
       }
       connected_ = false;
+      ready_ = false;
       out_.clear();
       return frames;
     }
-    if (!connected_) {
-      connected_ = true;
-      ++counters_.connects;
-      decoder_.clear();
-      // Resync by version: the station sends the full mesh only if ours differs.
-      link::LinkMessage hello;
-      hello.type = link::MessageType::hello;
-      hello.hello = replica_.hello();
-      send(hello);
-      log_.write(LogLevel::notice, "link", "connected (holding mesh version %u)",
-                 {replica_.version()});
-    }
-    for (std::size_t i = 0; i < *got; ++i) {
+    if (!connected_) on_connect();
+    for (std::size_t i = 0; i < *got && stop_ == BridgeStop::none; ++i) {
       if (const auto m = decoder_.process(in_[i]); m.ok()) {
         handle(**m);
         ++frames;
       }
     }
+    if (decoder_.other_version() != 0 && stop_ == BridgeStop::none) {
+      log_.write(LogLevel::error, "link",
+                 "the station speaks link protocol %u, this bridge %u; refusing it",
+                 {static_cast<unsigned>(decoder_.other_version()),
+                  static_cast<unsigned>(link::kProtocolVersion)});
+      stop(BridgeStop::version);
+    }
     if (*got < in_.size()) break;
   }
+  if (connected_ && stop_ == BridgeStop::none) keep_alive();
   flush();
   refresh_display();
   return frames;
 }
 
 void BridgeApp::handle(const link::LinkMessage& m) {
+  last_frame_ms_ = std::chrono::duration_cast<std::chrono::milliseconds>(
+                       std::chrono::steady_clock::now().time_since_epoch())
+                       .count();
+  if (m.type == link::MessageType::hands) {
+    const std::int64_t second = last_frame_ms_ / 1000;
+    if (second != hands_second_) {
+      hands_second_ = second;
+      hands_in_second_ = 0;
+    }
+    counters_.hands_busiest_second = std::max(counters_.hands_busiest_second, ++hands_in_second_);
+  }
+  switch (m.type) {
+    case link::MessageType::hello:
+      on_station_hello(m.hello);
+      return;
+    case link::MessageType::auth:
+      on_station_auth(m.auth);
+      return;
+    case link::MessageType::bye:
+      on_bye(m.bye);
+      return;
+    default:
+      break;
+  }
+  if (!ready_) {
+    ++counters_.ignored;  // not trusted before the handshake completes
+    return;
+  }
+  handle_scene(m);
+}
+
+void BridgeApp::handle_scene(const link::LinkMessage& m) {
   // The live warp just before a commit is the stroke's final preview: picture it
   // before the change set replaces the rest mesh.
   if (m.type == link::MessageType::mesh_begin && !m.mesh_begin.full && replica_.live().active &&
@@ -69,6 +103,13 @@ void BridgeApp::handle(const link::LinkMessage& m) {
     send(r);
     log_.write(LogLevel::warning, "replica",
                "mesh change set rejected (checksum/version); asked for a full resend");
+  }
+  if (replica_.counters().over_capacity != over_capacity_logged_) {
+    over_capacity_logged_ = replica_.counters().over_capacity;
+    log_.write(LogLevel::error, "replica",
+               "mesh of %u vertices, %u triangles refused: above the limits (%u, %u)",
+               {m.mesh_begin.vertex_count, m.mesh_begin.triangle_count,
+                replica_.limits().max_vertices, replica_.limits().max_triangles});
   }
   if (replica_.counters().full_meshes != fulls) {
     log_.write(
@@ -139,7 +180,7 @@ void BridgeApp::refresh_display() {
     shown_live_frames_ = live_frames;
   }
   renderer_->set_show_weights(live.active);
-  renderer_->set_live(live.active ? &live.message : nullptr);
+  renderer_->set_live(live.active ? &live : nullptr);
 }
 
 void BridgeApp::draw() {

@@ -1,12 +1,18 @@
-// BridgeApp: twister-bridge's loop body. Reads link bytes, decodes frames, keeps
-// the scene replica, answers with hello (after every (re)connect: resync by
-// version) and resend requests, and keeps the display current: the rest mesh on
-// each verified version, the stroke's weights once per stroke, the screws on each
-// live frame. Snapshots (offscreen): the rest mesh when the first mesh arrives,
-// the live warp just before each commit is applied, and the committed mesh.
+// BridgeApp: twister-bridge's loop body. Reads link bytes (a fresh decoder per
+// connection), runs the display's side of the handshake (hello with its mesh
+// version: resync by version; the pre-shared-key challenge-response when given an
+// authenticator; hello again when the station stays silent, e.g. a station
+// restarted behind a serial line), keeps the scene replica and answers resend
+// requests, and keeps the display current: the rest mesh on each verified version,
+// the stroke's weights once per segment, the screws on each hands update.
+// Backing off: a `bye` saying displaced (another display took the link),
+// unauthorised, or a station speaking another protocol version stops all link
+// I/O for good (stopped() says why): two displays never fight over the link.
+// Snapshots (offscreen): the rest mesh when the first mesh arrives, the live warp
+// just before each commit is applied, and the committed mesh.
 // Messages go to the LogSink it is given (components "link", "replica",
-// "snapshot"): link loss and rejected change sets are warnings, connects, meshes
-// and commits notices, each picture written info.
+// "snapshot"): link loss and rejected change sets are warnings, being displaced a
+// warning, refusals errors, connects, meshes and commits notices, pictures info.
 #pragma once
 
 #include <cstdint>
@@ -15,6 +21,7 @@
 
 #include "mesh_renderer.hpp"
 #include "scene_replica.hpp"
+#include "twister/link/link_authenticator.hpp"
 #include "twister/link/link_codec.hpp"
 #include "twister/ports/link_port.hpp"
 #include "twister/ports/log_sink.hpp"
@@ -22,19 +29,29 @@
 namespace twister::bridge {
 
 struct BridgeOptions {
-  std::string snapshot_dir;  // empty: no PNGs
+  std::string snapshot_dir;                          // empty: no PNGs
+  link::LinkAuthenticator* authenticator = nullptr;  // the pre-shared key (null: none)
+  ReplicaLimits limits{};
+  std::int64_t hello_retry_ms = 1000;  // hello again until the station answers
+  std::int64_t silence_ms = 3000;      // no frame this long: hello again (new session)
 };
 
 struct BridgeCounters {
   std::uint64_t connects = 0;
   std::uint64_t disconnects = 0;
   std::uint64_t snapshots = 0;
+  std::uint64_t hellos_sent = 0;
+  std::uint64_t ignored = 0;               // station messages before the handshake completed
+  std::uint64_t hands_busiest_second = 0;  // most hands updates in one wall-clock second
 };
+
+// Why the bridge stopped using the link (none: it did not).
+enum class BridgeStop : std::uint8_t { none, displaced, unauthorised, version };
 
 class BridgeApp {
  public:
-  // `renderer` may be null (headless replica, tests). `port` and `log` must outlive
-  // the app.
+  // `renderer` may be null (headless replica, tests). `port`, `log` and the
+  // authenticator must outlive the app.
   BridgeApp(ports::LinkPort& port, MeshRenderer* renderer, BridgeOptions options,
             ports::LogSink& log);
   // One step: link I/O and replica updates (never blocks). Returns frames decoded.
@@ -45,6 +62,9 @@ class BridgeApp {
   std::string snapshot(const std::string& name);
 
   bool connected() const { return connected_; }
+  // The handshake is complete: the station's data is trusted and shown.
+  bool ready() const { return connected_ && ready_; }
+  BridgeStop stopped() const { return stop_; }
   const SceneReplica& replica() const { return replica_; }
   SceneReplica& replica() { return replica_; }
   const BridgeCounters& counters() const { return counters_; }
@@ -52,7 +72,17 @@ class BridgeApp {
   const std::vector<std::string>& pictures() const { return pictures_; }
 
  private:
+  // Handshake (bridge_session.cpp).
+  void on_connect();
+  void send_hello();
+  void on_station_hello(const link::Hello& hello);
+  void on_station_auth(const link::Auth& auth);
+  void on_bye(const link::Bye& bye);
+  void stop(BridgeStop why);
+  void keep_alive();
+  // Display (bridge_app.cpp).
   void handle(const link::LinkMessage& m);
+  void handle_scene(const link::LinkMessage& m);
   void send(const link::LinkMessage& m);
   void flush();
   void refresh_display();
@@ -66,10 +96,22 @@ class BridgeApp {
   std::vector<std::byte> in_;  // receive buffer, sized once
   std::vector<std::byte> out_;
   bool connected_ = false;
+  // Handshake of the current connection.
+  bool station_hello_ = false;
+  bool ready_ = false;
+  link::Nonce bridge_nonce_{};
+  link::Nonce station_nonce_{};
+  std::int64_t hello_sent_ms_ = 0;
+  std::int64_t last_frame_ms_ = 0;
+  std::int64_t hands_second_ = 0;
+  std::uint64_t hands_in_second_ = 0;
+  BridgeStop stop_ = BridgeStop::none;
+  // Display.
   bool display_mesh_live_ = false;  // the renderer holds CPU-warped positions (scodef)
   std::uint32_t shown_version_ = 0;
   std::uint32_t shown_stroke_ = 0;
   std::uint64_t shown_live_frames_ = 0;  // replica live frames when the CPU warp was shown
+  std::uint64_t over_capacity_logged_ = 0;
   BridgeCounters counters_{};
   std::vector<std::string> pictures_;
 };

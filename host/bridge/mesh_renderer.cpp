@@ -253,21 +253,20 @@ void MeshRenderer::set_weights(const std::vector<float>& w1, const std::vector<f
                GL_DYNAMIC_DRAW);
 }
 
-void MeshRenderer::set_live(const link::LiveWarp* live) {
+void MeshRenderer::set_live(const LiveState* live) {
   hand_mask_ = 0;
   if (live == nullptr || !live->active) return;
-  const auto method = static_cast<math::WarpMethod>(live->method);
-  if (method == math::WarpMethod::scodef) return;  // CPU path (positions uploaded)
-  hand_mask_ = live->hand_mask;
+  if (live->method == math::WarpMethod::scodef) return;  // CPU path (positions uploaded)
+  // Plan hands: hand k uses the k-th weight column (red for the first, green for the second).
+  hand_mask_ = static_cast<int>((1u << live->hand_count) - 1u);
   // The kernels' per-hand constants, rounded to float for the shader uniforms.
   for (std::size_t h = 0; h < link::kLinkHands; ++h) {
     float* k = hands_[h];
     std::fill(k, k + 17, 0.0F);
-    if ((live->hand_mask & (1u << h)) == 0) continue;
+    if (h >= live->hand_count) continue;
     math::KernelHand kh;
-    math::fill_kernel_hand(kh, link::to_screw(live->hands[h].screw),
-                           link::to_frame(live->hands[h].start), link::to_frame(live->hands[h].end),
-                           method);
+    const LiveHand& lh = live->hands[h];
+    math::fill_kernel_hand(kh, lh.screw, lh.start, lh.end, live->method);
     const double* columns[] = {kh.axis, kh.mid, kh.chord, kh.axis_x_chord, kh.shift};
     for (std::size_t c = 0; c < 5; ++c) {
       for (std::size_t i = 0; i < 3; ++i) k[3 * c + i] = static_cast<float>(columns[c][i]);

@@ -37,8 +37,8 @@ class MeshRenderer {
   // weights and camera kept): the CPU-warped preview.
   void set_positions(const MeshData& mesh);
   void set_weights(const std::vector<float>& w1, const std::vector<float>& w2);
-  // Hand uniforms from a live message (scodef: no shader warp, see set_mesh).
-  void set_live(const link::LiveWarp* live);
+  // Hand uniforms from the replica's live stroke (scodef: no shader warp, see set_mesh).
+  void set_live(const LiveState* live);
   // Tint by the weights even without a shader warp (scodef / CPU-warped uploads).
   void set_show_weights(bool show) { show_weights_ = show; }
   void draw();

@@ -10,6 +10,7 @@
 #include <poll.h>
 
 #include <CLI/CLI.hpp>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -21,7 +22,9 @@
 #include "mesh_export.hpp"
 #include "twister/hal/expected.hpp"
 #include "twister/hal/logger.hpp"
+#include "twister/hal/serial_link.hpp"
 #include "twister/hal/socket_link.hpp"
+#include "twister/hal/sodium_authenticator.hpp"
 
 namespace {
 
@@ -47,6 +50,9 @@ struct Options {
   bool exit_on_disconnect = false;
   std::string log_level = "notice";
   bool quiet = false;
+  int baud = 230400;                      // serial: links
+  std::string link_key;                   // pre-shared key file (the station's psk_file)
+  twister::bridge::ReplicaLimits limits;  // --max-vertices / --max-triangles
 };
 
 twister::hal::Logger& logger() { return twister::hal::process_log(); }
@@ -89,6 +95,10 @@ int run_loop(const Options& opt, BridgeApp& app, Display& display, const int lin
   twister::bridge::GlContext& context = *display.context;
   for (;;) {
     app.step();
+    if (app.stopped() != twister::bridge::BridgeStop::none && context.offscreen()) {
+      // Backed off (displaced, refused): nothing more will come.
+      return app.stopped() == twister::bridge::BridgeStop::displaced ? kExitOk : kExitFailure;
+    }
     if (!context.offscreen()) {
       context.poll_events();
       if (!context.open()) return kExitOk;
@@ -116,6 +126,41 @@ int run_loop(const Options& opt, BridgeApp& app, Display& display, const int lin
   }
 }
 
+// The link transport: a socket client (unix:, tcp:) or a tty (serial:).
+struct Transport {
+  std::unique_ptr<twister::hal::SocketLink> socket;
+  std::unique_ptr<twister::hal::SerialLink> serial;
+  twister::ports::LinkPort* port = nullptr;
+  int poll_fd() const {
+    if (socket) return socket->poll_fd();
+    std::array<pollfd, 1> fds{};
+    return serial && serial->poll_fds(fds) == 1 ? fds[0].fd : -1;
+  }
+};
+
+Expected<void> open_transport(const Options& opt, Transport& t) {
+  if (opt.connect.rfind("serial:", 0) == 0) {
+    twister::hal::SerialLinkConfig config;
+    config.path = opt.connect.substr(7);
+    config.baud = opt.baud;
+    t.serial = std::make_unique<twister::hal::SerialLink>(config);
+    t.port = t.serial.get();
+    Expected<void> opened = t.serial->open();
+    // Not there yet: retried on use, like a socket's reconnect.
+    if (!opened && opened.error().status.code() != StatusCode::unavailable) return opened;
+    return {};
+  }
+  t.socket = std::make_unique<twister::hal::SocketLink>(
+      twister::hal::SocketLinkConfig{opt.connect, false, 200});
+  t.port = t.socket.get();
+  if (!t.socket->open()) {
+    return twister::hal::make_error(
+        StatusCode::invalid_argument,
+        "bad link address " + opt.connect + " (unix:PATH | tcp:HOST:PORT | serial:DEVICE)");
+  }
+  return {};
+}
+
 int export_final_mesh(const std::string& path, const BridgeApp& app) {
   if (!app.replica().has_mesh()) {
     logger().error("export", "no mesh received; nothing exported");
@@ -137,9 +182,11 @@ void log_summary(const BridgeApp& app) {
   const auto& d = app.decoder_counters();
   logger().notice("summary",
                   "mesh version %u; full meshes %llu, commits %llu, checksum mismatches %llu, "
-                  "resend requests %llu, live frames %llu, connects %llu, bad frames %llu",
+                  "resend requests %llu, live frames %llu (missed %llu, busiest second %llu), "
+                  "connects %llu, bad frames %llu",
                   app.replica().version(), c.full_meshes, c.commits, c.checksum_mismatches,
-                  c.resend_requests, c.live_frames, app.counters().connects,
+                  c.resend_requests, c.live_frames, c.live_missed,
+                  app.counters().hands_busiest_second, app.counters().connects,
                   d.bad_crc + d.bad_cobs + d.bad_payload);
 }
 
@@ -155,14 +202,29 @@ int run(const Options& opt) {
     logger().error("display", "%s", opened.error().message.c_str());
     return kExitFailure;
   }
-  twister::hal::SocketLink link({opt.connect, false, 200});
-  if (!link.open().ok()) {
-    logger().error("options", "bad link address %s (unix:PATH | tcp:HOST:PORT)",
-                   opt.connect.c_str());
+  Transport transport;
+  if (const Expected<void> opened = open_transport(opt, transport); !opened) {
+    logger().error("options", "%s", opened.error().message.c_str());
     return kExitBadOptions;
   }
-  BridgeApp app(link, &display.renderer, {opt.snapshots}, logger());
-  int rc = run_loop(opt, app, display, link.poll_fd());
+  std::unique_ptr<twister::hal::SodiumAuthenticator> auth;
+  if (!opt.link_key.empty()) {
+    auto key = twister::hal::SodiumAuthenticator::init()
+                   ? twister::hal::load_link_key(opt.link_key)
+                   : Expected<twister::hal::LinkKey>(twister::hal::make_error(
+                         StatusCode::io_error, "libsodium failed to start"));
+    if (!key) {
+      logger().error("options", "%s", key.error().message.c_str());
+      return kExitBadOptions;
+    }
+    auth = std::make_unique<twister::hal::SodiumAuthenticator>(*key);
+  }
+  twister::bridge::BridgeOptions bridge_options;
+  bridge_options.snapshot_dir = opt.snapshots;
+  bridge_options.authenticator = auth.get();
+  bridge_options.limits = opt.limits;
+  BridgeApp app(*transport.port, &display.renderer, bridge_options, logger());
+  int rc = run_loop(opt, app, display, transport.poll_fd());
   if (!opt.export_path.empty()) {
     if (const int exported = export_final_mesh(opt.export_path, app); exported != kExitOk) {
       return exported;
@@ -174,7 +236,19 @@ int run(const Options& opt) {
 }
 
 void add_options(CLI::App& cli, Options& opt) {
-  cli.add_option("--connect", opt.connect, "station link: unix:PATH or tcp:HOST:PORT")->required();
+  cli.add_option("--connect", opt.connect,
+                 "station link: unix:PATH, tcp:HOST:PORT or serial:DEVICE")
+      ->required();
+  cli.add_option("--baud", opt.baud, "serial: line speed (default 230400)")
+      ->check(CLI::IsMember({9600, 19200, 38400, 57600, 115200, 230400, 460800, 921600}));
+  cli.add_option("--link-key", opt.link_key,
+                 "pre-shared key file (64 hex digits, mode 0600): the station's link.psk_file");
+  cli.add_option("--max-vertices", opt.limits.max_vertices,
+                 "largest mesh accepted from the station (default 4194304 vertices)")
+      ->check(CLI::Range(1u, 1u << 28));
+  cli.add_option("--max-triangles", opt.limits.max_triangles,
+                 "largest mesh accepted from the station (default 8388608 triangles)")
+      ->check(CLI::Range(1u, 1u << 29));
   cli.add_flag("--offscreen", opt.offscreen,
                "no window: EGL surfaceless rendering (PNG snapshots)");
   cli.add_flag("--kiosk", opt.kiosk, "full screen on the primary monitor");

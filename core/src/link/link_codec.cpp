@@ -75,7 +75,7 @@ Status decode_payload(std::span<const std::byte> payload, LinkMessage& out) {
   const std::uint8_t type = r.u8();
   if (!r.ok()) return StatusCode::invalid_argument;
   if (version != kProtocolVersion) return StatusCode::not_supported;
-  if (type < 1 || type > static_cast<std::uint8_t>(MessageType::status)) {
+  if (type < 1 || type > kLastMessageType) {
     return StatusCode::invalid_argument;
   }
   out.type = static_cast<MessageType>(type);
@@ -86,6 +86,11 @@ Status decode_payload(std::span<const std::byte> payload, LinkMessage& out) {
 void FrameDecoder::clear() {
   size_ = 0;
   overflow_ = false;
+}
+
+void LinkDecoder::clear() {
+  frames_.clear();
+  other_version_seen_ = 0;
 }
 
 Result<std::span<const std::byte>> FrameDecoder::process(std::byte byte) {
@@ -145,12 +150,22 @@ Result<const LinkMessage*> LinkDecoder::process(std::byte byte) {
   if (!frame.ok()) return frame.status();
   const Status s = decode_payload(*frame, message_);
   if (!s.ok()) {
+    if (s.code() == StatusCode::not_supported && !frame->empty()) {
+      ++other_version_;
+      other_version_seen_ = std::to_integer<std::uint8_t>((*frame)[0]);
+    }
     ++bad_payload_;
     bad_payload_bytes_ += frame->size();
     return s;
   }
   ++messages_;
   return &message_;
+}
+
+std::size_t frame_size(const LinkMessage& message) {
+  std::array<std::byte, kMaxFrameBytes> out{};
+  const Result<std::size_t> n = encode_frame(message, out);
+  return n.ok() ? *n : 0;
 }
 
 DecoderCounters LinkDecoder::counters() const {

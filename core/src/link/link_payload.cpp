@@ -1,4 +1,6 @@
-// Message bodies: one write_* / read_* pair per message type, same field order.
+// Message bodies: one write / read pair per message type, same field order.
+// Readers refuse out-of-range fields and non-finite numbers (a NaN pose would
+// poison the display's shader); counts are bounded by the chunk capacities.
 #include "link_payload.hpp"
 
 #include <cmath>
@@ -6,19 +8,18 @@
 namespace twister::link::internal {
 namespace {
 
-void write_frame(ByteWriter& w, const Pose& f) {
+bool finite(const glm::dvec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+void write_pose(ByteWriter& w, const Pose& f) {
   w.vec(f.origin);
   w.vec(f.u);
   w.vec(f.v);
   w.vec(f.w);
 }
 
-bool finite(const glm::dvec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-// A frame or screw with NaN/inf would poison the display's shader: refused here.
-Pose read_frame(ByteReader& r, bool& bad) {
+Pose read_pose(ByteReader& r, bool& bad) {
   Pose f;
   f.origin = r.vec();
   f.u = r.vec();
@@ -28,29 +29,25 @@ Pose read_frame(ByteReader& r, bool& bad) {
   return f;
 }
 
-void write_screw(ByteWriter& w, const Screw& s) {
-  w.vec(s.axis);
-  w.f64(s.angle);
-  w.f64(s.slide);
-  w.vec(s.mid);
-  w.vec(s.chord);
-  w.f64(s.cot_half);
-  w.u8(s.pure_translation ? 1 : 0);
+void write_compact(ByteWriter& w, const CompactPose& p) {
+  w.f32(p.position.x);
+  w.f32(p.position.y);
+  w.f32(p.position.z);
+  for (const float q : p.rotation) w.f32(q);
 }
 
-Screw read_screw(ByteReader& r, bool& bad) {
-  Screw s;
-  s.axis = r.vec();
-  s.angle = r.f64();
-  s.slide = r.f64();
-  s.mid = r.vec();
-  s.chord = r.vec();
-  s.cot_half = r.f64();
-  const std::uint8_t pure = r.u8();
-  bad = bad || pure > 1 || !finite(s.axis) || !std::isfinite(s.angle) || !std::isfinite(s.slide) ||
-        !finite(s.mid) || !finite(s.chord) || !std::isfinite(s.cot_half);
-  s.pure_translation = pure == 1;
-  return s;
+// A rotation must be a (nearly) unit quaternion: the bridge normalises it.
+CompactPose read_compact(ByteReader& r, bool& bad) {
+  CompactPose p;
+  p.position = {r.f32(), r.f32(), r.f32()};
+  double norm2 = 0.0;
+  for (float& q : p.rotation) {
+    q = r.f32();
+    norm2 += static_cast<double>(q) * q;
+  }
+  bad = bad || !std::isfinite(p.position.x) || !std::isfinite(p.position.y) ||
+        !std::isfinite(p.position.z) || !std::isfinite(norm2) || norm2 < 0.25 || norm2 > 4.0;
+  return p;
 }
 
 bool read_bool(ByteReader& r, bool& bad) {
@@ -59,14 +56,180 @@ bool read_bool(ByteReader& r, bool& bad) {
   return v == 1;
 }
 
+template <std::size_t N>
+void write_bytes(ByteWriter& w, const std::array<std::uint8_t, N>& bytes) {
+  for (const std::uint8_t b : bytes) w.u8(b);
+}
+
+template <std::size_t N>
+void read_bytes(ByteReader& r, std::array<std::uint8_t, N>& bytes) {
+  for (std::uint8_t& b : bytes) b = r.u8();
+}
+
+void write_stroke(ByteWriter& w, const StrokeBegin& s) {
+  w.u32(s.stroke);
+  w.u32(s.mesh_version);
+  w.u8(s.method);
+  w.u8(s.hand_mask);
+  w.f64(s.radius_m);
+  for (std::size_t h = 0; h < kLinkHands; ++h) {
+    if ((s.hand_mask & (1u << h)) != 0) write_pose(w, s.start[h]);
+  }
+}
+
+bool read_stroke(ByteReader& r, StrokeBegin& s) {
+  bool bad = false;
+  s.stroke = r.u32();
+  s.mesh_version = r.u32();
+  s.method = r.u8();
+  s.hand_mask = r.u8();
+  s.radius_m = r.f64();
+  if (s.method > 2 || s.hand_mask == 0 || s.hand_mask > 3) return false;
+  bad = !std::isfinite(s.radius_m) || !(s.radius_m > 0.0);
+  for (std::size_t h = 0; h < kLinkHands; ++h) {
+    s.start[h] = (s.hand_mask & (1u << h)) != 0 ? read_pose(r, bad) : Pose{};
+  }
+  return !bad;
+}
+
+void write_hands(ByteWriter& w, const Hands& l) {
+  w.u16(l.sequence);
+  w.u16(l.stroke);
+  w.u8(l.flags);
+  w.u8(l.buttons);
+  w.f32(l.radius_m);
+  for (std::size_t h = 0; h < kLinkHands; ++h) {
+    if ((l.flags & (kHandSample0 << h)) != 0) write_compact(w, l.hands[h]);
+  }
+}
+
+bool read_hands(ByteReader& r, Hands& l) {
+  bool bad = false;
+  l.sequence = r.u16();
+  l.stroke = r.u16();
+  l.flags = r.u8();
+  l.buttons = r.u8();
+  l.radius_m = r.f32();
+  if ((l.flags & ~kHandsFlagMask) != 0) return false;
+  bad = !std::isfinite(l.radius_m) || l.radius_m < 0.0F;
+  for (std::size_t h = 0; h < kLinkHands; ++h) {
+    l.hands[h] = (l.flags & (kHandSample0 << h)) != 0 ? read_compact(r, bad) : CompactPose{};
+  }
+  return !bad;
+}
+
+void write_status(ByteWriter& w, const StatusReport& s) {
+  w.u32(s.mesh_version);
+  w.u32(s.vertex_count);
+  w.u32(s.vertex_capacity);
+  w.u32(s.triangle_count);
+  w.u32(s.triangle_capacity);
+  w.u8(s.tracker_state);
+  w.f32(s.tracker_rate_hz);
+  w.u8(s.method);
+  w.u8(s.clutch);
+  w.f32(s.turned_rad);
+  w.f32(s.turn_limit_rad);
+  w.u64(s.strokes_committed);
+  w.u64(s.strokes_not_saved);
+  w.u64(s.capacity_stops);
+  w.u64(s.live_sent);
+  w.u64(s.live_dropped);
+  w.u64(s.frames_rejected);
+}
+
+bool read_status(ByteReader& r, StatusReport& s) {
+  s.mesh_version = r.u32();
+  s.vertex_count = r.u32();
+  s.vertex_capacity = r.u32();
+  s.triangle_count = r.u32();
+  s.triangle_capacity = r.u32();
+  s.tracker_state = r.u8();
+  s.tracker_rate_hz = r.f32();
+  s.method = r.u8();
+  s.clutch = r.u8();
+  s.turned_rad = r.f32();
+  s.turn_limit_rad = r.f32();
+  s.strokes_committed = r.u64();
+  s.strokes_not_saved = r.u64();
+  s.capacity_stops = r.u64();
+  s.live_sent = r.u64();
+  s.live_dropped = r.u64();
+  s.frames_rejected = r.u64();
+  return s.tracker_state <= 2 && s.method <= 2 && s.clutch <= 3 &&
+         std::isfinite(s.tracker_rate_hz) && std::isfinite(s.turned_rad) &&
+         std::isfinite(s.turn_limit_rad);
+}
+
+void write_mesh_chunk(ByteWriter& w, const LinkMessage& m) {
+  if (m.type == MessageType::vertices) {
+    w.u16(m.vertices.count);
+    for (std::size_t i = 0; i < m.vertices.count; ++i) {
+      const VertexEntry& v = m.vertices.items[i];
+      w.u32(v.index);
+      w.f32(v.x);
+      w.f32(v.y);
+      w.f32(v.z);
+    }
+    return;
+  }
+  w.u32(m.triangles.first);
+  w.u16(m.triangles.count);
+  for (std::size_t i = 0; i < std::size_t{3} * m.triangles.count; ++i)
+    w.u32(m.triangles.indices[i]);
+}
+
+bool read_vertices(ByteReader& r, Vertices& v) {
+  v.count = r.u16();
+  if (v.count > kMaxVerticesPerChunk) return false;
+  bool bad = false;
+  for (std::size_t i = 0; i < v.count; ++i) {
+    VertexEntry& e = v.items[i];
+    e.index = r.u32();
+    e.x = r.f32();
+    e.y = r.f32();
+    e.z = r.f32();
+    bad = bad || !std::isfinite(e.x) || !std::isfinite(e.y) || !std::isfinite(e.z);
+  }
+  return !bad;
+}
+
+bool read_triangles(ByteReader& r, Triangles& t) {
+  t.first = r.u32();
+  t.count = r.u16();
+  if (t.count > kMaxTrianglesPerChunk) return false;
+  for (std::size_t i = 0; i < std::size_t{3} * t.count; ++i) t.indices[i] = r.u32();
+  return true;
+}
+
+bool read_hello(ByteReader& r, Hello& h) {
+  const std::uint8_t role = r.u8();
+  h.role = static_cast<Role>(role);
+  h.flags = r.u8();
+  h.mesh_version = r.u32();
+  h.mesh_checksum = r.u64();
+  read_bytes(r, h.nonce);
+  return (role == static_cast<std::uint8_t>(Role::station) ||
+          role == static_cast<std::uint8_t>(Role::bridge)) &&
+         (h.flags & ~kHelloAuth) == 0;
+}
+
 }  // namespace
 
 bool write_body(ByteWriter& w, const LinkMessage& m) {
   switch (m.type) {
     case MessageType::hello:
       w.u8(static_cast<std::uint8_t>(m.hello.role));
+      w.u8(m.hello.flags);
       w.u32(m.hello.mesh_version);
       w.u64(m.hello.mesh_checksum);
+      write_bytes(w, m.hello.nonce);
+      return true;
+    case MessageType::auth:
+      write_bytes(w, m.auth.tag);
+      return true;
+    case MessageType::bye:
+      w.u8(static_cast<std::uint8_t>(m.bye.reason));
       return true;
     case MessageType::mesh_begin:
       w.u8(m.mesh_begin.full ? 1 : 0);
@@ -77,142 +240,96 @@ bool write_body(ByteWriter& w, const LinkMessage& m) {
       return true;
     case MessageType::vertices:
       if (m.vertices.count > kMaxVerticesPerChunk) return false;
-      w.u16(m.vertices.count);
-      for (std::size_t i = 0; i < m.vertices.count; ++i) {
-        const VertexEntry& v = m.vertices.items[i];
-        w.u32(v.index);
-        w.f32(v.x);
-        w.f32(v.y);
-        w.f32(v.z);
-      }
+      write_mesh_chunk(w, m);
       return true;
     case MessageType::triangles:
       if (m.triangles.count > kMaxTrianglesPerChunk) return false;
-      w.u32(m.triangles.first);
-      w.u16(m.triangles.count);
-      for (std::size_t i = 0; i < std::size_t{3} * m.triangles.count; ++i)
-        w.u32(m.triangles.indices[i]);
+      write_mesh_chunk(w, m);
       return true;
     case MessageType::mesh_end:
       w.u32(m.mesh_end.version);
       w.u64(m.mesh_end.checksum);
       return true;
-    case MessageType::live_warp: {
-      const LiveWarp& l = m.live_warp;
-      if (l.hand_mask > 3 || l.method > 2) return false;
-      w.u32(l.mesh_version);
-      w.u32(l.stroke);
-      w.u8(l.active ? 1 : 0);
-      w.u8(l.method);
-      w.u8(l.hand_mask);
-      w.f64(l.radius_m);
-      for (std::size_t h = 0; h < kLinkHands; ++h) {
-        if ((l.hand_mask & (1u << h)) == 0) continue;  // only the hands in use
-        write_frame(w, l.hands[h].start);
-        write_frame(w, l.hands[h].end);
-        write_screw(w, l.hands[h].screw);
-      }
-      return true;
-    }
     case MessageType::resend_request:
       w.u32(m.resend_request.have_version);
       w.u64(m.resend_request.have_checksum);
       return true;
-    case MessageType::status: {
-      const StatusReport& s = m.status;
-      w.u32(s.mesh_version);
-      w.u64(s.strokes_committed);
-      w.u64(s.live_sent);
-      w.u64(s.live_dropped);
-      w.u64(s.full_sends);
-      w.u64(s.commits_sent);
-      w.u64(s.frames_rejected);
+    case MessageType::stroke:
+      if (m.stroke.method > 2 || m.stroke.hand_mask == 0 || m.stroke.hand_mask > 3) return false;
+      write_stroke(w, m.stroke);
       return true;
-    }
+    case MessageType::hands:
+      if ((m.hands.flags & ~kHandsFlagMask) != 0) return false;
+      write_hands(w, m.hands);
+      return true;
+    case MessageType::object:
+      write_compact(w, m.object.pose);
+      return true;
+    case MessageType::status:
+      write_status(w, m.status);
+      return true;
   }
   return false;
 }
 
 bool read_body(ByteReader& r, LinkMessage& m) {
-  bool bad = false;
+  bool good = true;
   switch (m.type) {
-    case MessageType::hello: {
-      const std::uint8_t role = r.u8();
-      bad = role != static_cast<std::uint8_t>(Role::station) &&
-            role != static_cast<std::uint8_t>(Role::bridge);
-      m.hello.role = static_cast<Role>(role);
-      m.hello.mesh_version = r.u32();
-      m.hello.mesh_checksum = r.u64();
+    case MessageType::hello:
+      good = read_hello(r, m.hello);
+      break;
+    case MessageType::auth:
+      read_bytes(r, m.auth.tag);
+      break;
+    case MessageType::bye: {
+      const std::uint8_t reason = r.u8();
+      m.bye.reason = static_cast<ByeReason>(reason);
+      good = reason >= 1 && reason <= kLastByeReason;
       break;
     }
-    case MessageType::mesh_begin:
+    case MessageType::mesh_begin: {
+      bool bad = false;
       m.mesh_begin.full = read_bool(r, bad);
       m.mesh_begin.base_version = r.u32();
       m.mesh_begin.version = r.u32();
       m.mesh_begin.vertex_count = r.u32();
       m.mesh_begin.triangle_count = r.u32();
+      good = !bad;
       break;
+    }
     case MessageType::vertices:
-      m.vertices.count = r.u16();
-      if (m.vertices.count > kMaxVerticesPerChunk) return false;
-      for (std::size_t i = 0; i < m.vertices.count; ++i) {
-        VertexEntry& v = m.vertices.items[i];
-        v.index = r.u32();
-        v.x = r.f32();
-        v.y = r.f32();
-        v.z = r.f32();
-        bad = bad || !std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z);
-      }
+      good = read_vertices(r, m.vertices);
       break;
     case MessageType::triangles:
-      m.triangles.first = r.u32();
-      m.triangles.count = r.u16();
-      if (m.triangles.count > kMaxTrianglesPerChunk) return false;
-      for (std::size_t i = 0; i < std::size_t{3} * m.triangles.count; ++i)
-        m.triangles.indices[i] = r.u32();
+      good = read_triangles(r, m.triangles);
       break;
     case MessageType::mesh_end:
       m.mesh_end.version = r.u32();
       m.mesh_end.checksum = r.u64();
       break;
-    case MessageType::live_warp: {
-      LiveWarp& l = m.live_warp;
-      l.mesh_version = r.u32();
-      l.stroke = r.u32();
-      l.active = read_bool(r, bad);
-      l.method = r.u8();
-      l.hand_mask = r.u8();
-      l.radius_m = r.f64();
-      if (l.hand_mask > 3 || l.method > 2) return false;
-      bad = bad || !std::isfinite(l.radius_m);
-      for (std::size_t h = 0; h < kLinkHands; ++h) {
-        if ((l.hand_mask & (1u << h)) == 0) {
-          l.hands[h] = LiveHand{};
-          continue;
-        }
-        l.hands[h].start = read_frame(r, bad);
-        l.hands[h].end = read_frame(r, bad);
-        l.hands[h].screw = read_screw(r, bad);
-      }
-      break;
-    }
     case MessageType::resend_request:
       m.resend_request.have_version = r.u32();
       m.resend_request.have_checksum = r.u64();
       break;
+    case MessageType::stroke:
+      good = read_stroke(r, m.stroke);
+      break;
+    case MessageType::hands:
+      good = read_hands(r, m.hands);
+      break;
+    case MessageType::object: {
+      bool bad = false;
+      m.object.pose = read_compact(r, bad);
+      good = !bad;
+      break;
+    }
     case MessageType::status:
-      m.status.mesh_version = r.u32();
-      m.status.strokes_committed = r.u64();
-      m.status.live_sent = r.u64();
-      m.status.live_dropped = r.u64();
-      m.status.full_sends = r.u64();
-      m.status.commits_sent = r.u64();
-      m.status.frames_rejected = r.u64();
+      good = read_status(r, m.status);
       break;
     default:
       return false;
   }
-  return !bad && r.ok() && r.at_end();
+  return good && r.ok() && r.at_end();
 }
 
 }  // namespace twister::link::internal

@@ -1,5 +1,8 @@
 #include "twister/station/station.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace twister::station {
 namespace {
 
@@ -112,7 +115,37 @@ Status Station::poll() {
   counters_.session_events_dropped += events.dropped();
   for (const input::SessionEvent& e : events.items()) report(e, now_us);
   checkpoint_step();
+  if (now_us - rate_window_us_ >= 1'000'000) {
+    const double seconds = static_cast<double>(now_us - rate_window_us_) / 1e6;
+    rate_hz_ =
+        static_cast<float>(static_cast<double>(counters_.poses - rate_window_poses_) / seconds);
+    rate_window_us_ = now_us;
+    rate_window_poses_ = counters_.poses;
+  }
   return ok_status();
+}
+
+StationStatus Station::status() const {
+  StationStatus s;
+  if (session_.streaming()) {
+    s.tracker = TrackerLinkState::streaming;
+    s.tracker_rate_hz = rate_hz_;
+  } else if (session_.counters().streams_started > 0) {
+    s.tracker = TrackerLinkState::lost;
+  }
+  s.strokes_committed = counters_.strokes_committed;
+  s.strokes_not_saved = counters_.strokes_not_saved;
+  const input::SessionState& state = sculpt_.state();
+  s.method = state.method;
+  for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
+    const input::HandView& v = state.hands[h];
+    if (v.in_stroke && !v.engaged) s.clutch |= static_cast<std::uint8_t>(1u << h);
+    if (v.in_stroke)
+      s.turned_rad = std::max(s.turned_rad, static_cast<float>(std::abs(v.turn_rad)));
+    s.turn_limit_rad = std::max(s.turn_limit_rad, static_cast<float>(v.turn_limit_rad));
+  }
+  s.capacity_stops = state.refine.capacity_stops;
+  return s;
 }
 
 void Station::report(const input::SessionEvent& e, ports::TimestampUs now_us) {

@@ -1,27 +1,31 @@
+// StationLink: admission of the display (hello, challenge-response, newcomers),
+// the display's requests, and the two outgoing queues. Mesh sync is in
+// station_link_mesh.cpp, the live stream in station_link_live.cpp.
 #include "twister/station/station_link.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cstring>
-
-#include "twister/link/math_conversion.hpp"
 
 namespace twister::station {
 namespace {
 
 constexpr std::size_t kReceiveChunk = 256;
 
-bool same_frame(const math::Frame& a, const math::Frame& b) {
-  return a.origin == b.origin && a.u == b.u && a.v == b.v && a.w == b.w;
+// Length of the frame at the start of `bytes` (up to and including its 0x00), or
+// bytes.size() when it is not complete.
+std::size_t frame_length(std::span<const std::byte> bytes) {
+  const auto end = std::find(bytes.begin(), bytes.end(), std::byte{0});
+  return end == bytes.end() ? bytes.size() : static_cast<std::size_t>(end - bytes.begin()) + 1;
 }
 
 }  // namespace
 
 StationLink::StationLink(ports::LinkPort& port, StationLinkStorage storage,
-                         const StationLinkConfig& config)
+                         const StationLinkConfig& config, const StationLinkOptions& options)
     : port_(port),
       storage_(storage),
       config_(config),
+      options_(options),
       shadow_(storage.x, storage.y, storage.z, storage.triangle_indices),
       out_(storage.out) {}
 
@@ -34,261 +38,259 @@ Status StationLink::start(const input::SculptSession& session) {
   return ok_status();
 }
 
-void StationLink::poll(const input::SculptSession& session, ports::TimestampUs now_us) {
+void StationLink::poll(const input::SculptSession& session, const StationStatus& status,
+                       ports::TimestampUs now_us) {
   if (!started_) return;
-  receive();
+  receive(now_us);
+  poll_newcomer(now_us);
   if (session.next_sequence() != last_sequence_) {
     last_sequence_ = session.next_sequence();
     track_mesh(session.mesh());
   }
-  if (connected_) {
-    if (full_wanted_ && !full_active_) {
-      full_wanted_ = false;
-      full_active_ = true;
-      full_phase_ = FullPhase::begin;
-      full_next_ = 0;
-      ++counters_.full_sends;
-    }
+  if (admitted()) {
+    if (full_wanted_ && !full_active_) start_full();
     if (full_active_) continue_full();
-    send_live(session, now_us);
-    send_status(session, now_us);
+    send_live(session, status, now_us);
   }
   flush();
 }
 
-void StationLink::receive() {
+void StationLink::lose_display() {
+  if (connected_) ++counters_.disconnects;
+  connected_ = false;
+  display_ = Handshake{};
+  clear_queues();
+  full_active_ = false;
+  full_wanted_ = false;
+  decoder_.clear();
+}
+
+void StationLink::receive(ports::TimestampUs now_us) {
   std::array<std::byte, kReceiveChunk> buf{};
   for (int round = 0; round < 16; ++round) {
     const Result<std::size_t> got = port_.receive(buf);
     if (!got.ok()) {
-      if (connected_) ++counters_.disconnects;
-      connected_ = false;
-      peer_hello_ = false;
-      out_size_ = 0;  // a torn frame is harmless: the next peer resyncs at 0x00
-      full_active_ = false;
-      decoder_.clear();
+      lose_display();
       return;
     }
     if (!connected_) {
-      // A new peer: it holds some version (maybe ours); wait for its hello, and
-      // greet it so it knows our version.
+      // A new connection: a fresh decoder and handshake; the display speaks first.
       connected_ = true;
-      ++counters_.connects;
-      scratch_.type = link::MessageType::hello;
-      scratch_.hello = link::Hello{link::Role::station, version_, shadow_.checksum()};
-      queue(scratch_);
+      display_ = Handshake{};
+      display_.since_us = now_us;
+      decoder_.clear();
     }
     for (std::size_t i = 0; i < *got; ++i) {
-      if (const auto m = decoder_.process(buf[i]); m.ok()) on_message(**m);
+      if (const auto m = decoder_.process(buf[i]); m.ok()) on_display_message(**m);
     }
+    if (decoder_.other_version() != 0) refuse_version(decoder_);
     if (*got < buf.size()) return;
   }
 }
 
-void StationLink::on_message(const link::LinkMessage& m) {
-  // Resync by version: a peer that holds exactly our mesh gets nothing again.
-  std::uint32_t have = 0;
-  std::uint64_t sum = 0;
-  if (m.type == link::MessageType::hello && m.hello.role == link::Role::bridge) {
-    have = m.hello.mesh_version;
-    sum = m.hello.mesh_checksum;
-    peer_hello_ = true;
-  } else if (m.type == link::MessageType::resend_request) {
-    ++counters_.resend_requests;
-    have = m.resend_request.have_version;
-    sum = m.resend_request.have_checksum;
-    if (have == version_ && sum == shadow_.checksum()) have = 0;  // asked: send anyway
-  } else {
-    return;
-  }
-  if (have != version_ || sum != shadow_.checksum()) full_wanted_ = true;
+void StationLink::refuse_version(link::LinkDecoder& decoder) {
+  refused_version_ = decoder.other_version();
+  ++counters_.refused_version;
+  decoder.clear();
 }
 
-void StationLink::track_mesh(const mesh::Mesh& mesh) {
-  const auto old_vertices = static_cast<std::uint32_t>(shadow_.vertex_count());
-  const auto old_triangles = static_cast<std::uint32_t>(shadow_.triangle_count());
-  ++version_;
-  const bool sent = connected_ && !full_active_ && !full_wanted_ &&
-                    queue_commit(mesh, old_vertices, old_triangles);
-  if (!shadow_.copy_from(mesh).ok()) {
-    // Larger than the shadow (cannot happen when sized from the mesh capacity).
-    shadow_.clear();
-  }
-  if (full_active_) {
-    full_phase_ = FullPhase::begin;  // restart from the fresh shadow
-    full_next_ = 0;
-  } else if (!sent && connected_) {
-    full_wanted_ = true;
-  }
+link::LinkMessage StationLink::begin_handshake(Handshake& hs, const link::Hello& hello) {
+  hs.hello = true;
+  hs.bridge_nonce = hello.nonce;
+  hs.have_version = hello.mesh_version;
+  hs.have_checksum = hello.mesh_checksum;
+  hs.station_nonce =
+      options_.authenticator != nullptr ? options_.authenticator->make_nonce() : link::Nonce{};
+  link::LinkMessage reply;
+  reply.type = link::MessageType::hello;
+  reply.hello = link::Hello{link::Role::station,
+                            options_.authenticator != nullptr ? link::kHelloAuth : std::uint8_t{0},
+                            version_, shadow_.checksum(), hs.station_nonce};
+  return reply;
 }
 
-bool StationLink::queue_commit(const mesh::Mesh& mesh, std::uint32_t old_vertices,
-                               std::uint32_t old_triangles) {
-  // Triangles are only ever appended by the session; anything else is a full send.
-  const auto old_idx = shadow_.triangle_indices();
-  const auto new_idx = mesh.triangle_indices();
-  if (new_idx.size() < old_idx.size() || mesh.vertex_count() < old_vertices ||
-      !std::equal(old_idx.begin(), old_idx.end(), new_idx.begin())) {
-    return false;
-  }
-  const std::size_t saved = out_size_;
-  const auto fail = [&] {
-    out_size_ = saved;  // all or nothing: never a half commit in the buffer
-    return false;
-  };
-  scratch_.type = link::MessageType::mesh_begin;
-  scratch_.mesh_begin = link::MeshBegin{false, version_ - 1, version_,
-                                        static_cast<std::uint32_t>(mesh.vertex_count()),
-                                        static_cast<std::uint32_t>(mesh.triangle_count())};
-  if (!queue(scratch_)) return fail();
-  scratch_.type = link::MessageType::vertices;
-  scratch_.vertices.count = 0;
-  const auto sx = shadow_.x();
-  const auto sy = shadow_.y();
-  const auto sz = shadow_.z();
-  const auto mx = mesh.x();
-  const auto my = mesh.y();
-  const auto mz = mesh.z();
-  for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
-    const bool changed =
-        i >= old_vertices ||
-        std::bit_cast<std::uint32_t>(sx[i]) != std::bit_cast<std::uint32_t>(mx[i]) ||
-        std::bit_cast<std::uint32_t>(sy[i]) != std::bit_cast<std::uint32_t>(my[i]) ||
-        std::bit_cast<std::uint32_t>(sz[i]) != std::bit_cast<std::uint32_t>(mz[i]);
-    if (!changed) continue;
-    scratch_.vertices.items[scratch_.vertices.count++] =
-        link::VertexEntry{static_cast<std::uint32_t>(i), mx[i], my[i], mz[i]};
-    if (scratch_.vertices.count == link::kMaxVerticesPerChunk) {
-      if (!queue(scratch_)) return fail();
-      scratch_.vertices.count = 0;
-    }
-  }
-  if (scratch_.vertices.count > 0 && !queue(scratch_)) return fail();
-  scratch_.type = link::MessageType::triangles;
-  for (std::size_t t = old_triangles; t < mesh.triangle_count(); t += link::kMaxTrianglesPerChunk) {
-    const std::size_t n = std::min(link::kMaxTrianglesPerChunk, mesh.triangle_count() - t);
-    scratch_.triangles.first = static_cast<std::uint32_t>(t);
-    scratch_.triangles.count = static_cast<std::uint16_t>(n);
-    std::copy_n(new_idx.begin() + static_cast<std::ptrdiff_t>(3 * t), 3 * n,
-                scratch_.triangles.indices.begin());
-    if (!queue(scratch_)) return fail();
-  }
-  scratch_.type = link::MessageType::mesh_end;
-  scratch_.mesh_end = link::MeshEnd{version_, mesh.checksum()};
-  if (!queue(scratch_)) return fail();
-  ++counters_.commits_sent;
-  return true;
+bool StationLink::check_auth(const Handshake& hs, const link::Auth& auth) const {
+  return options_.authenticator != nullptr && hs.hello &&
+         options_.authenticator->verify(link::Role::bridge, hs.station_nonce, hs.bridge_nonce,
+                                        auth.tag);
 }
 
-void StationLink::continue_full() {
-  // A few frames per poll keep the loop responsive; the rest follows next poll.
-  while (full_active_ && room() >= link::kMaxFrameBytes) {
-    switch (full_phase_) {
-      case FullPhase::begin:
-        scratch_.type = link::MessageType::mesh_begin;
-        scratch_.mesh_begin =
-            link::MeshBegin{true, 0, version_, static_cast<std::uint32_t>(shadow_.vertex_count()),
-                            static_cast<std::uint32_t>(shadow_.triangle_count())};
-        queue(scratch_);
-        full_phase_ = FullPhase::vertices;
-        full_next_ = 0;
-        break;
-      case FullPhase::vertices: {
-        const std::size_t n =
-            std::min(link::kMaxVerticesPerChunk, shadow_.vertex_count() - full_next_);
-        scratch_.type = link::MessageType::vertices;
-        scratch_.vertices.count = static_cast<std::uint16_t>(n);
-        for (std::size_t k = 0; k < n; ++k) {
-          const auto i = static_cast<std::uint32_t>(full_next_ + k);
-          const glm::vec3 p = shadow_.position(i);
-          scratch_.vertices.items[k] = link::VertexEntry{i, p.x, p.y, p.z};
-        }
-        if (n > 0) queue(scratch_);
-        full_next_ += n;
-        if (full_next_ >= shadow_.vertex_count()) {
-          full_phase_ = FullPhase::triangles;
-          full_next_ = 0;
-        }
-        break;
+link::LinkMessage StationLink::station_auth(const Handshake& hs) const {
+  link::LinkMessage m;
+  m.type = link::MessageType::auth;
+  m.auth.tag = options_.authenticator->tag(link::Role::station, hs.station_nonce, hs.bridge_nonce);
+  return m;
+}
+
+void StationLink::resync(const Handshake& hs) {
+  // Resync by version: a display that holds exactly our mesh gets nothing again.
+  if (hs.have_version != version_ || hs.have_checksum != shadow_.checksum()) full_wanted_ = true;
+  hands_sent_ = false;
+  status_sent_ = false;
+  object_sent_valid_ = false;
+  last_stroke_us_ = 0;
+  live_was_active_ = false;
+}
+
+void StationLink::on_display_message(const link::LinkMessage& m) {
+  const bool auth = options_.authenticator != nullptr;
+  switch (m.type) {
+    case link::MessageType::hello: {
+      if (m.hello.role != link::Role::bridge) {
+        ++counters_.refused_protocol;
+        return;
       }
-      case FullPhase::triangles: {
-        const std::size_t n =
-            std::min(link::kMaxTrianglesPerChunk, shadow_.triangle_count() - full_next_);
-        scratch_.type = link::MessageType::triangles;
-        scratch_.triangles.first = static_cast<std::uint32_t>(full_next_);
-        scratch_.triangles.count = static_cast<std::uint16_t>(n);
-        std::copy_n(
-            shadow_.triangle_indices().begin() + static_cast<std::ptrdiff_t>(3 * full_next_), 3 * n,
-            scratch_.triangles.indices.begin());
-        if (n > 0) queue(scratch_);
-        full_next_ += n;
-        if (full_next_ >= shadow_.triangle_count()) full_phase_ = FullPhase::end;
-        break;
+      // A (re)started display on this channel. With a key, the display stays
+      // admitted until the new handshake proves the newcomer (a stranger on a
+      // shared line displaces nobody).
+      Handshake next = display_;
+      const link::LinkMessage reply = begin_handshake(next, m.hello);
+      if (!auth) next.admitted = true;
+      display_ = next;
+      (void)queue_urgent(reply);
+      if (!auth) {
+        ++counters_.connects;
+        resync(display_);
       }
-      case FullPhase::end:
-        scratch_.type = link::MessageType::mesh_end;
-        scratch_.mesh_end = link::MeshEnd{version_, shadow_.checksum()};
-        queue(scratch_);
-        full_active_ = false;
-        break;
+      return;
     }
+    case link::MessageType::auth:
+      if (!check_auth(display_, m.auth)) {
+        ++counters_.refused_unauthorised;
+        return;
+      }
+      if (!display_.admitted) ++counters_.connects;
+      display_.admitted = true;
+      (void)queue_urgent(station_auth(display_));
+      resync(display_);
+      return;
+    case link::MessageType::resend_request:
+      if (!display_.admitted) return;
+      ++counters_.resend_requests;
+      full_wanted_ = true;  // asked: the full mesh even when versions agree
+      return;
+    case link::MessageType::bye:
+      display_.admitted = false;  // the display leaves; its socket follows
+      return;
+    default:
+      ++counters_.refused_protocol;  // only the station sends the other types
+      return;
   }
 }
 
-void StationLink::send_live(const input::SculptSession& session, ports::TimestampUs now_us) {
-  const input::LiveWarp live = session.live();
-  const bool active = live.active && live.plan != nullptr && live.plan->built();
-  if (!active && !live_was_active_) return;
-  if (active && live_was_active_ && now_us - last_live_us_ < config_.live_interval_us) return;
-  if (full_active_) {
-    ++counters_.live_dropped;  // the mesh it applies to is not there yet
-    return;
+void StationLink::poll_newcomer(ports::TimestampUs now_us) {
+  ports::LinkNewcomers* n = options_.newcomers;
+  if (n == nullptr) return;
+  if (n->newcomer_id() != newcomer_id_) {
+    newcomer_id_ = n->newcomer_id();
+    newcomer_open_ = true;
+    newcomer_ = Handshake{};
+    newcomer_.since_us = now_us;
+    newcomer_decoder_.clear();  // every connection starts with a fresh decoder
+    ++counters_.newcomers;
   }
-  link::LiveWarp& l = scratch_.live_warp;
-  scratch_.type = link::MessageType::live_warp;
-  l = link::LiveWarp{};
-  l.mesh_version = version_;
-  l.active = active;
-  if (active) {
-    const math::WarpPlan& plan = *live.plan;
-    bool new_stroke = !live_was_active_;
-    l.method = static_cast<std::uint8_t>(plan.method());
-    l.radius_m = plan.radius();
-    for (std::size_t h = 0; h < plan.hand_count() && h < link::kLinkHands; ++h) {
-      l.hand_mask = static_cast<std::uint8_t>(l.hand_mask | (1u << h));
-      l.hands[h] = link::LiveHand{link::to_wire(plan.start_frame(h)),
-                                  link::to_wire(plan.end_frame(h)), link::to_wire(plan.screw(h))};
-      new_stroke = new_stroke || !same_frame(plan.start_frame(h), live_start_[h]);
-      live_start_[h] = plan.start_frame(h);
+  if (!newcomer_open_) return;
+  std::array<std::byte, kReceiveChunk> buf{};
+  for (int round = 0; round < 4 && newcomer_open_; ++round) {
+    const Result<std::size_t> got = n->receive_newcomer(buf);
+    if (!got.ok()) {
+      newcomer_open_ = false;  // it hung up
+      return;
     }
-    if (new_stroke) ++stroke_;
+    for (std::size_t i = 0; i < *got && newcomer_open_; ++i) {
+      if (const auto m = newcomer_decoder_.process(buf[i]); m.ok()) on_newcomer_message(**m);
+    }
+    if (newcomer_open_ && newcomer_decoder_.other_version() != 0) {
+      refuse_version(newcomer_decoder_);
+      refuse_newcomer(link::ByeReason::protocol, nullptr);
+      return;
+    }
+    if (*got < buf.size()) break;
   }
-  l.stroke = stroke_;
-  if (!queue(scratch_)) {
-    ++counters_.live_dropped;
-    return;
+  if (newcomer_open_ && now_us - newcomer_.since_us > config_.handshake_timeout_us) {
+    refuse_newcomer(link::ByeReason::timeout, &counters_.refused_timeout);
   }
-  ++counters_.live_sent;
-  live_was_active_ = active;
-  last_live_us_ = now_us;
 }
 
-void StationLink::send_status(const input::SculptSession& session, ports::TimestampUs now_us) {
-  if (status_sent_ && now_us - last_status_us_ < config_.status_interval_us) return;
-  if (full_active_ || room() < 2 * link::kMaxFrameBytes) return;  // keep room for commits
-  scratch_.type = link::MessageType::status;
-  scratch_.status = link::StatusReport{
-      version_,
-      session.next_sequence(),
-      counters_.live_sent,
-      counters_.live_dropped,
-      counters_.full_sends,
-      counters_.commits_sent,
-      decoder_counters().bad_crc + decoder_counters().bad_cobs + decoder_counters().bad_payload};
-  if (queue(scratch_)) {
-    status_sent_ = true;
-    last_status_us_ = now_us;
+void StationLink::on_newcomer_message(const link::LinkMessage& m) {
+  const bool auth = options_.authenticator != nullptr;
+  if (m.type == link::MessageType::hello && m.hello.role == link::Role::bridge &&
+      !newcomer_.hello) {
+    send_newcomer(begin_handshake(newcomer_, m.hello));
+    if (!auth) admit_newcomer();
+    return;
   }
+  if (m.type == link::MessageType::auth && auth && newcomer_.hello) {
+    if (!check_auth(newcomer_, m.auth)) {
+      refuse_newcomer(link::ByeReason::unauthorised, &counters_.refused_unauthorised);
+      return;
+    }
+    send_newcomer(station_auth(newcomer_));
+    admit_newcomer();
+    return;
+  }
+  if (m.type == link::MessageType::bye) {
+    newcomer_open_ = false;
+    options_.newcomers->refuse_newcomer();
+    return;
+  }
+  // Anything else before admission breaks the handshake (and with a key, a
+  // display that does not prove itself is unauthorised).
+  refuse_newcomer(auth ? link::ByeReason::unauthorised : link::ByeReason::protocol,
+                  auth ? &counters_.refused_unauthorised : &counters_.refused_protocol);
+}
+
+void StationLink::send_newcomer(const link::LinkMessage& m) {
+  std::array<std::byte, 128> frame{};
+  const Result<std::size_t> n = link::encode_frame(m, frame);
+  if (!n.ok()) return;
+  const Result<std::size_t> sent =
+      options_.newcomers->send_newcomer(std::span<const std::byte>(frame).first(*n));
+  if (!sent.ok() || *sent != *n) ++counters_.send_errors;
+}
+
+void StationLink::refuse_newcomer(link::ByeReason reason, std::uint64_t* counter) {
+  if (counter != nullptr) ++*counter;
+  link::LinkMessage bye;
+  bye.type = link::MessageType::bye;
+  bye.bye.reason = reason;
+  send_newcomer(bye);
+  options_.newcomers->refuse_newcomer();
+  newcomer_open_ = false;
+}
+
+void StationLink::admit_newcomer() {
+  if (connected_) {
+    // Tell the display why it goes, at a frame boundary of its stream: a 0x00 ends
+    // any frame it has half received, then the bye follows.
+    if (display_.admitted) ++counters_.displaced;
+    std::array<std::byte, 64> frame{};
+    frame[0] = std::byte{0};
+    link::LinkMessage bye;
+    bye.type = link::MessageType::bye;
+    bye.bye.reason = link::ByeReason::displaced;
+    if (const auto n = link::encode_frame(bye, std::span<std::byte>(frame).subspan(1)); n.ok()) {
+      (void)port_.send(std::span<const std::byte>(frame).first(*n + 1));
+    }
+  }
+  options_.newcomers->admit_newcomer();
+  newcomer_open_ = false;
+  const Handshake admitted = newcomer_;
+  lose_display();
+  connected_ = true;
+  display_ = admitted;
+  display_.admitted = true;
+  ++counters_.connects;
+  resync(display_);
+}
+
+void StationLink::say_goodbye() {
+  if (!connected_) return;
+  link::LinkMessage bye;
+  bye.type = link::MessageType::bye;
+  bye.bye.reason = link::ByeReason::shutdown;
+  (void)queue_urgent(bye);
+  flush();
 }
 
 bool StationLink::queue(const link::LinkMessage& m) {
@@ -298,21 +300,50 @@ bool StationLink::queue(const link::LinkMessage& m) {
   return true;
 }
 
+bool StationLink::queue_urgent(const link::LinkMessage& m) {
+  const Result<std::size_t> n =
+      link::encode_frame(m, std::span<std::byte>(urgent_).subspan(urgent_size_));
+  if (!n.ok()) return false;
+  urgent_size_ += *n;
+  return true;
+}
+
+void StationLink::clear_queues() {
+  // A torn frame is harmless: the next peer resyncs at 0x00.
+  out_size_ = 0;
+  urgent_size_ = 0;
+  sending_ = Queue::none;
+}
+
 void StationLink::flush() {
-  std::size_t sent = 0;
-  while (sent < out_size_) {
-    const Result<std::size_t> n =
-        port_.send(std::span<const std::byte>(out_).subspan(sent, out_size_ - sent));
+  // Frames leave whole; between two frames the urgent queue goes first.
+  for (int round = 0; round < 64; ++round) {
+    if (sending_ == Queue::none) {
+      if (urgent_size_ > 0) {
+        sending_ = Queue::urgent;
+      } else if (out_size_ > 0) {
+        sending_ = Queue::bulk;
+      } else {
+        return;
+      }
+    }
+    const bool urgent = sending_ == Queue::urgent;
+    std::byte* data = urgent ? urgent_.data() : out_.data();
+    std::size_t& size = urgent ? urgent_size_ : out_size_;
+    // Bulk frames go out together unless urgent ones wait; urgent ones always.
+    const std::size_t take =
+        urgent || urgent_size_ == 0 ? size : frame_length(std::span<const std::byte>(data, size));
+    const Result<std::size_t> n = port_.send(std::span<const std::byte>(data, take));
     if (!n.ok()) {
       ++counters_.send_errors;
-      break;
+      return;
     }
-    if (*n == 0) break;
-    sent += *n;
-  }
-  if (sent > 0) {
-    std::memmove(out_.data(), out_.data() + sent, out_size_ - sent);
-    out_size_ -= sent;
+    if (*n == 0) return;
+    const bool at_boundary = data[*n - 1] == std::byte{0};
+    std::memmove(data, data + *n, size - *n);
+    size -= *n;
+    if (at_boundary) sending_ = Queue::none;
+    if (*n < take) return;  // the port is full
   }
 }
 

@@ -13,6 +13,7 @@
 #include <cstdio>
 
 #include "config_reader.hpp"
+#include "link_config.hpp"
 #include "sculpt_config.hpp"
 
 namespace twister::station_app {
@@ -264,6 +265,7 @@ ConfigParseResult parse_station_config(std::string_view text, std::string_view f
   read_buttons(root, out.config);
   internal::read_sculpt(root, out.config);
   read_systemd(root, out.config);
+  internal::read_link(root, out.config);
   root.finish();
   std::stable_sort(out.errors.begin(), out.errors.end(),
                    [](const ConfigError& a, const ConfigError& b) { return a.line < b.line; });

@@ -139,6 +139,19 @@ struct SculptConfig {
   std::vector<ButtonBindingConfig> buttons;
 };
 
+enum class LinkListen : std::uint8_t { loopback, network };
+
+// [link]: the display link (docs/hardware.md "Display link"). --link overrides
+// the address.
+struct LinkSection {
+  std::string address;               // unix:PATH | tcp:A.B.C.D:PORT | serial:DEVICE; "" = none
+  std::uint32_t socket_mode = 0660;  // the Unix socket file's mode, whatever the umask
+  std::string socket_group;          // its group ("" = the service user's)
+  LinkListen listen = LinkListen::loopback;  // network: TCP beyond loopback (needs psk_file)
+  std::string psk_file;                      // pre-shared key file (64 hex digits, mode 0600)
+  std::uint32_t baud = 230400;               // serial: addresses
+};
+
 struct SystemdConfig {
   bool notify = true;    // READY=1 / STOPPING=1 via sd_notify (no-op without systemd)
   bool watchdog = true;  // WATCHDOG=1 at half of WATCHDOG_USEC when the unit sets it
@@ -150,6 +163,7 @@ struct StationConfig {
   ButtonsConfig buttons;
   SculptConfig sculpt;
   SystemdConfig systemd;
+  LinkSection link;
 };
 
 // One problem in a config file. to_string(): "FILE:LINE: KEY: MESSAGE".

@@ -84,12 +84,11 @@ TEST(FrameDecoder, ClearDropsAPartialFrame) {
 }
 
 TEST(LinkDecoder, RefusedPayloadIsCountedAndReported) {
-  // A well-framed message the decoder must refuse: a non-finite live warp.
+  // A well-framed message the decoder must refuse: a non-finite radius.
   LinkMessage m;
-  m.type = MessageType::live_warp;
-  m.live_warp.active = true;
-  m.live_warp.hand_mask = 1;
-  m.live_warp.radius_m = std::numeric_limits<double>::quiet_NaN();
+  m.type = MessageType::hands;
+  m.hands.flags = kStrokeActive;
+  m.hands.radius_m = std::numeric_limits<float>::quiet_NaN();
   std::vector<std::byte> out(kMaxFrameBytes);
   const auto n = encode_frame(m, out);
   ASSERT_TRUE(n.ok());

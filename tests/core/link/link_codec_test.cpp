@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <limits>
 #include <vector>
 
@@ -30,22 +32,68 @@ std::vector<MessageType> feed(LinkDecoder& d, const std::vector<std::byte>& byte
   return types;
 }
 
+CompactPose random_compact() {
+  const auto f = [] {
+    return *rc::gen::map(rc::gen::inRange(-100000, 100000),
+                         [](int v) { return static_cast<float>(v) / 1000.0F; });
+  };
+  CompactPose p;
+  p.position = {f(), f(), f()};
+  p.rotation = {0.5F, 0.5F, -0.5F, *rc::gen::element(0.5F, -0.5F)};
+  return p;
+}
+
+void random_live(LinkMessage& m) {
+  const auto d = [] {
+    return *rc::gen::map(rc::gen::arbitrary<std::int32_t>(),
+                         [](std::int32_t v) { return static_cast<double>(v) / 7.0; });
+  };
+  if (m.type == MessageType::stroke) {
+    StrokeBegin& s = m.stroke;
+    s.stroke = *rc::gen::arbitrary<std::uint32_t>();
+    s.mesh_version = *rc::gen::arbitrary<std::uint32_t>();
+    s.method = static_cast<std::uint8_t>(*rc::gen::inRange(0, 3));
+    s.hand_mask = static_cast<std::uint8_t>(*rc::gen::inRange(1, 4));
+    s.radius_m = 0.01 + std::abs(d());
+    for (std::size_t h = 0; h < kLinkHands; ++h) {
+      if ((s.hand_mask & (1u << h)) != 0) s.start[h].origin = {d(), d(), d()};
+    }
+  } else if (m.type == MessageType::hands) {
+    Hands& l = m.hands;
+    l.sequence = *rc::gen::arbitrary<std::uint16_t>();
+    l.stroke = *rc::gen::arbitrary<std::uint16_t>();
+    l.flags = static_cast<std::uint8_t>(*rc::gen::inRange(0, 32));
+    l.buttons = *rc::gen::arbitrary<std::uint8_t>();
+    l.radius_m = 0.25F;
+    for (std::size_t h = 0; h < kLinkHands; ++h) {
+      if ((l.flags & (kHandSample0 << h)) != 0) l.hands[h] = random_compact();
+    }
+  } else {
+    m.object.pose = random_compact();
+  }
+}
+
 LinkMessage random_message() {
   LinkMessage m;
-  const auto type = *rc::gen::inRange<int>(1, 9);
+  const auto type = *rc::gen::inRange<int>(1, kLastMessageType + 1);
   m.type = static_cast<MessageType>(type);
   const auto f = [] {
     return *rc::gen::map(rc::gen::inRange(-100000, 100000),
                          [](int v) { return static_cast<float>(v) / 1000.0F; });
   };
-  const auto d = [] {
-    return *rc::gen::map(rc::gen::arbitrary<std::int32_t>(),
-                         [](std::int32_t v) { return static_cast<double>(v) / 7.0; });
-  };
   switch (m.type) {
     case MessageType::hello:
-      m.hello = Hello{*rc::gen::element(Role::station, Role::bridge),
-                      *rc::gen::arbitrary<std::uint32_t>(), *rc::gen::arbitrary<std::uint64_t>()};
+      m.hello.role = *rc::gen::element(Role::station, Role::bridge);
+      m.hello.flags = static_cast<std::uint8_t>(*rc::gen::inRange(0, 2));
+      m.hello.mesh_version = *rc::gen::arbitrary<std::uint32_t>();
+      m.hello.mesh_checksum = *rc::gen::arbitrary<std::uint64_t>();
+      m.hello.nonce[3] = *rc::gen::arbitrary<std::uint8_t>();
+      break;
+    case MessageType::auth:
+      m.auth.tag[7] = *rc::gen::arbitrary<std::uint8_t>();
+      break;
+    case MessageType::bye:
+      m.bye.reason = static_cast<ByeReason>(*rc::gen::inRange(1, kLastByeReason + 1));
       break;
     case MessageType::mesh_begin:
       m.mesh_begin =
@@ -72,34 +120,21 @@ LinkMessage random_message() {
       m.mesh_end =
           MeshEnd{*rc::gen::arbitrary<std::uint32_t>(), *rc::gen::arbitrary<std::uint64_t>()};
       break;
-    case MessageType::live_warp: {
-      LiveWarp& l = m.live_warp;
-      l.mesh_version = *rc::gen::arbitrary<std::uint32_t>();
-      l.stroke = *rc::gen::arbitrary<std::uint32_t>();
-      l.active = *rc::gen::arbitrary<bool>();
-      l.method = static_cast<std::uint8_t>(*rc::gen::inRange(0, 3));
-      l.hand_mask = static_cast<std::uint8_t>(*rc::gen::inRange(0, 4));
-      l.radius_m = d();
-      for (std::size_t h = 0; h < kLinkHands; ++h) {
-        if ((l.hand_mask & (1u << h)) == 0) continue;
-        LiveHand& hand = l.hands[h];
-        hand.start.origin = {d(), d(), d()};
-        hand.end.u = {d(), d(), d()};
-        hand.screw.axis = {d(), d(), d()};
-        hand.screw.angle = d();
-        hand.screw.cot_half = d();
-        hand.screw.pure_translation = *rc::gen::arbitrary<bool>();
-      }
-      break;
-    }
     case MessageType::resend_request:
       m.resend_request =
           ResendRequest{*rc::gen::arbitrary<std::uint32_t>(), *rc::gen::arbitrary<std::uint64_t>()};
       break;
+    case MessageType::stroke:
+    case MessageType::hands:
+    case MessageType::object:
+      random_live(m);
+      break;
     case MessageType::status:
       m.status.mesh_version = *rc::gen::arbitrary<std::uint32_t>();
+      m.status.tracker_state = static_cast<std::uint8_t>(*rc::gen::inRange(0, 3));
+      m.status.tracker_rate_hz = f();
       m.status.live_dropped = *rc::gen::arbitrary<std::uint64_t>();
-      m.status.frames_rejected = *rc::gen::arbitrary<std::uint64_t>();
+      m.status.strokes_not_saved = *rc::gen::arbitrary<std::uint64_t>();
       break;
   }
   return m;
@@ -168,29 +203,36 @@ TEST(LinkCodec, RefusesOtherVersionAndOverCapacityCounts) {
   m.vertices.count = kMaxVerticesPerChunk + 1;
   std::vector<std::byte> out(kMaxFrameBytes);
   EXPECT_EQ(encode_frame(m, out).status().code(), StatusCode::invalid_argument);
-  const std::byte v2[] = {std::byte{2}, std::byte{1}};
+  const std::byte v1[] = {std::byte{1}, std::byte{1}};  // a protocol 1 hello
   LinkMessage got;
-  EXPECT_EQ(decode_payload(v2, got).code(), StatusCode::not_supported);
+  EXPECT_EQ(decode_payload(v1, got).code(), StatusCode::not_supported);
   m.vertices.count = 1;
   std::vector<std::byte> tiny(8);
   EXPECT_EQ(encode_frame(m, tiny).status().code(), StatusCode::resource_exhausted);
 }
 
-TEST(LinkCodec, NonFiniteLiveWarpIsRefused) {
+// Protocol 1 sent the screws (605 bytes per two-hand update); protocol 2 derives
+// them on the bridge (intent unchanged: a non-finite pose never reaches the shader).
+TEST(LinkCodec, NonFiniteOrDegenerateLivePosesAreRefused) {
   LinkMessage m;
-  m.type = MessageType::live_warp;
-  m.live_warp.active = true;
-  m.live_warp.hand_mask = 1;
-  m.live_warp.radius_m = 0.2;
-  m.live_warp.hands[0].screw.mid.y = std::numeric_limits<double>::quiet_NaN();
+  m.type = MessageType::hands;
+  m.hands.flags = kHandSample0 | kHandTracked0 | kStrokeActive;
+  m.hands.radius_m = 0.2F;
+  m.hands.hands[0].position.y = std::numeric_limits<float>::quiet_NaN();
   LinkDecoder d;
   EXPECT_TRUE(feed(d, encode(m)).empty());
   EXPECT_EQ(d.counters().bad_payload, 1u);
-  m.live_warp.hands[0].screw.mid.y = 0.0;
-  m.live_warp.hands[0].end.origin.x = std::numeric_limits<double>::infinity();
+  m.hands.hands[0].position.y = 0.0F;
+  m.hands.hands[0].rotation = {0.0F, 0.0F, 0.0F, 0.0F};  // not a rotation
   EXPECT_TRUE(feed(d, encode(m)).empty());
-  m.live_warp.hands[0].end.origin.x = 0.0;
+  m.hands.hands[0].rotation = {1.0F, 0.0F, 0.0F, 0.0F};
   EXPECT_EQ(feed(d, encode(m)).size(), 1u);
+  LinkMessage s;
+  s.type = MessageType::stroke;
+  s.stroke.hand_mask = 1;
+  s.stroke.radius_m = 0.2;
+  s.stroke.start[0].u.x = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(feed(d, encode(s)).empty());
 }
 
 }  // namespace

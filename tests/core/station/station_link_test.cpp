@@ -71,7 +71,7 @@ std::size_t count(const std::vector<LinkMessage>& ms, MessageType t) {
 LinkMessage bridge_hello(std::uint32_t version, std::uint64_t checksum) {
   LinkMessage m;
   m.type = MessageType::hello;
-  m.hello = Hello{Role::bridge, version, checksum};
+  m.hello = Hello{Role::bridge, 0, version, checksum, {}};
   return m;
 }
 
@@ -100,7 +100,7 @@ TEST(StationLink, FullMeshOnHelloThenCommitWithChecksumAndNoHeapInPoll) {
     s.hand(0, input::test_support::z_turn({0, 0, 0.05 * k}, 0.1 * k));
     (void)s.tick();
     EXPECT_NO_ALLOCATIONS(r.poll());
-    live += count(r.bridge_receive(), MessageType::live_warp);
+    live += count(r.bridge_receive(), MessageType::hands);
   }
   EXPECT_GE(live, 4u);
   s.button(kGrab0, false);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -114,24 +115,18 @@ TEST_F(BridgeRender, LiveWarpInTheShaderEqualsTheCpuWarp) {
             60);
 
   // A one-hand stroke grabbing the sphere's -Y side: pull out and twist.
-  link::LinkMessage live;
-  live.type = link::MessageType::live_warp;
-  link::LiveWarp& l = live.live_warp;
-  l.mesh_version = 1;
-  l.stroke = 1;
-  l.active = true;
-  l.hand_mask = 1;
-  l.radius_m = 0.12;
-  l.hands[0].start = link::to_wire(math::identity_frame({0.0, -0.1, 0.0}));
-  l.hands[0].end = link::to_wire(math::frame_from_uv({0.0, -0.16, -0.03}, {1.0, 0.0, 0.0},
-                                                     {0.0, std::cos(0.6), std::sin(0.6)}));
-  l.hands[0].screw = link::to_wire(
-      math::compute_screw(link::to_frame(l.hands[0].start), link::to_frame(l.hands[0].end)));
-  (void)r.apply(live);
+  const std::array<math::Frame, 2> start{math::identity_frame({0.0, -0.1, 0.0}), math::Frame{}};
+  const std::array<math::Frame, 2> end{math::frame_from_uv({0.0, -0.16, -0.03}, {1.0, 0.0, 0.0},
+                                                           {0.0, std::cos(0.6), std::sin(0.6)}),
+                                       math::Frame{}};
+  const LiveMessages live =
+      make_live_messages(1, 1, math::WarpMethod::twister, 0.12, 1, start, end);
+  (void)r.apply(live.stroke);
+  (void)r.apply(live.hands);
   ASSERT_TRUE(r.live().active);
   renderer_.set_weights(r.live().weight1, r.live().weight2);
   renderer_.set_show_weights(true);
-  renderer_.set_live(&r.live().message);
+  renderer_.set_live(&r.live());
   renderer_.draw();
   const auto shader = renderer_.read_rgba();
   EXPECT_GT(differing(rest, shader, 8), 0.02);  // the stroke is visible
@@ -153,7 +148,7 @@ TEST_F(BridgeRender, LiveWarpInTheShaderEqualsTheCpuWarp) {
   renderer_.set_mesh(r.mesh(), true);
   renderer_.set_weights(zero, zero);
   renderer_.set_show_weights(false);
-  renderer_.set_live(&r.live().message);
+  renderer_.set_live(&r.live());
   renderer_.draw();
   EXPECT_EQ(differing(rest, renderer_.read_rgba(), 0), 0.0);
   if (const char* dir = std::getenv("TWISTER_BRIDGE_TEST_PNG")) {
@@ -175,21 +170,15 @@ TEST_F(BridgeRender, ScodefPreviewOfTheAppIsTheCpuWarpOfEachLiveFrame) {
   BridgeApp app(link, &renderer_, {}, log);
   load(app.replica(), sphere());
   app.step();
-  link::LinkMessage live;
-  live.type = link::MessageType::live_warp;
-  link::LiveWarp& l = live.live_warp;
-  l.mesh_version = 1;
-  l.stroke = 1;
-  l.active = true;
-  l.method = static_cast<std::uint8_t>(math::WarpMethod::scodef);
-  l.hand_mask = 1;
-  l.radius_m = 0.12;
-  l.hands[0].start = link::to_wire(math::identity_frame({0.0, -0.1, 0.0}));
+  const std::array<math::Frame, 2> start{math::identity_frame({0.0, -0.1, 0.0}), math::Frame{}};
+  std::uint16_t sequence = 0;
   for (const double lift : {0.03, 0.06}) {
-    l.hands[0].end = link::to_wire(math::identity_frame({0.0, -0.1 - lift, 0.0}));
-    l.hands[0].screw = link::to_wire(
-        math::compute_screw(link::to_frame(l.hands[0].start), link::to_frame(l.hands[0].end)));
-    (void)app.replica().apply(live);
+    const std::array<math::Frame, 2> end{math::identity_frame({0.0, -0.1 - lift, 0.0}),
+                                         math::Frame{}};
+    LiveMessages live = make_live_messages(1, 1, math::WarpMethod::scodef, 0.12, 1, start, end);
+    live.hands.hands.sequence = sequence++;
+    (void)app.replica().apply(live.stroke);
+    (void)app.replica().apply(live.hands);
     app.step();
     app.step();  // no new frame: the picture stays
     app.draw();

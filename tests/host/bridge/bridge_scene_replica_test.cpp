@@ -2,6 +2,8 @@
 // a commit for a version it does not hold; live stroke weights from the core plan.
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include "scene_replica.hpp"
 #include "twister/link/math_conversion.hpp"
 #include "twister/math/frame.hpp"
@@ -127,20 +129,15 @@ TEST(BridgeSceneReplica, CommitForAnotherVersionAndBadIndicesAskForResend) {
   EXPECT_EQ(r.version(), 1u);
 }
 
+// Protocol 2: the stroke's exact start frames once, then compact end poses (the
+// bridge rebuilds the screws); same intent as with protocol 1's screws.
 TEST(BridgeSceneReplica, LiveStrokeWeightsAndCpuWarp) {
   SceneReplica r = replica_with_grid();
-  link::LinkMessage live;
-  live.type = link::MessageType::live_warp;
-  live.live_warp.mesh_version = 1;
-  live.live_warp.stroke = 1;
-  live.live_warp.active = true;
-  live.live_warp.hand_mask = 1;
-  live.live_warp.radius_m = 0.12;
-  live.live_warp.hands[0].start = link::to_wire(math::identity_frame({0.1, 0.1, 0.0}));
-  live.live_warp.hands[0].end = link::to_wire(math::identity_frame({0.1, 0.1, 0.04}));
-  live.live_warp.hands[0].screw = link::to_wire(math::compute_screw(
-      link::to_frame(live.live_warp.hands[0].start), link::to_frame(live.live_warp.hands[0].end)));
-  (void)r.apply(live);
+  const std::array<math::Frame, 2> start{math::identity_frame({0.1, 0.1, 0.0}), math::Frame{}};
+  const std::array<math::Frame, 2> end{math::identity_frame({0.1, 0.1, 0.04}), math::Frame{}};
+  LiveMessages live = make_live_messages(1, 1, math::WarpMethod::twister, 0.12, 1, start, end);
+  (void)r.apply(live.stroke);
+  (void)r.apply(live.hands);
   ASSERT_TRUE(r.live().active);
   EXPECT_FLOAT_EQ(r.live().weight1[4], 1.0F);  // the grab point itself
   EXPECT_EQ(r.live().weight1[0], 0.0F);        // corner: 0.141 m away, outside the radius
@@ -148,9 +145,10 @@ TEST(BridgeSceneReplica, LiveStrokeWeightsAndCpuWarp) {
   const MeshData warped = r.cpu_warp();
   ASSERT_EQ(warped.vertex_count(), 9u);
   EXPECT_NEAR(warped.z[4], 0.04F, 1e-6F);
-  // A live frame for another mesh version is ignored.
-  live.live_warp.mesh_version = 7;
-  (void)r.apply(live);
+  // A stroke for another mesh version is not drawn.
+  live = make_live_messages(7, 2, math::WarpMethod::twister, 0.12, 1, start, end);
+  (void)r.apply(live.stroke);
+  (void)r.apply(live.hands);
   EXPECT_FALSE(r.live().active);
   EXPECT_EQ(r.counters().live_stale, 1u);
 }

@@ -18,7 +18,7 @@ absent="unix:$work/absent.sock"
 rc=0
 bridge --connect "bogus" --log-level error 2> "$work/error.log" || rc=$?
 [[ $rc -eq 2 ]] || fail "bad address: exit $rc, want 2"
-grep -qx "twister-bridge: error: options: bad link address bogus (unix:PATH | tcp:HOST:PORT)" \
+grep -qx "twister-bridge: error: options: bad link address bogus (unix:PATH | tcp:HOST:PORT | serial:DEVICE)" \
   "$work/error.log" || fail "bad address at --log-level error: $(cat "$work/error.log")"
 
 bridge --connect "$absent" --timeout 0.2 2> "$work/notice.log"

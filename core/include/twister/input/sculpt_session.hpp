@@ -155,6 +155,10 @@ class SculptSession {
   // replay(); after apply_record() from the next of these.
   mesh::NormalColumns normals() const;
   const math::Frame& object_pose() const { return poses_.object(); }
+  // The hands' latest samples (validity, pose in world and object frame) and their
+  // debounced button levels, for the display link.
+  const SessionPoses& poses() const { return poses_; }
+  const HandButtons& hand_buttons(std::uint8_t hand) const { return buttons_.hand(hand); }
   float radius_m() const { return machine_.radius_m(); }
   const InteractionMachine& machine() const { return machine_; }
   LiveWarp live() const { return strokes_.live(); }

@@ -98,9 +98,14 @@ class LinkDecoder {
   // invalid_argument / not_supported: a good frame whose payload is not a valid
   //   message of this protocol version (dropped, counted as bad_payload).
   Result<const LinkMessage*> process(std::byte byte);
-  // Drops a partial frame (the peer reconnected).
-  void clear() { frames_.clear(); }
+  // Drops a partial frame and forgets the peer's version: call it for every new
+  // connection (a stale partial frame would swallow the new peer's hello).
+  void clear();
   DecoderCounters counters() const;
+  // Version byte of the last good frame of another protocol version since clear()
+  // (0: none): an old or newer peer, refused with a clear message by the caller.
+  std::uint8_t other_version() const { return other_version_seen_; }
+  std::uint64_t other_version_frames() const { return other_version_; }
 
  private:
   FrameDecoderBuffer<kMaxFrameBytes> frames_;
@@ -108,6 +113,12 @@ class LinkDecoder {
   std::uint64_t messages_ = 0;
   std::uint64_t bad_payload_ = 0;
   std::uint64_t bad_payload_bytes_ = 0;
+  std::uint64_t other_version_ = 0;
+  std::uint8_t other_version_seen_ = 0;
 };
+
+// Encoded size of the message (frame bytes incl. delimiter); 0 when it cannot be
+// encoded. For link budgets (tests, docs).
+std::size_t frame_size(const LinkMessage& message);
 
 }  // namespace twister::link

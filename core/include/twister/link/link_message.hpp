@@ -1,8 +1,9 @@
-// Link messages between twister-station and twister-bridge (protocol version 1).
-// One LinkMessage is one frame on the wire (see link_codec.hpp for the framing).
-// Units: metres (positions, radius), radians (screw angle); frames are in the
-// station's object frame (the mesh's own frame), the same frames the journal
-// records. Every struct is fixed size: no heap.
+// Link messages between twister-station and twister-bridge (protocol version 2,
+// docs/link-protocol.md). One LinkMessage is one frame on the wire (see
+// link_codec.hpp for the framing). Units: metres, radians; poses are in the
+// station's object frame (the mesh's own frame, the journal's frames) except the
+// object pose, which places the object in the world. Every struct is fixed size:
+// no heap.
 #pragma once
 
 #include <array>
@@ -12,15 +13,18 @@
 
 namespace twister::link {
 
-inline constexpr std::uint8_t kProtocolVersion = 1;
+inline constexpr std::uint8_t kProtocolVersion = 2;
 // Largest payload (version byte .. last body byte, without CRC) of one frame.
 inline constexpr std::size_t kMaxPayload = 4096;
 inline constexpr std::size_t kMaxVerticesPerChunk = 200;   // 16 bytes each
 inline constexpr std::size_t kMaxTrianglesPerChunk = 300;  // 12 bytes each
 inline constexpr std::size_t kLinkHands = 2;
+inline constexpr std::size_t kNonceBytes = 16;
+inline constexpr std::size_t kAuthTagBytes = 32;
 
-// A pose on the wire: origin and orthonormal axes, doubles (math::Frame's fields;
-// the link stays independent of the math library, its users convert).
+// An exact pose: origin and orthonormal axes, doubles (math::Frame's fields; the
+// link stays independent of the math library, its users convert). Used where the
+// bridge must rebuild what the station computed bit for bit (stroke start frames).
 struct Pose {
   glm::dvec3 origin{0.0};
   glm::dvec3 u{1.0, 0.0, 0.0};
@@ -28,34 +32,58 @@ struct Pose {
   glm::dvec3 w{0.0, 0.0, 1.0};
 };
 
-// A screw on the wire (math::Screw's fields: spec §2).
-struct Screw {
-  glm::dvec3 axis{0.0, 0.0, 1.0};
-  double angle = 0.0;
-  double slide = 0.0;
-  glm::dvec3 mid{0.0};
-  glm::dvec3 chord{0.0};
-  double cot_half = 0.0;
-  bool pure_translation = true;
+// A compact pose: position and orientation as a unit quaternion (w, x, y, z),
+// floats (28 bytes on the wire). The quaternion's sign carries information where a
+// stroke is open (see Hands).
+struct CompactPose {
+  glm::vec3 position{0.0F};
+  std::array<float, 4> rotation{1.0F, 0.0F, 0.0F, 0.0F};  // w, x, y, z
 };
 
 enum class MessageType : std::uint8_t {
-  hello = 1,           // either side on connect: who it is and which mesh it holds
-  mesh_begin = 2,      // starts a full mesh (full=1) or a commit's change set
-  vertices = 3,        // positions of (index, xyz) vertices: chunk of a mesh/commit
-  triangles = 4,       // a run of triangles starting at `first`
-  mesh_end = 5,        // ends the set: next version and the mesh checksum
-  live_warp = 6,       // the live stroke's screws (display warps in its shader)
-  resend_request = 7,  // bridge -> station: send the full mesh
-  status = 8,          // station counters (for the display's status line)
+  hello = 1,           // both, on connect: who, which mesh, a nonce
+  auth = 2,            // both: the challenge-response tag (links with a key)
+  bye = 3,             // both: the link ends, and why (the peer backs off)
+  mesh_begin = 4,      // S->B: starts a full mesh (full=1) or a commit's change set
+  vertices = 5,        // S->B: (index, xyz) vertices of a mesh or change set
+  triangles = 6,       // S->B: a run of triangles starting at `first` (new or changed)
+  mesh_end = 7,        // S->B: ends the set: next version and the mesh checksum
+  resend_request = 8,  // B->S: send the full mesh
+  stroke = 9,          // S->B: a live stroke segment starts: exact start frames
+  hands = 10,          // S->B: tracker-rate update: hands, buttons, radius, live stroke
+  object = 11,         // S->B: the object's pose in the world
+  status = 12,         // S->B: station status (tracker, capacity, counters)
 };
+inline constexpr std::uint8_t kLastMessageType = 12;
 
 enum class Role : std::uint8_t { station = 1, bridge = 2 };
 
+// Hello flags.
+inline constexpr std::uint8_t kHelloAuth = 1;  // the sender holds a key: challenge-response
+
 struct Hello {
   Role role = Role::station;
+  std::uint8_t flags = 0;
   std::uint32_t mesh_version = 0;  // 0 = holds no mesh
   std::uint64_t mesh_checksum = 0;
+  std::array<std::uint8_t, kNonceBytes> nonce{};  // fresh per connection (auth)
+};
+
+struct Auth {
+  std::array<std::uint8_t, kAuthTagBytes> tag{};
+};
+
+enum class ByeReason : std::uint8_t {
+  shutdown = 1,      // the station stops
+  displaced = 2,     // another (authorised) display took the link: do not reconnect
+  unauthorised = 3,  // authentication failed or missing
+  protocol = 4,      // the peer broke the protocol (wrong role, version, order)
+  timeout = 5,       // the handshake took too long
+};
+inline constexpr std::uint8_t kLastByeReason = 5;
+
+struct Bye {
+  ByeReason reason = ByeReason::shutdown;
 };
 
 struct MeshBegin {
@@ -89,47 +117,94 @@ struct MeshEnd {
   std::uint64_t checksum = 0;  // mesh::Mesh::checksum() of the result
 };
 
-struct LiveHand {
-  Pose start{};   // grab pose (object frame)
-  Pose end{};     // current pose (object frame)
-  Screw screw{};  // minimal screw start -> end (spec §2)
-};
-
-struct LiveWarp {
-  std::uint32_t mesh_version = 0;  // the rest mesh the warp applies to
-  std::uint32_t stroke = 0;        // changes when another grab/segment starts
-  bool active = false;             // false: no stroke (display shows the rest mesh)
-  std::uint8_t method = 0;         // math::WarpMethod
-  std::uint8_t hand_mask = 0;      // bit h: hands[h] is used
-  double radius_m = 0.0;
-  std::array<LiveHand, kLinkHands> hands{};
-};
-
 struct ResendRequest {
   std::uint32_t have_version = 0;
   std::uint64_t have_checksum = 0;
 };
 
+// A stroke segment begins (and is repeated about once a second while it lasts, so a
+// bridge that connects mid-stroke picks it up): everything the bridge needs to
+// build the same math::WarpPlan as the station, exactly.
+struct StrokeBegin {
+  std::uint32_t stroke = 0;        // segment id (+1 per segment)
+  std::uint32_t mesh_version = 0;  // the rest mesh it warps
+  std::uint8_t method = 0;         // math::WarpMethod
+  std::uint8_t hand_mask = 0;      // session hands in the segment (bit h), 1..3
+  double radius_m = 0.0;
+  std::array<Pose, kLinkHands> start{};  // per session hand in hand_mask
+};
+
+// Hands flags.
+inline constexpr std::uint8_t kHandSample0 = 1;    // hands[0] is on the wire
+inline constexpr std::uint8_t kHandSample1 = 2;    // hands[1] is on the wire
+inline constexpr std::uint8_t kHandTracked0 = 4;   // hand 0's latest pose is valid
+inline constexpr std::uint8_t kHandTracked1 = 8;   // hand 1's latest pose is valid
+inline constexpr std::uint8_t kStrokeActive = 16;  // a stroke segment is open
+inline constexpr std::uint8_t kHandsFlagMask = 31;
+// Buttons: 4 bits per hand (hand 1 shifted by 4).
+inline constexpr std::uint8_t kButtonGrab = 1;
+inline constexpr std::uint8_t kButtonRadius = 2;
+inline constexpr std::uint8_t kButtonFreeze = 4;
+inline constexpr std::uint8_t kButtonMoveObject = 8;
+
+// The tracker-rate update (two hands: 74 bytes on the wire, kHandsFrameBytes). A hand's sample is
+// its pose in the object frame; for a hand in the open stroke it is the warp's end pose and the
+// quaternion's sign tells which way the hand turned: with q_start the start frame's quaternion
+// (frame_quaternion), q_rel = rotation * conj(q_start) has w >= 0 for a turn of at most a half turn
+// and its vector part along the station's screw axis (docs/link-protocol.md "Live warp").
+inline constexpr std::size_t kHandsFrameBytes = 74;  // two hands (tested)
+
+struct Hands {
+  std::uint16_t sequence = 0;  // +1 per hands message: the bridge counts gaps
+  std::uint16_t stroke = 0;    // low 16 bits of the open segment's id
+  std::uint8_t flags = 0;
+  std::uint8_t buttons = 0;
+  float radius_m = 0.0F;  // the session's current radius
+  std::array<CompactPose, kLinkHands> hands{};
+};
+
+struct ObjectPose {
+  CompactPose pose{};  // the object frame in the world
+};
+
+// Tracker states in StatusReport.
+enum class TrackerState : std::uint8_t { starting = 0, streaming = 1, lost = 2 };
+
+// Station status, about once a second and when something in it changes.
 struct StatusReport {
   std::uint32_t mesh_version = 0;
+  std::uint32_t vertex_count = 0;
+  std::uint32_t vertex_capacity = 0;
+  std::uint32_t triangle_count = 0;
+  std::uint32_t triangle_capacity = 0;
+  std::uint8_t tracker_state = 0;  // TrackerState
+  float tracker_rate_hz = 0.0F;    // poses used per second (both hands)
+  std::uint8_t method = 0;         // math::WarpMethod of the next stroke
+  std::uint8_t clutch = 0;         // bit h: hand h's clutch is in (freeze held)
+  float turned_rad = 0.0F;         // the most any hand has turned in the open stroke
+  float turn_limit_rad = 0.0F;     // limit of one stroke; 0 = not reported
   std::uint64_t strokes_committed = 0;
+  std::uint64_t strokes_not_saved = 0;  // commits whose journal append failed
+  std::uint64_t capacity_stops = 0;     // refined commits stopped by the mesh's capacity
   std::uint64_t live_sent = 0;
   std::uint64_t live_dropped = 0;  // no room on the link: the next one replaces it
-  std::uint64_t full_sends = 0;
-  std::uint64_t commits_sent = 0;
-  std::uint64_t frames_rejected = 0;  // frames from the bridge that failed decoding
+  std::uint64_t frames_rejected = 0;
 };
 
 // One decoded or to-be-encoded message: `type` says which member is meaningful.
 struct LinkMessage {
   MessageType type = MessageType::hello;
   Hello hello{};
+  Auth auth{};
+  Bye bye{};
   MeshBegin mesh_begin{};
   Vertices vertices{};
   Triangles triangles{};
   MeshEnd mesh_end{};
-  LiveWarp live_warp{};
   ResendRequest resend_request{};
+  StrokeBegin stroke{};
+  Hands hands{};
+  ObjectPose object{};
   StatusReport status{};
 };
 

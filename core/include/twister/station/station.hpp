@@ -33,6 +33,7 @@
 #include "twister/ports/file_sink.hpp"
 #include "twister/ports/storage.hpp"
 #include "twister/station/station_event.hpp"
+#include "twister/station/station_status.hpp"
 #include "twister/tracker/fastrak_session.hpp"
 #include "twister/tracker/pose_conversion.hpp"
 
@@ -183,6 +184,8 @@ class Station {
   bool hand_valid(std::uint8_t hand, ports::TimestampUs now_us) const;
   // The frame last applied to `hand` (hand < kHandCount); see hand_valid().
   const tracker::TrackedFrame& hand_pose(std::uint8_t hand) const { return hands_[hand].pose; }
+  // What the display link reports about the station (as of the last poll()).
+  StationStatus status() const;
 
  private:
   struct Hand {
@@ -227,6 +230,10 @@ class Station {
   bool buttons_failed_ = false;
   bool was_streaming_ = false;
   StationCounters counters_{};
+  // Tracker rate: poses counted over windows of about a second.
+  ports::TimestampUs rate_window_us_ = 0;
+  std::uint64_t rate_window_poses_ = 0;
+  float rate_hz_ = 0.0F;
   static constexpr std::size_t kEventCapacity = 64;
   std::array<StationEvent, kEventCapacity> events_{};
   std::size_t event_head_ = 0;

@@ -1,0 +1,205 @@
+// SceneReplica: the hands, the radius and the live stroke. The stroke's weights come
+// from a math::WarpPlan built from the exact start frames, once per segment and
+// mesh version; per hands update the end frames come from the compact samples and
+// the screws from link::live_screw, which turns the way the station turned.
+#include <algorithm>
+#include <cmath>
+
+#include "replica_plan.hpp"
+#include "scene_replica.hpp"
+#include "twister/link/math_conversion.hpp"
+#include "twister/math/warp_kernels.hpp"
+
+namespace twister::bridge {
+namespace {
+
+void set_buttons(HandView& v, std::uint8_t bits) {
+  v.grab = (bits & link::kButtonGrab) != 0;
+  v.radius = (bits & link::kButtonRadius) != 0;
+  v.freeze = (bits & link::kButtonFreeze) != 0;
+  v.move_object = (bits & link::kButtonMoveObject) != 0;
+}
+
+}  // namespace
+
+void SceneReplica::on_stroke(const link::StrokeBegin& s) {
+  if (stroke_known_ && s.stroke == stroke_.stroke && s.mesh_version == stroke_.mesh_version) {
+    return;  // the once-a-second repeat of the segment we hold
+  }
+  stroke_ = s;
+  stroke_known_ = true;
+  plan_.reset();
+}
+
+bool SceneReplica::ensure_plan() {
+  if (plan_ && plan_->stroke == stroke_.stroke) return plan_->plan != nullptr;
+  plan_ = std::make_unique<Plan>();
+  plan_->stroke = stroke_.stroke;
+  const std::size_t n = mesh_.vertex_count();
+  plan_->indices.resize(n);
+  plan_->w1.resize(n);
+  plan_->w2.resize(n);
+  auto plan =
+      std::make_unique<math::WarpPlan>(math::WarpPlanStorage{plan_->indices, plan_->w1, plan_->w2});
+  std::array<math::Frame, 2> start{};
+  std::size_t hands = 0;
+  for (std::size_t h = 0; h < link::kLinkHands; ++h) {
+    if ((stroke_.hand_mask & (1u << h)) != 0) start[hands++] = link::to_frame(stroke_.start[h]);
+  }
+  live_.weight1.assign(n, 0.0F);
+  live_.weight2.assign(n, 0.0F);
+  live_.weights_changed = true;
+  const math::ConstVertexColumns rest{mesh_.x, mesh_.y, mesh_.z};
+  if (!plan->build(rest, std::span<const math::Frame>(start.data(), hands), stroke_.radius_m,
+                   static_cast<math::WarpMethod>(stroke_.method))
+           .ok()) {
+    ++counters_.plan_errors;
+    return false;
+  }
+  const auto idx = plan->indices();
+  const auto w1 = plan->weights(0);
+  const auto w2 = plan->weights(1);
+  for (std::size_t k = 0; k < idx.size(); ++k) {
+    live_.weight1[idx[k]] = w1[k];
+    if (!w2.empty()) live_.weight2[idx[k]] = w2[k];
+  }
+  plan_->plan = std::move(plan);
+  return true;
+}
+
+void SceneReplica::on_hands(const link::Hands& h) {
+  ++counters_.live_frames;
+  if (hands_sequence_known_ && h.sequence != hands_sequence_) {
+    counters_.live_missed += static_cast<std::uint16_t>(h.sequence - hands_sequence_);
+  }
+  hands_sequence_ = static_cast<std::uint16_t>(h.sequence + 1);
+  hands_sequence_known_ = true;
+  radius_m_ = h.radius_m;
+  const bool stroke_on = (h.flags & link::kStrokeActive) != 0;
+  const bool stroke_ok =
+      stroke_on && stroke_known_ && static_cast<std::uint16_t>(stroke_.stroke) == h.stroke;
+  for (std::size_t k = 0; k < link::kLinkHands; ++k) {
+    HandView& v = hands_[k];
+    v.tracked = (h.flags & (link::kHandTracked0 << k)) != 0;
+    v.present = (h.flags & (link::kHandSample0 << k)) != 0;
+    v.in_stroke = stroke_ok && (stroke_.hand_mask & (1u << k)) != 0;
+    set_buttons(v, static_cast<std::uint8_t>(h.buttons >> (4 * k)));
+    if (!v.present) continue;
+    if (stroke_on && !stroke_ok) {
+      v.present = false;  // relative to a start frame we do not hold yet
+    } else if (v.in_stroke) {
+      v.pose = link::live_end_frame(link::to_frame(stroke_.start[k]), h.hands[k]);
+    } else {
+      v.pose = link::from_compact(h.hands[k]);
+    }
+  }
+  update_live(h);
+}
+
+void SceneReplica::update_live(const link::Hands& h) {
+  const bool was_active = live_.active;
+  live_.active = false;
+  if ((h.flags & link::kStrokeActive) == 0) return;
+  if (!stroke_known_ || static_cast<std::uint16_t>(stroke_.stroke) != h.stroke) {
+    ++counters_.live_unknown;
+    return;
+  }
+  if (!has_mesh() || stroke_.mesh_version != version_) {
+    ++counters_.live_stale;
+    return;
+  }
+  if (!ensure_plan()) return;
+  live_.method = static_cast<math::WarpMethod>(stroke_.method);
+  live_.hand_mask = stroke_.hand_mask;
+  live_.radius_m = stroke_.radius_m;
+  live_.hand_count = 0;
+  for (std::size_t k = 0; k < link::kLinkHands; ++k) {
+    if ((stroke_.hand_mask & (1u << k)) == 0) continue;
+    if (!hands_[k].present) return;  // a stroke hand without its sample: not drawn
+    LiveHand& lh = live_.hands[live_.hand_count++];
+    lh.session_hand = static_cast<std::uint8_t>(k);
+    lh.start = link::to_frame(stroke_.start[k]);
+    lh.end = hands_[k].pose;
+    lh.screw = link::live_screw(lh.start, lh.end, h.hands[k]);
+  }
+  if (!was_active || live_.stroke != stroke_.stroke) live_.weights_changed = true;
+  live_.stroke = stroke_.stroke;
+  live_.active = true;
+}
+
+MeshData SceneReplica::cpu_warp() const {
+  if (!live_.active || !plan_ || !plan_->plan) return {};
+  MeshData out = mesh_;
+  const math::WarpPlan& plan = *plan_->plan;
+  const math::ConstVertexColumns rest{mesh_.x, mesh_.y, mesh_.z};
+  if (live_.method == math::WarpMethod::scodef) {
+    // scodef has no screw: the plan's own update from the end frames.
+    math::WarpPlan copy = plan;
+    std::array<math::Frame, 2> end{};
+    for (std::size_t k = 0; k < live_.hand_count; ++k) end[k] = live_.hands[k].end;
+    if (!copy.update(std::span<const math::Frame>(end.data(), live_.hand_count)).ok()) return {};
+    (void)copy.apply(rest, math::VertexColumns{out.x, out.y, out.z});
+    return out;
+  }
+  std::array<math::KernelHand, 2> k{};
+  bool long_way = false;
+  for (std::size_t i = 0; i < live_.hand_count; ++i) {
+    const LiveHand& lh = live_.hands[i];
+    math::fill_kernel_hand(k[i], lh.screw, lh.start, lh.end, live_.method);
+    long_way = long_way || lh.screw.angle > 3.141592653589793;
+  }
+  const auto idx = plan.indices();
+  const auto w1 = plan.weights(0);
+  std::vector<float> zeros(idx.size(), 0.0F);
+  const auto w2 = live_.hand_count == 2 ? plan.weights(1) : std::span<const float>(zeros);
+  std::vector<float> gx(idx.size()), gy(idx.size()), gz(idx.size());
+  std::vector<float> rx(idx.size()), ry(idx.size()), rz(idx.size());
+  for (std::size_t i = 0; i < idx.size(); ++i) {
+    gx[i] = mesh_.x[idx[i]];
+    gy[i] = mesh_.y[idx[i]];
+    gz[i] = mesh_.z[idx[i]];
+  }
+  const math::KernelSpan s{gx.data(), gy.data(), gz.data(), w1.data(), w2.data(),
+                           rx.data(), ry.data(), rz.data(), idx.size()};
+  // The station's simd kernel; the scalar one past a half turn (the simd sin/cos
+  // covers half angles up to pi/2 only on this core).
+  if (live_.hand_count == 2) {
+    long_way ? math::warp_two_scalar(k[0], k[1], s) : math::warp_two_simd(k[0], k[1], s);
+  } else {
+    long_way ? math::warp_one_scalar(k[0], s) : math::warp_one_simd(k[0], s);
+  }
+  for (std::size_t i = 0; i < idx.size(); ++i) {
+    out.x[idx[i]] = rx[i];
+    out.y[idx[i]] = ry[i];
+    out.z[idx[i]] = rz[i];
+  }
+  return out;
+}
+
+LiveMessages make_live_messages(std::uint32_t mesh_version, std::uint32_t stroke,
+                                math::WarpMethod method, double radius_m, std::uint8_t hand_mask,
+                                const std::array<math::Frame, 2>& start,
+                                const std::array<math::Frame, 2>& end,
+                                const std::array<math::Screw, 2>* screws) {
+  LiveMessages out;
+  out.stroke.type = link::MessageType::stroke;
+  out.stroke.stroke = link::StrokeBegin{stroke,    mesh_version, static_cast<std::uint8_t>(method),
+                                        hand_mask, radius_m,     {}};
+  out.hands.type = link::MessageType::hands;
+  out.hands.hands.stroke = static_cast<std::uint16_t>(stroke);
+  out.hands.hands.flags = link::kStrokeActive;
+  out.hands.hands.radius_m = static_cast<float>(radius_m);
+  std::size_t k = 0;
+  for (std::size_t h = 0; h < link::kLinkHands; ++h) {
+    if ((hand_mask & (1u << h)) == 0) continue;
+    const math::Screw s = screws != nullptr ? (*screws)[k] : math::compute_screw(start[k], end[k]);
+    out.stroke.stroke.start[h] = link::to_wire(start[k]);
+    out.hands.hands.hands[h] = link::to_live_compact(start[k], end[k], s);
+    out.hands.hands.flags = static_cast<std::uint8_t>(
+        out.hands.hands.flags | (link::kHandSample0 << h) | (link::kHandTracked0 << h));
+    ++k;
+  }
+  return out;
+}
+
+}  // namespace twister::bridge

@@ -1,0 +1,21 @@
+// The replica's copy of the station's warp plan for the open stroke segment
+// (private to the replica library).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "scene_replica.hpp"
+#include "twister/math/warp_plan.hpp"
+
+namespace twister::bridge {
+
+struct SceneReplica::Plan {
+  std::vector<std::uint32_t> indices;
+  std::vector<float> w1, w2;
+  std::unique_ptr<math::WarpPlan> plan;
+  std::uint32_t stroke = 0;  // the segment it was built for
+};
+
+}  // namespace twister::bridge

@@ -1,0 +1,113 @@
+// The bridge's message handling (issue 11): SceneReplica fed with arbitrary input,
+// in three modes chosen by the first byte, so the fuzzer reaches past the CRC:
+//   0: raw bytes through the frame decoder (what a peer can send);
+//   1: length-prefixed payloads ([n][version, type, body...]) straight to
+//      decode_payload, then to the replica;
+//   2: as 1, after a valid 4 x 4 grid mesh was received (strokes, hands, commits
+//      against a mesh the replica holds).
+// Properties: never crashes or allocates what a peer announces beyond the limits
+// (the replica's limits are small here: a violation shows as an ASan OOM); a held
+// mesh always matches its checksum and stays within the limits; poses of present
+// hands are finite; the CPU warp of a live stroke has the mesh's size.
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <span>
+
+#include "scene_replica.hpp"
+#include "twister/link/link_codec.hpp"
+
+namespace {
+
+using namespace twister;
+
+constexpr bridge::ReplicaLimits kLimits{4096, 8192};
+
+void load_grid(bridge::SceneReplica& r) {
+  bridge::MeshData m;
+  for (std::uint32_t j = 0; j < 4; ++j) {
+    for (std::uint32_t i = 0; i < 4; ++i) {
+      m.x.push_back(0.1F * static_cast<float>(i));
+      m.y.push_back(0.1F * static_cast<float>(j));
+      m.z.push_back(0.0F);
+    }
+  }
+  for (std::uint32_t j = 0; j < 3; ++j) {
+    for (std::uint32_t i = 0; i < 3; ++i) {
+      const std::uint32_t a = 4 * j + i;
+      m.indices.insert(m.indices.end(), {a, a + 1, a + 4, a + 1, a + 5, a + 4});
+    }
+  }
+  link::LinkMessage msg;
+  msg.type = link::MessageType::mesh_begin;
+  msg.mesh_begin = {true, 0, 1, 16, 18};
+  (void)r.apply(msg);
+  msg.type = link::MessageType::vertices;
+  msg.vertices.count = 16;
+  for (std::uint32_t i = 0; i < 16; ++i) msg.vertices.items[i] = {i, m.x[i], m.y[i], m.z[i]};
+  (void)r.apply(msg);
+  msg.type = link::MessageType::triangles;
+  msg.triangles.first = 0;
+  msg.triangles.count = 18;
+  for (std::size_t i = 0; i < m.indices.size(); ++i) msg.triangles.indices[i] = m.indices[i];
+  (void)r.apply(msg);
+  msg.type = link::MessageType::mesh_end;
+  msg.mesh_end = {1, *bridge::mesh_checksum(m)};
+  (void)r.apply(msg);
+  if (!r.has_mesh()) std::abort();
+}
+
+void check(const bridge::SceneReplica& r) {
+  if (r.has_mesh()) {
+    const auto sum = bridge::mesh_checksum(r.mesh());
+    if (!sum || *sum != r.checksum()) std::abort();
+    if (r.mesh().vertex_count() > kLimits.max_vertices ||
+        r.mesh().triangle_count() > kLimits.max_triangles) {
+      std::abort();
+    }
+  }
+  for (const bridge::HandView& h : r.hands()) {
+    if (h.present && !(std::isfinite(h.pose.origin.x) && std::isfinite(h.pose.u.y))) std::abort();
+  }
+  if (r.live().active) {
+    const bridge::MeshData warped = r.cpu_warp();
+    if (warped.vertex_count() != 0 && warped.vertex_count() != r.mesh().vertex_count()) {
+      std::abort();
+    }
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  if (size == 0) return 0;
+  bridge::SceneReplica replica(kLimits);
+  const std::uint8_t mode = data[0] % 3;
+  const auto* bytes = reinterpret_cast<const std::byte*>(data + 1);
+  const std::size_t n = size - 1;
+  if (mode == 0) {
+    static link::LinkDecoder decoder;
+    decoder.clear();
+    for (std::size_t i = 0; i < n; ++i) {
+      if (const auto m = decoder.process(bytes[i]); m.ok()) {
+        (void)replica.apply(**m);
+        check(replica);
+      }
+    }
+    return 0;
+  }
+  if (mode == 2) load_grid(replica);
+  static link::LinkMessage message;
+  for (std::size_t i = 0; i < n;) {
+    const std::size_t len = std::to_integer<std::size_t>(bytes[i]);
+    ++i;
+    const std::size_t take = len < n - i ? len : n - i;
+    if (link::decode_payload(std::span<const std::byte>(bytes + i, take), message).ok()) {
+      (void)replica.apply(message);
+      check(replica);
+    }
+    i += take;
+  }
+  return 0;
+}

@@ -1,0 +1,180 @@
+// Issue 11 item 5, end to end over real sockets (label integrity): a station
+// (SculptSession + StationLink on a listening hal::SocketLink with a pre-shared
+// key) and twister-bridge's BridgeApp with the same key.
+//   - an unauthenticated TCP client, reconnecting again and again, never displaces
+//     the display: no bye reaches it, it stays connected once, and is refused;
+//   - a display with the wrong key, or none, is refused (and backs off);
+//   - an authorised second display takes over; the first is told "displaced" and
+//     backs off instead of reconnecting (no fight).
+#include <gtest/gtest.h>
+#include <poll.h>
+#include <unistd.h>
+
+#include <array>
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bridge_app.hpp"
+#include "session_harness.hpp"
+#include "twister/hal/socket_link.hpp"
+#include "twister/hal/sodium_authenticator.hpp"
+#include "twister/station/station_link.hpp"
+
+namespace twister::bridge {
+namespace {
+
+using input::test_support::Station;
+
+hal::LinkKey key_of(std::uint8_t seed) {
+  hal::LinkKey k{};
+  for (std::size_t i = 0; i < k.size(); ++i) k[i] = static_cast<std::uint8_t>(seed + 7 * i);
+  return k;
+}
+
+struct StationSide {
+  explicit StationSide(const std::string& address) : socket({address, true, 0}), auth(key_of(1)) {
+    EXPECT_TRUE(hal::SodiumAuthenticator::init());
+    const auto opened = socket.open();
+    EXPECT_TRUE(opened) << (opened ? "" : opened.error().message);
+    const std::size_t n = station.mesh.vertex_capacity();
+    x.resize(n);
+    y.resize(n);
+    z.resize(n);
+    idx.resize(3 * station.mesh.triangle_capacity());
+    out.resize(64 * link::kMaxFrameBytes);
+    station::StationLinkOptions options;
+    options.newcomers = &socket;
+    options.authenticator = &auth;
+    link = std::make_unique<station::StationLink>(socket,
+                                                  station::StationLinkStorage{x, y, z, idx, out},
+                                                  station::StationLinkConfig{}, options);
+    EXPECT_TRUE(link->start(*station.session).ok());
+  }
+  void poll() {
+    station.now_us += 1000;
+    link->poll(*station.session, station.now_us);
+  }
+
+  Station station;
+  hal::SocketLink socket;
+  hal::SodiumAuthenticator auth;
+  std::vector<float> x, y, z;
+  std::vector<std::uint32_t> idx;
+  std::vector<std::byte> out;
+  std::unique_ptr<station::StationLink> link;
+};
+
+struct Display {
+  Display(const std::string& address, const hal::LinkKey* key) : socket({address, false, 0}) {
+    if (key != nullptr) auth = std::make_unique<hal::SodiumAuthenticator>(*key);
+    BridgeOptions options;
+    options.authenticator = auth.get();
+    app = std::make_unique<BridgeApp>(socket, nullptr, options, log);
+  }
+  ports::NullLogSink log;
+  hal::SocketLink socket;
+  std::unique_ptr<hal::SodiumAuthenticator> auth;
+  std::unique_ptr<BridgeApp> app;
+};
+
+// Runs station and displays for up to `ms`, until `done` holds.
+template <typename Done>
+bool run(StationSide& s, std::vector<Display*> displays, int ms, Done done) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(ms);
+  while (std::chrono::steady_clock::now() < until) {
+    s.poll();
+    for (Display* d : displays) d->app->step();
+    if (done()) return true;
+    std::array<pollfd, 4> fds{};
+    ::poll(fds.data(), s.socket.poll_fds(fds), 2);
+  }
+  return false;
+}
+
+std::string address() { return "tcp:127.0.0.1:" + std::to_string(24000 + ::getpid() % 20000); }
+
+TEST(LinkAdmission, UnauthenticatedTcpClientsCannotDisplaceTheDisplay) {
+  StationSide s(address());
+  const hal::LinkKey key = key_of(1);
+  Display good(address(), &key);
+  ASSERT_TRUE(run(s, {&good}, 3000, [&] {
+    return good.app->ready() && good.app->replica().has_mesh() && s.link->peer_synced();
+  }));
+  // A stranger connects every few milliseconds: a v2 hello with a made-up tag, a
+  // hello without one, garbage, or nothing at all.
+  for (int attempt = 0; attempt < 30; ++attempt) {
+    hal::SocketLink stranger({address(), false, 0});
+    ASSERT_TRUE(stranger.open());
+    link::LinkMessage hello;
+    hello.type = link::MessageType::hello;
+    hello.hello.role = link::Role::bridge;
+    std::array<std::byte, link::kMaxFrameBytes> frame{};
+    const auto n = link::encode_frame(hello, frame);
+    link::LinkMessage forged;
+    forged.type = link::MessageType::auth;
+    forged.auth.tag.fill(0x5a);
+    std::array<std::byte, link::kMaxFrameBytes> tag_frame{};
+    const auto m = link::encode_frame(forged, tag_frame);
+    if (attempt % 4 <= 1) (void)stranger.send(std::span<const std::byte>(frame).first(*n));
+    if (attempt % 4 == 0) (void)stranger.send(std::span<const std::byte>(tag_frame).first(*m));
+    if (attempt % 4 == 2) (void)stranger.send(std::span<const std::byte>(frame).first(3));
+    (void)run(s, {&good}, 10, [] { return false; });
+  }
+  (void)run(s, {&good}, 100, [] { return false; });
+  EXPECT_EQ(good.app->stopped(), BridgeStop::none);
+  EXPECT_TRUE(good.app->connected());
+  EXPECT_EQ(good.app->counters().connects, 1u);
+  EXPECT_EQ(good.app->counters().disconnects, 0u);
+  EXPECT_EQ(s.link->counters().connects, 1u);
+  EXPECT_EQ(s.link->counters().displaced, 0u);
+  EXPECT_GE(s.link->counters().refused_unauthorised, 3u);
+  EXPECT_GE(s.link->counters().newcomers, 10u);
+  // The display still gets the station's commits.
+  s.station.hand(0, math::identity_frame({0, 0, 0}));
+  s.station.button(input::test_support::kGrab0, true);
+  (void)s.station.tick();
+  s.station.hand(0, input::test_support::z_turn({0.1, 0, 0.1}, 0.3));
+  (void)s.station.tick();
+  s.station.button(input::test_support::kGrab0, false);
+  (void)s.station.tick();
+  EXPECT_TRUE(run(s, {&good}, 3000,
+                  [&] { return good.app->replica().checksum() == s.station.mesh.checksum(); }));
+}
+
+TEST(LinkAdmission, DisplaysWithoutTheKeyAreRefusedAndBackOff) {
+  StationSide s(address());
+  Display none(address(), nullptr);
+  EXPECT_TRUE(run(s, {&none}, 3000, [&] { return none.app->stopped() != BridgeStop::none; }));
+  EXPECT_EQ(none.app->stopped(), BridgeStop::unauthorised);
+  const hal::LinkKey wrong = key_of(9);
+  Display bad(address(), &wrong);
+  EXPECT_TRUE(run(s, {&bad}, 3000, [&] { return bad.app->stopped() != BridgeStop::none; }));
+  EXPECT_EQ(bad.app->stopped(), BridgeStop::unauthorised);
+  EXPECT_FALSE(bad.app->replica().has_mesh());
+  EXPECT_EQ(s.link->counters().connects, 0u);
+  EXPECT_GE(s.link->counters().refused_unauthorised, 1u);
+}
+
+TEST(LinkAdmission, AnAuthorisedNewDisplayTakesOverAndTheOldOneBacksOff) {
+  StationSide s(address());
+  const hal::LinkKey key = key_of(1);
+  Display first(address(), &key);
+  ASSERT_TRUE(run(s, {&first}, 3000, [&] { return first.app->replica().has_mesh(); }));
+  Display second(address(), &key);
+  ASSERT_TRUE(run(s, {&first, &second}, 3000, [&] {
+    return second.app->replica().has_mesh() && first.app->stopped() != BridgeStop::none;
+  }));
+  EXPECT_EQ(first.app->stopped(), BridgeStop::displaced);
+  EXPECT_EQ(s.link->counters().displaced, 1u);
+  // No fight: the first does not come back; the second keeps the link.
+  (void)run(s, {&first, &second}, 600, [] { return false; });
+  EXPECT_EQ(first.app->counters().connects, 1u);
+  EXPECT_EQ(second.app->stopped(), BridgeStop::none);
+  EXPECT_TRUE(second.app->ready());
+  EXPECT_EQ(s.link->counters().connects, 2u);
+}
+
+}  // namespace
+}  // namespace twister::bridge
