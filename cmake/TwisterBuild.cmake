@@ -99,15 +99,17 @@ function(twister_add_script_test name)
   endif()
 endfunction()
 
-# twister_add_fuzzer(<name> SOURCES ... [LIBS ...])
+# twister_add_fuzzer(<name> SOURCES ... [LIBS ...] [LABELS ...])
 # The harness defines LLVMFuzzerTestOneInput; its seed corpus is
 # tests/fuzz/corpus/<name>/. In the fuzz preset (clang) it is a libFuzzer binary with
 # ASan+UBSan and a bounded CTest smoke run; in other builds it is linked with a replay
-# driver that runs the corpus plus deterministic mutations (CTest label "fuzz").
+# driver that runs the corpus plus deterministic mutations (CTest label "fuzz", plus
+# LABELS).
 set(TWISTER_FUZZ_SECONDS 10 CACHE STRING "Length of the libFuzzer smoke run per target")
 function(twister_add_fuzzer name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS;LABELS" ${ARGN})
   set(corpus ${PROJECT_SOURCE_DIR}/tests/fuzz/corpus/${name})
+  set(labels fuzz ${ARG_LABELS})
   add_executable(${name} ${ARG_SOURCES})
   set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/fuzz)
   target_link_libraries(${name} PRIVATE ${ARG_LIBS})
@@ -120,10 +122,10 @@ function(twister_add_fuzzer name)
     add_test(NAME fuzz.${name}
       COMMAND ${name} -max_total_time=${TWISTER_FUZZ_SECONDS} -rss_limit_mb=2048
               -print_final_stats=1 ${work} ${corpus})
-    set_tests_properties(fuzz.${name} PROPERTIES LABELS "fuzz")
+    set_tests_properties(fuzz.${name} PROPERTIES LABELS "${labels}")
   else()
     target_sources(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support/fuzz_replay_main.cpp)
     add_test(NAME fuzz_replay.${name} COMMAND ${name} ${corpus} 20000)
-    set_tests_properties(fuzz_replay.${name} PROPERTIES LABELS "fuzz")
+    set_tests_properties(fuzz_replay.${name} PROPERTIES LABELS "${labels}")
   endif()
 endfunction()

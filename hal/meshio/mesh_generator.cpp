@@ -7,7 +7,7 @@ namespace twister::meshio {
 
 Status make_grid(mesh::Mesh& mesh, std::size_t n, float half_size_m) {
   mesh.clear();
-  if (n < 2) return StatusCode::invalid_argument;
+  if (n < 2 || !std::isfinite(half_size_m)) return StatusCode::invalid_argument;
   if (grid_vertices(n) > mesh.vertex_capacity() || grid_triangles(n) > mesh.triangle_capacity()) {
     return StatusCode::resource_exhausted;
   }
@@ -31,7 +31,7 @@ Status make_grid(mesh::Mesh& mesh, std::size_t n, float half_size_m) {
 
 Status make_sphere(mesh::Mesh& mesh, std::size_t rings, std::size_t segments, float radius_m) {
   mesh.clear();
-  if (rings < 2 || segments < 3) return StatusCode::invalid_argument;
+  if (rings < 2 || segments < 3 || !std::isfinite(radius_m)) return StatusCode::invalid_argument;
   if (sphere_vertices(rings, segments) > mesh.vertex_capacity() ||
       sphere_triangles(rings, segments) > mesh.triangle_capacity()) {
     return StatusCode::resource_exhausted;

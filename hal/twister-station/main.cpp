@@ -1,14 +1,20 @@
 // twister-station: the composition root. Reads station.toml, assembles the
 // backends, the journal, the model and the core once (the only place that
 // allocates), then hands over to StationLoop (poll(2) on the backends' descriptors
-// and a signalfd; Station::poll() each pass; SIGINT/SIGTERM end it cleanly with the
-// journal synced; optional sd_notify READY / WATCHDOG / STOPPING).
+// and a signalfd; Station::poll() each pass; SIGINT/SIGTERM/SIGHUP end it cleanly:
+// an open stroke is cancelled, a final checkpoint, the journal synced, the summary;
+// optional sd_notify READY / WATCHDOG / STOPPING).
 // Logging goes through hal::Logger ("twister-station: ..."; sd-daemon priority
 // prefixes when stderr is the journal): --log-level error|warning|notice|info|debug
 // (default notice; -q = warning). The start and stop summary lines (mesh, running,
 // mesh checksum, stopped) are the run's results and are always printed.
-// Exit codes: 0 clean stop, 1 runtime failure, 2 invalid config or options.
+// Exit codes: 0 clean stop with every stroke saved, 1 runtime failure or a stroke not
+// saved, 2 invalid config or options, or a missing file the config names (all checked
+// before the journal is opened).
+#include <pthread.h>
+
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -16,6 +22,7 @@
 
 #include "config/station_config.hpp"
 #include "station_assembly.hpp"
+#include "station_checks.hpp"
 #include "station_loop.hpp"
 #include "station_setup.hpp"
 #include "twister/hal/logger.hpp"
@@ -57,6 +64,17 @@ hal::Logger& configure_logs(const Options& opt, hal::Logger& results) {
 
 int check_config(hal::Logger& log, const Options& opt, const StationConfig& cfg) {
   int errors = 0;
+  const auto dir = std::filesystem::path(opt.config_path).parent_path();
+  for (const std::string& problem : app::referenced_file_problems(cfg, dir)) {
+    log.error("", "%s: %s", opt.config_path.c_str(), problem.c_str());
+    ++errors;
+  }
+  if (!opt.link_address.empty()) {
+    if (const std::string why = app::link_address_problem(opt.link_address); !why.empty()) {
+      log.error("", "--link %s: %s", opt.link_address.c_str(), why.c_str());
+      ++errors;
+    }
+  }
   if (const auto setup = app::make_station_setup(cfg); !setup) {
     log.error("", "%s: %s", opt.config_path.c_str(), setup.error().message.c_str());
     ++errors;
@@ -88,14 +106,19 @@ void log_summary(hal::Logger& results, const twister::station::Station& core,
   const auto& c = core.counters();
   const auto& tc = core.tracker_session().counters();
   results.notice("",
-                 "stopped (%s); journal %s (%u records); strokes committed %llu, cancelled %llu; "
-                 "tracker start-ups %llu, poses %llu, io errors %llu",
+                 "stopped (%s); journal %s (%u records); strokes committed %llu, cancelled %llu, "
+                 "not saved %llu; tracker start-ups %llu, poses %llu, io errors %llu",
                  app::stop_reason_name(loop.stop_reason()), flushed.ok() ? "synced" : "SYNC FAILED",
                  core.journal_records(), static_cast<unsigned long long>(c.strokes_committed),
                  static_cast<unsigned long long>(c.strokes_cancelled),
+                 static_cast<unsigned long long>(c.strokes_not_saved),
                  static_cast<unsigned long long>(tc.streams_started),
                  static_cast<unsigned long long>(c.poses),
                  static_cast<unsigned long long>(tc.io_errors));
+  if (c.strokes_not_saved > 0) {
+    results.error("", "%llu stroke(s) were not saved (see the errors above); exit status 1",
+                  static_cast<unsigned long long>(c.strokes_not_saved));
+  }
 }
 
 void log_link_summary(hal::Logger& results, const app::DisplayLink& display) {
@@ -113,8 +136,7 @@ void log_link_summary(hal::Logger& results, const app::DisplayLink& display) {
       static_cast<unsigned long long>(l->full_sends), static_cast<unsigned long long>(refused));
 }
 
-int run(const Options& opt, StationConfig cfg, hal::Logger& log, hal::Logger& results) {
-  if (!opt.journal_override.empty()) cfg.station.journal = opt.journal_override;
+int run(const Options& opt, const StationConfig& cfg, hal::Logger& log, hal::Logger& results) {
   auto assembled = app::assemble_station(
       cfg, {std::filesystem::path(opt.config_path).parent_path(), opt.link_address});
   if (!assembled) {
@@ -122,10 +144,21 @@ int run(const Options& opt, StationConfig cfg, hal::Logger& log, hal::Logger& re
     return kExitFailure;
   }
   app::StationParts& parts = **assembled;
+  for (const auto& note : parts.recovery_notes) {
+    if (note.warning) {
+      log.warning("journal", "%s", note.text.c_str());
+    } else {
+      log.notice("journal", "%s", note.text.c_str());
+    }
+  }
   const auto& mesh = parts.core->mesh();
   results.notice("", "mesh %s: %zu vertices, %zu triangles, checksum %016llx",
                  parts.mesh_path.c_str(), mesh.vertex_count(), mesh.triangle_count(),
                  static_cast<unsigned long long>(mesh.checksum()));
+  if (const auto refine = parts.core->refinement(); refine.enabled) {
+    log.notice("refine", "on: edges split above %g m, room for %zu more vertices",
+               refine.threshold_m, refine.spare_vertices);
+  }
   if (parts.display.is_open() && opt.link_wait_s > 0.0 &&
       !parts.display.wait_for_peer(*parts.core, opt.link_wait_s)) {
     log.warning("", "no bridge on %s after %.1f s; running without", opt.link_address.c_str(),
@@ -136,10 +169,13 @@ int run(const Options& opt, StationConfig cfg, hal::Logger& log, hal::Logger& re
   results.notice("", "running (tracker %s, buttons %s, journal %s)",
                  parts.backends.tracker_name.c_str(), parts.backends.buttons_name.c_str(),
                  cfg.station.journal.c_str());
+  loop.watch_journal(&parts.journal);
   const twister::Status flushed = loop.run();
   log_summary(results, *parts.core, loop, flushed);
   log_link_summary(results, parts.display);
-  return flushed.ok() ? kExitOk : kExitFailure;
+  // A run that lost a stroke did not succeed, whatever else went well.
+  const bool all_saved = parts.core->counters().strokes_not_saved == 0;
+  return flushed.ok() && all_saved ? kExitOk : kExitFailure;
 }
 
 void add_options(CLI::App& app, Options& opt) {
@@ -169,6 +205,15 @@ void add_options(CLI::App& app, Options& opt) {
 }
 
 int station_main(int argc, char** argv) {
+  // A file size limit (RLIMIT_FSIZE) must fail the write (EFBIG: "stroke not saved"),
+  // not kill the station with SIGXFSZ.
+  std::signal(SIGXFSZ, SIG_IGN);
+  // A stop signal during start-up waits for the loop's first pass (then the stop
+  // policy and the summary run) instead of killing the station half-started.
+  sigset_t stop_signals;
+  sigemptyset(&stop_signals);
+  for (const int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&stop_signals, sig);
+  pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
   CLI::App cli{
       "twister-station: the Twister sculpting station (tracker + buttons -> strokes -> journal)"};
   Options opt;
@@ -181,15 +226,17 @@ int station_main(int argc, char** argv) {
   }
   hal::Logger results({kProgram});
   hal::Logger& log = configure_logs(opt, results);
-  const auto parsed = app::load_station_config(opt.config_path);
+  auto parsed = app::load_station_config(opt.config_path);
   for (const auto& e : parsed.errors) log.error("", "%s", e.to_string().c_str());
   if (!parsed.ok()) {
     log.error("", "%zu error(s) in %s; refusing to start", parsed.errors.size(),
               opt.config_path.c_str());
     return kExitBadConfig;
   }
+  if (!opt.journal_override.empty()) parsed.config.station.journal = opt.journal_override;
+  // Every option and file is checked before anything is opened or replayed.
   if (check_config(log, opt, parsed.config) > 0) {
-    log.error("", "%s cannot run with this binary; refusing to start", opt.config_path.c_str());
+    log.error("", "%s cannot run (see above); refusing to start", opt.config_path.c_str());
     return kExitBadConfig;
   }
   if (opt.check) {

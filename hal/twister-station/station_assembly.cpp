@@ -1,55 +1,110 @@
 #include "station_assembly.hpp"
 
 #include "station_setup.hpp"
+#include "twister/input/session_checkpoint.hpp"
 #include "twister/meshio/obj_file.hpp"
 
 namespace twister::station_app {
 namespace {
 
 hal::Expected<void> open_journal(hal::PosixFileStorage& journal, const std::string& path) {
-  if (const Status s = journal.open({.path = path}); !s.ok()) {
+  const Status s = journal.open({.path = path, .lock = true});
+  if (s.code() == StatusCode::failed_precondition) {
+    const int pid = journal.lock_holder_pid();
+    return hal::Error{s, "journal " + path + " is in use by another twister-station (" +
+                             (pid > 0 ? "PID " + std::to_string(pid) : "PID unknown") +
+                             "); refusing to start (the file was not changed)"};
+  }
+  if (!s.ok()) {
     return hal::Error{s, "cannot open journal " + path + " (" + s.name() + ", errno " +
                              std::to_string(journal.last_errno()) + ")"};
   }
   return {};
 }
 
-hal::Expected<void> start_core(station::Station& core, const std::string& journal_path) {
+std::string corrupt_message(const station::JournalRecovery& r) {
+  const journal::JournalSurvey& v = r.survey;
+  return "damaged record at offset " + std::to_string(v.good_end) + " (" +
+         journal::tail_problem_name(v.problem) + "); " + std::to_string(v.later_records) +
+         " valid record(s) follow it (the first at offset " + std::to_string(v.first_later_offset) +
+         "), so it is not a torn tail: refusing to start; the file is left untouched. "
+         "`twister journal check` lists the damage, `twister journal salvage` writes a copy "
+         "that keeps every valid record";
+}
+
+hal::Expected<void> start_core(station::Station& core, const std::string& journal_path,
+                               const hal::PosixFileSink& archive) {
   const Status s = core.start();
   if (s.ok()) return {};
-  const char* why = s.name();
-  if (s.code() == StatusCode::data_loss) {
-    why = "is not a Twister journal, or does not fit this mesh (left untouched)";
+  using O = station::JournalRecovery::Outcome;
+  const station::JournalRecovery& r = core.recovery();
+  std::string why = s.name();
+  if (r.outcome == O::corrupt) {
+    why = corrupt_message(r);
+  } else if (r.outcome == O::not_a_journal) {
+    why = "is not a Twister journal, or does not fit this mesh (left untouched): not a journal";
+  } else if (r.outcome == O::does_not_fit) {
+    why = "is not a Twister journal, or does not fit this mesh (left untouched): record " +
+          std::to_string(r.record_index) + " (sequence " + std::to_string(r.record_sequence) +
+          ") cannot be applied to this mesh (" + r.record_status.name() + ")";
+  } else if (r.outcome == O::tail_not_kept) {
+    why = "a torn tail of " + std::to_string(r.survey.file_size - r.survey.good_end) +
+          " bytes at offset " + std::to_string(r.survey.good_end) + " could not be kept in " +
+          archive.path() + " (" + archive.last_error() +
+          "); refusing to cut it (the file is left untouched)";
   }
   return hal::Error{s, "journal " + journal_path + ": " + why};
 }
 
-}  // namespace
-
-WorkMemory::WorkMemory(std::size_t vertex_capacity)
-    : live_x_(vertex_capacity),
-      live_y_(vertex_capacity),
-      live_z_(vertex_capacity),
-      weights1_(vertex_capacity),
-      weights2_(vertex_capacity),
-      plan_indices_(vertex_capacity),
-      undo_changes_(input::kDefaultUndoChanges),
-      undo_entries_(input::kDefaultUndoEntries) {}
-
-input::SculptStorage WorkMemory::storage() {
-  return input::SculptStorage{
-      live_x_,       live_y_,
-      live_z_,       math::WarpPlanStorage{plan_indices_, weights1_, weights2_},
-      undo_changes_, undo_entries_};
+std::vector<StationParts::Note> recovery_notes(const station::JournalRecovery& r,
+                                               const StationParts& parts) {
+  std::vector<StationParts::Note> notes;
+  if (r.tail_cut > 0) {
+    notes.push_back({true, "cut a torn tail of " + std::to_string(r.tail_cut) + " bytes (" +
+                               journal::tail_problem_name(r.survey.problem) + ") at offset " +
+                               std::to_string(r.survey.good_end) + "; its bytes are kept in " +
+                               parts.tail_archive->committed_path()});
+  }
+  using C = station::JournalRecovery::Checkpoint;
+  if (r.checkpoint == C::used) {
+    notes.push_back({false, "restored the checkpoint of " + std::to_string(r.checkpoint_records) +
+                                " records; replayed " + std::to_string(r.replayed) + " after it"});
+  } else if (r.checkpoint != C::none) {
+    notes.push_back({true, "checkpoint " + parts.checkpoint_out->path() + " ignored (" +
+                               station::checkpoint_use_name(r.checkpoint) + "); replayed all " +
+                               std::to_string(r.replayed) + " records"});
+  }
+  return notes;
 }
+
+// JOURNAL.ckpt for reading, when there is one (a failure to open it only means a
+// full replay), and the sink that writes new ones.
+void open_checkpoint_files(StationParts& parts, const std::string& journal) {
+  hal::PosixFileSinkConfig out;
+  out.path = journal + ".ckpt";
+  out.replace = hal::PosixFileSinkConfig::Replace::own_magic;
+  out.magic.assign(input::kCheckpointMagic.begin(), input::kCheckpointMagic.end());
+  out.writeback_bytes = std::size_t{1} << 20;
+  parts.checkpoint_out = std::make_unique<hal::PosixFileSink>(out);
+  auto in = std::make_unique<hal::PosixFileStorage>();
+  if (in->open({.path = out.path, .create_if_missing = false, .read_only = true}).ok()) {
+    parts.checkpoint_in = std::move(in);
+  }
+}
+
+}  // namespace
 
 hal::Expected<std::unique_ptr<meshio::MeshBuffer>> load_station_mesh(
     const std::filesystem::path& path, std::size_t spare_vertices) {
-  meshio::ObjLoad loaded = meshio::load_obj(path, spare_vertices);
-  if (!loaded.status.ok()) {
-    return hal::Error{loaded.status, "mesh " + path.string() + ": " + loaded.message};
+  meshio::ObjOptions options;
+  options.spare_vertices = spare_vertices;
+  options.spare_triangles = 2 * spare_vertices;  // what refinement of a closed mesh needs
+  auto loaded = meshio::load_obj(path, options);
+  if (!loaded) {
+    return hal::Error{loaded.error().status,
+                      "mesh " + path.string() + ": " + loaded.error().message};
   }
-  return std::move(loaded.buffer);
+  return std::move(loaded->buffer);
 }
 
 hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationConfig& config,
@@ -70,12 +125,30 @@ hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationConfi
   parts->model = std::move(*model);
   mesh::Mesh& mesh = parts->model->mesh();
   parts->work = std::make_unique<WorkMemory>(mesh.vertex_capacity());
+  input::SculptStorage storage = parts->work->storage();
+  if (config.sculpt.refine) {
+    parts->refine =
+        std::make_unique<RefineMemory>(mesh.vertex_capacity(), mesh.triangle_capacity());
+    storage = parts->refine->attach(storage);
+  }
   Backends& b = parts->backends;
+  hal::PosixFileSinkConfig archive;
+  archive.path = config.station.journal + ".torn-tail";
+  archive.replace = hal::PosixFileSinkConfig::Replace::never;
+  parts->tail_archive = std::make_unique<hal::PosixFileSink>(archive);
+  open_checkpoint_files(*parts, config.station.journal);
+  station::StationFiles files;
+  files.tail_archive = parts->tail_archive.get();
+  files.checkpoint_in = parts->checkpoint_in.get();
+  files.checkpoint_out = parts->checkpoint_out.get();
   parts->core = std::make_unique<station::Station>(*b.tracker, *b.buttons, *b.clock, parts->journal,
-                                                   mesh, parts->work->storage(), *setup);
-  if (auto started = start_core(*parts->core, config.station.journal); !started) {
+                                                   mesh, storage, *setup, files);
+  if (auto started = start_core(*parts->core, config.station.journal, *parts->tail_archive);
+      !started) {
     return started.error();
   }
+  parts->recovery_notes = recovery_notes(parts->core->recovery(), *parts);
+  parts->checkpoint_in.reset();  // read: the next checkpoint replaces it
   LinkSection link = config.link;
   if (!options.link_address.empty()) link.address = options.link_address;  // --link wins
   if (!link.address.empty()) {

@@ -15,7 +15,9 @@
 #include "backend_factory.hpp"
 #include "config/station_config.hpp"
 #include "display_link.hpp"
+#include "station_memory.hpp"
 #include "twister/hal/expected.hpp"
+#include "twister/hal/posix_file_sink.hpp"
 #include "twister/hal/posix_file_storage.hpp"
 #include "twister/input/sculpt_session.hpp"
 #include "twister/meshio/mesh_buffer.hpp"
@@ -28,38 +30,44 @@ struct AssemblyOptions {
   std::string link_address;          // --link (overrides [link] address); empty: config's
 };
 
-// The SculptSession's working memory for a mesh of `vertex_capacity` vertices.
-class WorkMemory {
- public:
-  explicit WorkMemory(std::size_t vertex_capacity);
-  input::SculptStorage storage();
-
- private:
-  std::vector<float> live_x_, live_y_, live_z_, weights1_, weights2_;
-  std::vector<std::uint32_t> plan_indices_;
-  std::vector<input::VertexChange> undo_changes_;
-  std::vector<input::UndoEntry> undo_entries_;
-};
-
 struct StationParts {
   Backends backends;
-  hal::PosixFileStorage journal;
+  hal::PosixFileStorage journal;  // locked while the station runs
+  // Where the bytes of a torn journal tail go before it is cut: JOURNAL.torn-tail
+  // (or .1, .2, ...: never an existing file).
+  std::unique_ptr<hal::PosixFileSink> tail_archive;
+  // JOURNAL.ckpt: read at start when present, replaced by each new checkpoint (only
+  // when it is a checkpoint this program wrote).
+  std::unique_ptr<hal::PosixFileStorage> checkpoint_in;
+  std::unique_ptr<hal::PosixFileSink> checkpoint_out;
+  // What start-up recovery did, for the log: a notice (checkpoint restored) or a
+  // warning (torn tail cut, checkpoint ignored) each.
+  struct Note {
+    bool warning = false;
+    std::string text;
+  };
+  std::vector<Note> recovery_notes;
   std::filesystem::path mesh_path;  // as opened (resolved against config_dir)
   std::unique_ptr<meshio::MeshBuffer> model;
   std::unique_ptr<WorkMemory> work;
+  std::unique_ptr<RefineMemory> refine;    // [sculpt] refine on
   std::unique_ptr<station::Station> core;  // started: the journal is replayed
   DisplayLink display;                     // open when a link address is set
 };
 
 // Builds and starts everything. Errors (message for the log): the backends'
 // (make_backends), the journal's ("cannot open journal PATH (io_error, errno N)";
-// "journal PATH: is not a Twister journal, or does not fit this mesh (left
-// untouched)"), the mesh's ("mesh PATH: ..."), the link's ("link ADDRESS: ...").
+// "journal PATH is in use by another twister-station (PID N)"; "journal PATH: is not
+// a Twister journal, or does not fit this mesh (left untouched)"; "journal PATH: damaged
+// record at offset X ...; N valid records follow it ..."), the mesh's ("mesh PATH:
+// ..."), the link's ("link ADDRESS: ...").
 hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationConfig& config,
                                                               const AssemblyOptions& options);
 
-// station.toml's model as a mesh with the configured spare capacity. Errors:
-// io_error / invalid_argument "mesh PATH: what tinyobjloader said".
+// station.toml's model as a mesh with the configured spare capacity (spare_vertices
+// more vertices, twice as many more triangles: what refinement of a closed mesh
+// needs). Errors: io_error / invalid_argument "mesh PATH: line N: what is wrong"
+// (meshio::load_obj).
 hal::Expected<std::unique_ptr<meshio::MeshBuffer>> load_station_mesh(
     const std::filesystem::path& path, std::size_t spare_vertices);
 

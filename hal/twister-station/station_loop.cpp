@@ -9,7 +9,7 @@
 #include <cstring>
 #include <span>
 
-#include "station_event_log.hpp"
+#include "station_log.hpp"
 
 namespace twister::station_app {
 
@@ -32,6 +32,8 @@ const char* stop_reason_name(StopReason reason) {
       return "SIGINT";
     case StopReason::sigterm:
       return "SIGTERM";
+    case StopReason::sighup:
+      return "SIGHUP";
     case StopReason::station_failed:
       return "station failed";
   }
@@ -52,6 +54,7 @@ hal::Expected<void> StationLoop::start() {
   sigemptyset(&mask);
   sigaddset(&mask, SIGINT);
   sigaddset(&mask, SIGTERM);
+  sigaddset(&mask, SIGHUP);
   pthread_sigmask(SIG_BLOCK, &mask, &old_mask_);
   mask_saved_ = true;
   signal_fd_ = signalfd(-1, &mask, SFD_NONBLOCK | SFD_CLOEXEC);
@@ -83,7 +86,9 @@ bool StationLoop::signalled() {
   if ((fds_[0].revents & POLLIN) == 0) return false;
   signalfd_siginfo info{};
   if (::read(signal_fd_, &info, sizeof info) != static_cast<ssize_t>(sizeof info)) return false;
-  stop_reason_ = info.ssi_signo == SIGINT ? StopReason::sigint : StopReason::sigterm;
+  stop_reason_ = info.ssi_signo == SIGINT   ? StopReason::sigint
+                 : info.ssi_signo == SIGHUP ? StopReason::sighup
+                                            : StopReason::sigterm;
   return true;
 }
 
@@ -114,7 +119,7 @@ bool StationLoop::step() {
 void StationLoop::log_events() {
   for (auto e = core_.next_event(); e.ok(); e = core_.next_event()) {
     if (e->kind == station::StationEventKind::button_source_error) buttons_broken_ = true;
-    log_station_event(log_, *e);
+    log_station_event(*e, log_, journal_ != nullptr ? journal_->last_errno() : 0);
   }
 }
 
@@ -140,6 +145,8 @@ bool StationLoop::time_is_up(ports::TimestampUs now_us) const {
 
 Status StationLoop::finish() {
   if (config_.notify) sd_notify(0, "STOPPING=1");
+  core_.stop();
+  log_events();
   display_.drain(core_, backends_.clock->now_us(), 2.0);
   return core_.flush();
 }

@@ -1,15 +1,17 @@
 // StationLoop: twister-station's event loop, the program's steady state. One pass:
-//   wait in poll(2) on a fixed set of descriptors (a signalfd for SIGINT/SIGTERM,
+//   wait in poll(2) on a fixed set of descriptors (a signalfd for SIGINT/SIGTERM/SIGHUP,
 //   then each backend's PollSource: tracker, buttons unless they failed, display
 //   link) for at most loop_timeout_ms, or not at all in virtual time, where the
 //   simulator's clock steps 1 ms per pass instead;
 //   Station::poll(); the display link; the station's events to the log; a reopen
 //   of failed buttons every reconnect interval; the systemd watchdog.
-// It stops on SIGINT/SIGTERM, after the run's length (--duration, else the
-// simulator scenario's), or when the core fails. No pass allocates: the poll set is
-// a std::array, events are logged through hal::Logger (no heap), and every backend,
+// It stops on SIGINT, SIGTERM or SIGHUP (all three end the run the same way:
+// Station::stop()'s policy for an open stroke, then the summary), after the run's
+// length (--duration, else the simulator scenario's), or when the core fails. No pass allocates:
+// the poll set is a std::array, events are logged through hal::Logger (no heap), and every backend,
 // the core and the link work in memory sized before the loop.
-// One thread; start() blocks SIGINT/SIGTERM in it (the destructor restores the mask).
+// One thread; start() blocks SIGINT/SIGTERM/SIGHUP in it (the destructor restores
+// the mask).
 #pragma once
 
 #include <poll.h>
@@ -23,6 +25,7 @@
 #include "display_link.hpp"
 #include "twister/hal/expected.hpp"
 #include "twister/hal/logger.hpp"
+#include "twister/hal/posix_file_storage.hpp"
 #include "twister/station/station.hpp"
 
 namespace twister::station_app {
@@ -41,7 +44,7 @@ struct StationLoopConfig {
 StationLoopConfig make_loop_config(const StationConfig& config, double duration_s,
                                    const Backends& backends);
 
-enum class StopReason : std::uint8_t { end_of_run, sigint, sigterm, station_failed };
+enum class StopReason : std::uint8_t { end_of_run, sigint, sigterm, sighup, station_failed };
 const char* stop_reason_name(StopReason reason);
 
 class StationLoop {
@@ -56,17 +59,20 @@ class StationLoop {
   StationLoop(const StationLoop&) = delete;
   StationLoop& operator=(const StationLoop&) = delete;
 
-  // Routes SIGINT/SIGTERM to a signalfd, tells systemd READY=1 and starts the
+  // Routes SIGINT/SIGTERM/SIGHUP to a signalfd, tells systemd READY=1 and starts the
   // clock of the run. io_error: no signalfd.
   hal::Expected<void> start();
   // One pass. false once the loop stops (stop_reason() says why).
   bool step();
-  // Ends the run: STOPPING=1, the display link drained (up to 2 s), the journal
-  // flushed; returns the flush status.
+  // Ends the run: STOPPING=1, Station::stop() (an open stroke is cancelled), the
+  // display link drained (up to 2 s), the journal flushed; returns the flush status.
   Status finish();
   // start(), step() until the loop stops, finish(). The flush status, or the
   // start() error as io_error.
   Status run();
+
+  // The journal file whose errno names the reason of a stroke that was not saved.
+  void watch_journal(const hal::PosixFileStorage* journal) { journal_ = journal; }
 
   StopReason stop_reason() const { return stop_reason_; }
   std::uint64_t passes() const { return passes_; }
@@ -83,6 +89,7 @@ class StationLoop {
   Backends& backends_;
   DisplayLink& display_;
   hal::Logger& log_;
+  const hal::PosixFileStorage* journal_ = nullptr;
   StationLoopConfig config_;
   std::array<pollfd, kMaxPollFds> fds_{};
   int signal_fd_ = -1;

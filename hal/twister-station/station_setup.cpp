@@ -3,10 +3,81 @@
 #include <algorithm>
 
 namespace twister::station_app {
+namespace {
 
-hal::Expected<station::StationConfig> make_station_setup(const StationConfig& config) {
+input::ButtonRole role_of(SculptAction a) {
+  switch (a) {
+    case SculptAction::grab:
+      return input::ButtonRole::grab;
+    case SculptAction::radius:
+      return input::ButtonRole::radius;
+    case SculptAction::freeze:
+      return input::ButtonRole::freeze;
+    case SculptAction::move_object:
+      return input::ButtonRole::move_object;
+    case SculptAction::undo:
+      return input::ButtonRole::undo;
+    case SculptAction::redo:
+      return input::ButtonRole::redo;
+    case SculptAction::method_cycle:
+      return input::ButtonRole::method_cycle;
+  }
+  return input::ButtonRole::none;
+}
+
+math::WarpMethod method_of(SculptMethod m) {
+  switch (m) {
+    case SculptMethod::twister:
+      return math::WarpMethod::twister;
+    case SculptMethod::rottran:
+      return math::WarpMethod::rottran;
+    case SculptMethod::scodef:
+      return math::WarpMethod::scodef;
+  }
+  return math::WarpMethod::twister;
+}
+
+// [sculpt]: method, radius, turns, lost-tracking timeout and the button map (the
+// paper's map unless [sculpt.buttons] is given).
+void set_sculpt(const StationConfig& config, input::SculptSessionConfig& s, std::string& error) {
+  const SculptConfig& sc = config.sculpt;
+  s.method = method_of(sc.method);
+  s.interaction.initial_radius_m = static_cast<float>(sc.radius_m);
+  s.interaction.radius_min_m = static_cast<float>(sc.radius_min_m);
+  s.interaction.radius_max_m = static_cast<float>(sc.radius_max_m);
+  s.interaction.radius_gesture = sc.radius_gesture;
+  s.interaction.lost_timeout_us = static_cast<ports::TimestampUs>(sc.lost_timeout_ms) * 1000;
+  s.turns.tracking = sc.turn_tracking == TurnTrackingMode::unwrapped
+                         ? input::TurnTracking::unwrapped
+                         : input::TurnTracking::minimal;
+  s.turns.limit_rad = sc.turn_limit_deg * input::kDegree;
+  s.refine.enabled = sc.refine;
+  s.refine.threshold_m = sc.refine_threshold_m;
+  if (!sc.buttons_configured) return;
+  s.buttons = input::ButtonMap{};
+  for (const ButtonBindingConfig& b : sc.buttons) {
+    const Status bound = b.lines.size() == 1
+                             ? s.buttons.bind(b.lines[0], b.hand, role_of(b.action))
+                             : s.buttons.bind_chord(b.lines, b.hand, role_of(b.action));
+    if (!bound.ok() && error.empty()) {
+      error = std::string("sculpt.buttons: cannot bind ") + to_string(b.action) + " (" +
+              bound.name() + ")";
+    }
+  }
+}
+
+// The line a hand's grab is on (-1: none): the stylus drives it.
+int grab_line(const StationConfig& config, std::uint8_t hand) {
+  if (!config.sculpt.buttons_configured) return hand == 0 ? 0 : 3;  // the paper's map
+  for (const ButtonBindingConfig& b : config.sculpt.buttons) {
+    if (b.action == SculptAction::grab && b.hand == hand && b.lines.size() == 1) return b.lines[0];
+  }
+  return -1;
+}
+
+// [tracker]: receivers, output lists (the stylus item where it exists), timings.
+void set_tracker(const StationConfig& config, station::StationConfig& c) {
   using tracker::Item;
-  station::StationConfig c;
   const TrackerConfig& t = config.tracker;
   auto& proto = c.session.protocol;
   proto.format =
@@ -29,21 +100,48 @@ hal::Expected<station::StationConfig> make_station_setup(const StationConfig& co
   c.conversion.units = proto.units;
   c.conversion.format = proto.format;
   c.pose_stale_us = std::max<std::int64_t>(200'000, c.session.silence_timeout_us / 2);
+}
+
+// The stylus is the grab of the hand that holds receiver 1; "" or the problem.
+std::string set_stylus(const StationConfig& config, station::StationConfig& c) {
+  const TrackerConfig& t = config.tracker;
+  const int hand = t.left_station == 1 ? 0 : t.right_station == 1 ? 1 : -1;
+  if (hand < 0) {
+    return "buttons.backend = \"stylus\" needs receiver 1 (the stylus) in a hand: set "
+           "tracker.left_station or tracker.right_station to 1";
+  }
+  const int line = grab_line(config, static_cast<std::uint8_t>(hand));
+  if (line < 0) {
+    return std::string(
+               "buttons.backend = \"stylus\" drives the grab of the hand holding receiver 1: "
+               "set sculpt.buttons.") +
+           (hand == 0 ? "left" : "right") + ".grab";
+  }
+  c.stylus_line[0] = static_cast<std::int8_t>(line);
+  return {};
+}
+
+}  // namespace
+
+hal::Expected<station::StationConfig> make_station_setup(const StationConfig& config) {
+  station::StationConfig c;
+  set_tracker(config, c);
+  c.checkpoint_interval = config.station.checkpoint_interval;
   c.sculpt.debounce.interval_us.fill(static_cast<ports::TimestampUs>(config.buttons.debounce_ms) *
                                      1000);
-  if (stylus) {
-    // Paper button map: line 0 = hand 0 grab, line 3 = hand 1 grab.
-    if (t.left_station == 1) {
-      c.stylus_line[0] = 0;
-    } else if (t.right_station == 1) {
-      c.stylus_line[0] = 3;
-    } else {
-      return hal::make_error(
-          StatusCode::invalid_argument,
-          "buttons.backend = \"stylus\" needs receiver 1 (the stylus) in a hand: set "
-          "tracker.left_station or tracker.right_station to 1");
-    }
+  std::string error;
+  set_sculpt(config, c.sculpt, error);
+  // Every line the map may use reaches the debouncer (at least the paper's six).
+  std::size_t lines = std::max<std::size_t>(6, button_line_count(config));
+  for (const ButtonBindingConfig& b : config.sculpt.buttons) {
+    for (const std::uint8_t l : b.lines) lines = std::max<std::size_t>(lines, l + 1u);
   }
+  c.sculpt.debounce.line_count =
+      static_cast<std::uint8_t>(std::min<std::size_t>(lines, input::kMaxButtonLines));
+  if (config.buttons.backend == ButtonBackend::stylus && error.empty()) {
+    error = set_stylus(config, c);
+  }
+  if (!error.empty()) return hal::make_error(StatusCode::invalid_argument, error);
   return c;
 }
 

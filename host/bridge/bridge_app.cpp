@@ -123,9 +123,11 @@ void BridgeApp::handle_scene(const link::LinkMessage& m) {
     log_.write(
         LogLevel::notice, "replica", "mesh version %u: %zu vertices, %zu triangles",
         {replica_.version(), replica_.mesh().vertex_count(), replica_.mesh().triangle_count()});
-    if (!options_.snapshot_dir.empty() && fulls == 0) {
+    // A later full mesh is a new model too (a resync, or a commit the link could not
+    // send as a change set, such as one that refined the mesh).
+    if (!options_.snapshot_dir.empty()) {
       refresh_display();
-      snapshot("rest");
+      snapshot(fulls == 0 ? std::string("rest") : "mesh-" + std::to_string(replica_.version()));
     }
   }
   if (replica_.counters().commits != commits) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <sstream>
 
 namespace twister::bridge {
 namespace {
@@ -35,8 +36,8 @@ int add_accessor(tinygltf::Model& model, int view, int component, std::size_t co
 
 }  // namespace
 
-hal::Expected<void> export_gltf(const std::string& path, const MeshData& m,
-                                const std::vector<float>& normals, bool binary) {
+hal::Expected<std::string> gltf_bytes(const MeshData& m, const std::vector<float>& normals,
+                                      bool binary) {
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "twister-bridge";
@@ -80,10 +81,11 @@ hal::Expected<void> export_gltf(const std::string& path, const MeshData& m,
   model.scenes.push_back(scene);
   model.defaultScene = 0;
   tinygltf::TinyGLTF writer;
-  if (!writer.WriteGltfSceneToFile(&model, path, true, true, false, binary)) {
-    return hal::make_error(StatusCode::io_error, "cannot write " + path);
+  std::ostringstream out;
+  if (!writer.WriteGltfSceneToStream(&model, out, false, binary)) {
+    return hal::make_error(StatusCode::io_error, "glTF: tinygltf could not encode the mesh");
   }
-  return {};
+  return out.str();
 }
 
 }  // namespace twister::bridge

@@ -11,9 +11,9 @@
 
 namespace twister::bridge {
 
-// `binary`: .glb; otherwise .gltf with the buffer embedded as a data URI.
-// `normals`: 3 per vertex. Error io_error naming the path.
-hal::Expected<void> export_gltf(const std::string& path, const MeshData& mesh,
-                                const std::vector<float>& normals, bool binary);
+// The file's bytes: `binary` .glb, otherwise .gltf with the buffer embedded as a
+// data URI. `normals`: 3 per vertex. Error io_error when tinygltf cannot write.
+hal::Expected<std::string> gltf_bytes(const MeshData& mesh, const std::vector<float>& normals,
+                                      bool binary);
 
 }  // namespace twister::bridge

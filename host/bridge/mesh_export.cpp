@@ -4,33 +4,55 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <span>
+#include <string>
 
 #include "gltf_export.hpp"
+#include "twister/hal/posix_file_sink.hpp"
 #include "twister/meshio/obj_file.hpp"
 #include "vertex_normals.hpp"
 
 namespace twister::bridge {
 namespace {
 
+// Bytes through PosixFileSink: atomic, and never over anything but a regular file.
+hal::Expected<void> write_file(const std::string& path, const std::string& out) {
+  hal::PosixFileSinkConfig config;
+  config.path = path;
+  config.replace = hal::PosixFileSinkConfig::Replace::regular;
+  hal::PosixFileSink sink(config);
+  Status s = sink.begin();
+  if (s.ok()) s = sink.write(std::as_bytes(std::span(out.data(), out.size())));
+  if (s.ok()) s = sink.commit();
+  if (s.ok()) return {};
+  sink.abort();
+  return hal::Error{s, "cannot write " + path + ": " + sink.last_error()};
+}
+
+// Binary PLY.
 hal::Expected<void> export_ply(const std::string& path, const MeshData& m) {
-  std::FILE* f = std::fopen(path.c_str(), "wb");
-  if (f == nullptr) return hal::make_error(StatusCode::io_error, "cannot open " + path);
-  std::fprintf(f,
-               "ply\nformat binary_little_endian 1.0\ncomment twister-bridge export (metres)\n"
-               "element vertex %zu\nproperty float x\nproperty float y\nproperty float z\n"
-               "element face %zu\nproperty list uchar uint vertex_indices\nend_header\n",
-               m.vertex_count(), m.triangle_count());
+  std::string out;
+  char header[512];
+  const int n =
+      std::snprintf(header, sizeof header,
+                    "ply\nformat binary_little_endian 1.0\ncomment twister-bridge export (metres)\n"
+                    "element vertex %zu\nproperty float x\nproperty float y\nproperty float z\n"
+                    "element face %zu\nproperty list uchar uint vertex_indices\nend_header\n",
+                    m.vertex_count(), m.triangle_count());
+  out.append(header, static_cast<std::size_t>(n));
+  auto put = [&out](const void* data, std::size_t bytes) {
+    out.append(static_cast<const char*>(data), bytes);
+  };
   for (std::size_t i = 0; i < m.vertex_count(); ++i) {
     const float p[3] = {m.x[i], m.y[i], m.z[i]};
-    std::fwrite(p, sizeof(float), 3, f);
+    put(p, sizeof p);
   }
   for (std::size_t t = 0; t < m.triangle_count(); ++t) {
     const unsigned char three = 3;
-    std::fwrite(&three, 1, 1, f);
-    std::fwrite(&m.indices[3 * t], sizeof(std::uint32_t), 3, f);
+    put(&three, 1);
+    put(&m.indices[3 * t], 3 * sizeof(std::uint32_t));
   }
-  if (std::fclose(f) != 0) return hal::make_error(StatusCode::io_error, "write failed: " + path);
-  return {};
+  return write_file(path, out);
 }
 
 }  // namespace
@@ -62,12 +84,12 @@ hal::Expected<void> export_mesh(const std::string& path, const MeshData& m,
                                 const std::vector<float>& normals) {
   if (path.ends_with(".ply")) return export_ply(path, m);
   if (path.ends_with(".glb") || path.ends_with(".gltf")) {
-    if (normals.size() == 3 * m.vertex_count()) {
-      return export_gltf(path, m, normals, path.ends_with(".glb"));
-    }
     std::vector<float> computed;
-    compute_vertex_normals(m, computed);
-    return export_gltf(path, m, computed, path.ends_with(".glb"));
+    if (normals.size() != 3 * m.vertex_count()) compute_vertex_normals(m, computed);
+    hal::Expected<std::string> bytes = gltf_bytes(
+        m, normals.size() == 3 * m.vertex_count() ? normals : computed, path.ends_with(".glb"));
+    if (!bytes) return bytes.error();
+    return write_file(path, *bytes);
   }
   if (!path.ends_with(".obj")) {
     return hal::make_error(StatusCode::invalid_argument,
@@ -77,11 +99,7 @@ hal::Expected<void> export_mesh(const std::string& path, const MeshData& m,
   if (!core) {
     return hal::make_error(StatusCode::invalid_argument, "triangle index out of range: " + path);
   }
-  std::string message;
-  if (const Status s = meshio::save_obj(path, core->mesh(), message); !s.ok()) {
-    return hal::Error{s, message};
-  }
-  return {};
+  return meshio::save_obj(path, core->mesh());
 }
 
 }  // namespace twister::bridge

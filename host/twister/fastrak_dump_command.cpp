@@ -1,5 +1,6 @@
 // fastrak-dump. Options are named after the protocol's own commands: -O s,items (output
-// list of station s, repeatable), -F / -f (ASCII / binary), -U / -u (inches / cm).
+// list of station s, repeatable), -F / -f (ASCII / binary), -U / -u (inches / cm);
+// --binary16 reads the 16-bit packed format of the Isotrak II / 3SPACE family.
 // Output: one line per valid record "station ox oy oz ux uy uz vx vy vz wx wy wz"
 // (tracker units; receiver axes as unit vectors in tracker coordinates; %.6g) and one
 // line starting with "error" per rejected stretch of bytes.
@@ -46,6 +47,7 @@ struct DumpOptions {
   std::vector<std::string> lists;  // -O s,i1,...,in
   bool ascii = false;              // -F
   bool binary = false;             // -f
+  bool binary16 = false;           // --binary16
   bool inches = false;             // -U
   bool cm = false;                 // -u
   int baud = 115200;
@@ -91,9 +93,10 @@ hal::Expected<void> parse_list(const std::string& text, FastrakConfig& config) {
 
 hal::Expected<FastrakConfig> build_config(const DumpOptions& o) {
   if (o.ascii && o.binary) return bad_option("-F and -f exclude each other");
+  if (o.binary16 && o.ascii) return bad_option("-F and --binary16 exclude each other");
   if (o.inches && o.cm) return bad_option("-U and -u exclude each other");
   FastrakConfig config;
-  config.format = o.binary ? Format::binary : Format::ascii;
+  config.format = o.binary16 ? Format::binary16 : o.binary ? Format::binary : Format::ascii;
   config.units = o.cm ? tracker::Units::centimetres : tracker::Units::inches;
   config.ascii_stylus_width = static_cast<std::uint8_t>(o.stylus_width);
   if (o.lists.empty()) {
@@ -103,7 +106,9 @@ hal::Expected<FastrakConfig> build_config(const DumpOptions& o) {
     if (auto parsed = parse_list(l, config); !parsed) return parsed.error();
   }
   if (!tracker::validate(config).ok()) {
-    return bad_option("output lists give a record longer than 254 bytes");
+    return bad_option(o.binary16 ? "output lists: extended items (50+) have no 16-bit form, or a "
+                                   "record is longer than 254 bytes"
+                                 : "output lists give a record longer than 254 bytes");
   }
   return config;
 }
@@ -180,7 +185,7 @@ int run_device(const DumpOptions& o, const FastrakConfig& config) {
     sc.reset_wait_us = 600'000;
     sc.settle_us = 50'000;
     sc.reply_timeout_us = 500'000;
-    sc.command_pause_us = 5'000;
+    sc.command_pause_us = 50'000;  // the simulator's default command times (40 ms)
   }
   hal::TermiosByteStream port({o.device, o.baud, hal::FlowControl::none});
   SteadyClock clock;
@@ -232,6 +237,8 @@ void add_fastrak_dump_command(CLI::App& app) {
                   "default 1,2,4,1)");
   cmd->add_flag("-F", opts->ascii, "ASCII format (default)");
   cmd->add_flag("-f", opts->binary, "binary (IEEE float) format");
+  cmd->add_flag("--binary16", opts->binary16,
+                "16-bit packed binary (Isotrak II / 3SPACE; DEVICE mode sends f)");
   cmd->add_flag("-U", opts->inches, "inches (default)");
   cmd->add_flag("-u", opts->cm, "centimetres");
   cmd->add_option("--baud", opts->baud, "DEVICE mode line rate")->capture_default_str();

@@ -1,4 +1,4 @@
-// `twister`: command-line tools for the station's math, tracker and journal.
+// `twister`: command-line tools for the station's math, tracker, journal and meshes.
 // Each subcommand lives in its own <name>_command.cpp and registers itself here.
 #include <CLI/CLI.hpp>
 #include <exception>
@@ -7,6 +7,7 @@
 #include "cli_log.hpp"
 #include "fastrak_dump_command.hpp"
 #include "figure8_command.hpp"
+#include "journal_command.hpp"
 #include "mesh_command.hpp"
 #include "replay_command.hpp"
 #include "warp_command.hpp"
@@ -23,6 +24,7 @@ int run(int argc, char** argv) {
   twister::cli::add_fastrak_dump_command(app);
   twister::cli::add_replay_command(app);
   twister::cli::add_mesh_command(app);
+  twister::cli::add_journal_command(app);
 
   try {
     app.parse(argc, argv);

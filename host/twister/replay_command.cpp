@@ -1,5 +1,6 @@
 #include "replay_command.hpp"
 
+#include <algorithm>
 #include <cinttypes>
 #include <cstdio>
 #include <cstring>
@@ -12,8 +13,10 @@
 
 #include "cli_exit.hpp"
 #include "cli_log.hpp"
+#include "model_session.hpp"
 #include "twister/input/sculpt_session.hpp"
 #include "twister/journal/journal_reader.hpp"
+#include "twister/journal/journal_scanner.hpp"
 #include "twister/meshio/obj_file.hpp"
 
 namespace twister::cli {
@@ -46,6 +49,7 @@ struct Options {
   std::string mesh_out;
   std::size_t undo_changes = input::kDefaultUndoChanges;
   std::size_t undo_entries = input::kDefaultUndoEntries;
+  std::size_t spare_vertices = 0;  // refinement's room: the station's station.spare_vertices
   bool world = false;
   bool quiet = false;
   bool progress = false;
@@ -73,25 +77,41 @@ void to_world(mesh::Mesh& m, const math::Frame& pose) {
   }
 }
 
+// Refined commits: what they added, and a warning when the capacity stopped one (the
+// station's was larger, or the result differs from the station's).
+void report_refinement(const input::RefineStatus& r, const Options& o) {
+  if (r.refined_commits == 0) return;
+  std::printf("refined %llu commits, %llu vertices added\n",
+              static_cast<unsigned long long>(r.refined_commits),
+              static_cast<unsigned long long>(r.vertices_added));
+  if (r.capacity_stops > 0) {
+    cli_log().warning(
+        "",
+        "refinement stopped at this mesh's capacity in %llu commits (--spare-vertices "
+        "%zu); the station's result differs unless it had the same spare capacity",
+        static_cast<unsigned long long>(r.capacity_stops), o.spare_vertices);
+  }
+}
+
 void run_replay(const Options& o) {
-  meshio::ObjLoad loaded = meshio::load_obj(o.mesh_in);
-  if (!loaded.status.ok()) fail(kExitBadInput, o.mesh_in + ": " + loaded.message);
-  if (!loaded.message.empty()) cli_log().warning("", "%s", loaded.message.c_str());
-  mesh::Mesh& mesh = loaded.buffer->mesh();
+  ModelSession model(o.mesh_in, o.spare_vertices, o.undo_changes, o.undo_entries);
+  mesh::Mesh& mesh = model.mesh();
+  input::SculptSession& session = model.session();
 
   ReadOnlyStorage storage(read_file(o.journal));
   journal::JournalReader reader(storage);
   if (!reader.open().ok()) fail(kExitBadInput, "'" + o.journal + "' is not a Twister journal");
   const std::uint64_t total_bytes = storage.size().value_or(0);
-
-  const std::size_t n = mesh.vertex_count();
-  std::vector<float> lx(n), ly(n), lz(n), w1(n), w2(n);
-  std::vector<std::uint32_t> plan_indices(n);
-  std::vector<input::VertexChange> changes(o.undo_changes);
-  std::vector<input::UndoEntry> entries(std::max<std::size_t>(o.undo_entries, 1));
-  input::SculptStorage work{lx,      ly,     lz, math::WarpPlanStorage{plan_indices, w1, w2},
-                            changes, entries};
-  input::SculptSession session(input::SculptSessionConfig{}, mesh, work, nullptr);
+  // A damaged record with valid records after it is corruption, not a torn tail:
+  // replaying up to it would silently drop the later strokes.
+  if (const auto survey = journal::survey_journal(storage); survey.ok() && survey->corrupt()) {
+    fail(kExitBadInput, o.journal + ": damaged record at offset " +
+                            std::to_string(survey->good_end) + " (" +
+                            journal::tail_problem_name(survey->problem) + ") with " +
+                            std::to_string(survey->later_records) +
+                            " valid record(s) after it; nothing written "
+                            "(`twister journal salvage` makes a copy that keeps them)");
+  }
 
   // Progress for long journals: a line per 10% of the file, on stderr (notice).
   const bool show_progress = o.progress || total_bytes > (std::uint64_t{1} << 16);
@@ -125,12 +145,14 @@ void run_replay(const Options& o) {
                       reader.good_end());
   }
   if (o.world) to_world(mesh, session.object_pose());
-  std::string message;
-  if (!meshio::save_obj(o.mesh_out, mesh, message).ok()) fail(kExitFailure, message);
+  if (auto saved = meshio::save_obj(o.mesh_out, mesh); !saved) {
+    fail(kExitFailure, saved.error().message);
+  }
   const input::ReplayStats& st = session.replay_stats();
   const math::Frame& pose = session.object_pose();
   std::printf("replayed %zu records (strokes %zu, moves %zu, undos %zu, redos %zu)\n", applied,
               st.strokes, st.moves, st.undos, st.redos);
+  report_refinement(session.state().refine, o);
   std::printf("mesh %zu vertices %zu triangles checksum %016" PRIx64 "\n", mesh.vertex_count(),
               mesh.triangle_count(), mesh.checksum());
   std::printf("object origin %.9g %.9g %.9g u %.9g %.9g %.9g v %.9g %.9g %.9g\n", pose.origin.x,
@@ -154,6 +176,9 @@ void add_replay_command(CLI::App& app) {
   cmd->add_option("--undo-entries", options->undo_entries,
                   "Undo history size in strokes (must match the station's)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--spare-vertices", options->spare_vertices,
+                  "Room for refinement beyond the OBJ's vertices, and twice as many triangles "
+                  "(the station's station.spare_vertices; default 0)");
   cmd->add_flag("--world", options->world, "Write world coordinates (apply the object pose)");
   cmd->add_flag("--progress", options->progress,
                 "Always print progress (default: journals > 64 KiB)");

@@ -20,6 +20,18 @@ constexpr std::size_t kMaxBacklog = 1 << 16;
 hal::Error io_error(std::string message) {
   return hal::make_error(StatusCode::io_error, std::move(message));
 }
+
+// The bits/s of a termios speed code; 0 when it is none of the standard rates.
+int speed_to_baud(speed_t speed) {
+  static constexpr int kRates[] = {300,    600,    1200,   2400,    4800,    9600,
+                                   19200,  38400,  57600,  115200,  230400,  460800,
+                                   500000, 576000, 921600, 1000000, 2000000, 4000000};
+  for (const int rate : kRates) {
+    unsigned code = 0;
+    if (hal::baud_to_speed(rate, code) && code == speed) return rate;
+  }
+  return 0;
+}
 }  // namespace
 
 DeviceServer::DeviceServer(FastrakDevice& device, ServeOptions options)
@@ -108,22 +120,11 @@ hal::Expected<void> DeviceServer::step(int wait_ms) {
     return {};
   }
 
-  if (device_.hung_up(now)) {
-    if (master_ >= 0) {
-      // Unplugged: the link goes first (as udev removes by-id links), because the
-      // /dev/pts number is reused by the next PTY anyone opens and a stale link would
-      // lead the reader to somebody else's line. Then the reader sees POLLHUP.
-      if (!options_.link.empty()) ::unlink(options_.link.c_str());
-      close_pty();
-      ++counters_.hangups;
-      out_.clear();
-    }
-    ::usleep(static_cast<useconds_t>(wait_ms) * 1000u);
-    return {};
-  }
+  if (hang_up_pty(wait_ms)) return {};
   if (master_ < 0) {
     if (hal::Expected<void> opened = open_pty(); !opened) return opened;
   }
+  check_host_baud();
 
   for (;;) {
     const ssize_t n = ::read(master_, in.data(), in.size());
@@ -146,6 +147,38 @@ hal::Expected<void> DeviceServer::step(int wait_ms) {
   pollfd p{master_, POLLIN, 0};
   ::poll(&p, 1, wait_ms);
   return {};
+}
+
+void DeviceServer::check_host_baud() {
+  // The master shares the slave's termios: the speed the host set on its side.
+  termios tio{};
+  if (::tcgetattr(master_, &tio) != 0) return;
+  counters_.host_baud = speed_to_baud(::cfgetospeed(&tio));
+  device_.set_host_baud(counters_.host_baud);
+}
+
+bool DeviceServer::hang_up_pty(int wait_ms) {
+  if (!device_.hung_up(now_us())) return false;
+  if (options_.port == PortKind::fixed) {
+    // A fixed UART stays: no hang-up for the reader, the line is just dead. What the
+    // host sends meanwhile reaches nobody.
+    if (master_ >= 0) {
+      std::array<std::byte, 512> in{};
+      while (::read(master_, in.data(), in.size()) > 0) {
+      }
+    }
+    out_.clear();
+  } else if (master_ >= 0) {
+    // Unplugged: the link goes first (as udev removes by-id links), because the
+    // /dev/pts number is reused by the next PTY anyone opens and a stale link would
+    // lead the reader to somebody else's line. Then the reader sees POLLHUP.
+    if (!options_.link.empty()) ::unlink(options_.link.c_str());
+    close_pty();
+    ++counters_.hangups;
+    out_.clear();
+  }
+  ::usleep(static_cast<useconds_t>(wait_ms) * 1000u);
+  return true;
 }
 
 }  // namespace twister::sim

@@ -1,7 +1,11 @@
 // DeviceServer: serves a FastrakDevice on a fresh PTY (printing/linking the slave
-// path, hanging up and re-plugging on hang-up faults by creating a new pair and
-// moving the symlink atomically with rename()), or on a real serial device for
-// hardware-in-the-loop rigs. Paced in real time from a steady clock; one thread.
+// path), or on a real serial device for hardware-in-the-loop rigs. On a PTY it reads
+// the host's configured speed from the master (tcgetattr) and tells the device, which
+// garbles the line at a mismatch. A hang-up fault behind a USB-serial adapter
+// removes the link and closes the PTY (the node vanishes), then creates a new pair and
+// moves the symlink atomically with rename(); behind a fixed port (/dev/ttyS*) the
+// node and link stay and the line just goes dead. Paced in real time from a steady
+// clock; one thread.
 #pragma once
 
 #include <chrono>
@@ -16,10 +20,15 @@
 
 namespace twister::sim {
 
+// What the host's port is: a USB-serial adapter (the tty and its by-id link vanish
+// when the unit is unplugged or powered off) or a fixed UART port (it stays).
+enum class PortKind : std::uint8_t { usb_adapter, fixed };
+
 struct ServeOptions {
   std::string link;    // PTY mode: stable symlink to the current slave (optional)
   std::string device;  // HIL mode: a real tty path instead of a PTY
   int baud = 115200;   // HIL mode line rate
+  PortKind port = PortKind::usb_adapter;  // PTY mode: what a hang-up looks like
 };
 
 struct ServeCounters {
@@ -28,6 +37,7 @@ struct ServeCounters {
   std::uint64_t bytes_in = 0;
   std::uint64_t bytes_out = 0;
   std::uint64_t overflow_dropped = 0;  // output dropped because nobody read it
+  int host_baud = 0;                   // PTY mode: the slave's speed last read (0: unknown)
 };
 
 class DeviceServer {
@@ -53,6 +63,10 @@ class DeviceServer {
  private:
   hal::Expected<void> open_pty();
   void close_pty();
+  // PTY mode: the hang-up of the unit behind this port; true while it lasts.
+  bool hang_up_pty(int wait_ms);
+  // PTY mode: reads the slave's configured speed and hands it to the device.
+  void check_host_baud();
 
   FastrakDevice& device_;
   ServeOptions options_;

@@ -7,7 +7,9 @@
 #include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "device_server.hpp"
 #include "twister/hal/logger.hpp"
@@ -34,8 +36,32 @@ struct Options {
   double reset_s = 0.5;
   double duration_s = 0.0;
   bool binary = false;
+  std::string port = "usb";
+  std::string filter = "off";
+  std::vector<std::string> command_times;  // LETTER=SECONDS
   std::string log_level = "notice";
 };
+
+// "O=0.05", "x=1", "^K=3", "all=0": sets the processing time of that command.
+bool set_command_time(const std::string& spec, twister::sim::CommandTimes& times) {
+  const auto eq = spec.find('=');
+  if (eq == std::string::npos) return false;
+  const std::string name = spec.substr(0, eq);
+  char* end = nullptr;
+  const double s = std::strtod(spec.c_str() + eq + 1, &end);
+  if (end == spec.c_str() + eq + 1 || *end != '\0' || !(s >= 0.0 && s <= 60.0)) return false;
+  const auto us = static_cast<std::int32_t>(s * 1e6);
+  if (name == "all") {
+    times.fill(us);
+  } else if (name.size() == 1) {
+    times[static_cast<unsigned char>(name[0]) & 0x7Fu] = us;
+  } else if (name.size() == 2 && name[0] == '^' && name[1] >= '@' && name[1] <= '_') {
+    times[static_cast<std::size_t>(name[1] - '@')] = us;  // ^Y = 0x19, ^K = 0x0B
+  } else {
+    return false;
+  }
+  return true;
+}
 
 void add_options(CLI::App& app, Options& o) {
   app.add_option("--scenario", o.scenario_path,
@@ -49,6 +75,16 @@ void add_options(CLI::App& app, Options& o) {
       ->check(CLI::Range(0.0, 60.0));
   app.add_flag("--continuous", o.dev.start_continuous, "power up in continuous mode");
   app.add_flag("--binary", o.binary, "power up in binary format");
+  app.add_flag("--binary16", o.dev.packed16,
+               "the unit's binary format (f) is the 16-bit packed one (Isotrak II / 3SPACE)");
+  app.add_option("--port", o.port,
+                 "PTY mode: usb (a hang-up removes the tty and the link) or fixed (a "
+                 "/dev/ttyS* port: the line just goes dead)")
+      ->check(CLI::IsMember({"usb", "fixed"}));
+  app.add_option("--filter", o.filter, "power-up position and attitude filter (x/v macros)")
+      ->check(CLI::IsMember({"off", "low", "medium", "heavy"}));
+  app.add_option("--command-time", o.command_times,
+                 "processing time of a command, LETTER=SECONDS (^K=3, all=0; repeatable)");
   app.add_option("--duration", o.duration_s,
                  "stop after this many seconds (0: run until signalled)")
       ->check(CLI::Range(0.0, 1e9));
@@ -61,16 +97,30 @@ void log_summary(const twister::sim::FastrakDevice& device,
   const auto& c = device.counters();
   logger().notice("summary",
                   "records=%llu dropped_solutions=%llu commands=%llu errors=%llu resets=%llu "
+                  "input_lost=%llu corrupted=%llu status_letters=%llu dropped_bytes=%llu "
+                  "drop_expired=%llu misclock_lost=%llu misclock_junk=%llu host_baud=%d "
                   "ptys=%llu hangups=%llu",
                   c.records, c.dropped_solutions, c.commands, c.command_errors, c.resets,
+                  c.input_lost, c.corrupted_records, c.status_letters, c.dropped_bytes,
+                  c.drop_expired, c.misclock_lost, c.misclock_junk, server.counters().host_baud,
                   server.counters().ptys_opened, server.counters().hangups);
 }
 
 // Serves the device until signalled or the duration is over.
 int serve(Options& o, const twister::sim::Scenario& scenario) {
   o.serve.baud = o.dev.baud;
+  o.serve.port =
+      o.port == "fixed" ? twister::sim::PortKind::fixed : twister::sim::PortKind::usb_adapter;
   o.dev.reset_time_us = static_cast<std::int64_t>(o.reset_s * 1e6);
-  if (o.binary) o.dev.start_format = twister::tracker::Format::binary;
+  if (o.binary) {
+    o.dev.start_format =
+        o.dev.packed16 ? twister::tracker::Format::binary16 : twister::tracker::Format::binary;
+  }
+  const twister::sim::FilterParams filter = o.filter == "low"      ? twister::sim::kFilterLow
+                                            : o.filter == "medium" ? twister::sim::kFilterMedium
+                                            : o.filter == "heavy"  ? twister::sim::kFilterHeavy
+                                                                   : twister::sim::kFilterOff;
+  o.dev.start_position_filter = o.dev.start_attitude_filter = filter;
   const double duration_s = o.duration_s == 0.0 ? scenario.duration_s : o.duration_s;
 
   twister::sim::FastrakDevice device(o.dev, scenario, 0);
@@ -105,6 +155,12 @@ int run(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int rc = app.exit(e);
     return rc == 0 ? kExitOk : kExitBadOptions;
+  }
+  for (const std::string& spec : o.command_times) {
+    if (!set_command_time(spec, o.dev.command_time_us)) {
+      logger().error("", "--command-time %s: expected LETTER=SECONDS (0..60)", spec.c_str());
+      return kExitBadOptions;
+    }
   }
   LogLevel level = LogLevel::notice;
   (void)twister::hal::parse_log_level(o.log_level, level);  // checked by CLI11

@@ -1,7 +1,9 @@
 // FakeStorage: an in-memory append-only file for core tests. It can cut power at
 // any byte of an append (the bytes before the cut stay, the call fails and every
-// later call fails until power_on()), fail syncs, and flip bytes to simulate
-// corruption. Fixed capacity, no allocation (usable in no-allocation scopes).
+// later call fails until power_on()), fail syncs, fill the disk at a size (an append
+// past it writes what fits and fails, like write(2) with ENOSPC; later calls work),
+// fail truncates, and flip bytes to simulate corruption. Fixed capacity, no
+// allocation (usable in no-allocation scopes).
 #pragma once
 
 #include <algorithm>
@@ -28,6 +30,10 @@ class FakeStorageWithStorage final : public ports::Storage {
   }
   bool powered() const { return powered_; }
   void fail_next_sync() { fail_sync_ = true; }
+  // The disk is full once the file holds `bytes` (at most the capacity).
+  void fill_disk_at(std::size_t bytes) { limit_ = std::min(bytes, kCapacity); }
+  void free_disk() { limit_ = kCapacity; }
+  void fail_truncates(bool fail) { fail_truncate_ = fail; }
   void corrupt(std::size_t offset, std::byte xor_mask) { data_[offset] ^= xor_mask; }
   void load(std::span<const std::byte> bytes) {
     size_ = std::min(bytes.size(), kCapacity);
@@ -54,7 +60,7 @@ class FakeStorageWithStorage final : public ports::Storage {
   }
   Status do_append(std::span<const std::byte> src) override {
     if (!powered_) return StatusCode::io_error;
-    std::size_t n = std::min(src.size(), kCapacity - size_);
+    std::size_t n = std::min(src.size(), limit_ > size_ ? limit_ - size_ : std::size_t{0});
     const bool cut = budget_ != kNoCut && budget_ < n;
     if (budget_ != kNoCut) n = std::min(n, budget_);
     std::memcpy(data_.data() + size_, src.data(), n);
@@ -78,7 +84,7 @@ class FakeStorageWithStorage final : public ports::Storage {
     return ok_status();
   }
   Status do_truncate(std::uint64_t length) override {
-    if (!powered_) return StatusCode::io_error;
+    if (!powered_ || fail_truncate_) return StatusCode::io_error;
     size_ = std::min<std::size_t>(size_, static_cast<std::size_t>(length));
     return ok_status();
   }
@@ -88,6 +94,8 @@ class FakeStorageWithStorage final : public ports::Storage {
   std::size_t budget_ = kNoCut;
   bool powered_ = true;
   bool fail_sync_ = false;
+  bool fail_truncate_ = false;
+  std::size_t limit_ = kCapacity;
   std::size_t sync_count_ = 0;
   std::size_t synced_size_ = 0;
 };

@@ -1,5 +1,6 @@
-// libFuzzer harness for FastrakParser. Byte 0 picks the configuration (format, units,
-// stylus width, one of several multi-station list sets), byte 1 the chunk size; the
+// libFuzzer harness for FastrakParser. Byte 0 picks the configuration (format: bit 0
+// binary, with bit 7 also set the 16-bit packed format; units, stylus width, one of
+// several multi-station list sets), byte 1 the chunk size; the
 // rest is the stream. Properties: no crash or out-of-bounds access; the same events
 // for whole and chunked feeding; every pose passes the plausibility checks; all bytes
 // are accounted for; pose conversion never fails on an emitted pose's shape.
@@ -18,7 +19,7 @@ using namespace twister::tracker;
 
 FastrakConfig config_from(std::uint8_t b) {
   FastrakConfig c;
-  c.format = (b & 1) ? Format::binary : Format::ascii;
+  c.format = (b & 1) ? ((b & 0x80) ? Format::binary16 : Format::binary) : Format::ascii;
   c.units = (b & 2) ? Units::centimetres : Units::inches;
   c.ascii_stylus_width = (b & 4) ? 2 : 1;
   switch ((b >> 3) % 5) {

@@ -8,9 +8,37 @@ ButtonFrontEnd::ButtonFrontEnd(const ButtonDebouncerConfig& debounce, const Butt
 Status ButtonFrontEnd::feed(const ports::ButtonEdge& edge) { return debouncer_.feed(edge); }
 
 void ButtonFrontEnd::poll(ports::TimestampUs now_us) {
+  command_count_ = 0;
   for (auto e = debouncer_.poll(now_us); e.ok(); e = debouncer_.poll(now_us)) {
-    map_.apply(*e, levels_);
+    if (e->line >= kMaxButtonLines) continue;
+    if (e->pressed) {
+      press(e->line);
+    } else {
+      release(e->line);
+    }
   }
+}
+
+void ButtonFrontEnd::press(std::uint8_t line) {
+  const auto bit = static_cast<std::uint16_t>(1u << line);
+  const ButtonBinding b = map_.resolve(line, static_cast<std::uint16_t>(held_ & ~bit));
+  held_ = static_cast<std::uint16_t>(held_ | bit);
+  pressed_as_[line] = b;
+  if (!is_command(b.role)) {
+    ButtonMap::set_level(b, true, levels_);
+    return;
+  }
+  if (command_count_ == commands_.size()) {
+    ++commands_dropped_;
+    return;
+  }
+  commands_[command_count_++] = ButtonCommand{b.hand, b.role};
+}
+
+void ButtonFrontEnd::release(std::uint8_t line) {
+  held_ = static_cast<std::uint16_t>(held_ & ~(1u << line));
+  ButtonMap::set_level(pressed_as_[line], false, levels_);
+  pressed_as_[line] = ButtonBinding{};
 }
 
 }  // namespace twister::input

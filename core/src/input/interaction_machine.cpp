@@ -35,6 +35,8 @@ const char* action_kind_name(ActionKind kind) {
       return "radius_end";
     case ActionKind::refused:
       return "refused";
+    case ActionKind::unfreeze:
+      return "unfreeze";
   }
   return "unknown";
 }
@@ -57,6 +59,12 @@ const char* reason_name(Reason reason) {
       return "object_busy";
     case Reason::hands_too_close:
       return "hands_too_close";
+    case Reason::busy:
+      return "busy";
+    case Reason::nothing_to_undo:
+      return "nothing_to_undo";
+    case Reason::nothing_to_redo:
+      return "nothing_to_redo";
   }
   return "unknown";
 }
@@ -150,15 +158,26 @@ void InteractionMachine::step_idle(const HandStep& s, ActionList& out) {
   }
 }
 
+void InteractionMachine::end_grab(const HandStep& s, ActionKind kind, Reason reason,
+                                  ActionList& out) {
+  enter(s.hand, HandState::idle, s.now_us);
+  hands_[s.hand].disengaged = false;
+  out.push({kind, s.hand, reason, radius_m_});
+}
+
 void InteractionMachine::step_dragging(const HandStep& s, ActionList& out) {
   const std::uint8_t h = s.hand;
+  Hand& hand = hands_[h];
   if (!s.in.buttons.grab) {
-    enter(h, HandState::idle, s.now_us);
-    out.push({ActionKind::commit, h, Reason::released, radius_m_});
+    end_grab(s, ActionKind::commit, Reason::released, out);
   } else if (!s.in.pose_valid) {
     enter(h, HandState::dragging_lost, s.now_us);
     out.push({ActionKind::tracking_lost, h, Reason::none, radius_m_});
+  } else if (hand.disengaged && !s.in.buttons.freeze) {
+    hand.disengaged = false;
+    out.push({ActionKind::unfreeze, h, Reason::none, radius_m_});
   } else if (s.freeze_pressed) {
+    hand.disengaged = true;
     out.push({ActionKind::freeze, h, Reason::none, radius_m_});
   } else if (s.move_pressed) {
     out.push({ActionKind::refused, h, Reason::hand_busy, radius_m_});
@@ -167,17 +186,21 @@ void InteractionMachine::step_dragging(const HandStep& s, ActionList& out) {
 
 void InteractionMachine::step_dragging_lost(const HandStep& s, ActionList& out) {
   const std::uint8_t h = s.hand;
+  Hand& hand = hands_[h];
   // Releasing while lost commits what the display shows: the warp held at the last
   // valid pose.
   if (!s.in.buttons.grab) {
-    enter(h, HandState::idle, s.now_us);
-    out.push({ActionKind::commit, h, Reason::released, radius_m_});
+    end_grab(s, ActionKind::commit, Reason::released, out);
   } else if (s.in.pose_valid) {
     enter(h, HandState::dragging, s.now_us);
     out.push({ActionKind::tracking_resumed, h, Reason::none, radius_m_});
-  } else if (lost_too_long(s)) {
-    enter(h, HandState::idle, s.now_us);
-    out.push({ActionKind::cancel, h, Reason::tracking_timeout, radius_m_});
+  } else if (hand.disengaged && !s.in.buttons.freeze) {
+    // Re-engaged at the last valid pose; the lost-tracking wait starts now.
+    hand.disengaged = false;
+    enter(h, HandState::dragging_lost, s.now_us);
+    out.push({ActionKind::unfreeze, h, Reason::none, radius_m_});
+  } else if (!hand.disengaged && lost_too_long(s)) {
+    end_grab(s, ActionKind::cancel, Reason::tracking_timeout, out);
   }
 }
 
@@ -211,7 +234,7 @@ void InteractionMachine::step_moving_lost(const HandStep& s, ActionList& out) {
 void InteractionMachine::step_radius(const InteractionInputs& inputs, ActionList& out) {
   const HandInput& a = inputs.hands[0];
   const HandInput& b = inputs.hands[1];
-  const bool both_held = a.buttons.radius && b.buttons.radius;
+  const bool both_held = config_.radius_gesture && a.buttons.radius && b.buttons.radius;
   // The radius is locked while a stroke or move is active: the stroke's weights
   // were computed with it.
   const bool both_idle = hands_[0].state == HandState::idle && hands_[1].state == HandState::idle;

@@ -35,12 +35,17 @@ Status JournalReplay::apply_stroke(const journal::StrokeRecord& s) {
   std::array<math::Frame, 2> start{};
   std::array<math::Frame, 2> end{};
   std::size_t n = 0;
+  std::uint8_t long_turns = 0;  // by plan hand, as WarpPlan::update_turns wants it
   for (std::uint8_t h = 0; h < kHandCount; ++h) {
     if ((s.hand_mask & (1u << h)) == 0) continue;
     start[n] = from_journal(s.start[h]);
     end[n] = from_journal(s.end[h]);
+    if ((s.long_turns & (1u << h)) != 0)
+      long_turns = static_cast<std::uint8_t>(long_turns | (1u << n));
     ++n;
   }
+  // Only a fresh plan that ends with its commit is refined (CommitRefinement).
+  if (s.refine_threshold_m > 0.0 && s.chain_step != 0) return StatusCode::data_loss;
   if (s.chain_step == 0) {
     TWISTER_TRY(plan_.build(mesh_.rest(), std::span(start).first(n), s.radius_m,
                             static_cast<math::WarpMethod>(s.method)));
@@ -53,9 +58,11 @@ Status JournalReplay::apply_stroke(const journal::StrokeRecord& s) {
     }
     TWISTER_TRY(plan_.rebase(std::span(start).first(n)));
   }
-  TWISTER_TRY(plan_.update(std::span(end).first(n)));
-  TWISTER_TRY(history_.apply_stroke(plan_));
-  chain_open_ = true;
+  // The screws from the poses alone (and the turn sense the record gives): the same
+  // numbers the live stroke computed, minimal or unwrapped.
+  TWISTER_TRY(plan_.update_turns(std::span(end).first(n), long_turns));
+  TWISTER_TRY(history_.apply_stroke(plan_, s.refine_threshold_m));
+  chain_open_ = s.refine_threshold_m == 0.0;  // a refined commit ended its chain
   chain_step_ = s.chain_step;
   ++stats_.strokes;
   return ok_status();

@@ -28,10 +28,28 @@ const char* session_event_kind_name(SessionEventKind kind) {
       return "undone";
     case SessionEventKind::redone:
       return "redone";
-    case SessionEventKind::journal_failed:
-      return "journal_failed";
+    case SessionEventKind::not_saved:
+      return "not_saved";
     case SessionEventKind::history_overflow:
       return "history_overflow";
+    case SessionEventKind::radius_set:
+      return "radius_set";
+    case SessionEventKind::disengaged:
+      return "disengaged";
+    case SessionEventKind::engaged:
+      return "engaged";
+    case SessionEventKind::turn_limit_reached:
+      return "turn_limit_reached";
+    case SessionEventKind::turn_limit_left:
+      return "turn_limit_left";
+    case SessionEventKind::method_changed:
+      return "method_changed";
+    case SessionEventKind::command_refused:
+      return "command_refused";
+    case SessionEventKind::refined:
+      return "refined";
+    case SessionEventKind::refine_stopped:
+      return "refine_stopped";
   }
   return "unknown";
 }

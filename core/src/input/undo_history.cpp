@@ -6,8 +6,9 @@
 
 namespace twister::input {
 
-UndoHistory::UndoHistory(std::span<VertexChange> changes, std::span<UndoEntry> entries)
-    : changes_(changes), entries_(entries) {
+UndoHistory::UndoHistory(std::span<VertexChange> changes, std::span<UndoEntry> entries,
+                         std::span<TriangleChange> triangle_changes)
+    : changes_(changes), entries_(entries), triangle_changes_(triangle_changes) {
   TWISTER_ASSERT(!entries.empty());
 }
 
@@ -24,23 +25,42 @@ std::size_t UndoHistory::used_changes() const {
   return last.first_change + last.change_count;
 }
 
+std::size_t UndoHistory::used_triangle_changes() const {
+  if (entry_count_ == 0) return 0;
+  const UndoEntry& last = entries_[entry_count_ - 1];
+  return last.first_triangle_change + last.triangle_change_count;
+}
+
 // Entries and their changes are kept packed at the front of the spans; dropping
 // the oldest shifts the rest down. That copy is rare (only when memory is full)
 // and keeps every entry contiguous, so undo/redo are plain loops.
 void UndoHistory::drop_oldest() {
   TWISTER_ASSERT(entry_count_ > 0);
   const std::size_t shift = entries_[0].change_count;
+  const std::size_t triangle_shift = entries_[0].triangle_change_count;
   // The open entry's changes sit after the closed ones and move with them.
   const std::size_t used =
       open_ ? open_entry_.first_change + open_entry_.change_count : used_changes();
+  const std::size_t triangles_used =
+      open_ ? open_entry_.first_triangle_change + open_entry_.triangle_change_count
+            : used_triangle_changes();
   std::copy(changes_.begin() + static_cast<std::ptrdiff_t>(shift),
             changes_.begin() + static_cast<std::ptrdiff_t>(used), changes_.begin());
+  std::copy(triangle_changes_.begin() + static_cast<std::ptrdiff_t>(triangle_shift),
+            triangle_changes_.begin() + static_cast<std::ptrdiff_t>(triangles_used),
+            triangle_changes_.begin());
   std::copy(entries_.begin() + 1, entries_.begin() + static_cast<std::ptrdiff_t>(entry_count_),
             entries_.begin());
   --entry_count_;
   if (undo_count_ > 0) --undo_count_;
-  for (std::size_t i = 0; i < entry_count_; ++i) entries_[i].first_change -= shift;
-  if (open_) open_entry_.first_change -= shift;
+  for (std::size_t i = 0; i < entry_count_; ++i) {
+    entries_[i].first_change -= shift;
+    entries_[i].first_triangle_change -= triangle_shift;
+  }
+  if (open_) {
+    open_entry_.first_change -= shift;
+    open_entry_.first_triangle_change -= triangle_shift;
+  }
   ++dropped_;
 }
 
@@ -51,19 +71,61 @@ void UndoHistory::begin_entry() {
   overflow_ = false;
   open_entry_ = UndoEntry{};
   open_entry_.first_change = used_changes();
+  open_entry_.first_triangle_change = used_triangle_changes();
+}
+
+template <typename End>
+bool UndoHistory::make_room(End end, std::size_t pool_size) {
+  while (end() == pool_size) {
+    if (entry_count_ == 0) {
+      overflow_ = true;
+      return false;
+    }
+    drop_oldest();
+  }
+  return true;
 }
 
 Status UndoHistory::record(std::uint32_t index, glm::vec3 before, glm::vec3 after) {
   if (!open_) return StatusCode::failed_precondition;
-  if (overflow_) return StatusCode::resource_exhausted;
-  while (open_entry_.first_change + open_entry_.change_count == changes_.size()) {
-    if (entry_count_ == 0) {
-      overflow_ = true;
-      return StatusCode::resource_exhausted;
-    }
-    drop_oldest();
+  const auto end = [this] { return open_entry_.first_change + open_entry_.change_count; };
+  if (overflow_ || !make_room(end, changes_.size())) return StatusCode::resource_exhausted;
+  changes_[end()] = {index, before, after};
+  ++open_entry_.change_count;
+  return ok_status();
+}
+
+Status UndoHistory::record_triangle(std::uint32_t index,
+                                    const std::array<std::uint32_t, 3>& before) {
+  if (!open_) return StatusCode::failed_precondition;
+  const auto end = [this] {
+    return open_entry_.first_triangle_change + open_entry_.triangle_change_count;
+  };
+  if (overflow_ || !make_room(end, triangle_changes_.size())) {
+    return StatusCode::resource_exhausted;
   }
-  changes_[open_entry_.first_change + open_entry_.change_count++] = {index, before, after};
+  triangle_changes_[end()] = {index, before, before};
+  ++open_entry_.triangle_change_count;
+  return ok_status();
+}
+
+Status UndoHistory::record_topology(const mesh::Mesh& mesh, std::uint32_t vertices_before,
+                                    std::uint32_t triangles_before) {
+  if (!open_) return StatusCode::failed_precondition;
+  open_entry_.topology = true;
+  open_entry_.vertices_before = vertices_before;
+  open_entry_.triangles_before = triangles_before;
+  open_entry_.vertices_after = static_cast<std::uint32_t>(mesh.vertex_count());
+  open_entry_.triangles_after = static_cast<std::uint32_t>(mesh.triangle_count());
+  if (overflow_) return StatusCode::resource_exhausted;
+  for (std::size_t i = 0; i < open_entry_.triangle_change_count; ++i) {
+    TriangleChange& c = triangle_changes_[open_entry_.first_triangle_change + i];
+    c.after = mesh.triangle(c.index);
+  }
+  for (std::uint32_t t = triangles_before; t < mesh.triangle_count(); ++t) {
+    const auto v = mesh.triangle(t);
+    TWISTER_TRY(record_triangle(t, v));
+  }
   return ok_status();
 }
 
@@ -87,16 +149,44 @@ Status UndoHistory::end_entry() {
   return ok_status();
 }
 
+// The mesh is the one the entry applies to: as after it (undo) or before it (redo).
+bool UndoHistory::fits(const UndoEntry& e, const mesh::Mesh& mesh, bool after) const {
+  const std::size_t vertices =
+      e.topology ? (after ? e.vertices_after : e.vertices_before) : mesh.vertex_count();
+  if (e.topology && (mesh.vertex_count() != vertices ||
+                     mesh.triangle_count() != (after ? e.triangles_after : e.triangles_before))) {
+    return false;
+  }
+  const std::size_t needed = e.topology ? e.vertices_after : vertices;
+  for (std::size_t i = 0; i < e.change_count; ++i) {
+    if (changes_[e.first_change + i].index >= needed) return false;
+  }
+  return true;
+}
+
+void UndoHistory::restore_triangles(const UndoEntry& e, mesh::Mesh& mesh, bool after) const {
+  for (std::size_t i = 0; i < e.triangle_change_count; ++i) {
+    const TriangleChange& c = triangle_changes_[e.first_triangle_change + i];
+    if (after) {
+      mesh.set_triangle(c.index, c.after);
+    } else if (c.index < e.triangles_before) {
+      mesh.set_triangle(c.index, c.before);
+    }
+  }
+}
+
 Result<UndoStep> UndoHistory::undo(mesh::Mesh& mesh) {
   if (open_ || undo_count_ == 0) return StatusCode::failed_precondition;
   const UndoEntry& e = entries_[undo_count_ - 1];
-  for (std::size_t i = 0; i < e.change_count; ++i) {
-    if (changes_[e.first_change + i].index >= mesh.vertex_count()) return StatusCode::out_of_range;
-  }
+  if (!fits(e, mesh, true)) return StatusCode::out_of_range;
   // Newest change first, so a vertex recorded twice ends at its oldest position.
   for (std::size_t i = e.change_count; i-- > 0;) {
     const VertexChange& c = changes_[e.first_change + i];
-    mesh.set_position(c.index, c.before);
+    if (!e.topology || c.index < e.vertices_before) mesh.set_position(c.index, c.before);
+  }
+  if (e.topology) {
+    restore_triangles(e, mesh, false);
+    mesh.resize(e.vertices_before, e.triangles_before).ignore();  // shrinking always fits
   }
   --undo_count_;
   return UndoStep{e.object_move, e.object_before, e.change_count};
@@ -105,8 +195,10 @@ Result<UndoStep> UndoHistory::undo(mesh::Mesh& mesh) {
 Result<UndoStep> UndoHistory::redo(mesh::Mesh& mesh) {
   if (open_ || undo_count_ == entry_count_) return StatusCode::failed_precondition;
   const UndoEntry& e = entries_[undo_count_];
-  for (std::size_t i = 0; i < e.change_count; ++i) {
-    if (changes_[e.first_change + i].index >= mesh.vertex_count()) return StatusCode::out_of_range;
+  if (!fits(e, mesh, false)) return StatusCode::out_of_range;
+  if (e.topology) {
+    if (!mesh.resize(e.vertices_after, e.triangles_after).ok()) return StatusCode::out_of_range;
+    restore_triangles(e, mesh, true);
   }
   for (std::size_t i = 0; i < e.change_count; ++i) {
     const VertexChange& c = changes_[e.first_change + i];
@@ -114,6 +206,25 @@ Result<UndoStep> UndoHistory::redo(mesh::Mesh& mesh) {
   }
   ++undo_count_;
   return UndoStep{e.object_move, e.object_after, e.change_count};
+}
+
+Status UndoHistory::adopt(std::size_t entry_count, std::size_t undo_count, std::size_t dropped) {
+  bool ok = !open_ && entry_count <= entries_.size() && undo_count <= entry_count;
+  std::size_t next = 0;
+  for (std::size_t i = 0; ok && i < entry_count; ++i) {
+    const UndoEntry& e = entries_[i];
+    ok = e.first_change == next && e.change_count <= changes_.size() - next;
+    next += ok ? e.change_count : 0;
+  }
+  if (!ok) {
+    clear();
+    return StatusCode::invalid_argument;
+  }
+  entry_count_ = entry_count;
+  undo_count_ = undo_count;
+  dropped_ = dropped;
+  overflow_ = false;
+  return ok_status();
 }
 
 }  // namespace twister::input

@@ -68,6 +68,14 @@ Status JournalReader::open() {
   return ok_status();
 }
 
+Status JournalReader::seek(std::uint64_t offset) {
+  if (!opened_) return StatusCode::failed_precondition;
+  if (offset < kFileHeaderBytes || offset > file_size_) return StatusCode::out_of_range;
+  good_end_ = offset;
+  problem_ = TailProblem::none;
+  return ok_status();
+}
+
 Result<JournalRecord> JournalReader::fail(TailProblem problem) {
   problem_ = problem;
   return StatusCode::data_loss;

@@ -14,7 +14,8 @@ constexpr std::size_t kPoseBytes = std::size_t{9} * 8;
 constexpr std::size_t kStrokeFixedBytes = 4 + 1 + 1 + 2 + 8;
 constexpr std::size_t kMoveBytes = 4 + 1 + 2 * kPoseBytes;
 constexpr std::size_t kSequenceOnlyBytes = 4;
-static_assert(kStrokeFixedBytes + 4 * kPoseBytes <= kMaxPayloadBytes);
+constexpr std::size_t kRefinedTailBytes = 1 + 8;  // long_turns, refine_threshold_m
+static_assert(kStrokeFixedBytes + 4 * kPoseBytes + kRefinedTailBytes <= kMaxPayloadBytes);
 
 using twister::internal::ByteReader;
 using twister::internal::ByteWriter;
@@ -33,15 +34,27 @@ JournalPose read_pose(ByteReader& r) {
   return p;
 }
 
-std::size_t stroke_bytes(std::uint8_t hand_mask) {
+// Version 2 strokes end with the long_turns byte, version 3 with it and the threshold.
+std::size_t stroke_bytes(std::uint8_t hand_mask, std::uint8_t version) {
   const auto hands = static_cast<std::size_t>(std::popcount(static_cast<unsigned>(hand_mask)));
-  return kStrokeFixedBytes + 2 * hands * kPoseBytes;
+  const std::size_t tail = version == kRecordVersionRefined     ? kRefinedTailBytes
+                           : version == kRecordVersionLongTurns ? 1
+                                                                : 0;
+  return kStrokeFixedBytes + 2 * hands * kPoseBytes + tail;
 }
+
+std::uint8_t record_version(const JournalRecord& r) {
+  if (r.type != RecordType::stroke) return kRecordVersion;
+  if (r.stroke.refine_threshold_m > 0.0) return kRecordVersionRefined;
+  return r.stroke.long_turns != 0 ? kRecordVersionLongTurns : kRecordVersion;
+}
+
+bool valid_threshold(double t) { return std::isfinite(t) && t >= 0.0; }
 
 std::size_t payload_bytes(const JournalRecord& r) {
   switch (r.type) {
     case RecordType::stroke:
-      return stroke_bytes(r.stroke.hand_mask);
+      return stroke_bytes(r.stroke.hand_mask, record_version(r));
     case RecordType::object_move:
       return kMoveBytes;
     case RecordType::undo:
@@ -60,11 +73,31 @@ bool finite(const JournalPose& p) {
 
 bool valid_mask(std::uint8_t mask) { return mask >= 1 && mask <= 3; }
 
+bool valid_turns(std::uint8_t long_turns, std::uint8_t hand_mask) {
+  return (long_turns & ~hand_mask) == 0;
+}
+
+// The versioned end of a stroke. Canonical: version 2 only when some hand turned the
+// long way, version 3 only with a threshold.
+bool read_stroke_tail(ByteReader& in, std::uint8_t version, StrokeRecord& s) {
+  if (version == kRecordVersion) return true;
+  s.long_turns = in.u8();
+  if ((version == kRecordVersionLongTurns && s.long_turns == 0) ||
+      !valid_turns(s.long_turns, s.hand_mask)) {
+    return false;
+  }
+  if (version != kRecordVersionRefined) return true;
+  s.refine_threshold_m = in.f64();
+  return valid_threshold(s.refine_threshold_m) && s.refine_threshold_m > 0.0;
+}
+
 }  // namespace
 
 Result<std::size_t> encode_record(const JournalRecord& r, std::span<std::byte> out) {
   if (r.type == RecordType::stroke &&
-      (!valid_mask(r.stroke.hand_mask) || r.stroke.method >= kMethodCount)) {
+      (!valid_mask(r.stroke.hand_mask) || r.stroke.method >= kMethodCount ||
+       !valid_turns(r.stroke.long_turns, r.stroke.hand_mask) ||
+       !valid_threshold(r.stroke.refine_threshold_m))) {
     return StatusCode::invalid_argument;
   }
   if (r.type == RecordType::object_move && r.move.hand > 1) return StatusCode::invalid_argument;
@@ -75,7 +108,7 @@ Result<std::size_t> encode_record(const JournalRecord& r, std::span<std::byte> o
 
   ByteWriter w(out);
   w.u32(static_cast<std::uint32_t>(payload));
-  w.u8(kRecordVersion);
+  w.u8(record_version(r));
   w.u8(static_cast<std::uint8_t>(r.type));
   w.u16(0);
   w.u32(r.sequence);
@@ -90,6 +123,8 @@ Result<std::size_t> encode_record(const JournalRecord& r, std::span<std::byte> o
         write_pose(w, r.stroke.start[h]);
         write_pose(w, r.stroke.end[h]);
       }
+      if (record_version(r) != kRecordVersion) w.u8(r.stroke.long_turns);
+      if (record_version(r) == kRecordVersionRefined) w.f64(r.stroke.refine_threshold_m);
       break;
     case RecordType::object_move:
       w.u8(r.move.hand);
@@ -106,7 +141,11 @@ Result<std::size_t> encode_record(const JournalRecord& r, std::span<std::byte> o
 
 Result<JournalRecord> decode_payload(std::uint8_t version, std::uint8_t type,
                                      std::span<const std::byte> payload) {
-  if (version != kRecordVersion) return StatusCode::data_loss;
+  const bool stroke = type == static_cast<std::uint8_t>(RecordType::stroke);
+  if (version != kRecordVersion &&
+      !(stroke && (version == kRecordVersionLongTurns || version == kRecordVersionRefined))) {
+    return StatusCode::data_loss;
+  }
   if (payload.size() < kSequenceOnlyBytes) return StatusCode::data_loss;
   JournalRecord r;
   ByteReader in(payload);
@@ -118,7 +157,7 @@ Result<JournalRecord> decode_payload(std::uint8_t version, std::uint8_t type,
       r.stroke.method = in.u8();
       r.stroke.hand_mask = in.u8();
       if (!valid_mask(r.stroke.hand_mask) || r.stroke.method >= kMethodCount ||
-          payload.size() != stroke_bytes(r.stroke.hand_mask)) {
+          payload.size() != stroke_bytes(r.stroke.hand_mask, version)) {
         return StatusCode::data_loss;
       }
       r.stroke.chain_step = in.u16();
@@ -131,6 +170,7 @@ Result<JournalRecord> decode_payload(std::uint8_t version, std::uint8_t type,
         r.stroke.end[h] = read_pose(in);
         if (!finite(r.stroke.start[h]) || !finite(r.stroke.end[h])) return StatusCode::data_loss;
       }
+      if (!read_stroke_tail(in, version, r.stroke)) return StatusCode::data_loss;
       return r;
     }
     case static_cast<std::uint8_t>(RecordType::object_move):

@@ -2,11 +2,15 @@
 
 #include <cstring>
 
+#include "twister/base/internal/byte_cursor.hpp"
+
 namespace twister::journal {
 
 Status JournalWriter::open() {
   opened_ = false;
   broken_ = false;
+  appended_ = 0;
+  last_crc_ = 0;
   TWISTER_TRY_ASSIGN(size_, storage_.size());
   if (size_ == 0) {
     TWISTER_TRY(storage_.append(kFileHeader));
@@ -18,6 +22,12 @@ Status JournalWriter::open() {
     TWISTER_TRY_ASSIGN(const std::size_t n, storage_.read_at(0, magic));
     if (n != magic.size() || std::memcmp(magic.data(), kFileMagic.data(), magic.size()) != 0) {
       return StatusCode::data_loss;
+    }
+    if (size_ >= kFileHeaderBytes + kRecordHeaderBytes + kRecordCrcBytes) {
+      std::array<std::byte, kRecordCrcBytes> crc{};
+      TWISTER_TRY_ASSIGN(const std::size_t got, storage_.read_at(size_ - crc.size(), crc));
+      if (got != crc.size()) return StatusCode::io_error;
+      last_crc_ = twister::internal::ByteReader(crc).u32();
     }
   }
   opened_ = true;
@@ -31,11 +41,23 @@ Status JournalWriter::append(const JournalRecord& record) {
   if (status.ok()) status = storage_.sync();
   if (status.ok()) {
     size_ += n;
+    ++appended_;
+    last_crc_ =
+        twister::internal::ByteReader(std::span<const std::byte>(buffer_).subspan(n - 4)).u32();
     return ok_status();
   }
   // Leave no torn record behind a later good one: cut back to the last good end.
   if (!storage_.truncate(size_).ok() || !storage_.sync().ok()) broken_ = true;
   return StatusCode::io_error;
+}
+
+Status JournalWriter::repair() {
+  if (!opened_) return StatusCode::failed_precondition;
+  if (!broken_) return ok_status();
+  TWISTER_TRY(storage_.truncate(size_));
+  TWISTER_TRY(storage_.sync());
+  broken_ = false;
+  return ok_status();
 }
 
 }  // namespace twister::journal

@@ -132,6 +132,7 @@ void write_status(ByteWriter& w, const StatusReport& s) {
   w.f32(s.turn_limit_rad);
   w.u64(s.strokes_committed);
   w.u64(s.strokes_not_saved);
+  w.u64(s.capacity_stops);
   w.u64(s.live_sent);
   w.u64(s.live_dropped);
   w.u64(s.frames_rejected);
@@ -151,6 +152,7 @@ bool read_status(ByteReader& r, StatusReport& s) {
   s.turn_limit_rad = r.f32();
   s.strokes_committed = r.u64();
   s.strokes_not_saved = r.u64();
+  s.capacity_stops = r.u64();
   s.live_sent = r.u64();
   s.live_dropped = r.u64();
   s.frames_rejected = r.u64();

@@ -18,12 +18,27 @@ glm::dvec3 rotate(glm::dvec3 axis, double angle, glm::dvec3 v) {
 
 glm::dvec3 Screw::axis_point() const { return mid + glm::cross(axis, chord) * (0.5 * cot_half); }
 
-Screw compute_screw(const Frame& start, const Frame& end, std::optional<glm::dvec3> previous_axis) {
+glm::dquat relative_rotation(const Frame& start, const Frame& end) {
   // R from the frames rather than the axis sum of the paper: the sum has the wrong
   // sign or vanishes for some axes (spec §2).
   const glm::dmat3 from(start.u, start.v, start.w);
   const glm::dmat3 to(end.u, end.v, end.w);
-  glm::dquat q = glm::quat_cast(to * glm::transpose(from));
+  return glm::quat_cast(to * glm::transpose(from));
+}
+
+Screw long_way_round(const Screw& minimal) {
+  if (minimal.pure_translation) return minimal;
+  Screw s = minimal;
+  s.axis = -minimal.axis;
+  s.angle = 2.0 * std::numbers::pi - minimal.angle;
+  s.slide = -minimal.slide;
+  // cot((2 pi - a)/2) = cot(pi - a/2) = -cot(a/2), exactly; M, X and A stay.
+  s.cot_half = -minimal.cot_half;
+  return s;
+}
+
+Screw compute_screw(const Frame& start, const Frame& end, std::optional<glm::dvec3> previous_axis) {
+  glm::dquat q = relative_rotation(start, end);
   if (q.w < 0.0) q = -q;  // a in [0, pi]
   const glm::dvec3 vec(q.x, q.y, q.z);
   const double sin_half = glm::length(vec);

@@ -23,7 +23,7 @@ namespace twister::math {
 
 namespace {
 
-// sin and cos of x in [0, pi/2] (the half angle t*a/2 never leaves it), without
+// sin and cos of x in [0, pi/2] (the half angle t*a/2 of a minimal screw), without
 // range reduction or tables: sin = x + x^3 p(x^2) (degree 9) and cos = 1 + x^2 q(x^2)
 // (degree 10), least-squares fits on Chebyshev nodes (near-minimax), float
 // coefficients. Largest error on [0, pi/2]: 4e-8 (sin), 6e-9 (cos), i.e. float
@@ -41,6 +41,18 @@ TWISTER_ALWAYS_INLINE void sincos_half(float x, float& s, float& c) {
   q = q * x2 + 4.16666605e-02f;
   q = q * x2 - 0.5f;
   c = 1.0f + x2 * q;
+}
+
+// The same for x in [0, pi) (a screw the long way round, angle up to 2 pi,
+// docs/unwrap.md): sin(x) = sin(pi - x), cos(x) = -cos(pi - x) above pi/2, as two
+// selects the compiler turns into blends. Only called when a hand's half angle
+// exceeds pi/2, so minimal strokes keep the cheaper loop.
+TWISTER_ALWAYS_INLINE void sincos_half_wide(float x, float& s, float& c) {
+  constexpr float kHalfPi = 1.57079632679489662f;
+  constexpr float kPi = 3.14159265358979324f;
+  const bool over = x > kHalfPi;
+  sincos_half(over ? kPi - x : x, s, c);
+  c = over ? -c : c;
 }
 
 // Per-hand constants of the rearranged displacement (v = P - M expanded so that the
@@ -77,12 +89,17 @@ HandF load(const KernelHand& h) {
           f(h.half_angle)};
 }
 
-// acc += displacement of P for one hand with weight t.
+// acc += displacement of P for one hand with weight t (kWide: half angle up to pi).
+template <bool kWide>
 TWISTER_ALWAYS_INLINE void accumulate(const HandF& h, float px, float py, float pz, float t,
                                       float& ox, float& oy, float& oz) {
   float sh;
   float ch;
-  sincos_half(t * h.half, sh, ch);
+  if constexpr (kWide) {
+    sincos_half_wide(t * h.half, sh, ch);
+  } else {
+    sincos_half(t * h.half, sh, ch);
+  }
   const float sh2 = sh + sh;
   const float a2 = sh2 * ch;
   const float b2 = sh2 * sh;
@@ -114,19 +131,56 @@ TWISTER_ALWAYS_INLINE void accumulate(const HandF& h, float px, float py, float 
   oz += t * h.tz;
 }
 
-TWISTER_SIMD_CLONES
-void one_hand_loop(HandF h, const float* __restrict x, const float* __restrict y,
-                   const float* __restrict z, const float* __restrict w, float* __restrict ox,
-                   float* __restrict oy, float* __restrict oz, std::size_t n) {
+template <bool kWide>
+TWISTER_ALWAYS_INLINE void one_hand_body(const HandF& h, const float* __restrict x,
+                                         const float* __restrict y, const float* __restrict z,
+                                         const float* __restrict w, float* __restrict ox,
+                                         float* __restrict oy, float* __restrict oz,
+                                         std::size_t n) {
   for (std::size_t i = 0; i < n; ++i) {
     float rx = x[i];
     float ry = y[i];
     float rz = z[i];
-    accumulate(h, x[i], y[i], z[i], w[i], rx, ry, rz);
+    accumulate<kWide>(h, x[i], y[i], z[i], w[i], rx, ry, rz);
     ox[i] = rx;
     oy[i] = ry;
     oz[i] = rz;
   }
+}
+
+template <bool kWide>
+TWISTER_ALWAYS_INLINE void two_hand_body(const HandF& h1, const HandF& h2,
+                                         const float* __restrict x, const float* __restrict y,
+                                         const float* __restrict z, const float* __restrict w1,
+                                         const float* __restrict w2, float* __restrict ox,
+                                         float* __restrict oy, float* __restrict oz,
+                                         std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) {
+    // Accumulating onto P directly (no zero-initialised sum: without -ffast-math the
+    // compiler must keep 0 + x, which costs three adds per vertex).
+    float rx = x[i];
+    float ry = y[i];
+    float rz = z[i];
+    accumulate<kWide>(h1, x[i], y[i], z[i], w1[i], rx, ry, rz);
+    accumulate<kWide>(h2, x[i], y[i], z[i], w2[i], rx, ry, rz);
+    ox[i] = rx;
+    oy[i] = ry;
+    oz[i] = rz;
+  }
+}
+
+TWISTER_SIMD_CLONES
+void one_hand_loop(HandF h, const float* __restrict x, const float* __restrict y,
+                   const float* __restrict z, const float* __restrict w, float* __restrict ox,
+                   float* __restrict oy, float* __restrict oz, std::size_t n) {
+  one_hand_body<false>(h, x, y, z, w, ox, oy, oz, n);
+}
+
+TWISTER_SIMD_CLONES
+void one_hand_loop_wide(HandF h, const float* __restrict x, const float* __restrict y,
+                        const float* __restrict z, const float* __restrict w, float* __restrict ox,
+                        float* __restrict oy, float* __restrict oz, std::size_t n) {
+  one_hand_body<true>(h, x, y, z, w, ox, oy, oz, n);
 }
 
 TWISTER_SIMD_CLONES
@@ -134,28 +188,37 @@ void two_hand_loop(HandF h1, HandF h2, const float* __restrict x, const float* _
                    const float* __restrict z, const float* __restrict w1,
                    const float* __restrict w2, float* __restrict ox, float* __restrict oy,
                    float* __restrict oz, std::size_t n) {
-  for (std::size_t i = 0; i < n; ++i) {
-    // Accumulating onto P directly (no zero-initialised sum: without -ffast-math the
-    // compiler must keep 0 + x, which costs three adds per vertex).
-    float rx = x[i];
-    float ry = y[i];
-    float rz = z[i];
-    accumulate(h1, x[i], y[i], z[i], w1[i], rx, ry, rz);
-    accumulate(h2, x[i], y[i], z[i], w2[i], rx, ry, rz);
-    ox[i] = rx;
-    oy[i] = ry;
-    oz[i] = rz;
-  }
+  two_hand_body<false>(h1, h2, x, y, z, w1, w2, ox, oy, oz, n);
 }
+
+TWISTER_SIMD_CLONES
+void two_hand_loop_wide(HandF h1, HandF h2, const float* __restrict x, const float* __restrict y,
+                        const float* __restrict z, const float* __restrict w1,
+                        const float* __restrict w2, float* __restrict ox, float* __restrict oy,
+                        float* __restrict oz, std::size_t n) {
+  two_hand_body<true>(h1, h2, x, y, z, w1, w2, ox, oy, oz, n);
+}
+
+// A screw the long way round has a half angle past pi/2 (weights reach 1).
+bool wide(const KernelHand& h) { return h.half_angle > 0.5 * 3.14159265358979323846; }
 
 }  // namespace
 
 void warp_one_simd(const KernelHand& h1, const KernelSpan& s) {
-  one_hand_loop(load(h1), s.x, s.y, s.z, s.w1, s.out_x, s.out_y, s.out_z, s.n);
+  if (wide(h1)) {
+    one_hand_loop_wide(load(h1), s.x, s.y, s.z, s.w1, s.out_x, s.out_y, s.out_z, s.n);
+  } else {
+    one_hand_loop(load(h1), s.x, s.y, s.z, s.w1, s.out_x, s.out_y, s.out_z, s.n);
+  }
 }
 
 void warp_two_simd(const KernelHand& h1, const KernelHand& h2, const KernelSpan& s) {
-  two_hand_loop(load(h1), load(h2), s.x, s.y, s.z, s.w1, s.w2, s.out_x, s.out_y, s.out_z, s.n);
+  if (wide(h1) || wide(h2)) {
+    two_hand_loop_wide(load(h1), load(h2), s.x, s.y, s.z, s.w1, s.w2, s.out_x, s.out_y, s.out_z,
+                       s.n);
+  } else {
+    two_hand_loop(load(h1), load(h2), s.x, s.y, s.z, s.w1, s.w2, s.out_x, s.out_y, s.out_z, s.n);
+  }
 }
 
 const char* simd_kernel_isa() {

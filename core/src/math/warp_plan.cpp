@@ -56,6 +56,7 @@ WarpPlan::WarpPlan(WarpPlanStorage storage)
 
 void WarpPlan::reset() {
   hands_ = 0;
+  long_turns_ = 0;
   count_ = 0;
   rest_size_ = 0;
   hand_counts_ = {};
@@ -119,16 +120,24 @@ Status WarpPlan::build(ConstVertexColumns rest, std::span<const Frame> start, do
   return ok_status();
 }
 
-Status WarpPlan::update(std::span<const Frame> end) {
+Status WarpPlan::update(std::span<const Frame> end) { return set_end(end, true, 0); }
+
+Status WarpPlan::update_turns(std::span<const Frame> end, std::uint8_t long_turns) {
+  return set_end(end, false, long_turns);
+}
+
+Status WarpPlan::set_end(std::span<const Frame> end, bool keep_sense, std::uint8_t long_turns) {
   if (!built()) return StatusCode::failed_precondition;
   TWISTER_TRY(check_frames(end));
   if (method_ == WarpMethod::scodef) TWISTER_TRY(scodef_.solve(end));
   for (std::size_t h = 0; h < hands_; ++h) {
     std::optional<glm::dvec3> previous;
-    if (!screws_[h].pure_translation) previous = screws_[h].axis;
+    if (keep_sense && !screws_[h].pure_translation) previous = screws_[h].axis;
     screws_[h] = compute_screw(start_[h], end[h], previous);
+    if ((long_turns & (1u << h)) != 0) screws_[h] = long_way_round(screws_[h]);
     end_[h] = end[h];
   }
+  long_turns_ = static_cast<std::uint8_t>(long_turns & ((1u << hands_) - 1u));
   set_kernel_hands();
   return ok_status();
 }
@@ -148,6 +157,7 @@ Status WarpPlan::rebase(std::span<const Frame> start) {
     end_[h] = start[h];
     screws_[h] = compute_screw(start_[h], end_[h]);
   }
+  long_turns_ = 0;
   set_kernel_hands();
   return ok_status();
 }

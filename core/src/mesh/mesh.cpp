@@ -64,6 +64,30 @@ void Mesh::set_position(std::uint32_t i, glm::vec3 position_m) {
   z_[i] = position_m.z;
 }
 
+std::array<std::uint32_t, 3> Mesh::triangle(std::uint32_t t) const {
+  TWISTER_ASSERT(t < triangle_count_);
+  const std::size_t base = 3 * std::size_t{t};
+  return {indices_[base], indices_[base + 1], indices_[base + 2]};
+}
+
+void Mesh::set_triangle(std::uint32_t t, const std::array<std::uint32_t, 3>& v) {
+  TWISTER_ASSERT(t < triangle_count_);
+  TWISTER_ASSERT(v[0] < vertex_count_ && v[1] < vertex_count_ && v[2] < vertex_count_);
+  const std::size_t base = 3 * std::size_t{t};
+  indices_[base] = v[0];
+  indices_[base + 1] = v[1];
+  indices_[base + 2] = v[2];
+}
+
+Status Mesh::resize(std::size_t vertices, std::size_t triangles) {
+  if (vertices > vertex_capacity() || triangles > triangle_capacity()) {
+    return StatusCode::resource_exhausted;
+  }
+  vertex_count_ = vertices;
+  triangle_count_ = triangles;
+  return ok_status();
+}
+
 Status Mesh::copy_from(const Mesh& other) {
   if (other.vertex_count_ > vertex_capacity() || other.triangle_count_ > triangle_capacity()) {
     return StatusCode::resource_exhausted;

@@ -1,6 +1,7 @@
 #include "twister/station/station.hpp"
 
-#include "twister/journal/journal_reader.hpp"
+#include <algorithm>
+#include <cmath>
 
 namespace twister::station {
 namespace {
@@ -17,38 +18,16 @@ math::Frame to_frame(const tracker::TrackedFrame& f) {
 
 Station::Station(ports::ByteStream& tracker, ports::ButtonSource& buttons, ports::Clock& clock,
                  ports::Storage& storage, mesh::Mesh& mesh, input::SculptStorage work,
-                 const StationConfig& config)
+                 const StationConfig& config, StationFiles files)
     : buttons_(buttons),
       clock_(clock),
       storage_(storage),
+      files_(files),
       config_(config),
       session_(tracker, clock, config.session),
       writer_(storage),
-      sculpt_(config.sculpt, mesh, work, &writer_) {}
-
-Status Station::start() {
-  const auto s0 = config_.hand_station[0];
-  const auto s1 = config_.hand_station[1];
-  if (s0 < 1 || s0 > tracker::kMaxStations || s1 < 1 || s1 > tracker::kMaxStations || s0 == s1) {
-    return StatusCode::failed_precondition;
-  }
-  // Replay through the session's own commit path, so the mesh is exactly the one
-  // the last run left; a torn tail (power cut mid-append) is cut so new records
-  // follow the last good one.
-  journal::JournalReader reader(storage_);
-  TWISTER_TRY(reader.open());
-  TWISTER_TRY_ASSIGN(const std::size_t applied, sculpt_.replay(reader));
-  std::uint64_t cut = 0;
-  if (reader.problem() != journal::TailProblem::none) {
-    cut = reader.tail_bytes();
-    TWISTER_TRY(reader.truncate_tail());
-  }
-  TWISTER_TRY(writer_.open());
-  started_ = true;
-  push_event({StationEventKind::journal_recovered, 0, static_cast<std::uint32_t>(applied), cut,
-              ok_status(), clock_.now_us()});
-  return ok_status();
-}
+      sculpt_(config.sculpt, mesh, work, &writer_),
+      checkpoint_(files.checkpoint_out) {}
 
 bool Station::hand_valid(std::uint8_t hand, ports::TimestampUs now_us) const {
   const Hand& h = hands_[hand];
@@ -135,6 +114,7 @@ Status Station::poll() {
   const input::SessionEvents events = sculpt_.step(now_us);
   counters_.session_events_dropped += events.dropped();
   for (const input::SessionEvent& e : events.items()) report(e, now_us);
+  checkpoint_step();
   if (now_us - rate_window_us_ >= 1'000'000) {
     const double seconds = static_cast<double>(now_us - rate_window_us_) / 1e6;
     rate_hz_ =
@@ -155,38 +135,106 @@ StationStatus Station::status() const {
   }
   s.strokes_committed = counters_.strokes_committed;
   s.strokes_not_saved = counters_.strokes_not_saved;
-  s.method = config_.sculpt.method;
+  const input::SessionState& state = sculpt_.state();
+  s.method = state.method;
+  for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
+    const input::HandView& v = state.hands[h];
+    if (v.in_stroke && !v.engaged) s.clutch |= static_cast<std::uint8_t>(1u << h);
+    if (v.in_stroke)
+      s.turned_rad = std::max(s.turned_rad, static_cast<float>(std::abs(v.turn_rad)));
+    s.turn_limit_rad = std::max(s.turn_limit_rad, static_cast<float>(v.turn_limit_rad));
+  }
+  s.capacity_stops = state.refine.capacity_stops;
   return s;
 }
 
 void Station::report(const input::SessionEvent& e, ports::TimestampUs now_us) {
   using K = input::SessionEventKind;
+  const auto reason = static_cast<std::uint64_t>(e.reason);
   switch (e.kind) {
     case K::grab_begin:
       push_event({StationEventKind::stroke_begin, e.hand, 0, 0, ok_status(), now_us});
       break;
     case K::committed:
-      ++counters_.strokes_committed;
-      push_event({StationEventKind::stroke_committed, e.hand, e.sequence,
-                  static_cast<std::uint64_t>(e.reason), ok_status(), now_us});
+      // One commit, however many hands it ends (repeat: already counted).
+      if (!e.repeat && e.status.ok()) ++counters_.strokes_committed;
+      push_event(
+          {StationEventKind::stroke_committed, e.hand, e.sequence, reason, e.status, now_us});
       break;
     case K::cancelled:
       ++counters_.strokes_cancelled;
-      push_event({StationEventKind::stroke_cancelled, e.hand, 0,
-                  static_cast<std::uint64_t>(e.reason), e.status, now_us});
+      push_event({StationEventKind::stroke_cancelled, e.hand, 0, reason, e.status, now_us});
       break;
     case K::refused:
       ++counters_.refused;
-      push_event({StationEventKind::refused, e.hand, 0, static_cast<std::uint64_t>(e.reason),
-                  e.status, now_us});
+      push_event({StationEventKind::refused, e.hand, 0, reason, e.status, now_us});
       break;
-    case K::journal_failed:
-      ++counters_.journal_errors;
-      push_event({StationEventKind::journal_error, e.hand, e.sequence, 0, e.status, now_us});
+    case K::not_saved:
+      // One commit not made, however many hands it ends (repeat: already counted).
+      if (!e.repeat) {
+        ++counters_.strokes_not_saved;
+        ++counters_.journal_errors;
+      }
+      push_event(
+          {StationEventKind::stroke_not_saved, e.hand, e.sequence, reason, e.status, now_us});
       break;
     default:
-      break;  // tracking, radius, moves, undo/redo: visible in the session's state
+      report_sculpt(e, now_us);
+      break;
   }
+}
+
+void Station::report_sculpt(const input::SessionEvent& e, ports::TimestampUs now_us) {
+  using K = input::SessionEventKind;
+  StationEvent out{StationEventKind::radius_set, e.hand, e.sequence, 0, e.status, now_us, e.value};
+  switch (e.kind) {
+    case K::radius_set:
+      break;
+    case K::disengaged:
+      out.kind = StationEventKind::hand_disengaged;
+      break;
+    case K::engaged:
+      out.kind = StationEventKind::hand_engaged;
+      break;
+    case K::turn_limit_reached:
+      out.kind = StationEventKind::turn_limit_reached;
+      break;
+    case K::turn_limit_left:
+      out.kind = StationEventKind::turn_limit_left;
+      break;
+    case K::undone:
+      ++counters_.undos;
+      out.kind = StationEventKind::undone;
+      break;
+    case K::redone:
+      ++counters_.redos;
+      out.kind = StationEventKind::redone;
+      break;
+    case K::method_changed:
+      out.kind = StationEventKind::method_changed;
+      out.value = static_cast<std::uint64_t>(e.value);
+      break;
+    case K::command_refused:
+      // io_error: an undo/redo whose record could not be saved (taken back).
+      if (e.status.code() == StatusCode::io_error) ++counters_.journal_errors;
+      out.kind = StationEventKind::command_refused;
+      out.value = static_cast<std::uint64_t>(e.value);
+      out.detail = static_cast<std::uint8_t>(e.reason);
+      break;
+    case K::refined:
+      ++counters_.refined_commits;
+      out.kind = StationEventKind::stroke_refined;
+      out.value = static_cast<std::uint64_t>(e.value);
+      break;
+    case K::refine_stopped:
+      ++counters_.refine_stops;
+      out.kind = StationEventKind::refinement_stopped;
+      out.value = static_cast<std::uint64_t>(e.value);
+      break;
+    default:
+      return;  // tracking, each radius change, moves, overflow: in the session's state
+  }
+  push_event(out);
 }
 
 void Station::push_event(const StationEvent& event) {
@@ -204,6 +252,19 @@ Result<StationEvent> Station::next_event() {
   event_head_ = (event_head_ + 1) % kEventCapacity;
   --event_count_;
   return e;
+}
+
+void Station::stop() {
+  if (!started_) return;
+  const ports::TimestampUs now_us = clock_.now_us();
+  const input::SessionEvents events = sculpt_.cancel_open();
+  for (const input::SessionEvent& e : events.items()) {
+    if (e.kind != input::SessionEventKind::cancelled) continue;
+    ++counters_.strokes_cancelled;
+    push_event({StationEventKind::stroke_cancelled, e.hand, 0,
+                static_cast<std::uint64_t>(input::Reason::none), ok_status(), now_us});
+  }
+  final_checkpoint();
 }
 
 Status Station::flush() { return storage_.sync(); }

@@ -22,6 +22,34 @@ const char* station_event_kind_name(StationEventKind kind) {
       return "journal_error";
     case StationEventKind::button_source_error:
       return "button_source_error";
+    case StationEventKind::stroke_not_saved:
+      return "stroke_not_saved";
+    case StationEventKind::checkpoint_written:
+      return "checkpoint_written";
+    case StationEventKind::checkpoint_failed:
+      return "checkpoint_failed";
+    case StationEventKind::radius_set:
+      return "radius_set";
+    case StationEventKind::hand_disengaged:
+      return "hand_disengaged";
+    case StationEventKind::hand_engaged:
+      return "hand_engaged";
+    case StationEventKind::turn_limit_reached:
+      return "turn_limit_reached";
+    case StationEventKind::turn_limit_left:
+      return "turn_limit_left";
+    case StationEventKind::undone:
+      return "undone";
+    case StationEventKind::redone:
+      return "redone";
+    case StationEventKind::method_changed:
+      return "method_changed";
+    case StationEventKind::command_refused:
+      return "command_refused";
+    case StationEventKind::stroke_refined:
+      return "stroke_refined";
+    case StationEventKind::refinement_stopped:
+      return "refinement_stopped";
   }
   return "unknown";
 }

@@ -59,7 +59,7 @@ void StationLink::send_live(const input::SculptSession& session, const StationSt
     send_hands(session, active ? live : input::LiveWarp{});
     last_live_us_ = now_us;
   }
-  send_status(session, status, live, now_us);
+  send_status(session, status, now_us);
 }
 
 void StationLink::send_stroke(const input::LiveWarp& live, ports::TimestampUs now_us) {
@@ -129,7 +129,7 @@ void StationLink::send_object(const input::SculptSession& session) {
 }
 
 void StationLink::send_status(const input::SculptSession& session, const StationStatus& status,
-                              const input::LiveWarp& live, ports::TimestampUs now_us) {
+                              ports::TimestampUs now_us) {
   link::StatusReport s;
   const mesh::Mesh& mesh = session.mesh();
   s.mesh_version = version_;
@@ -141,16 +141,15 @@ void StationLink::send_status(const input::SculptSession& session, const Station
   s.tracker_rate_hz = status.tracker_rate_hz;
   s.method = static_cast<std::uint8_t>(status.method);
   s.clutch = status.clutch;
-  if (live.active && live.plan != nullptr) {
-    for (std::size_t k = 0; k < live.plan->hand_count(); ++k) {
-      s.turned_rad = std::max(s.turned_rad, static_cast<float>(live.plan->screw(k).angle));
-    }
-  }
+  s.turned_rad = status.turned_rad;
   s.turn_limit_rad = status.turn_limit_rad;
   s.strokes_committed = status.strokes_committed;
   s.strokes_not_saved = status.strokes_not_saved;
+  s.capacity_stops = status.capacity_stops;
   const bool changed = s.tracker_state != last_status_.tracker_state ||
                        s.strokes_not_saved != last_status_.strokes_not_saved ||
+                       s.capacity_stops != last_status_.capacity_stops ||
+                       s.turn_limit_rad != last_status_.turn_limit_rad ||
                        s.method != last_status_.method || s.clutch != last_status_.clutch ||
                        s.mesh_version != last_status_.mesh_version;
   if (status_sent_ && !changed && now_us - last_status_us_ < config_.status_interval_us) return;

@@ -2,6 +2,8 @@
 // round-trip tests share one definition of the wire layout.
 #include "twister/tracker/fastrak_encoder.hpp"
 
+#include <array>
+
 #include "fastrak_fields.hpp"
 #include "twister/base/internal/byte_cursor.hpp"
 
@@ -9,7 +11,14 @@ namespace twister::tracker {
 namespace {
 
 // Writes the `n` numbers of a number item (the inverse of the parser's read).
-void put_numbers(std::byte* p, Format format, Item item, const float* v, std::size_t n) {
+void put_numbers(std::byte* p, const FastrakConfig& config, Item item, const float* v,
+                 std::size_t n) {
+  const Format format = config.format;
+  if (format == Format::binary16) {
+    const double scale = internal::packed16_scale(item, config.units);
+    for (std::size_t i = 0; i < n; ++i) internal::write_packed16(p + 2 * i, scale, v[i]);
+    return;
+  }
   if (format == Format::binary) {
     twister::internal::ByteWriter w({p, 4 * n});
     for (std::size_t i = 0; i < n; ++i) w.f32(v[i]);
@@ -36,7 +45,9 @@ Result<std::size_t> encode_record(const FastrakPose& pose, const FastrakConfig& 
   const Format fmt = config.format;
   const std::size_t len = record_length(st.list, fmt, config.ascii_stylus_width);
   if (out.size() < len) return StatusCode::resource_exhausted;
-  std::byte* p = out.data();
+  // binary16: the logical record is built here and packed into `out` at the end.
+  std::array<std::byte, kMaxRecordBytes> logical{};
+  std::byte* p = fmt == Format::binary16 ? logical.data() : out.data();
   p[0] = static_cast<std::byte>(kRecordType);
   p[1] = static_cast<std::byte>('0' + pose.station);
   p[2] = static_cast<std::byte>(pose.status);
@@ -54,11 +65,11 @@ Result<std::size_t> encode_record(const FastrakPose& pose, const FastrakConfig& 
         break;
       case Item::position:
       case Item::position_ext:
-        put_numbers(q, fmt, item, pose.position.data(), 3);
+        put_numbers(q, config, item, pose.position.data(), 3);
         break;
       case Item::euler:
       case Item::euler_ext:
-        put_numbers(q, fmt, item, pose.euler_deg.data(), 3);
+        put_numbers(q, config, item, pose.euler_deg.data(), 3);
         break;
       case Item::dcm_x:
       case Item::dcm_y:
@@ -66,15 +77,15 @@ Result<std::size_t> encode_record(const FastrakPose& pose, const FastrakConfig& 
       case Item::dcm_x_ext:
       case Item::dcm_y_ext:
       case Item::dcm_z_ext:
-        put_numbers(q, fmt, item, pose.dcm.data() + 3 * internal::dcm_row(item), 3);
+        put_numbers(q, config, item, pose.dcm.data() + 3 * internal::dcm_row(item), 3);
         break;
       case Item::quaternion:
       case Item::quaternion_ext:
-        put_numbers(q, fmt, item, pose.quaternion.data(), 4);
+        put_numbers(q, config, item, pose.quaternion.data(), 4);
         break;
       case Item::stylus:
       case Item::stylus_ext: {
-        const std::size_t w = fmt == Format::binary ? 2 : config.ascii_stylus_width;
+        const std::size_t w = fmt == Format::ascii ? config.ascii_stylus_width : 2;
         if (w == 2) q[0] = static_cast<std::byte>(' ');
         q[w - 1] = static_cast<std::byte>(pose.button ? '1' : '0');
         break;
@@ -82,6 +93,7 @@ Result<std::size_t> encode_record(const FastrakPose& pose, const FastrakConfig& 
     }
     off += item_width(item, fmt, config.ascii_stylus_width);
   }
+  if (fmt == Format::binary16) return pack16(logical.data(), off, out.data());
   return len;
 }
 

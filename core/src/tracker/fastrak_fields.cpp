@@ -79,6 +79,35 @@ void write_fixed(std::byte* p, std::size_t width, int decimals, float value) {
   while (pos > 0) p[--pos] = static_cast<std::byte>(' ');
 }
 
+double packed16_scale(Item item, Units units) {
+  switch (item) {
+    case Item::position:
+      return (units == Units::inches ? kPacked16PositionFullScaleIn
+                                     : kPacked16PositionFullScaleCm) /
+             32768.0;
+    case Item::euler:
+      return kPacked16AngleFullScaleDeg / 32768.0;
+    default:
+      return 1.0 / kPacked16UnitCounts;  // direction cosines, quaternion parts
+  }
+}
+
+float read_packed16(const std::byte* p, double scale) {
+  const auto raw =
+      static_cast<std::uint16_t>(static_cast<unsigned>(p[0]) | (static_cast<unsigned>(p[1]) << 8));
+  const auto counts = static_cast<std::int16_t>(raw);
+  return static_cast<float>(static_cast<double>(counts) * scale);
+}
+
+void write_packed16(std::byte* p, double scale, float value) {
+  const double c = static_cast<double>(value) / scale;
+  const long counts =
+      std::isfinite(c) ? std::lround(std::fmax(-32768.0, std::fmin(32767.0, c))) : 0;
+  const auto raw = static_cast<std::uint16_t>(static_cast<std::int16_t>(counts));
+  p[0] = static_cast<std::byte>(raw & 0xFFu);
+  p[1] = static_cast<std::byte>(raw >> 8);
+}
+
 bool parse_extended(const std::byte* p, float& out) {
   const char sign = ch(p[0]);
   if (sign != ' ' && sign != '-' && sign != '+') return false;

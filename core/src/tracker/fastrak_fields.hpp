@@ -33,6 +33,13 @@ bool parse_fixed(const std::byte* p, std::size_t width, int decimals, float& out
 // Writes `value` as `%<width>.<decimals>f`, clamped to what the field can hold.
 void write_fixed(std::byte* p, std::size_t width, int decimals, float value);
 
+// 16-bit packed numbers (§3.4): value per count of a number item in `units`.
+double packed16_scale(Item item, Units units);
+// Reads / writes one little-endian 16-bit count as a value (writing rounds and clamps
+// to the count range).
+float read_packed16(const std::byte* p, double scale);
+void write_packed16(std::byte* p, double scale, float value);
+
 // Extended 13-character field `Sx.xxxxxESxxb` (§3.2).
 bool parse_extended(const std::byte* p, float& out);
 void write_extended(std::byte* p, float value);

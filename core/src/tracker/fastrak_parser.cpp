@@ -37,7 +37,14 @@ const char* pose_error_name(PoseError e) {
 namespace {
 
 // Reads the `n` numbers of a number item into `out`; false on a malformed field.
-bool read_numbers(const std::byte* p, Format format, Item item, std::size_t n, float* out) {
+bool read_numbers(const std::byte* p, const FastrakConfig& config, Item item, std::size_t n,
+                  float* out) {
+  const Format format = config.format;
+  if (format == Format::binary16) {
+    const double scale = internal::packed16_scale(item, config.units);
+    for (std::size_t i = 0; i < n; ++i) out[i] = internal::read_packed16(p + 2 * i, scale);
+    return true;
+  }
   if (format == Format::binary) {
     twister::internal::ByteReader r({p, 4 * n});
     for (std::size_t i = 0; i < n; ++i) out[i] = r.f32();
@@ -80,14 +87,21 @@ void FastrakParser::reset() {
 
 FastrakParser::Candidate FastrakParser::examine(const std::byte* p, std::size_t avail,
                                                 FastrakEvent& out) const {
-  const char c = ch(p[0]);
-  if (c == kRecordType) return examine_record(p, avail, out);
-  if (c == kReplyType) return examine_reply(p, avail, out);
+  if (ch(p[0]) == kReplyType) return examine_reply(p, avail, out);
+  if (can_start(p[0])) return examine_record(p, avail, out);
   return {Verdict::drop, 1};
+}
+
+bool FastrakParser::can_start(std::byte b) const {
+  if (ch(b) == kReplyType) return true;
+  return config_.format == Format::binary16 ? std::to_integer<unsigned>(b) == kPacked16Start
+                                            : ch(b) == kRecordType;
 }
 
 FastrakParser::Candidate FastrakParser::examine_record(const std::byte* p, std::size_t avail,
                                                        FastrakEvent& out) const {
+  // In binary16 wire bytes 1 and 2 are also the station digit and the status: their
+  // high bits (0 for ASCII) travel in the group's eighth byte, checked after unpacking.
   if (avail < 2) return {Verdict::need_more, 2};
   const int station = ch(p[1]) - '1';
   if (station < 0 || station >= kMaxStations) return {Verdict::drop, 1};
@@ -97,16 +111,28 @@ FastrakParser::Candidate FastrakParser::examine_record(const std::byte* p, std::
   const char status = ch(p[2]);
   if (status != ' ' && !is_letter(status)) return {Verdict::drop, 1};
   if (avail < len) return {Verdict::need_more, len};
+  if (config_.format != Format::binary16) {
+    return decode_record(p, static_cast<std::size_t>(station), len, out);
+  }
+  std::array<std::byte, kMaxRecordBytes> rec{};
+  // A byte with bit 7 set inside the record means lost sync (§5).
+  if (!unpack16(p, len, rec.data())) return {Verdict::drop, 1};
+  if (ch(rec[0]) != kRecordType || rec[1] != p[1] || rec[2] != p[2]) return {Verdict::drop, 1};
+  return decode_record(rec.data(), static_cast<std::size_t>(station), len, out);
+}
 
-  const StationConfig& st = config_.stations[static_cast<std::size_t>(station)];
+FastrakParser::Candidate FastrakParser::decode_record(const std::byte* rec, std::size_t station,
+                                                      std::size_t consumed,
+                                                      FastrakEvent& out) const {
+  const StationConfig& st = config_.stations[station];
   FastrakPose pose{};
   pose.station = static_cast<std::uint8_t>(station + 1);
-  pose.status = status;
+  pose.status = ch(rec[2]);
   unsigned dcm_rows = 0;
   std::size_t off = kHeaderBytes;
   for (std::size_t i = 0; i < st.list.count; ++i) {
     const Item item = st.list.items[i];
-    if (!read_item(item, p + off, pose, dcm_rows)) return {Verdict::drop, 1};
+    if (!read_item(item, rec + off, pose, dcm_rows)) return {Verdict::drop, 1};
     off += item_width(item, config_.format, config_.ascii_stylus_width);
   }
   pose.has.dcm = dcm_rows == 7u;
@@ -119,7 +145,7 @@ FastrakParser::Candidate FastrakParser::examine_record(const std::byte* p, std::
     out.kind = EventKind::pose;
     out.pose = pose;
   }
-  return {Verdict::accept, len};
+  return {Verdict::accept, consumed};
 }
 
 bool FastrakParser::read_item(Item item, const std::byte* q, FastrakPose& pose,
@@ -133,11 +159,11 @@ bool FastrakParser::read_item(Item item, const std::byte* q, FastrakPose& pose,
     case Item::position:
     case Item::position_ext:
       pose.has_position = true;
-      return read_numbers(q, fmt, item, 3, pose.position.data());
+      return read_numbers(q, config_, item, 3, pose.position.data());
     case Item::euler:
     case Item::euler_ext:
       pose.has.euler = true;
-      return read_numbers(q, fmt, item, 3, pose.euler_deg.data());
+      return read_numbers(q, config_, item, 3, pose.euler_deg.data());
     case Item::dcm_x:
     case Item::dcm_y:
     case Item::dcm_z:
@@ -146,16 +172,16 @@ bool FastrakParser::read_item(Item item, const std::byte* q, FastrakPose& pose,
     case Item::dcm_z_ext: {
       const std::size_t row = internal::dcm_row(item);
       dcm_rows |= 1u << static_cast<unsigned>(row);
-      return read_numbers(q, fmt, item, 3, pose.dcm.data() + 3 * row);
+      return read_numbers(q, config_, item, 3, pose.dcm.data() + 3 * row);
     }
     case Item::quaternion:
     case Item::quaternion_ext:
       pose.has.quaternion = true;
-      return read_numbers(q, fmt, item, 4, pose.quaternion.data());
+      return read_numbers(q, config_, item, 4, pose.quaternion.data());
     case Item::stylus:
     case Item::stylus_ext: {
       // Only the last byte carries the state; the first of two is unconfirmed (§3.5).
-      const std::size_t w = fmt == Format::binary ? 2 : config_.ascii_stylus_width;
+      const std::size_t w = fmt == Format::ascii ? config_.ascii_stylus_width : 2;
       const char s = ch(q[w - 1]);
       pose.has_button = true;
       pose.button = s == '1';
@@ -163,74 +189,6 @@ bool FastrakParser::read_item(Item item, const std::byte* q, FastrakPose& pose,
     }
   }
   return false;
-}
-
-FastrakParser::Candidate FastrakParser::examine_reply(const std::byte* p, std::size_t avail,
-                                                      FastrakEvent& out) const {
-  if (avail < 2) return {Verdict::need_more, 2};
-  const char station = ch(p[1]);
-  if (station != ' ' && !is_digit(station) && !is_letter(station)) return {Verdict::drop, 1};
-  if (avail < 3) return {Verdict::need_more, 3};
-  const char command = ch(p[2]);
-  if (!is_letter(command)) return {Verdict::drop, 1};
-  // A reply is printable text up to CR LF; anything else is not a reply.
-  std::size_t i = 3;
-  for (; i < avail; ++i) {
-    const char c = ch(p[i]);
-    if (c == kCr) break;
-    if (c < 0x20 || c > 0x7E) return {Verdict::drop, 1};
-    if (i + 2 >= kMaxReplyBytes) return {Verdict::drop, 1};
-  }
-  if (i + 1 >= avail) return {Verdict::need_more, std::min(i + 2, kMaxReplyBytes)};
-  if (ch(p[i + 1]) != kLf) return {Verdict::drop, 1};
-  const std::size_t len = i + 2;
-
-  auto hex = [](char c) -> int {
-    if (is_digit(c)) return c - '0';
-    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-    return -1;
-  };
-  if (command == 'S' && len == kStatusReplyBytes) {
-    const int h0 = hex(ch(p[3])), h1 = hex(ch(p[4])), h2 = hex(ch(p[5]));
-    if (h0 >= 0 && h1 >= 0 && h2 >= 0) {
-      out.kind = EventKind::status;
-      FastrakStatus& s = out.status;
-      s = {};
-      s.station = is_digit(station) ? static_cast<std::uint8_t>(station - '0') : 0;
-      s.flags = static_cast<std::uint16_t>((h0 << 8) | (h1 << 4) | h2);
-      // The mode bits sit in the third hex digit (FreeVR, §3.6).
-      s.binary = (h2 & 1) != 0;
-      s.centimetres = (h2 & 2) != 0;
-      s.continuous = (h2 & 8) != 0;
-      return {Verdict::accept, len};
-    }
-  }
-  out.kind = EventKind::reply;
-  FastrakReply& r = out.reply;
-  r = {};
-  r.station = station;
-  r.command = command;
-  r.length = static_cast<std::uint8_t>(len);
-  if (command == 'E') {
-    r.is_error = true;
-    // "*ERROR* EC <code>": find "EC" after the echoed input.
-    for (std::size_t k = 3; k + 2 < len; ++k) {
-      if (ch(p[k]) == 'E' && ch(p[k + 1]) == 'C') {
-        std::size_t j = k + 2;
-        while (j < len && ch(p[j]) == ' ') ++j;
-        bool neg = false;
-        if (j < len && ch(p[j]) == '-') {
-          neg = true;
-          ++j;
-        }
-        int code = 0;
-        while (j < len && is_digit(ch(p[j])) && code < 1000) code = code * 10 + (ch(p[j++]) - '0');
-        r.error_code = neg ? -code : code;
-      }
-    }
-  }
-  return {Verdict::accept, len};
 }
 
 void FastrakParser::drop_bytes(std::size_t n) {
@@ -302,10 +260,9 @@ Result<FastrakEvent> FastrakParser::next(std::span<const std::byte>& input) {
     }
     if (input.empty()) return StatusCode::unavailable;
     // Fast skip of bytes that cannot start anything.
-    const char c0 = ch(input[0]);
-    if (c0 != kRecordType && c0 != kReplyType) {
+    if (!can_start(input[0])) {
       std::size_t k = 1;
-      while (k < input.size() && ch(input[k]) != kRecordType && ch(input[k]) != kReplyType) ++k;
+      while (k < input.size() && !can_start(input[k])) ++k;
       drop_bytes(k);
       counters_.bytes += k;
       input = input.subspan(k);

@@ -45,7 +45,7 @@ bool dcm_ok(const std::array<float, 9>& m, double tol) {
 
 std::optional<PoseError> check_plausibility(const FastrakPose& pose, unsigned dcm_rows,
                                             const FastrakConfig& config) {
-  const double tol = config.format == Format::binary ? 0.001 : 0.01;
+  const double tol = config.format == Format::ascii ? 0.01 : 0.001;
   const float pos_limit = config.units == Units::inches ? 400.0f : 1016.0f;
   if (!all_finite(pose.position.data(), 3) || !all_finite(pose.euler_deg.data(), 3) ||
       !all_finite(pose.dcm.data(), 9) || !all_finite(pose.quaternion.data(), 4)) {

@@ -3,6 +3,7 @@
 #include "twister/tracker/fastrak_session.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace twister::tracker {
@@ -32,6 +33,19 @@ bool append_int(std::array<char, 1024>& buf, std::size_t& len, int v) {
   return true;
 }
 
+// Appends a value 0..1 with three decimals ("0.200", "1.000").
+bool append_unit3(std::array<char, 1024>& buf, std::size_t& len, float v) {
+  const float c = v < 0.0f ? 0.0f : (v > 1.0f ? 1.0f : v);
+  const auto m = static_cast<unsigned>(std::lround(static_cast<double>(c) * 1000.0));
+  if (len + 6 > buf.size()) return false;
+  buf[len++] = static_cast<char>('0' + m / 1000);
+  buf[len++] = '.';
+  buf[len++] = static_cast<char>('0' + (m / 100) % 10);
+  buf[len++] = static_cast<char>('0' + (m / 10) % 10);
+  buf[len++] = static_cast<char>('0' + m % 10);
+  return true;
+}
+
 }  // namespace
 
 const char* session_state_name(SessionState s) {
@@ -56,7 +70,10 @@ const char* session_state_name(SessionState s) {
 
 FastrakSession::FastrakSession(ports::ByteStream& stream, ports::Clock& clock,
                                const FastrakSessionConfig& config)
-    : stream_(stream), clock_(clock), config_(config) {
+    : stream_(stream),
+      clock_(clock),
+      config_(config),
+      continuity_(config.continuity, config.protocol.units, config.protocol.format) {
   config_ok_ = parser_.configure(config_.protocol).ok() && config_.reset_rung_limit >= 1;
   backoff_us_ = config_.backoff_initial_us;
   state_since_ = deadline_ = clock_.now_us();
@@ -89,15 +106,34 @@ void FastrakSession::build_commands() {
          append(commands_, len, "\r");
     end_cmd();
   }
+  ok = ok && append_filter('x', config_.position_filter, len);
+  ok = ok && append_filter('v', config_.attitude_filter, len);
   // e1,0: the stylus must never toggle the stream off (spec pitfall 4).
   ok = ok && append(commands_, len, "e1,0\r");
   end_cmd();
   ok = ok && append(commands_, len, config_.protocol.units == Units::inches ? "U" : "u");
   end_cmd();
+  // binary16 is selected with `f` as well: on a unit whose binary is the packed format.
   ok = ok && append(commands_, len, config_.protocol.format == Format::ascii ? "F" : "f");
   end_cmd();
   TWISTER_ASSERT(ok);  // 4 stations x 32 items always fit the buffer
   commands_len_ = len;
+}
+
+bool FastrakSession::append_filter(char command, const FilterSetting& setting, std::size_t& len) {
+  if (setting.mode == FilterSetting::Mode::leave) return true;
+  const char head[2] = {command, '\0'};
+  bool ok = append(commands_, len, head);
+  if (setting.mode == FilterSetting::Mode::off) {
+    ok = ok && append(commands_, len, ",1\r");  // FLOW = 1.0 disables the filter
+  } else {
+    ok = ok && append_unit3(commands_, len, setting.f) && append(commands_, len, ",") &&
+         append_unit3(commands_, len, setting.flow) && append(commands_, len, ",") &&
+         append_unit3(commands_, len, setting.fhigh) && append(commands_, len, ",") &&
+         append_unit3(commands_, len, setting.factor) && append(commands_, len, "\r");
+  }
+  if (ok) commands_[len++] = '\0';
+  return ok;
 }
 
 void FastrakSession::enter(SessionState s, ports::TimestampUs now) {
@@ -217,7 +253,9 @@ void FastrakSession::step_timers(ports::TimestampUs now) {
         const std::size_t n = std::strlen(cmd);
         command_pos_ += n + 1;
         if (!send(std::span<const char>(cmd, n), now)) return;
-        deadline_ = now + config_.command_pause_us;
+        // The unit is deaf while it processes a command (filters take longest).
+        const bool filter = cmd[0] == 'x' || cmd[0] == 'v';
+        deadline_ = now + (filter ? config_.filter_pause_us : config_.command_pause_us);
         return;
       }
       if (!send_text("S", now)) return;
@@ -261,7 +299,7 @@ void FastrakSession::handle_event(const FastrakEvent& ev, ports::TimestampUs now
         deadline_ = now;
         enter(SessionState::configuring, now);
       } else if (state_ == SessionState::verify_status) {
-        const bool want_bin = config_.protocol.format == Format::binary;
+        const bool want_bin = config_.protocol.format != Format::ascii;
         const bool want_cm = config_.protocol.units == Units::centimetres;
         if (ev.status.binary != want_bin || ev.status.centimetres != want_cm) {
           ++counters_.status_mismatch;
@@ -274,10 +312,25 @@ void FastrakSession::handle_event(const FastrakEvent& ev, ports::TimestampUs now
         rung_ = 0;
         backoff_us_ = config_.backoff_initial_us;
         last_pose_ = last_byte_ = now;
+        continuity_.reset();
         enter(SessionState::streaming, now);
       }
       return;
   }
+}
+
+bool FastrakSession::take_pose(const FastrakPose& pose, ports::TimestampUs now) {
+  if (!continuity_.accept(pose, now)) {
+    ++counters_.jump_rejects;
+    return false;
+  }
+  last_pose_ = now;
+  ++counters_.poses;
+  if (pose.status != ' ') {  // a warning letter: the pose is used, the code kept
+    ++counters_.warning_poses;
+    counters_.last_warning = pose.status;
+  }
+  return true;
 }
 
 Result<FastrakPose> FastrakSession::poll() {
@@ -292,8 +345,7 @@ Result<FastrakPose> FastrakSession::poll() {
     rx_pos_ = rx_len_ - in.size();
     if (ev.ok()) {
       if (ev->kind == EventKind::pose && state_ == SessionState::streaming) {
-        last_pose_ = now;
-        ++counters_.poses;
+        if (!take_pose(ev->pose, now)) continue;
         return ev->pose;
       }
       handle_event(*ev, now);

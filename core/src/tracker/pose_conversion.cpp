@@ -68,7 +68,7 @@ Result<glm::dmat3> rotation_from_dcm(const std::array<float, 9>& rows, double to
 
 Result<glm::dmat3> tracker_rotation(const FastrakPose& pose, Format format) {
   if (pose.has.dcm) {
-    return rotation_from_dcm(pose.dcm, format == Format::ascii ? 0.01 : 1e-4);
+    return rotation_from_dcm(pose.dcm, orthonormal_tolerance(format));
   }
   if (pose.has.quaternion) return rotation_from_quaternion(pose.quaternion);
   if (pose.has.euler) {

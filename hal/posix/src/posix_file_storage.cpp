@@ -41,12 +41,51 @@ Status PosixFileStorage::open(const PosixFileStorageConfig& config) {
     last_errno_ = ENOENT;
     return StatusCode::unavailable;
   }
-  const int flags = O_RDWR | O_APPEND | O_CLOEXEC | (config.create_if_missing ? O_CREAT : 0);
+  const int access = config.read_only ? O_RDONLY : O_RDWR | O_APPEND;
+  const int flags = access | O_CLOEXEC | (config.create_if_missing ? O_CREAT : 0);
   const int fd = ::open(config.path.c_str(), flags, 0644);
   if (fd < 0) return fail(errno);
   fd_ = fd;
   last_errno_ = 0;
+  lock_holder_pid_ = 0;
+  if (config.lock) {
+    if (const Status locked = take_lock(); !locked.ok()) {
+      close();
+      return locked;
+    }
+  }
   if (!existed) sync_parent_directory(config.path);
+  return ok_status();
+}
+
+Status PosixFileStorage::take_lock() {
+  // The advertising byte: far past any journal, so it never overlaps the OFD lock.
+  constexpr off_t kPidByte = off_t{1} << 62;
+  struct flock ofd {};
+  ofd.l_type = F_WRLCK;
+  ofd.l_whence = SEEK_SET;
+  ofd.l_start = 0;
+  ofd.l_len = kPidByte;
+  if (::fcntl(fd_, F_OFD_SETLK, &ofd) != 0) {
+    const int err = errno;
+    if (err != EAGAIN && err != EACCES) return fail(err);
+    struct flock probe {};
+    probe.l_type = F_WRLCK;
+    probe.l_whence = SEEK_SET;
+    probe.l_start = kPidByte;
+    probe.l_len = 1;
+    if (::fcntl(fd_, F_GETLK, &probe) == 0 && probe.l_type != F_UNLCK) {
+      lock_holder_pid_ = probe.l_pid;
+    }
+    last_errno_ = err;
+    return StatusCode::failed_precondition;
+  }
+  struct flock pid {};
+  pid.l_type = F_WRLCK;
+  pid.l_whence = SEEK_SET;
+  pid.l_start = kPidByte;
+  pid.l_len = 1;
+  ::fcntl(fd_, F_SETLK, &pid);  // best effort: only names us to the next one
   return ok_status();
 }
 

@@ -1,6 +1,7 @@
 #include "config_reader.hpp"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace twister::station_app::internal {
 
@@ -37,6 +38,11 @@ std::string describe(const toml::node& node) {
     return "\"" + v + "\"";
   }
   if (const auto* i = node.as_integer()) return std::to_string(i->get());
+  if (const auto* f = node.as_floating_point()) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", f->get());
+    return text;
+  }
   if (const auto* b = node.as_boolean()) return b->get() ? "true" : "false";
   return type_name(node);
 }
@@ -112,6 +118,29 @@ bool ConfigReader::integer(std::string_view key, bool required, std::int64_t min
     return false;
   }
   out = i->get();
+  return true;
+}
+
+bool ConfigReader::real(std::string_view key, bool required, double min, double max, double& out) {
+  char range[96];
+  std::snprintf(range, sizeof range, "a number from %g to %g", min, max);
+  const std::string expected = range;
+  const toml::node* node = lookup(key, required, expected);
+  if (node == nullptr) return false;
+  double v = 0.0;
+  if (const auto* i = node->as_integer()) {
+    v = static_cast<double>(i->get());
+  } else if (const auto* f = node->as_floating_point()) {
+    v = f->get();
+  } else {
+    error(node, key, "expected " + expected + ", got " + describe(*node));
+    return false;
+  }
+  if (!(v >= min && v <= max)) {  // also NaN
+    error(node, key, "expected " + expected + ", got " + describe(*node));
+    return false;
+  }
+  out = v;
   return true;
 }
 

@@ -47,7 +47,11 @@ class ConfigReader {
   // An integer in [min, max].
   bool integer(std::string_view key, bool required, std::int64_t min, std::int64_t max,
                std::int64_t& out);
+  // A number (integer or float) in [min, max].
+  bool real(std::string_view key, bool required, double min, double max, double& out);
   bool boolean(std::string_view key, bool& out);
+  // Any value (nullptr when missing); the caller checks its form.
+  const toml::node* value(std::string_view key) { return lookup(key, false, ""); }
   // An array (possibly missing); returns nullptr and reports when not an array.
   const toml::array* array(std::string_view key, bool required);
 
@@ -55,6 +59,10 @@ class ConfigReader {
   void finish();
 
   void error(const toml::node* at, std::string_view key, std::string message);
+  // An error at `line` for the full dotted key `full_key` (cross-key checks).
+  void error_at(std::uint32_t line, std::string full_key, std::string message) {
+    errors_.push_back({std::string(file_), line, std::move(full_key), std::move(message)});
+  }
   std::string name(std::string_view key) const;
 
  private:

@@ -4,13 +4,17 @@
 // needs its section) are checked here.
 #include "config/station_config.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 #include "config_reader.hpp"
 #include "link_config.hpp"
+#include "sculpt_config.hpp"
 
 namespace twister::station_app {
 namespace {
@@ -184,6 +188,7 @@ void read_station(ConfigReader& root, StationConfig& cfg) {
   s.string("mesh", s.present(), cfg.station.mesh);
   read_u(s, "spare_vertices", false, 0, 4'000'000, cfg.station.spare_vertices);
   read_u(s, "loop_timeout_ms", false, 1, 1000, cfg.station.loop_timeout_ms);
+  read_u(s, "checkpoint_interval", false, 0, 1'000'000, cfg.station.checkpoint_interval);
   s.finish();
 }
 
@@ -258,6 +263,7 @@ ConfigParseResult parse_station_config(std::string_view text, std::string_view f
   read_station(root, out.config);
   read_tracker(root, out.config);
   read_buttons(root, out.config);
+  internal::read_sculpt(root, out.config);
   read_systemd(root, out.config);
   internal::read_link(root, out.config);
   root.finish();
@@ -267,15 +273,40 @@ ConfigParseResult parse_station_config(std::string_view text, std::string_view f
 }
 
 ConfigParseResult load_station_config(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    ConfigParseResult out;
-    out.errors.push_back({path, 0, "", "cannot read the config file (missing or no permission)"});
+  ConfigParseResult out;
+  auto refuse = [&](const std::string& why) {
+    out.errors.push_back({path, 0, "", why});
     return out;
+  };
+  // O_NONBLOCK: a FIFO must not hang the open; only a regular file of bounded size is
+  // read (a device such as /dev/zero would never end).
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) return refuse("cannot read the config file (missing or no permission)");
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    return refuse("not a regular file; the config must be a TOML file");
   }
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse_station_config(ss.str(), path);
+  if (static_cast<std::uint64_t>(st.st_size) > kMaxConfigBytes) {
+    ::close(fd);
+    return refuse("larger than " + std::to_string(kMaxConfigBytes / 1024) +
+                  " KiB; a station config is a few KiB of TOML");
+  }
+  std::string text(kMaxConfigBytes + 1, '\0');
+  std::size_t size = 0;
+  for (;;) {  // the file may grow meanwhile: never read past the limit
+    const ssize_t n = ::read(fd, text.data() + size, text.size() - size);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    size += static_cast<std::size_t>(n);
+    if (size == text.size()) break;
+  }
+  ::close(fd);
+  if (size > kMaxConfigBytes) {
+    return refuse("larger than " + std::to_string(kMaxConfigBytes / 1024) + " KiB");
+  }
+  text.resize(size);
+  return parse_station_config(text, path);
 }
 
 }  // namespace twister::station_app

@@ -6,6 +6,7 @@
 // Init-time code: allocates freely, never throws.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -85,7 +86,57 @@ struct StationSection {
   std::string journal;                 // append-only stroke journal (fsynced per stroke)
   std::string mesh;                    // initial model (OBJ, metres); relative = to the config file
   std::uint32_t spare_vertices = 0;    // extra mesh capacity beyond the OBJ's vertices
+                                       // (and twice as many triangles): refinement's room
   std::uint32_t loop_timeout_ms = 10;  // poll() timeout of the event loop
+  std::uint32_t checkpoint_interval = 256;  // journal records between checkpoints (0: at stop)
+};
+
+enum class SculptMethod : std::uint8_t { twister, rottran, scodef };
+enum class TurnTrackingMode : std::uint8_t { unwrapped, minimal };
+
+// What a button of [sculpt.buttons.left/right] does (the key names).
+enum class SculptAction : std::uint8_t {
+  grab,
+  radius,
+  freeze,
+  move_object,
+  undo,
+  redo,
+  method_cycle,
+};
+inline constexpr std::size_t kSculptActionCount = 7;
+// The key of an action: "grab", "radius", "freeze", "move_object", "undo", "redo",
+// "method_cycle".
+const char* to_string(SculptAction a);
+
+// Button lines: line i is buttons.gpiod.lines[i] or buttons.hidapi.buttons[i];
+// 0..15 for the simulator's scripted buttons.
+inline constexpr std::uint8_t kMaxSculptButtonLines = 16;
+inline constexpr std::size_t kMaxSculptChordLines = 3;
+inline constexpr std::size_t kMaxSculptChords = 8;
+
+struct ButtonBindingConfig {
+  SculptAction action = SculptAction::grab;
+  std::uint8_t hand = 0;  // 0 left, 1 right
+  // One line, or a chord: the lines to hold, then the one to press (the trigger).
+  std::vector<std::uint8_t> lines;
+  std::uint32_t file_line = 0;  // where it is written (for messages)
+};
+
+struct SculptConfig {
+  SculptMethod method = SculptMethod::twister;
+  double radius_m = 0.25;  // start radius of the influence ball
+  double radius_min_m = 0.02;
+  double radius_max_m = 2.0;
+  bool radius_gesture = true;  // both radius buttons + hands apart/together scale it
+  TurnTrackingMode turn_tracking = TurnTrackingMode::unwrapped;
+  double turn_limit_deg = 330.0;        // one stroke turns at most this far (unwrapped)
+  std::uint32_t lost_timeout_ms = 500;  // a stroke with tracking lost longer is cancelled
+  // Adaptive refinement at commit into station.spare_vertices (docs/refinement.md).
+  bool refine = false;
+  double refine_threshold_m = 0.001;  // largest midpoint error an edge keeps (absolute)
+  bool buttons_configured = false;    // [sculpt.buttons] given (else the paper's map)
+  std::vector<ButtonBindingConfig> buttons;
 };
 
 enum class LinkListen : std::uint8_t { loopback, network };
@@ -110,6 +161,7 @@ struct StationConfig {
   StationSection station;
   TrackerConfig tracker;
   ButtonsConfig buttons;
+  SculptConfig sculpt;
   SystemdConfig systemd;
   LinkSection link;
 };
@@ -132,8 +184,16 @@ struct ConfigParseResult {
 // Parses TOML text. file_name only labels the messages.
 ConfigParseResult parse_station_config(std::string_view text, std::string_view file_name);
 
-// Reads and parses a file; an unreadable file is one error with line 0.
+// Longest config file read (a station config is a few KiB).
+inline constexpr std::size_t kMaxConfigBytes = std::size_t{1} << 20;
+
+// Reads and parses a file; an unreadable file, one that is not a regular file (FIFO,
+// device, directory) or one larger than kMaxConfigBytes is one error with line 0.
 ConfigParseResult load_station_config(const std::string& path);
+
+// How many button lines the configured button backend provides: gpiod lines, hidapi
+// buttons, 16 scripted simulator lines, 1 for the stylus.
+std::size_t button_line_count(const StationConfig& config);
 
 // Short names used in logs and messages ("serial", "gpiod", ...).
 const char* to_string(TrackerBackend b);

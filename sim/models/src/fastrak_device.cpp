@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "record_corruption.hpp"
 #include "twister/tracker/fastrak_encoder.hpp"
 #include "twister/tracker/pose_conversion.hpp"
 
@@ -32,7 +33,11 @@ ports::TimestampUs cycle_time(std::int64_t k) { return (k * 25'000) / 3; }
 
 FastrakDevice::FastrakDevice(const FastrakDeviceConfig& config, Scenario scenario,
                              ports::TimestampUs start_us)
-    : config_(config), scenario_(std::move(scenario)), start_us_(start_us), rng_(scenario_.seed) {
+    : config_(config),
+      scenario_(std::move(scenario)),
+      start_us_(start_us),
+      rng_(scenario_.seed),
+      baud_(config.baud) {
   windows_.reserve(scenario_.faults.size());
   pending_cmd_.reserve(96);
   power_up(start_us);
@@ -53,6 +58,17 @@ void FastrakDevice::power_up(ports::TimestampUs now) {
   output_on_ = true;
   e_mode_ = 1;
   for (auto& h : hemisphere_) h = {1.0, 0.0, 0.0};
+  for (auto& e : envelope_) e = {180.0, 90.0, 180.0, -180.0, -90.0, -180.0};
+  filter_params_ = {config_.start_position_filter, config_.start_attitude_filter};
+  for (auto& f : filter_) {
+    for (auto& one : f) one.reset();
+  }
+  solution_ = {};
+  baud_ = config_.baud;  // `o` is not saved: power-up uses the switches' rate
+  // A line hit's budget belongs to the stream it hit, not to the next one.
+  counters_.drop_expired += drop_left_;
+  drop_left_ = 0;
+  deaf_until_ = 0;
   busy_until_ = now + config_.reset_time_us;
   line_.clear();
   line_free_at_ = now;
@@ -96,7 +112,14 @@ void FastrakDevice::apply_faults(ports::TimestampUs now) {
         queue_noise(amount, at);
         break;
       case FaultKind::drop:
+        // A line hit: the budget is spent on the bytes sent next, and expires a second
+        // after their transmission time (assumed) or when the stream stops.
         drop_left_ += amount;
+        drop_until_ = at + 1'000'000 +
+                      static_cast<ports::TimestampUs>(static_cast<double>(amount) * 1e7 / baud_);
+        break;
+      case FaultKind::corrupt:
+        corrupt_left_ += amount;
         break;
       case FaultKind::truncate:
         truncate_left_ += amount;
@@ -127,7 +150,7 @@ void FastrakDevice::queue(std::span<const std::byte> bytes, ports::TimestampUs n
   // The line sends one byte per 10 bit times (8N1); chunks queue behind each other.
   const ports::TimestampUs start = std::max(now, line_free_at_);
   const auto duration =
-      static_cast<ports::TimestampUs>(static_cast<double>(n) * 10.0 * 1e6 / config_.baud);
+      static_cast<ports::TimestampUs>(static_cast<double>(n) * 10.0 * 1e6 / baud_);
   line_free_at_ = start + duration;
   line_.end_chunk(line_free_at_);
 }
@@ -147,38 +170,71 @@ void FastrakDevice::queue_noise(std::uint64_t count, ports::TimestampUs now) {
   }
 }
 
-void FastrakDevice::queue_record(int station, ports::TimestampUs at) {
+void FastrakDevice::solve(int station, ports::TimestampUs at) {
+  const HandSample h = sample(scenario_, station, scenario_time_s(at));
+  const auto i = static_cast<std::size_t>(station - 1);
+  glm::dvec3 p(h.position_in[0], h.position_in[1], h.position_in[2]);
+  const auto& hem = hemisphere_[i];
+  // The unit reports positions in the configured half-space.
+  if (glm::dot(p, glm::dvec3(hem[0], hem[1], hem[2])) < 0.0) p = -p;
+  const double el = std::clamp(h.euler_deg[1], -90.0, 90.0);
+  const glm::dquat q =
+      glm::quat_cast(tracker::rotation_from_euler_deg(h.euler_deg[0], el, h.euler_deg[2]));
+  Solution& s = solution_[i];
+  s.valid = true;
+  s.position_in = filter_[i][0].position(p, filter_params_[0]);
+  s.attitude = filter_[i][1].attitude(q, filter_params_[1]);
+  s.button = station == 1 && h.button;  // the stylus works on station 1 only
+}
+
+char FastrakDevice::status_code(int station, ports::TimestampUs at,
+                                const std::array<float, 3>& euler) const {
   const double t = scenario_time_s(at);
-  const HandSample h = sample(scenario_, station, t);
+  for (const StatusEvent& e : scenario_.status) {
+    if (e.station == station && t >= e.t_s && t < e.t_s + e.duration_s) return e.code;
+  }
+  // Outside the `Q` angular envelope the record is flagged 'y' (spec §2).
+  const auto& q = envelope_[static_cast<std::size_t>(station - 1)];
+  for (std::size_t k = 0; k < 3; ++k) {
+    if (euler[k] > q[k] || euler[k] < q[k + 3]) return 'y';
+  }
+  return ' ';
+}
+
+void FastrakDevice::queue_record(int station, ports::TimestampUs at) {
+  const auto i = static_cast<std::size_t>(station - 1);
+  if (!solution_[i].valid) solve(station, at);
+  const Solution& s = solution_[i];
   tracker::FastrakPose pose;
   pose.station = static_cast<std::uint8_t>(station);
   const double scale = proto_.units == Units::centimetres ? 2.54 : 1.0;
-  glm::dvec3 p(h.position_in[0], h.position_in[1], h.position_in[2]);
-  const auto& hem = hemisphere_[static_cast<std::size_t>(station - 1)];
-  // The unit reports positions in the configured half-space.
-  if (glm::dot(p, glm::dvec3(hem[0], hem[1], hem[2])) < 0.0) p = -p;
-  for (int i = 0; i < 3; ++i) {
-    pose.position[static_cast<std::size_t>(i)] = static_cast<float>(p[i] * scale);
+  for (glm::length_t k = 0; k < 3; ++k) {
+    pose.position[static_cast<std::size_t>(k)] = static_cast<float>(s.position_in[k] * scale);
   }
-  const double az = std::remainder(h.euler_deg[0], 360.0);
-  const double el = std::clamp(h.euler_deg[1], -90.0, 90.0);
-  const double roll = std::remainder(h.euler_deg[2], 360.0);
-  pose.euler_deg = {static_cast<float>(az), static_cast<float>(el), static_cast<float>(roll)};
-  const glm::dmat3 r = tracker::rotation_from_euler_deg(az, el, roll);
+  const glm::dmat3 r = glm::mat3_cast(s.attitude);
+  const glm::dvec3 e = tracker::euler_deg_from_rotation(r);
+  pose.euler_deg = {static_cast<float>(e.x), static_cast<float>(e.y), static_cast<float>(e.z)};
   for (std::size_t row = 0; row < 3; ++row) {
     for (std::size_t col = 0; col < 3; ++col) {
       pose.dcm[row * 3 + col] =
           static_cast<float>(r[static_cast<glm::length_t>(col)][static_cast<glm::length_t>(row)]);
     }
   }
-  const glm::dquat q = glm::quat_cast(r);
+  const glm::dquat q = s.attitude.w < 0.0 ? -s.attitude : s.attitude;
   pose.quaternion = {static_cast<float>(q.w), static_cast<float>(q.x), static_cast<float>(q.y),
                      static_cast<float>(q.z)};
-  pose.button = station == 1 && h.button;  // the stylus works on station 1 only
+  pose.button = s.button;
+  pose.status = status_code(station, at, pose.euler_deg);
+  counters_.status_letters += pose.status != ' ';
   std::array<std::byte, tracker::kMaxRecordBytes> buf{};
   auto n = tracker::encode_record(pose, proto_, buf);
   if (!n.ok()) return;
   std::size_t size = *n;
+  if (corrupt_left_ > 0) {
+    --corrupt_left_;
+    counters_.corrupted_records +=
+        corrupt_record(std::span(buf.data(), size), station, proto_, rng_);
+  }
   if (truncate_left_ > 0 && size > 2) {
     --truncate_left_;
     size = 1 + rng_() % (size - 2);
@@ -193,83 +249,11 @@ void FastrakDevice::send_error(const std::string& input, int code, ports::Timest
         now);
 }
 
-void FastrakDevice::receive(const std::byte* data, std::size_t size, ports::TimestampUs now) {
-  apply_faults(now);
-  // A resetting, stalled, hung-up or mis-clocked unit understands nothing.
-  if (now < busy_until_ || in_window(now, FaultKind::stall) || in_window(now, FaultKind::hangup) ||
-      in_window(now, FaultKind::wrong_baud)) {
-    return;
-  }
-  for (std::size_t i = 0; i < size; ++i) {
-    const char c = static_cast<char>(data[i]);
-    if (now < busy_until_) return;  // a ^Y earlier in this chunk
-    if (in_param_cmd_) {
-      if (c == '\r') {
-        in_param_cmd_ = false;
-        execute(pending_cmd_[0], pending_cmd_.substr(1), now);
-        pending_cmd_.clear();
-      } else if (c != '\n') {
-        pending_cmd_ += c;
-        if (pending_cmd_.size() > 80) {
-          in_param_cmd_ = false;
-          send_error(pending_cmd_, -5, now);
-          pending_cmd_.clear();
-        }
-      }
-      continue;
-    }
-    switch (c) {
-      case '\r':
-      case '\n':
-        break;
-      case 'P':
-      case 'C':
-      case 'c':
-      case 'F':
-      case 'f':
-      case 'U':
-      case 'u':
-      case 'S':
-      case 'W':
-      case 'T':
-      case 'D':
-      case 'd':
-      case kCtrlY:
-      case kCtrlK:
-      case kCtrlS:
-      case kCtrlQ:
-        execute(c, {}, now);
-        break;
-      case 'O':
-      case 'l':
-      case 'H':
-      case 'A':
-      case 'R':
-      case 'B':
-      case 'b':
-      case 'G':
-      case 'N':
-      case 'e':
-      case 'I':
-      case 'x':
-      case 'v':
-      case 'Q':
-      case 'X':
-      case 'o':
-        in_param_cmd_ = true;
-        pending_cmd_.assign(1, c);
-        break;
-      default:
-        send_error(std::string(1, c), -99, now);
-        break;
-    }
-  }
-}
-
 void FastrakDevice::generate(ports::TimestampUs now, bool stalled) {
-  // One station per 120 Hz cycle, in ascending order of the active stations. A
-  // cycle waits (is not lost) while the line queue has no room for a record: it
-  // runs at the next call, once the reader has taken bytes.
+  // One station per 120 Hz cycle, in ascending order of the active stations: its
+  // solution (and filter) is updated every cycle, and sent in continuous mode. A
+  // cycle waits (is not lost) while the line queue has no room for a record: it runs
+  // at the next call, once the reader has taken bytes.
   for (ports::TimestampUs t = start_us_ + cycle_time(next_cycle_); t <= now;
        t = start_us_ + cycle_time(++next_cycle_)) {
     if (line_.room() < tracker::kMaxRecordBytes) return;
@@ -277,10 +261,14 @@ void FastrakDevice::generate(ports::TimestampUs now, bool stalled) {
     const HandSample s1 = sample(scenario_, 1, scenario_time_s(t));
     if (s1.button && !last_button_ && e_mode_ == 1 && continuous_) output_on_ = !output_on_;
     last_button_ = s1.button;
-    if (!continuous_ || !output_on_) continue;
     const ActiveStations act = active_stations();
     if (act.empty()) continue;
+    if (!continuous_ || !output_on_) {  // polled: solutions (and filters) still run
+      solve(act[polled_station_++ % act.size()], t);
+      continue;
+    }
     const int station = act[next_station_++ % act.size()];
+    solve(station, t);
     if (line_free_at_ > t) {
       ++counters_.dropped_solutions;  // the previous record is still on the wire
       continue;
@@ -289,18 +277,39 @@ void FastrakDevice::generate(ports::TimestampUs now, bool stalled) {
   }
 }
 
+bool FastrakDevice::misclocked(ports::TimestampUs t) const {
+  return (host_baud_ != 0 && host_baud_ != baud_) || in_window(t, FaultKind::wrong_baud);
+}
+
+bool FastrakDevice::misclock_byte(std::byte& b) {
+  // Most frames fail the stop-bit check and are dropped; a few arrive as junk.
+  const double u = static_cast<double>(rng_()) / 4294967296.0;
+  if (u >= config_.misclock_junk) {
+    ++counters_.misclock_lost;
+    return false;
+  }
+  ++counters_.misclock_junk;
+  b = static_cast<std::byte>(rng_() & 0xFFu);
+  return true;
+}
+
 std::size_t FastrakDevice::deliver(ports::TimestampUs now, std::span<std::byte> out) {
   std::size_t n = 0;
   while (!line_.empty() && line_.front_ready() <= now) {
-    // At the wrong baud every byte arrives as some other byte.
-    const bool garble = in_window(line_.front_ready(), FaultKind::wrong_baud);
+    const bool misclock = misclocked(line_.front_ready());
+    if (drop_left_ > 0 && line_.front_ready() >= drop_until_) {
+      counters_.drop_expired += drop_left_;  // the line hit is long over
+      drop_left_ = 0;
+    }
     while (line_.front_left() > 0 && n < out.size()) {
-      const std::byte b = line_.take();
+      std::byte b = line_.take();
       if (drop_left_ > 0) {
         --drop_left_;
+        ++counters_.dropped_bytes;
         continue;
       }
-      out[n++] = garble ? static_cast<std::byte>(rng_() & 0xFFu) : b;
+      if (misclock && !misclock_byte(b)) continue;
+      out[n++] = b;
       ++counters_.bytes_out;
     }
     if (line_.front_left() > 0) break;  // `out` is full

@@ -48,11 +48,19 @@ int to_int(const std::string& s, int& v) {
 void FastrakDevice::execute(char command, const std::string& args, ports::TimestampUs now) {
   ++counters_.commands;
   if (execute_mode(command, now)) return;
-  if (std::string("OlHe").find(command) == std::string::npos) {
-    return;  // accepted, no effect on the model (A, R, B, b, G, N, I, x, v, Q, X, o, ...)
-  }
   const std::string echo = std::string(1, command) + args;
   const auto f = split(args);
+  if (command == 'x' || command == 'v') {
+    execute_filter(command, f, echo, now);
+    return;
+  }
+  if (command == 'o') {
+    execute_serial_port(f, echo, now);
+    return;
+  }
+  if (std::string("OlHeQ").find(command) == std::string::npos) {
+    return;  // accepted, no effect on the model (A, R, B, b, G, N, I, X)
+  }
   int station = 0;
   if (const int rc = to_int(f[0], station); rc != 0) {
     send_error(echo, rc, now);
@@ -71,6 +79,9 @@ void FastrakDevice::execute(char command, const std::string& args, ports::Timest
       return;
     case 'H':
       execute_hemisphere(station, f, echo, now);
+      return;
+    case 'Q':
+      execute_envelope(station, f, echo, now);
       return;
     default: {  // 'e': stylus mode 0 or 1
       int mode = 0;
@@ -95,12 +106,15 @@ bool FastrakDevice::execute_mode(char command, ports::TimestampUs now) {
       return true;
     case 'c':
       continuous_ = false;
+      // The stream stopped: what was left of a line hit's budget has nothing to eat.
+      counters_.drop_expired += drop_left_;
+      drop_left_ = 0;
       return true;
     case 'F':
       proto_.format = Format::ascii;
       return true;
     case 'f':
-      proto_.format = Format::binary;
+      proto_.format = config_.packed16 ? Format::binary16 : Format::binary;
       return true;
     case 'U':
       proto_.units = Units::inches;
@@ -133,7 +147,7 @@ void FastrakDevice::send_status(ports::TimestampUs now) {
   const ActiveStations act = active_stations();
   st.station = static_cast<std::uint8_t>(act.empty() ? 1 : act[next_station_ % act.size()]);
   st.flags = 0x3F0;
-  st.binary = proto_.format == Format::binary;
+  st.binary = proto_.format != Format::ascii;
   st.centimetres = proto_.units == Units::centimetres;
   st.continuous = continuous_;
   std::array<std::byte, 64> buf{};

@@ -2,6 +2,7 @@
 #include "twister/sim/scenario.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -9,8 +10,10 @@
 
 namespace twister::sim {
 namespace {
-constexpr FaultKind kFaultKinds[] = {FaultKind::noise, FaultKind::drop,   FaultKind::truncate,
-                                     FaultKind::stall, FaultKind::hangup, FaultKind::wrong_baud};
+constexpr FaultKind kFaultKinds[] = {FaultKind::noise,  FaultKind::drop,   FaultKind::truncate,
+                                     FaultKind::stall,  FaultKind::hangup, FaultKind::wrong_baud,
+                                     FaultKind::corrupt};
+static_assert(std::size(kFaultKinds) == kFaultKindCount);
 }  // namespace
 
 const char* fault_kind_name(FaultKind k) {
@@ -27,6 +30,8 @@ const char* fault_kind_name(FaultKind k) {
       return "hangup";
     case FaultKind::wrong_baud:
       return "wrongbaud";
+    case FaultKind::corrupt:
+      return "corrupt";
   }
   return "unknown";
 }
@@ -155,6 +160,24 @@ std::string read_button(std::istringstream& ls, Scenario& sc) {
   return {};
 }
 
+std::string read_status(std::istringstream& ls, Scenario& sc) {
+  StatusEvent e;
+  std::string code;
+  if (!(ls >> e.t_s >> e.station >> code >> e.duration_s)) {
+    return "status needs: t station letter seconds";
+  }
+  if (e.station < 1 || e.station > 4) return "station must be 1..4";
+  if (code.size() != 1 || !std::isalpha(static_cast<unsigned char>(code[0]))) {
+    return "status code must be one letter";
+  }
+  if (!finite(e.t_s) || e.t_s < 0 || !finite(e.duration_s) || e.duration_s < 0) {
+    return "status time and seconds must be >= 0";
+  }
+  e.code = code[0];
+  sc.status.push_back(e);
+  return {};
+}
+
 struct Keyword {
   const char* word;
   std::string (*read)(std::istringstream&, Scenario&);
@@ -162,7 +185,7 @@ struct Keyword {
 constexpr Keyword kKeywords[] = {{"seed", read_seed},         {"receivers", read_receivers},
                                  {"duration", read_duration}, {"key", read_key},
                                  {"circle", read_circle},     {"fault", read_fault},
-                                 {"button", read_button}};
+                                 {"button", read_button},     {"status", read_status}};
 
 // One line (comments already cut); "" or the problem.
 std::string read_line(const std::string& line, Scenario& sc) {

@@ -25,7 +25,10 @@ struct ReplayRig {
     for (int k = 1; k <= freezes + 1; ++k) {
       EXPECT_TRUE(rig.poses.set_hand(1, true, z_turn({0.1, 0, 0}, turn * k / (freezes + 1))).ok());
       strokes.end_step();  // a step without actions: the plan follows the hand
-      if (k <= freezes) act(ActionKind::freeze);
+      if (k <= freezes) {  // the clutch: press (commit, disengage) and release (re-engage)
+        act(ActionKind::freeze);
+        act(ActionKind::unfreeze);
+      }
     }
     act(ActionKind::commit);
   }
@@ -54,8 +57,7 @@ TEST(JournalReplay, AFrozenStrokeAndAMoveReplayToTheSameModel) {
   auto live = std::make_unique<ReplayRig>();
   live->stroke(2.0, 2);
   const math::Frame moved = z_turn({0.5, 0.25, 0}, 0.5);
-  SessionEvents out;
-  (void)live->rig.history.commit_move(0, live->rig.poses.object(), moved, out);
+  (void)live->rig.history.commit_move(0, live->rig.poses.object(), moved);
   live->rig.poses.set_object(moved);
   ASSERT_TRUE(live->rig.history.commit_history_step(journal::RecordType::undo).ok());
   std::array<journal::JournalRecord, 16> records{};

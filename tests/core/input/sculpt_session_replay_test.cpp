@@ -206,7 +206,8 @@ TEST(SculptSessionReplay, FreezeStepWithoutItsChainIsRejected) {
   EXPECT_EQ(s.session->apply_record(undo).code(), StatusCode::data_loss);
 }
 
-TEST(SculptSessionReplay, JournalFailureIsReportedAndTheCommitStands) {
+// Issue 11 changed this: a stroke whose record is not durable is not committed.
+TEST(SculptSessionReplay, JournalFailureMeansTheStrokeIsNotSavedAndNotApplied) {
   Station s;
   const auto original = s.mesh.checksum();
   s.storage.fail_next_sync();
@@ -217,9 +218,9 @@ TEST(SculptSessionReplay, JournalFailureIsReportedAndTheCommitStands) {
   (void)s.tick();
   s.button(kGrab0, false);
   const SessionEvents e = s.tick();
-  EXPECT_TRUE(has_event(e, SessionEventKind::journal_failed));
-  EXPECT_TRUE(has_event(e, SessionEventKind::committed));
-  EXPECT_NE(s.mesh.checksum(), original);
+  EXPECT_TRUE(has_event(e, SessionEventKind::not_saved));
+  EXPECT_FALSE(has_event(e, SessionEventKind::committed));
+  EXPECT_EQ(s.mesh.checksum(), original);
   EXPECT_EQ(replay(s.storage).records, 0u);  // the failed record was cut off again
 }
 

@@ -116,9 +116,12 @@ TEST(SculptSession, ThreeFrozen120DegreeStepsMakeA360DegreeTwist) {
 }
 
 // One stroke takes the minimal screw: a 240-degree hand turn is a -120-degree screw.
+// (TurnTracking::minimal, the paper's behaviour; the default now unwraps turns.)
 TEST(SculptSession, ASingleStrokeIsLimitedTo180Degrees) {
   for (const double turn_deg : {170.0, 240.0}) {
-    Station s;
+    SculptSessionConfig minimal = test_config();
+    minimal.turns.tracking = TurnTracking::minimal;
+    Station s(33, minimal);
     const std::uint32_t half = nearest_vertex(s.mesh, {0.5f, 0, 0});
     s.hand(1, z_turn({0, 0, 0}, 0));
     s.hand(0, math::identity_frame({5, 5, 5}));

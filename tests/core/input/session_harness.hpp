@@ -18,7 +18,8 @@ namespace twister::input::test_support {
 
 inline constexpr std::size_t kVertices = 4096;
 using TestMesh = mesh::MeshWithStorage<kVertices, 2 * kVertices>;
-using TestSession = SculptSessionWithStorage<kVertices, kVertices, 8192, 32>;
+// With refinement memory for the mesh (refinement itself is off unless configured).
+using TestSession = SculptSessionWithStorage<kVertices, kVertices, 8192, 32, 2 * kVertices>;
 using TestStorage = twister::test::FakeStorageWithStorage<1 << 20>;
 
 // Paper-default lines.

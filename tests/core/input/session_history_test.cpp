@@ -78,8 +78,9 @@ TEST(SessionHistory, AMoveIsRecordedAndUndoPutsTheObjectBack) {
   const math::Frame before = r->poses.object();
   const math::Frame after = z_turn({1, 2, 3}, 0.5);
   r->poses.set_object(after);  // the mover has moved it
-  SessionEvents out;
-  EXPECT_EQ(r->history.commit_move(1, before, after, out), 0u);
+  const CommitOutcome done = r->history.commit_move(1, before, after);
+  EXPECT_TRUE(done.status.ok());
+  EXPECT_EQ(done.sequence, 0u);
   std::array<journal::JournalRecord, 16> records{};
   ASSERT_EQ(r->read_records(records), 1u);
   EXPECT_EQ(records[0].type, journal::RecordType::object_move);
@@ -106,22 +107,70 @@ TEST(SessionHistory, ACommitTooLargeForTheHistoryStandsButIsNotUndoable) {
   EXPECT_EQ(r->history.next_sequence(), 1u);  // journaled all the same
 }
 
-TEST(SessionHistory, AJournalFailureIsReportedAndTheChangeStands) {
+// Issue 11 changed this: a commit whose record is not durable is not made (write-ahead).
+TEST(SessionHistory, ACommitWhoseRecordIsNotDurableIsNotMade) {
   auto r = std::make_unique<PartsRig<>>();
+  const auto original = r->mesh.checksum();
   build_lift(*r, 0.25);
   r->storage.fail_next_sync();
   SessionEvents out;
   const CommitOutcome done =
       static_cast<StrokeCommitSink&>(r->history).commit(r->plan, one_hand_stroke(), out);
-  EXPECT_TRUE(done.status.ok());
-  ASSERT_EQ(count_events(out, SessionEventKind::journal_failed), 1u);
-  EXPECT_EQ(out.items()[0].sequence, 0u);
-  EXPECT_NEAR(r->mesh.position(8 * 17 + 8).z, 0.25f, 1e-6f);
-  // Power gone: the undo still happens, its record cannot be written, and the
-  // journal is broken for good (the torn record cannot be cut off): io_error.
-  r->storage.cut_power_after(0);
-  EXPECT_EQ(r->history.commit_history_step(journal::RecordType::undo).code(), StatusCode::io_error);
+  EXPECT_EQ(done.status.code(), StatusCode::io_error);
+  EXPECT_EQ(done.sequence, 0u);
+  EXPECT_TRUE(out.items().empty());
+  EXPECT_EQ(r->mesh.checksum(), original);  // the model is the last durable one
+  EXPECT_EQ(r->history.next_sequence(), 0u);
   EXPECT_FALSE(r->history.undo_history().can_undo());
+  std::array<journal::JournalRecord, 16> records{};
+  EXPECT_EQ(r->read_records(records), 0u);  // the failed record was cut off again
+  // The next commit takes the sequence the failed one could not use.
+  const CommitOutcome again =
+      static_cast<StrokeCommitSink&>(r->history).commit(r->plan, one_hand_stroke(), out);
+  ASSERT_TRUE(again.status.ok());
+  EXPECT_EQ(again.sequence, 0u);
+  EXPECT_NEAR(r->mesh.position(8 * 17 + 8).z, 0.25f, 1e-6f);
+  ASSERT_EQ(r->read_records(records), 1u);
+  EXPECT_EQ(records[0].sequence, 0u);
+}
+
+TEST(SessionHistory, AnUndoWhoseRecordIsNotDurableIsTakenBack) {
+  auto r = std::make_unique<PartsRig<>>();
+  build_lift(*r, 0.25);
+  SessionEvents out;
+  ASSERT_TRUE(static_cast<StrokeCommitSink&>(r->history)
+                  .commit(r->plan, one_hand_stroke(), out)
+                  .status.ok());
+  const auto committed = r->mesh.checksum();
+  // Power gone: the undo's record cannot be written, and the partial record cannot be
+  // cut off (the writer is broken): the undo is taken back.
+  r->storage.cut_power_after(3);
+  EXPECT_EQ(r->history.commit_history_step(journal::RecordType::undo).code(), StatusCode::io_error);
+  EXPECT_EQ(r->mesh.checksum(), committed);
+  EXPECT_TRUE(r->history.undo_history().can_undo());
+  EXPECT_EQ(r->history.next_sequence(), 1u);
+  EXPECT_FALSE(r->writer.healthy());
+  // Power back: the writer repairs the file before the next record.
+  r->storage.power_on();
+  ASSERT_TRUE(r->history.commit_history_step(journal::RecordType::undo).ok());
+  EXPECT_TRUE(r->writer.healthy());
+  std::array<journal::JournalRecord, 16> records{};
+  ASSERT_EQ(r->read_records(records), 2u);
+  EXPECT_EQ(records[1].type, journal::RecordType::undo);
+  EXPECT_EQ(records[1].sequence, 1u);
+}
+
+TEST(SessionHistory, AMoveWhoseRecordIsNotDurablePutsTheObjectBack) {
+  auto r = std::make_unique<PartsRig<>>();
+  const math::Frame before = r->poses.object();
+  const math::Frame after = math::identity_frame({0.5, 0, 0});
+  r->poses.set_object(after);  // where the mover left it
+  r->storage.fail_next_sync();
+  const CommitOutcome done = r->history.commit_move(0, before, after);
+  EXPECT_EQ(done.status.code(), StatusCode::io_error);
+  EXPECT_EQ(r->poses.object().origin, before.origin);
+  EXPECT_FALSE(r->history.undo_history().can_undo());
+  EXPECT_EQ(r->history.next_sequence(), 0u);
 }
 
 TEST(SessionHistory, APlanThatCannotApplyCommitsNothing) {

@@ -17,15 +17,17 @@ using namespace test_support;
 class RecordingSink final : public StrokeCommitSink {
  public:
   std::array<journal::StrokeRecord, 128> records{};
+  std::array<bool, 128> plan_goes_on{};  // per record: a freeze step (the plan is rebased)
   std::size_t count = 0;
   std::uint32_t next_sequence = 0;
   Status fail{};  // not ok: every commit fails with it
 
  private:
   CommitOutcome do_commit(const math::WarpPlan& plan, const journal::StrokeRecord& stroke,
-                          SessionEvents& /*out*/) override {
+                          SessionEvents& /*out*/, bool goes_on) override {
     if (!fail.ok()) return {fail, next_sequence};
     EXPECT_TRUE(plan.built());
+    plan_goes_on[count] = goes_on;
     records[count++] = stroke;
     return {ok_status(), next_sequence++};
   }
@@ -100,11 +102,13 @@ TEST(StrokeController, FreezeCommitsAndGoesOnWithTheNextChainStep) {
   s->hand(1, z_turn({0, 0, 0}, 1.0));
   (void)s->step({});
   const SessionEvents frozen = s->step({freeze(1)});
-  ASSERT_EQ(frozen.items().size(), 1u);
+  ASSERT_EQ(frozen.items().size(), 2u);
   EXPECT_EQ(frozen.items()[0].kind, SessionEventKind::committed);
-  EXPECT_EQ(frozen.items()[0].reason, Reason::none);  // the stroke goes on
+  EXPECT_EQ(frozen.items()[0].reason, Reason::none);                // the stroke goes on
+  EXPECT_EQ(frozen.items()[1].kind, SessionEventKind::disengaged);  // the clutch is in
   EXPECT_TRUE(s->strokes.active());
   EXPECT_EQ(s->strokes.chain_step(), 1);
+  (void)s->step({act(ActionKind::unfreeze, 1)});  // the clutch is out again, same pose
   s->hand(1, z_turn({0, 0, 0}, 2.0));
   (void)s->step({});
   (void)s->step({release(1)});
@@ -250,16 +254,55 @@ TEST(StrokeController, HandPosesAreTakenInTheObjectFrame) {
   EXPECT_EQ(s->sink.records[0].end[0].origin_m, glm::dvec3(0, 0, 0.2));
 }
 
-TEST(StrokeController, AFailedCommitIsReportedOnTheCommittedEvent) {
+// Issue 11 changed this: a commit that did not happen is `not_saved`, never `committed`.
+TEST(StrokeController, AFailedCommitIsReportedAsNotSaved) {
   auto s = std::make_unique<Strokes<>>();
   s->sink.fail = Status(StatusCode::invalid_argument);
   s->hand(0, math::identity_frame({0, 0, 0}));
   (void)s->step({grab(0)});
   const SessionEvents done = s->step({release(0)});
   ASSERT_EQ(done.items().size(), 1u);
-  EXPECT_EQ(done.items()[0].kind, SessionEventKind::committed);
+  EXPECT_EQ(done.items()[0].kind, SessionEventKind::not_saved);
+  EXPECT_EQ(done.items()[0].reason, Reason::released);
   EXPECT_EQ(done.items()[0].status.code(), StatusCode::invalid_argument);
   EXPECT_FALSE(s->strokes.active());
+}
+
+// A freeze whose commit is not saved ends the stroke for every hand of it: the chain
+// cannot go on over a step the model does not hold, so no chain step is ever skipped.
+// Merge of issue 12 (the clutch): a freeze press now also reports `disengaged` and a
+// hand on the clutch ignores another press, so the failing freeze is hand 0's while
+// hand 1 is still on the clutch (its stroke ends too).
+TEST(StrokeController, AFreezeThatIsNotSavedEndsTheStrokeAndTheChain) {
+  auto s = std::make_unique<Strokes<>>();
+  s->hand(0, math::identity_frame({-0.3, 0, 0}));
+  s->hand(1, math::identity_frame({0.3, 0, 0}));
+  (void)s->step({grab(0), grab(1)});
+  s->hand(1, math::identity_frame({0.3, 0, 0.1}));
+  (void)s->step({});
+  ASSERT_EQ(s->step({freeze(1)}).items().size(), 2u);  // chain step 0 saved, disengaged
+  s->sink.fail = Status(StatusCode::io_error);
+  s->hand(0, math::identity_frame({-0.3, 0, 0.2}));
+  (void)s->step({});
+  const SessionEvents failed = s->step({freeze(0)});
+  ASSERT_EQ(failed.items().size(), 2u);
+  for (const SessionEvent& e : failed.items()) {
+    EXPECT_EQ(e.kind, SessionEventKind::not_saved);
+    EXPECT_EQ(e.reason, Reason::released);
+    EXPECT_EQ(e.status.code(), StatusCode::io_error);
+  }
+  EXPECT_NE(failed.items()[0].hand, failed.items()[1].hand);
+  EXPECT_FALSE(s->strokes.active());
+  // The disk is back: the next stroke starts a new chain (step 0), never step 2.
+  s->sink.fail = Status{};
+  (void)s->step({release(0), release(1)});  // the machine's releases find nothing open
+  (void)s->step({grab(1)});
+  s->hand(1, math::identity_frame({0.3, 0, 0.3}));
+  (void)s->step({});
+  (void)s->step({release(1)});
+  ASSERT_EQ(s->sink.count, 2u);
+  EXPECT_EQ(s->sink.records[0].chain_step, 0);
+  EXPECT_EQ(s->sink.records[1].chain_step, 0);
 }
 
 // Random stroke actions in the machine's order (hand 0's, then hand 1's): every grab

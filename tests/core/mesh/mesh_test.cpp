@@ -47,6 +47,23 @@ TEST(Mesh, ChecksumSeesEveryBit) {
   EXPECT_EQ(small.vertex_count(), 0u);
 }
 
+TEST(Mesh, TrianglesRewriteAndCountsResize) {
+  MeshWithStorage<4, 2> m;
+  for (int i = 0; i < 3; ++i) (void)m.add_vertex({float(i), 0, 0});
+  (void)m.add_triangle(0, 1, 2);
+  m.set_triangle(0, {2, 0, 1});
+  EXPECT_EQ(m.triangle(0), (std::array<std::uint32_t, 3>{2, 0, 1}));
+  ASSERT_TRUE(m.resize(2, 0).ok());
+  EXPECT_EQ(m.vertex_count(), 2u);
+  EXPECT_EQ(m.triangle_count(), 0u);
+  ASSERT_TRUE(m.resize(3, 1).ok());  // the storage still holds what was there
+  EXPECT_EQ(m.triangle(0), (std::array<std::uint32_t, 3>{2, 0, 1}));
+  EXPECT_EQ(m.position(2), glm::vec3(2, 0, 0));
+  EXPECT_EQ(m.resize(5, 1).code(), StatusCode::resource_exhausted);
+  EXPECT_EQ(m.resize(3, 3).code(), StatusCode::resource_exhausted);
+  EXPECT_EQ(m.vertex_count(), 3u);
+}
+
 TEST(Mesh, NoAllocation) {
   static MeshWithStorage<1000, 1000> m;
   EXPECT_NO_ALLOCATIONS({

@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <memory>
+#include <numbers>
 #include <vector>
 
 #include "fakes/fake_button_source.hpp"
@@ -45,14 +47,15 @@ class FastrakResponder {
       }
     }
   }
-  void emit(std::uint8_t station, std::array<float, 3> position_in, bool stylus = false) {
+  void emit(std::uint8_t station, std::array<float, 3> position_in, bool stylus = false,
+            std::array<float, 4> quaternion = {1.0f, 0.0f, 0.0f, 0.0f}) {
     if (!streaming_ || !stream_.connected()) return;
     tracker::FastrakPose p{};
     p.station = station;
     p.has_position = true;
     p.position = position_in;
     p.has.quaternion = true;
-    p.quaternion = {1.0f, 0.0f, 0.0f, 0.0f};
+    p.quaternion = quaternion;
     p.has_button = station == 1;
     p.button = stylus;
     std::array<std::byte, 256> buf{};
@@ -142,7 +145,7 @@ class StationTest : public ::testing::Test {
     for (int i = 0; i < n; ++i) {
       responder_.service();
       responder_.emit(1, left_in_, stylus_);
-      responder_.emit(2, right_in_);
+      responder_.emit(2, right_in_, false, right_q_);
       ASSERT_TRUE(station_.poll().ok());
       responder_.service();
       clock_.advance_us(8'333);
@@ -189,6 +192,7 @@ class StationTest : public ::testing::Test {
   bool stylus_ = false;
   std::array<float, 3> left_in_{-10.0f, 0.0f, 5.0f};
   std::array<float, 3> right_in_{10.0f, 0.0f, 5.0f};
+  std::array<float, 4> right_q_{1.0f, 0.0f, 0.0f, 0.0f};  // w, x, y, z
 };
 
 TEST_F(StationTest, PollBeforeStartIsRefused) {
@@ -216,6 +220,42 @@ TEST_F(StationTest, StrokeIsCommittedToTheJournalWithItsPoses) {
   }
   EXPECT_TRUE(saw_commit);
   EXPECT_NE(station_.mesh().checksum(), before);  // the stroke warped the model
+}
+
+// What the display link reports: the session's clutch, the angle turned in the open
+// stroke against its limit, the method; the tracker state and rate.
+TEST_F(StationTest, StatusCarriesTheClutchAndTheTurnAgainstItsLimit) {
+  ASSERT_TRUE(station_.start().ok());
+  run_until_streaming();
+  run_ticks(250);  // a full rate window after the start-up
+  StationStatus st = station_.status();
+  EXPECT_EQ(st.tracker, TrackerLinkState::streaming);
+  EXPECT_NEAR(st.tracker_rate_hz, 2 * 120.0, 10.0);  // both hands at the tick rate
+  EXPECT_EQ(st.clutch, 0);
+  EXPECT_NEAR(st.turn_limit_rad, 330.0 * std::numbers::pi / 180.0, 1e-5);
+  EXPECT_EQ(st.method, math::WarpMethod::twister);
+  buttons_.press(3, true, clock_.now_us());  // right grab
+  run_ticks(3);
+  for (int k = 1; k <= 6; ++k) {  // 60 degrees about z in 10-degree samples
+    const double half = 0.5 * (10.0 * k) * std::numbers::pi / 180.0;
+    right_q_ = {static_cast<float>(std::cos(half)), 0.0f, 0.0f, static_cast<float>(std::sin(half))};
+    run_ticks(1);
+  }
+  st = station_.status();
+  EXPECT_NEAR(st.turned_rad, std::numbers::pi / 3.0, 1e-3);
+  EXPECT_EQ(st.clutch, 0);
+  buttons_.press(5, true, clock_.now_us());  // right freeze: the clutch is in
+  run_ticks(3);
+  EXPECT_EQ(station_.status().clutch, 2);
+  buttons_.press(5, false, clock_.now_us());
+  run_ticks(3);
+  EXPECT_EQ(station_.status().clutch, 0);
+  buttons_.press(3, false, clock_.now_us());
+  run_ticks(3);
+  st = station_.status();
+  EXPECT_EQ(st.turned_rad, 0.0f);  // no open stroke
+  EXPECT_EQ(st.strokes_committed, station_.counters().strokes_committed);
+  EXPECT_EQ(st.capacity_stops, 0u);
 }
 
 TEST_F(StationTest, UnplugMidStrokeCancelsItAndReplugContinues) {
@@ -272,7 +312,7 @@ TEST_F(StationTest, StylusSwitchDrivesItsConfiguredButtonLine) {
     for (int i = 0; i < n; ++i) {
       responder_.service();
       responder_.emit(1, left_in_, stylus_);
-      responder_.emit(2, right_in_);
+      responder_.emit(2, right_in_, false, right_q_);
       ASSERT_TRUE(station.poll().ok());
       responder_.service();
       clock_.advance_us(8'333);

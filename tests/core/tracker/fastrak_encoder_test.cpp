@@ -89,9 +89,9 @@ float grid(double v, int decimals) {
   return static_cast<float>(static_cast<double>(std::llround(v * s)) / s);
 }
 
-FastrakConfig gen_config() {
+FastrakConfig gen_config(bool packed16 = false) {
   FastrakConfig c;
-  c.format = *rc::gen::element(Format::ascii, Format::binary);
+  c.format = packed16 ? Format::binary16 : *rc::gen::element(Format::ascii, Format::binary);
   c.units = *rc::gen::element(Units::inches, Units::centimetres);
   c.ascii_stylus_width = *rc::gen::element<std::uint8_t>(1, 2);
   const int n = *rc::gen::inRange(1, 5);
@@ -122,7 +122,10 @@ FastrakPose gen_pose(const FastrakConfig& c) {
   p.station = static_cast<std::uint8_t>(*rc::gen::inRange(1, n + 1));
   p.status = *rc::gen::element(' ', ' ', 'y', 'B');
   const OutputList& l = c.stations[p.station - 1u].list;
-  const double lim = c.units == Units::inches ? 399.0 : 999.0;
+  const bool inches = c.units == Units::inches;
+  const double lim = c.format == Format::binary16 ? (inches ? 65.0 : 166.0)
+                     : inches                     ? 399.0
+                                                  : 999.0;
   for (float& v : p.position) v = grid(*rc::gen::inRange(-1000000, 1000001) * lim / 1e6, 2);
   p.has_position = true;
   // A random rotation through a random unit quaternion.
@@ -260,6 +263,44 @@ RC_GTEST_PROP(FastrakRoundTrip, ExtendedItemsRoundTripByteForByte, ()) {
     again += encode(e.pose, c);
   }
   RC_ASSERT(again == stream);
+}
+
+// 16-bit packed records (§3.4): any records in any split decode to the sent values
+// within one count, and re-encoding a decoded record gives back its bytes.
+RC_GTEST_PROP(FastrakRoundTrip, Packed16RecordsDecodeWithinOneCountAndReencodeExactly, ()) {
+  const FastrakConfig c = gen_config(true);
+  const int count = *rc::gen::inRange(1, 40);
+  std::vector<FastrakPose> poses;
+  std::vector<std::string> records;
+  std::string stream;
+  for (int i = 0; i < count; ++i) {
+    poses.push_back(gen_pose(c));
+    records.push_back(encode(poses.back(), c));
+    stream += records.back();
+  }
+  FastrakParser parser(c);
+  auto events = parse_all(
+      parser, stream,
+      *rc::gen::container<std::vector<std::size_t>>(rc::gen::inRange<std::size_t>(1, 60)));
+  RC_ASSERT(events.size() == poses.size());
+  const double pos_count = (c.units == Units::inches ? 65.48 : 166.32) / 32768.0;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    RC_ASSERT(events[i].kind == EventKind::pose);
+    const FastrakPose& got = events[i].pose;
+    const FastrakPose& sent = poses[i];
+    RC_ASSERT(got.station == sent.station && got.status == sent.status);
+    RC_ASSERT(got.button == sent.button && got.has == sent.has);
+    for (std::size_t k = 0; k < 3; ++k) {
+      RC_ASSERT(std::fabs(got.position[k] - sent.position[k]) <= pos_count);
+      RC_ASSERT(std::fabs(got.euler_deg[k] - sent.euler_deg[k]) <= 180.0 / 32768.0 + 1e-6);
+    }
+    for (std::size_t k = 0; k < 9; ++k) RC_ASSERT(std::fabs(got.dcm[k] - sent.dcm[k]) <= 1e-4);
+    for (std::size_t k = 0; k < 4; ++k) {
+      RC_ASSERT(std::fabs(got.quaternion[k] - sent.quaternion[k]) <= 1e-4);
+    }
+    RC_ASSERT(encode(got, c) == records[i]);
+  }
+  RC_ASSERT(parser.counters().dropped_bytes == 0u);
 }
 
 }  // namespace

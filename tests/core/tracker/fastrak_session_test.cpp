@@ -227,6 +227,84 @@ TEST(FastrakSession, ImplausiblePosesNeverReachTheCaller) {
   EXPECT_EQ(rig.session.parser_counters().resyncs, 1u);
 }
 
+TEST(FastrakSession, FilterCommandsAreSentAndFollowedByTheFilterPause) {
+  FastrakSessionConfig c = fast_config();
+  c.position_filter.mode = FilterSetting::Mode::set;  // the manual's "medium"
+  c.attitude_filter.mode = FilterSetting::Mode::off;
+  c.filter_pause_us = 100'000;
+  Rig rig(c);
+  ASSERT_TRUE(rig.reach(SessionState::await_status));
+  rig.stream.clear_tx();
+  rig.stream.push_rx(status_reply(false));
+  ASSERT_TRUE(
+      rig.run_until([&] { return rig.stream.tx().find('x') != std::string::npos; }, 100'000));
+  const auto sent_x = rig.clock.now_us();
+  ASSERT_TRUE(
+      rig.run_until([&] { return rig.stream.tx().find('v') != std::string::npos; }, 300'000));
+  EXPECT_GE(rig.clock.now_us() - sent_x, 100'000);  // nothing sent while the unit filters
+  ASSERT_TRUE(rig.reach(SessionState::verify_status, 500'000));
+  EXPECT_EQ(
+      rig.stream.tx(),
+      "l1,1\rO1,2,11,1\rH1,1,0,0\rl2,0\rl3,0\rl4,0\rx0.200,0.200,0.800,0.950\rv,1\re1,0\rUfS");
+}
+
+TEST(FastrakSession, Binary16IsSelectedWithSmallFAndChecksTheBinaryFlag) {
+  FastrakSessionConfig c = fast_config();
+  c.protocol.format = Format::binary16;
+  Rig rig(c);
+  rig.start_streaming();  // verify_status answers "binary"
+  EXPECT_NE(rig.stream.tx().find("Uf"), std::string::npos);
+  FastrakPose p;
+  p.station = 1;
+  p.position = {10.0f, 2.0f, 3.0f};
+  p.quaternion = {1.0f, 0.0f, 0.0f, 0.0f};
+  std::array<std::byte, 64> buf{};
+  auto n = encode_record(p, c.protocol, buf);
+  ASSERT_TRUE(n.ok());
+  rig.stream.push_rx(std::string(reinterpret_cast<const char*>(buf.data()), *n));
+  rig.poll_all();
+  ASSERT_EQ(rig.poses.size(), 1u);
+  EXPECT_NEAR(rig.poses[0].position[0], 10.0f, 0.002f);
+}
+
+TEST(FastrakSession, JumpsAreHeldBackUnlessTheNextPoseConfirmsThem) {
+  Rig rig;
+  rig.start_streaming();
+  // 10 -> 60 in within one cycle is a corrupted value: held back; 10.1 follows the
+  // track. Then a real move to 200 in (e.g. a hemisphere flip) is confirmed by two
+  // more records agreeing with it and accepted from the third on.
+  rig.stream.push_rx(record(10) + record(60) + record(10.1f) + record(200) + record(200.1f) +
+                     record(200.2f) + record(200.3f));
+  rig.poll_all();
+  ASSERT_EQ(rig.poses.size(), 4u);
+  EXPECT_EQ(rig.poses[0].position[0], 10.0f);
+  EXPECT_EQ(rig.poses[1].position[0], 10.1f);
+  EXPECT_EQ(rig.poses[2].position[0], 200.2f);
+  EXPECT_EQ(rig.poses[3].position[0], 200.3f);
+  EXPECT_EQ(rig.session.counters().jump_rejects, 3u);
+  // Time widens the limit: 1.9 s later a 180 in move is within 150 in/s.
+  rig.clock.advance_us(1'900'000);
+  rig.stream.push_rx(record(20.0f));
+  rig.poll_all();
+  ASSERT_EQ(rig.poses.size(), 5u);
+}
+
+TEST(FastrakSession, StatusLettersAreWarningsThePoseIsUsed) {
+  Rig rig;
+  rig.start_streaming();
+  std::string warn = record(5);
+  warn[2] = 'y';  // outside the Q envelope
+  std::string weak = record(5.1f);
+  weak[2] = 'E';
+  rig.stream.push_rx(warn + weak + record(5.2f));
+  rig.poll_all();
+  ASSERT_EQ(rig.poses.size(), 3u);
+  EXPECT_EQ(rig.poses[0].status, 'y');
+  EXPECT_EQ(rig.poses[1].status, 'E');
+  EXPECT_EQ(rig.session.counters().warning_poses, 2u);
+  EXPECT_EQ(rig.session.counters().last_warning, 'E');
+}
+
 TEST(FastrakSession, InvalidConfigurationSendsNothing) {
   FastrakSessionConfig c = fast_config();
   c.protocol.stations[0].enabled = false;

@@ -15,43 +15,44 @@ TEST(MeshIo, SaveLoadRoundTripIsBitIdentical) {
   ASSERT_TRUE(make_sphere(sphere.mesh(), 12, 17, 0.3f).ok());
   // Awkward floats: every bit pattern must survive the text round trip.
   sphere.mesh().set_position(3, {1.0f / 3.0f, -1e-38f, 123456.789f});
-  const ObjLoad back = parse_obj(obj_text(sphere.mesh()));
-  ASSERT_TRUE(back.status.ok()) << back.message;
-  EXPECT_EQ(back.buffer->mesh().checksum(), sphere.mesh().checksum());
+  const auto back = parse_obj(obj_text(sphere.mesh()));
+  ASSERT_TRUE(back) << back.error().message;
+  EXPECT_EQ(back->buffer->mesh().checksum(), sphere.mesh().checksum());
 }
 
 TEST(MeshIo, SaveAndLoadAFile) {
   MeshBuffer grid(grid_vertices(9), grid_triangles(9));
   ASSERT_TRUE(make_grid(grid.mesh(), 9, 0.5f).ok());
   const auto path = std::filesystem::temp_directory_path() / "twister_meshio_test.obj";
-  std::string message;
-  ASSERT_TRUE(save_obj(path, grid.mesh(), message).ok()) << message;
-  const ObjLoad back = load_obj(path, 10, 20);
-  ASSERT_TRUE(back.status.ok()) << back.message;
-  EXPECT_EQ(back.buffer->mesh().checksum(), grid.mesh().checksum());
-  EXPECT_EQ(back.buffer->mesh().vertex_capacity(), 81u + 10u);
+  const auto saved = save_obj(path, grid.mesh());
+  ASSERT_TRUE(saved) << saved.error().message;
+  const auto back = load_obj(path, {.spare_vertices = 10, .spare_triangles = 20});
+  ASSERT_TRUE(back) << back.error().message;
+  EXPECT_EQ(back->buffer->mesh().checksum(), grid.mesh().checksum());
+  EXPECT_EQ(back->buffer->mesh().vertex_capacity(), 81u + 10u);
   std::filesystem::remove(path);
 }
 
 TEST(MeshIo, PolygonsAreTriangulated) {
-  const ObjLoad quad = parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
-  ASSERT_TRUE(quad.status.ok()) << quad.message;
-  EXPECT_EQ(quad.buffer->mesh().triangle_count(), 2u);
+  const auto quad = parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+  ASSERT_TRUE(quad) << quad.error().message;
+  EXPECT_EQ(quad->buffer->mesh().triangle_count(), 2u);
 }
 
 TEST(MeshIo, BadFilesAreClearErrors) {
-  EXPECT_EQ(parse_obj("").status.code(), StatusCode::invalid_argument);
-  const ObjLoad bad_index = parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 7\n");
-  EXPECT_EQ(bad_index.status.code(), StatusCode::invalid_argument);
-  EXPECT_NE(bad_index.message.find("does not exist"), std::string::npos) << bad_index.message;
-  const ObjLoad nan = parse_obj("v 1 0 0\nv 0 0 nan\nv 0 1 0\nf 1 2 3\n");
-  EXPECT_EQ(nan.status.code(), StatusCode::invalid_argument);
-  EXPECT_NE(nan.message.find("line 2"), std::string::npos) << nan.message;
-  EXPECT_EQ(parse_obj("v 1 0\nv 0 0 0\nv 0 1 0\nf 1 2 3\n").status.code(),
+  EXPECT_EQ(parse_obj("").error().status.code(), StatusCode::invalid_argument);
+  const auto bad_index = parse_obj("v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 7\n");
+  EXPECT_EQ(bad_index.error().status.code(), StatusCode::invalid_argument);
+  EXPECT_NE(bad_index.error().message.find("does not exist"), std::string::npos)
+      << bad_index.error().message;
+  const auto nan = parse_obj("v 1 0 0\nv 0 0 nan\nv 0 1 0\nf 1 2 3\n");
+  EXPECT_EQ(nan.error().status.code(), StatusCode::invalid_argument);
+  EXPECT_NE(nan.error().message.find("line 2"), std::string::npos) << nan.error().message;
+  EXPECT_EQ(parse_obj("v 1 0\nv 0 0 0\nv 0 1 0\nf 1 2 3\n").error().status.code(),
             StatusCode::invalid_argument);
-  EXPECT_EQ(parse_obj("v 1 0 0x\nv 0 0 0\nv 0 1 0\nf 1 2 3\n").status.code(),
+  EXPECT_EQ(parse_obj("v 1 0 0x\nv 0 0 0\nv 0 1 0\nf 1 2 3\n").error().status.code(),
             StatusCode::invalid_argument);
-  EXPECT_EQ(load_obj("/nonexistent/file.obj").status.code(), StatusCode::io_error);
+  EXPECT_EQ(load_obj("/nonexistent/file.obj").error().status.code(), StatusCode::io_error);
 }
 
 TEST(MeshIo, GeneratorsFillExactlyTheirCounts) {

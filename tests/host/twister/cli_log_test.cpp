@@ -56,8 +56,7 @@ class CliLog : public ::testing::Test {
     f.close();
     meshio::MeshBuffer grid(17 * 17, 2 * 16 * 16);
     make_grid(grid.mesh(), 17);
-    std::string message;
-    ASSERT_TRUE(meshio::save_obj(dir_ / "grid.obj", grid.mesh(), message).ok()) << message;
+    ASSERT_TRUE(meshio::save_obj(dir_ / "grid.obj", grid.mesh()).has_value());
   }
   std::string replay_args() const {
     return "replay " + (dir_ / "torn.twj").string() + " --mesh " + (dir_ / "grid.obj").string() +

@@ -86,6 +86,38 @@ with tempfile.NamedTemporaryFile(suffix=".bin") as tmp:
         check("binary resync", out[3] == "error resync 10 bytes", out[3])
         check("binary last", out[4].startswith("2 1.5 2.5 3.5"), out[4])
 
+# 16-bit packed format (spec 3.4): 7 logical bytes per group with bit 7 stripped, then
+# one byte of the stripped bits; the record's first byte carries bit 7 (sync).
+def pack16(logical):
+    wire = bytearray()
+    for g in range(0, len(logical), 7):
+        group, high = logical[g:g + 7], 0
+        for i, b in enumerate(group):
+            high |= ((b >> 7) & 1) << i
+            wire.append(b & 0x7F)
+        wire.append(high)
+    wire[0] |= 0x80
+    return bytes(wire)
+
+
+def i16(*counts):
+    return b"".join(struct.pack("<h", c) for c in counts)
+
+
+p16 = pack16(b"01 " + i16(5000, -5000, 32767) + i16(23170, 0, 0, 23170))
+check("packed length", len(p16) == 20, len(p16))
+bad16 = bytearray(p16)
+bad16[12] |= 0x80  # a high bit inside the record: lost sync
+rc, out, err = run(["--file", "-", "--binary16", "-O", "1,2,11"], data=bytes(bad16) + p16)
+check("binary16 rc", rc == 0, err)
+check("binary16 lines", len(out) == 2, out)
+if len(out) == 2:
+    scale = 65.48 / 32768
+    check("binary16 resync", out[0] == "error resync 20 bytes", out[0])
+    check("binary16 pose", close(out[1], axes_line(1, (5000 * scale, -5000 * scale, 32767 * scale),
+                                                   90, 0, 0), 1e-4), out[1])
+check("binary16 ext item", run(["--file", "-", "--binary16", "-O", "1,52,1"], b"")[0] == 2)
+
 # Exit codes.
 check("no input", run([])[0] == 2)
 check("bad item", run(["--file", "-", "-O", "1,2,99"], b"")[0] == 2)

@@ -24,10 +24,10 @@ TEST(MeshCommand, SphereCenterTranslatesEveryVertex) {
             0);
   const auto a = twister::meshio::load_obj(at_origin);
   const auto b = twister::meshio::load_obj(moved);
-  ASSERT_TRUE(a.status.ok()) << a.message;
-  ASSERT_TRUE(b.status.ok()) << b.message;
-  const auto& ma = a.buffer->mesh();
-  const auto& mb = b.buffer->mesh();
+  ASSERT_TRUE(a) << a.error().message;
+  ASSERT_TRUE(b) << b.error().message;
+  const auto& ma = a->buffer->mesh();
+  const auto& mb = b->buffer->mesh();
   ASSERT_EQ(ma.vertex_count(), mb.vertex_count());
   ASSERT_EQ(ma.triangle_count(), mb.triangle_count());
   for (std::uint32_t i = 0; i < ma.vertex_count(); ++i) {

@@ -52,11 +52,10 @@ TEST_F(ReplayCommand, SameMeshBitIdenticalAndFinerMeshSameStrokes) {
   ASSERT_TRUE(live.session->undo().ok());
   write(dir_ / "j.twj", live.storage.bytes());
   // The harness grid is twister mesh grid -n 17 --size 1.
-  std::string message;
-  ASSERT_TRUE(meshio::save_obj(dir_ / "coarse.obj", live.mesh, message).ok());
+  ASSERT_TRUE(meshio::save_obj(dir_ / "coarse.obj", live.mesh).has_value());
   meshio::MeshBuffer initial(17 * 17, 2 * 16 * 16);
   make_grid(initial.mesh(), 17);
-  ASSERT_TRUE(meshio::save_obj(dir_ / "initial.obj", initial.mesh(), message).ok());
+  ASSERT_TRUE(meshio::save_obj(dir_ / "initial.obj", initial.mesh()).has_value());
   ASSERT_EQ(run("mesh grid -n 33 --size 1 --out " + (dir_ / "fine.obj").string()).exit_code, 0);
 
   const host_test::CommandRun same =
@@ -66,20 +65,20 @@ TEST_F(ReplayCommand, SameMeshBitIdenticalAndFinerMeshSameStrokes) {
   EXPECT_NE(same.out.find("replayed 6 records (strokes 5, moves 0, undos 1, redos 0)"),
             std::string::npos)
       << same.out;
-  const meshio::ObjLoad out = meshio::load_obj(dir_ / "out.obj");
-  ASSERT_TRUE(out.status.ok()) << out.message;
-  EXPECT_EQ(out.buffer->mesh().checksum(), live.mesh.checksum());
+  const auto out = meshio::load_obj(dir_ / "out.obj");
+  ASSERT_TRUE(out) << out.error().message;
+  EXPECT_EQ(out->buffer->mesh().checksum(), live.mesh.checksum());
 
   const host_test::CommandRun fine =
       run("replay " + (dir_ / "j.twj").string() + " --mesh " + (dir_ / "fine.obj").string() +
           " --out " + (dir_ / "fine_out.obj").string());
   ASSERT_EQ(fine.exit_code, 0) << fine.out;
-  const meshio::ObjLoad f = meshio::load_obj(dir_ / "fine_out.obj");
-  ASSERT_TRUE(f.status.ok());
+  const auto f = meshio::load_obj(dir_ / "fine_out.obj");
+  ASSERT_TRUE(f);
   for (std::uint32_t j = 0; j < 17; ++j) {
     for (std::uint32_t i = 0; i < 17; ++i) {
       const glm::vec3 c = live.mesh.position(j * 17 + i);
-      const glm::vec3 p = f.buffer->mesh().position(2 * j * 33 + 2 * i);
+      const glm::vec3 p = f->buffer->mesh().position(2 * j * 33 + 2 * i);
       EXPECT_NEAR(c.x, p.x, 1e-5f);
       EXPECT_NEAR(c.y, p.y, 1e-5f);
       EXPECT_NEAR(c.z, p.z, 1e-5f);
@@ -95,8 +94,7 @@ TEST_F(ReplayCommand, LongJournalShowsProgressAndTornTailIsReported) {
   write(dir_ / "long.twj", bytes.first(bytes.size() - 5));  // torn last record
   meshio::MeshBuffer initial(17 * 17, 2 * 16 * 16);
   make_grid(initial.mesh(), 17);
-  std::string message;
-  ASSERT_TRUE(meshio::save_obj(dir_ / "initial.obj", initial.mesh(), message).ok());
+  ASSERT_TRUE(meshio::save_obj(dir_ / "initial.obj", initial.mesh()).has_value());
   const host_test::CommandRun r =
       run("replay " + (dir_ / "long.twj").string() + " --mesh " + (dir_ / "initial.obj").string() +
           " --out " + (dir_ / "out.obj").string());
@@ -111,8 +109,7 @@ TEST_F(ReplayCommand, BadInputsExitTwo) {
   std::ofstream(dir_ / "bad.obj") << "v 0 0 0\nf 1 2 3\n";
   meshio::MeshBuffer initial(9, 8);
   ASSERT_TRUE(meshio::make_grid(initial.mesh(), 3, 1.0f).ok());
-  std::string message;
-  ASSERT_TRUE(meshio::save_obj(dir_ / "ok.obj", initial.mesh(), message).ok());
+  ASSERT_TRUE(meshio::save_obj(dir_ / "ok.obj", initial.mesh()).has_value());
   const host_test::CommandRun not_journal =
       run("replay " + (dir_ / "not_a_journal").string() + " --mesh " + (dir_ / "ok.obj").string() +
           " --out " + (dir_ / "o.obj").string());

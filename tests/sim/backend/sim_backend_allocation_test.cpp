@@ -46,7 +46,7 @@ tracker::FastrakSessionConfig session_config() {
   c.reset_wait_us = 600'000;
   c.settle_us = 50'000;
   c.reply_timeout_us = 300'000;
-  c.command_pause_us = 5'000;
+  c.command_pause_us = 50'000;  // the simulator's default command times (40 ms)
   return c;
 }
 
@@ -73,7 +73,9 @@ TEST(SimBackendAllocation, StreamingTwoReceiversWithButtonsAllocatesNothing) {
       clock.advance_us(1'000);
     }
   };
-  run_for(2.0);  // start-up: the session configures the unit (commands allocate)
+  // Start-up: the session configures the unit (commands allocate); 11 commands at the
+  // unit's 40 ms processing time take 0.55 s of it.
+  run_for(3.0);
   ASSERT_TRUE(session.streaming());
   const std::size_t poses_before = poses;
   test::AllocationCounter counter;
@@ -85,6 +87,44 @@ TEST(SimBackendAllocation, StreamingTwoReceiversWithButtonsAllocatesNothing) {
   EXPECT_GT(stylus_downs, 100u);
   EXPECT_GE(edges, 20u);
   EXPECT_EQ(stream.device().counters().line_overflow, 0u);
+}
+
+// The fidelity paths in steady state: both filters on, in-record corruption, a short
+// baud mismatch, scripted status letters, a line hit and noise. None makes the
+// session re-initialise, so nothing may allocate after start-up.
+TEST(SimBackendAllocation, FiltersCorruptionMisclockAndStatusLettersAllocateNothing) {
+  VirtualClock clock(1'000'000);
+  Scenario sc;
+  std::string err;
+  ASSERT_TRUE(parse_scenario(busy_scenario() +
+                                 "fault 4 corrupt 300\nfault 6 wrongbaud 0.3\n"
+                                 "fault 7 drop 40\nfault 8 noise 200\nstatus 5 2 E 2\n",
+                             sc, err))
+      << err;
+  FastrakDeviceConfig dev;
+  dev.start_position_filter = dev.start_attitude_filter = kFilterMedium;
+  SimFastrakStream stream(clock, dev, sc);
+  tracker::FastrakSession session(stream, clock, session_config());
+  std::size_t poses = 0;
+  const auto run_for = [&](double seconds) {
+    const auto end = clock.now_us() + static_cast<ports::TimestampUs>(seconds * 1e6);
+    while (clock.now_us() < end) {
+      for (auto p = session.poll(); p.ok(); p = session.poll()) ++poses;
+      clock.advance_us(1'000);
+    }
+  };
+  run_for(3.0);
+  ASSERT_TRUE(session.streaming());
+  test::AllocationCounter counter;
+  run_for(9.0);
+  EXPECT_EQ(counter.count(), 0u);
+  EXPECT_TRUE(session.streaming());
+  EXPECT_EQ(session.counters().streams_started, 1u);
+  const auto& c = stream.device().counters();
+  EXPECT_EQ(c.corrupted_records, 300u);
+  EXPECT_GT(c.misclock_lost, 0u);
+  EXPECT_GT(c.status_letters, 100u);
+  EXPECT_GT(poses, 900u);
 }
 
 }  // namespace

@@ -35,7 +35,7 @@ tracker::FastrakSessionConfig session_config(Format format, int stations) {
   c.reset_wait_us = 600'000;
   c.settle_us = 50'000;
   c.reply_timeout_us = 300'000;
-  c.command_pause_us = 5'000;
+  c.command_pause_us = 50'000;  // the simulator's default command times (40 ms)
   return c;
 }
 
@@ -126,6 +126,7 @@ TEST(FastrakDevice, RepliesToReadBacksAndUnknownCommands) {
   ::twister::test::FakeClock clock{0};
   FastrakDeviceConfig dev;
   dev.reset_time_us = 0;
+  dev.command_time_us = instant_commands();  // all at once: processing time is not the point
   FastrakDevice device(dev, scenario("receivers 2\n"), 0);
   const std::string cmds = "O1\rl1\rZO1,2,99\rS";
   device.receive(reinterpret_cast<const std::byte*>(cmds.data()), cmds.size(), 10);

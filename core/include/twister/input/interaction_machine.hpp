@@ -1,10 +1,13 @@
 // InteractionMachine: the one explicit state machine of the sculpting interaction
 // (spec twister-math.md section 8; diagram in docs/interaction.md).
 // Per hand: idle -> dragging (grab pressed: start pose recorded, warp plan built)
-// -> idle (grab released: commit). Freeze while dragging commits and restarts.
-// dragging -> dragging_lost when tracking drops: the warp holds at the last valid
-// pose; tracking back within lost_timeout_us resumes, otherwise the stroke is
-// cancelled. moving / moving_lost are the same for the rigid object move.
+// -> idle (grab released: commit). Freeze is a clutch inside a drag (the paper's
+// freeze): pressing it commits the warp and disengages the hand (its motion no longer
+// warps; selection and weights stay), releasing it re-engages the hand from where it
+// is then. dragging -> dragging_lost when tracking drops: the warp holds at the last
+// valid pose; tracking back within lost_timeout_us resumes, otherwise the stroke is
+// cancelled (not while disengaged: a hand on the clutch may leave the tracked volume).
+// moving / moving_lost are the same for the rigid object move.
 // Both hands run the same per-hand machine; the two-handed radius gesture is a
 // small combiner on top (both radius buttons held, both hands idle).
 // Pure: step(inputs, now) -> actions. No clock, no I/O, no allocation.
@@ -27,7 +30,7 @@ inline constexpr std::uint8_t kHandStateCount = 5;
 
 enum class ActionKind : std::uint8_t {
   grab_begin,        // start a stroke for `hand` from its current pose
-  freeze,            // commit the hand's stroke and restart it from the current poses
+  freeze,            // clutch in: commit the stroke; the hand disengages (same weights)
   commit,            // grab released: commit the stroke (at the last valid pose if lost)
   cancel,            // stroke dropped, model unchanged (reason tracking_timeout)
   tracking_lost,     // live warp holds at the last valid pose
@@ -38,7 +41,8 @@ enum class ActionKind : std::uint8_t {
   radius_begin,   // both radius buttons held: radius follows the hand distance
   radius_change,  // radius_m holds the new, clamped radius
   radius_end,
-  refused,  // a press was not accepted; `reason` says why
+  refused,   // a press was not accepted; `reason` says why
+  unfreeze,  // clutch out: the disengaged hand warps again from its current pose
 };
 
 enum class Reason : std::uint8_t {
@@ -50,6 +54,9 @@ enum class Reason : std::uint8_t {
   hand_busy,         // the hand already grabs or moves the object
   object_busy,       // the other hand already moves the object
   hands_too_close,   // radius gesture with the hands (almost) together
+  busy,              // a command (undo, redo, method) while a stroke or move is open
+  nothing_to_undo,   // undo with an empty history
+  nothing_to_redo,   // redo with nothing undone
 };
 
 const char* action_kind_name(ActionKind kind);
@@ -92,6 +99,7 @@ struct InteractionConfig {
   float radius_min_m = 0.02f;
   float radius_max_m = 2.0f;
   float initial_radius_m = 0.25f;
+  bool radius_gesture = true;  // false: the radius buttons do nothing
 };
 
 class InteractionMachine {
@@ -105,6 +113,8 @@ class InteractionMachine {
   ActionList step(const InteractionInputs& inputs, ports::TimestampUs now_us);
 
   HandState state(std::uint8_t hand) const { return hands_[hand].state; }
+  // The hand's clutch is in (freeze held during its stroke): its motion does not warp.
+  bool disengaged(std::uint8_t hand) const { return hands_[hand].disengaged; }
   ports::TimestampUs state_since_us(std::uint8_t hand) const { return hands_[hand].since_us; }
   float radius_m() const { return radius_m_; }
   bool radius_active() const { return radius_ == RadiusGesture::active; }
@@ -117,6 +127,7 @@ class InteractionMachine {
     ports::TimestampUs since_us = 0;
     HandButtons previous{};
     glm::vec3 last_valid_m{0.0f};
+    bool disengaged = false;  // freeze held during the stroke (dragging states only)
   };
 
   // One hand's step: its button edges and input, read once before any transition.
@@ -140,6 +151,8 @@ class InteractionMachine {
   bool lost_too_long(const HandStep& s) const;
   void step_radius(const InteractionInputs& inputs, ActionList& out);
   void enter(std::uint8_t h, HandState state, ports::TimestampUs now_us);
+  // The grab ends (released: commit, or cancel); the clutch goes with it.
+  void end_grab(const HandStep& s, ActionKind kind, Reason reason, ActionList& out);
   bool other_hand_grabs_near(std::uint8_t h, glm::vec3 position_m) const;
 
   InteractionConfig config_;

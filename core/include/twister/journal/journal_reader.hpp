@@ -35,6 +35,11 @@ class JournalReader {
   // version; it is left alone). io_error: storage failure.
   Status open();
 
+  // Continues reading at `offset`, the start of a record (e.g. the end of the records
+  // a checkpoint stands for). out_of_range: before the first record or past the end;
+  // failed_precondition: open() did not succeed.
+  Status seek(std::uint64_t offset);
+
   // Next good record. unavailable: clean end of the journal. data_loss: a torn or
   // corrupt tail starts at good_end() (see problem()); nothing from it is returned.
   // io_error: storage failure. failed_precondition: open() did not succeed.

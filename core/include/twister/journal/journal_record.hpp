@@ -5,6 +5,14 @@
 //   payload (payload_length bytes) | u32 CRC-32 over header and payload
 // All integers little-endian; reals are IEEE float64 bit patterns, so replay sees
 // exactly the numbers the live session used. Layout details: docs/interaction.md.
+// Record version 1 for every record, except a stroke with a hand that turned past a
+// half turn (long_turns != 0): version 2, whose payload ends with one more byte (the
+// long_turns mask). A reader that only knows version 1 refuses such a record rather
+// than replaying the turn the short way round. A stroke whose commit refined the
+// mesh (refine_threshold_m > 0) is version 3: the long_turns byte (0 allowed), then
+// the threshold (f64, metres), so a replay refines exactly as the live commit did
+// whatever the station's configuration is at replay time. Versions 1 and 2 read as
+// not refined, so journals written before refinement replay as they did.
 // Poses are in the object frame of the time (metres; U, V unit axes, W = U x V).
 #pragma once
 
@@ -32,6 +40,10 @@ inline constexpr std::array<std::byte, kFileHeaderBytes> kFileHeader = [] {
   return header;
 }();
 inline constexpr std::uint8_t kRecordVersion = 1;
+// A stroke record with long_turns != 0 (and no refinement).
+inline constexpr std::uint8_t kRecordVersionLongTurns = 2;
+// A stroke record whose commit refined the mesh.
+inline constexpr std::uint8_t kRecordVersionRefined = 3;
 inline constexpr std::size_t kRecordHeaderBytes = 8;
 inline constexpr std::size_t kRecordCrcBytes = 4;
 inline constexpr std::size_t kMaxPayloadBytes = 512;
@@ -56,7 +68,13 @@ struct StrokeRecord {
   std::uint8_t method = 0;       // math::WarpMethod as a number
   std::uint8_t hand_mask = 0;    // bit h set: hand h took part (1, 2 or 3)
   std::uint16_t chain_step = 0;  // 0: first selection; k > 0: k-th freeze step, same weights
+  // Bit h: hand h's screw turns the long way round (past a half turn: the minimal screw
+  // of its poses, math::long_way_round). A subset of hand_mask; 0 in version 1.
+  std::uint8_t long_turns = 0;
   double radius_m = 0.0;
+  // > 0: the commit refined the mesh until every edge's midpoint error under the warp
+  // was at most this (metres; version 3). 0: not refined (versions 1 and 2).
+  double refine_threshold_m = 0.0;
   std::array<JournalPose, 2> start{};  // per hand, meaningful where hand_mask says
   std::array<JournalPose, 2> end{};
   friend bool operator==(const StrokeRecord&, const StrokeRecord&) = default;
@@ -78,12 +96,14 @@ struct JournalRecord {
 };
 
 // Writes the whole record (header, payload, CRC) into out; returns its size.
-// invalid_argument: the record breaks the rules above (hand_mask 0, method > 2).
+// invalid_argument: the record breaks the rules above (hand_mask 0, method > 2,
+// long_turns outside hand_mask, refine_threshold_m negative or not finite).
 // resource_exhausted: out is smaller than the encoded record.
 Result<std::size_t> encode_record(const JournalRecord& record, std::span<std::byte> out);
 
 // Decodes a payload whose header and CRC have already been checked.
-// data_loss: wrong version, unknown type, wrong length for the type, or a field
+// data_loss: wrong version (2 only for a stroke with long turns, 3 only for a refined
+// stroke), unknown type, wrong length for the type and version, or a field
 // out of its range (the record must not be applied).
 Result<JournalRecord> decode_payload(std::uint8_t version, std::uint8_t type,
                                      std::span<const std::byte> payload);

@@ -171,8 +171,7 @@ struct ObjectPose {
 // Tracker states in StatusReport.
 enum class TrackerState : std::uint8_t { starting = 0, streaming = 1, lost = 2 };
 
-// Station status, about once a second and when something in it changes. Fields the
-// station cannot fill yet stay 0 (documented in docs/link-protocol.md).
+// Station status, about once a second and when something in it changes.
 struct StatusReport {
   std::uint32_t mesh_version = 0;
   std::uint32_t vertex_count = 0;
@@ -187,6 +186,7 @@ struct StatusReport {
   float turn_limit_rad = 0.0F;     // limit of one stroke; 0 = not reported
   std::uint64_t strokes_committed = 0;
   std::uint64_t strokes_not_saved = 0;  // commits whose journal append failed
+  std::uint64_t capacity_stops = 0;     // refined commits stopped by the mesh's capacity
   std::uint64_t live_sent = 0;
   std::uint64_t live_dropped = 0;  // no room on the link: the next one replaces it
   std::uint64_t frames_rejected = 0;

@@ -5,7 +5,9 @@
 // which is S(t)(P) - P for twister (T = dD) and rottran (M = O, k = 0, T = OO').
 // `scalar` is the reference (double arithmetic, std::sin/cos, one vertex at a
 // time); `simd` is single precision with polynomial sin/cos, auto-vectorised and
-// dispatched at run time (AVX2+FMA where the CPU has them, baseline otherwise).
+// dispatched at run time (AVX2+FMA where the CPU has them, baseline otherwise). A
+// screw the long way round (a > pi, docs/unwrap.md) takes a variant of the simd loop
+// with a range-reduced sin/cos; minimal screws keep the cheaper one.
 #pragma once
 
 #include <cstddef>
@@ -23,7 +25,7 @@ struct KernelHand {
   double chord[3] = {0.0, 0.0, 0.0};         // X (0 for rottran)
   double axis_x_chord[3] = {0.0, 0.0, 0.0};  // D x X
   double shift[3] = {0.0, 0.0, 0.0};         // T: dD (twister), OO' (rottran, pure)
-  double half_angle = 0.0;                   // a/2 in [0, pi/2]
+  double half_angle = 0.0;                   // a/2 in [0, pi/2]; up to pi the long way round
   double cot_half = 0.0;                     // k
 };
 

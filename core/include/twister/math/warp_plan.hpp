@@ -4,6 +4,8 @@
 //   build(rest, start frames, radius, method)  once per grab: selects the influenced
 //                                              vertices and their decay weights
 //   update(end frames)                         per tracker update: screw parameters
+//   update_turns(end frames, long turns)       the same with each hand's turn sense
+//                                              given (turns past a half turn)
 //   apply(rest, out)                           per update: warped positions of the
 //                                              influenced vertices only (hot path)
 //   rebase(new start frames)                   freeze: same vertices and weights,
@@ -69,6 +71,13 @@ class WarpPlan {
   // failed_precondition: not built. On error the previous update stays in force.
   Status update(std::span<const Frame> end);
 
+  // New end poses with each hand's screw chosen by the caller (docs/unwrap.md): hand
+  // i's screw is the minimal screw of its poses (computed from the poses alone, with
+  // no half-turn sense carried over: exactly what a replay of the poses computes), or
+  // that screw the long way round (long_way_round(), angle past pi) when bit i of
+  // `long_turns` is set. Errors as update(); on error the previous update stays.
+  Status update_turns(std::span<const Frame> end, std::uint8_t long_turns);
+
   // Writes the warped position of every influenced vertex into `out` (same index);
   // other entries of `out` are not touched. `rest` must be the columns given to
   // build (same size); `out` must not alias `rest`.
@@ -106,9 +115,13 @@ class WarpPlan {
   const Frame& end_frame(std::size_t hand) const { return end_[hand]; }
   // The screw of `hand` for the last update (identity right after build).
   const Screw& screw(std::size_t hand) const { return screws_[hand]; }
+  // Bit i: plan hand i's screw goes the long way round (last update_turns()).
+  std::uint8_t long_turns() const { return long_turns_; }
 
  private:
   Status check_frames(std::span<const Frame> frames) const;
+  // update() (keep_sense: the half-turn hint of §2) and update_turns().
+  Status set_end(std::span<const Frame> end, bool keep_sense, std::uint8_t long_turns);
   void set_kernel_hands();
   double weight_of(std::size_t hand, glm::dvec3 p) const;
 
@@ -120,6 +133,7 @@ class WarpPlan {
   std::size_t rest_size_ = 0;
   std::array<std::size_t, kMaxHands> hand_counts_{};
   std::size_t hands_ = 0;
+  std::uint8_t long_turns_ = 0;
   bool dense_ = false;  // indices are first, first+1, ... (no gather needed)
   double radius_ = 1.0;
   WarpMethod method_ = WarpMethod::twister;

@@ -49,6 +49,16 @@ class Mesh {
   // Position of vertex i (i < vertex_count(), asserted).
   glm::vec3 position(std::uint32_t i) const;
   void set_position(std::uint32_t i, glm::vec3 position_m);
+  // Vertex indices of triangle t (t < triangle_count(), asserted).
+  std::array<std::uint32_t, 3> triangle(std::uint32_t t) const;
+  // Rewrites triangle t in place (t < triangle_count(), indices < vertex_count(),
+  // asserted): refinement splits triangles, undo puts them back.
+  void set_triangle(std::uint32_t t, const std::array<std::uint32_t, 3>& v);
+
+  // Sets the counts (undo and redo of refinement): shrinking drops the last vertices
+  // and triangles; growing exposes whatever the storage holds there, which the
+  // caller then sets. resource_exhausted: beyond capacity (nothing changed).
+  Status resize(std::size_t vertices, std::size_t triangles);
 
   // Copies another mesh. resource_exhausted: it does not fit (this mesh unchanged).
   Status copy_from(const Mesh& other);

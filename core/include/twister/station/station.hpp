@@ -9,8 +9,11 @@
 // Hands are valid only while the tracker streams and their pose is fresh: on a loss
 // the session holds the stroke (tracking_lost) and cancels it after lost_timeout, so
 // an unplug never commits a stroke from stale or missing poses.
-// start() replays the journal into the mesh (the same code path as live commits),
-// cuts a torn tail, and opens the journal for appending.
+// start() checks the whole journal (JournalScanner), refuses a corrupt one (a damaged
+// record with valid records after it: the file is left untouched), restores the last
+// checkpoint when one fits, replays the records after it into the mesh (the same code
+// path as live commits), cuts a torn tail (keeping its bytes through a FileSink) and
+// opens the journal for appending.
 // No heap; all working memory is given at construction. Not thread-safe.
 #pragma once
 
@@ -20,11 +23,14 @@
 
 #include "twister/base/result.hpp"
 #include "twister/input/sculpt_session.hpp"
+#include "twister/input/session_checkpoint.hpp"
+#include "twister/journal/journal_scanner.hpp"
 #include "twister/journal/journal_writer.hpp"
 #include "twister/mesh/mesh.hpp"
 #include "twister/ports/button_source.hpp"
 #include "twister/ports/byte_stream.hpp"
 #include "twister/ports/clock.hpp"
+#include "twister/ports/file_sink.hpp"
 #include "twister/ports/storage.hpp"
 #include "twister/station/station_event.hpp"
 #include "twister/station/station_status.hpp"
@@ -46,6 +52,11 @@ struct StationConfig {
   std::array<std::int8_t, tracker::kMaxStations> stylus_line{-1, -1, -1, -1};
   // Debounce, button map, interaction timing, warp method.
   input::SculptSessionConfig sculpt{};
+  // A checkpoint is written once this many journal records were added since the last
+  // one (and at stop); 0: only at stop. Written a chunk per poll(), while the model
+  // stays unchanged (a commit meanwhile starts it over later).
+  std::uint32_t checkpoint_interval = 256;
+  std::size_t checkpoint_bytes_per_poll = std::size_t{256} << 10;
 };
 
 struct StationCounters {
@@ -54,15 +65,70 @@ struct StationCounters {
   std::uint64_t foreign_poses = 0;  // poses of receivers bound to no hand
   std::uint64_t button_edges = 0;   // from the ButtonSource and the stylus
   std::uint64_t button_errors = 0;  // ButtonSource io_error / out-of-range lines
+  // Committed warps (journal stroke records): one per release, freeze step or change
+  // of the grabbing hands, however many hands took part.
   std::uint64_t strokes_committed = 0;
-  std::uint64_t strokes_cancelled = 0;
+  std::uint64_t strokes_cancelled = 0;  // grabs dropped (per hand)
+  // Commits (stroke segments, object moves) whose journal record could not be made
+  // durable: not made, the model stays at the last saved record. One per commit,
+  // however many hands it ended, like strokes_committed.
+  std::uint64_t strokes_not_saved = 0;
+  std::uint64_t undos = 0;
+  std::uint64_t redos = 0;
+  std::uint64_t refined_commits = 0;  // commits that refined the mesh
+  std::uint64_t refine_stops = 0;     // of them, stopped at the mesh's capacity
   std::uint64_t refused = 0;
   std::uint64_t session_events_dropped = 0;
-  std::uint64_t journal_errors = 0;
-  std::uint64_t events_dropped = 0;  // event queue full (the log is behind)
-  std::uint64_t strokes_not_saved =
-      0;  // commits whose journal append failed (display: "stroke not saved")
+  std::uint64_t journal_errors = 0;  // failed journal appends and checkpoint writes
+  std::uint64_t checkpoints_written = 0;
+  std::uint64_t checkpoints_failed = 0;     // the sink failed (the previous one stays)
+  std::uint64_t checkpoints_restarted = 0;  // the model changed while one was written
+  std::uint64_t events_dropped = 0;         // event queue full (the log is behind)
 };
+
+// The station's files besides the journal (all optional).
+struct StationFiles {
+  // Receives the bytes of a torn journal tail before start() cuts it (a new file,
+  // never an existing one). Null: the tail is cut without a copy.
+  ports::FileSink* tail_archive = nullptr;
+  // The last checkpoint, read by start() (null: none). Ignored when it does not fit
+  // the journal or the model (JournalRecovery::checkpoint says why).
+  ports::Storage* checkpoint_in = nullptr;
+  // Where checkpoints go (null: none are written).
+  ports::FileSink* checkpoint_out = nullptr;
+};
+
+// What start() found in the journal (for the start-up log and its error messages).
+struct JournalRecovery {
+  enum class Outcome : std::uint8_t {
+    not_started,
+    ok,             // replayed (a torn tail, if any, was cut: tail_cut bytes)
+    not_a_journal,  // foreign file: left alone
+    corrupt,        // damage followed by valid records: refused, left untouched
+    does_not_fit,   // a record cannot be applied to this mesh (record_index, status)
+    tail_not_kept,  // the torn tail could not be copied aside: refused, left untouched
+    io_error,       // storage failed
+  };
+  Outcome outcome = Outcome::not_started;
+  journal::JournalSurvey survey{};
+  std::uint64_t replayed = 0;  // records applied by start()
+  std::uint64_t tail_cut = 0;  // bytes of a torn tail cut (kept when tail_archive is set)
+  bool tail_kept = false;      // they went to the tail archive
+  enum class Checkpoint : std::uint8_t {
+    none,           // no checkpoint file
+    used,           // restored: checkpoint_records came from it, `replayed` after it
+    damaged,        // ignored: not a checkpoint, or its checks (CRC, values) fail
+    other_model,    // ignored: made from another initial model or history size
+    other_journal,  // ignored: its anchor is not a record boundary of this journal
+  };
+  Checkpoint checkpoint = Checkpoint::none;
+  std::uint64_t checkpoint_records = 0;
+  std::uint64_t record_index = 0;  // does_not_fit: the record (0-based, in file order)
+  std::uint32_t record_sequence = 0;
+  Status record_status{};
+};
+const char* recovery_outcome_name(JournalRecovery::Outcome outcome);
+const char* checkpoint_use_name(JournalRecovery::Checkpoint use);
 
 class Station {
  public:
@@ -71,21 +137,32 @@ class Station {
   // Nothing happens until start().
   Station(ports::ByteStream& tracker, ports::ButtonSource& buttons, ports::Clock& clock,
           ports::Storage& storage, mesh::Mesh& mesh, input::SculptStorage work,
-          const StationConfig& config);
+          const StationConfig& config, StationFiles files = {});
 
-  // Replays the journal onto the mesh, cuts a torn tail and opens the journal for
-  // appending. data_loss: the file is not a journal (it is left alone), or a record
-  // does not fit this mesh (wrong initial mesh: nothing is written);
-  // invalid_argument / resource_exhausted: a record was refused by the warp plan;
-  // io_error: storage failed; failed_precondition: hand_station out of 1..4 or both
-  // hands on one receiver.
+  // Checks and replays the journal onto the mesh, cuts a torn tail (after copying it
+  // to files.tail_archive) and opens the journal for appending. recovery() says what
+  // was found. data_loss: the file is not a journal, is corrupt (a damaged record with
+  // valid records after it), or a record does not fit this mesh; in each case the file
+  // is left byte-identical. invalid_argument / resource_exhausted: a record was refused
+  // by the warp plan; io_error: storage failed or the torn tail could not be kept;
+  // failed_precondition: hand_station out of 1..4 or both hands on one receiver.
   Status start();
+  const JournalRecovery& recovery() const { return recovery_; }
 
   // One loop iteration (never blocks). failed_precondition: start() did not succeed.
   Status poll();
 
   // Next event for the log (oldest first). unavailable: none pending.
   Result<StationEvent> next_event();
+
+  // The stop policy (SIGTERM, SIGHUP, SIGINT, end of run): an open stroke is
+  // cancelled, never committed (the model stays as after the last commit; the sculptor
+  // did not release it), an open object move is cancelled (the object goes back).
+  // Each cancelled hand counts in strokes_cancelled and is reported as
+  // stroke_cancelled with value input::Reason::none ("station stopping"). Then a
+  // checkpoint of the final model is written (when the journal grew since the last
+  // one; checkpoint_written / checkpoint_failed). Afterwards poll() is not called again.
+  void stop();
 
   // Makes the journal durable (shutdown path); appends already sync each record.
   Status flush();
@@ -94,8 +171,19 @@ class Station {
   const tracker::FastrakSession& tracker_session() const { return session_; }
   const input::SculptSession& sculpt() const { return sculpt_; }
   const mesh::Mesh& mesh() const { return sculpt_.mesh(); }
-  std::uint32_t journal_records() const { return sculpt_.next_sequence(); }
+  // Records in the journal file: the ones found at start() plus every record
+  // appended (and synced) since.
+  std::uint32_t journal_records() const {
+    return static_cast<std::uint32_t>(records_at_start_ + writer_.appended());
+  }
+  // Vertex normals of mesh(), up to date after every poll() (empty without storage).
+  mesh::NormalColumns normals() const { return sculpt_.normals(); }
+  // Refinement: on, threshold, spare capacity, how the last refined commit ended
+  // (what a display shows).
+  input::RefineStatus refinement() const { return sculpt_.state().refine; }
   bool hand_valid(std::uint8_t hand, ports::TimestampUs now_us) const;
+  // The frame last applied to `hand` (hand < kHandCount); see hand_valid().
+  const tracker::TrackedFrame& hand_pose(std::uint8_t hand) const { return hands_[hand].pose; }
   // What the display link reports about the station (as of the last poll()).
   StationStatus status() const;
 
@@ -106,14 +194,28 @@ class Station {
     bool has_pose = false;
   };
 
+  // start()'s steps (station_start.cpp).
+  Status replay_journal(journal::JournalReader& reader);
+  Status keep_torn_tail();
+  // Restores files_.checkpoint_in when it fits the survey's journal and the model.
+  Status use_checkpoint(const input::CheckpointHeader& header,
+                        const journal::JournalSurvey& survey);
+  // Checkpoints (station_checkpoint.cpp): one chunk per poll(); the final one at stop().
+  void checkpoint_step();
+  void final_checkpoint();
+  Status begin_checkpoint();
   void drain_tracker(ports::TimestampUs now_us);
   void drain_buttons(ports::TimestampUs now_us);
   void report(const input::SessionEvent& event, ports::TimestampUs now_us);
+  // The sculptor's other actions (radius, clutch, turn limit, undo/redo, method).
+  void report_sculpt(const input::SessionEvent& event, ports::TimestampUs now_us);
   void push_event(const StationEvent& event);
 
   ports::ButtonSource& buttons_;
   ports::Clock& clock_;
   ports::Storage& storage_;
+  StationFiles files_;
+  JournalRecovery recovery_{};
   StationConfig config_;
   tracker::FastrakSession session_;
   journal::JournalWriter writer_;  // before sculpt_, which keeps a pointer to it
@@ -121,6 +223,10 @@ class Station {
   std::array<Hand, input::kHandCount> hands_{};
   std::array<bool, tracker::kMaxStations> stylus_down_{};
   bool started_ = false;
+  std::uint64_t records_at_start_ = 0;
+  std::uint64_t base_checksum_ = 0;          // the initial model's, before any record
+  std::uint64_t records_at_checkpoint_ = 0;  // records the last checkpoint holds
+  input::CheckpointWriter checkpoint_;
   bool buttons_failed_ = false;
   bool was_streaming_ = false;
   StationCounters counters_{};

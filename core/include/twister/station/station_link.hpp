@@ -163,7 +163,7 @@ class StationLink {
   void send_hands(const input::SculptSession& session, const input::LiveWarp& live);
   void send_object(const input::SculptSession& session);
   void send_status(const input::SculptSession& session, const StationStatus& status,
-                   const input::LiveWarp& live, ports::TimestampUs now_us);
+                   ports::TimestampUs now_us);
   // Buffers.
   std::size_t room() const { return out_.size() - out_size_; }
   bool queue(const link::LinkMessage& m);         // bulk

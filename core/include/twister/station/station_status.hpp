@@ -1,8 +1,7 @@
 // StationStatus: a snapshot of what the display shows about the station besides
 // the mesh and the hands (tracker state and rate, counters, method, clutch, the
-// turn limit), filled by Station::status() and sent by StationLink. Fields the
-// session does not report yet keep their defaults (documented in
-// docs/link-protocol.md: "filled once the session reports it"). Plain data.
+// angle turned against the limit, refinement stopped by the capacity), filled by
+// Station::status() from the session's state and sent by StationLink. Plain data.
 #pragma once
 
 #include <cstdint>
@@ -19,8 +18,10 @@ struct StationStatus {
   std::uint64_t strokes_committed = 0;
   std::uint64_t strokes_not_saved = 0;
   math::WarpMethod method = math::WarpMethod::twister;  // of the next stroke
-  std::uint8_t clutch = 0;      // bit h: hand h's clutch is in (filled once the session reports it)
-  float turn_limit_rad = 0.0F;  // one stroke's turn limit; 0 = not reported yet
+  std::uint8_t clutch = 0;           // bit h: hand h's clutch is in (freeze held, disengaged)
+  float turned_rad = 0.0F;           // the most any hand has turned in the open stroke
+  float turn_limit_rad = 0.0F;       // one stroke's turn limit
+  std::uint64_t capacity_stops = 0;  // refined commits stopped by the mesh's capacity
 };
 
 }  // namespace twister::station

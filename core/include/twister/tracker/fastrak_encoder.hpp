@@ -14,7 +14,8 @@ namespace twister::tracker {
 // Encodes one data record of pose.station with that station's list in config:
 // '0', station digit, pose.status, then every item from the pose's values (ASCII
 // fields are rounded to their printed precision; values that do not fit are clamped
-// to the field). Items whose value the pose lacks are written as zeros.
+// to the field; binary16 rounds to counts and packs, §3.4). Items whose value the
+// pose lacks are written as zeros.
 // Returns the bytes written. resource_exhausted: `out` too small;
 // invalid_argument: station out of 1..4 or not enabled, or an invalid config.
 Result<std::size_t> encode_record(const FastrakPose& pose, const FastrakConfig& config,

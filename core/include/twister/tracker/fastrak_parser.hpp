@@ -67,7 +67,14 @@ class FastrakParser {
   };
 
   Candidate examine(const std::byte* p, std::size_t avail, FastrakEvent& out) const;
+  // True when `b` can begin a record (per format) or a reply.
+  bool can_start(std::byte b) const;
+  // A data record at p: header checks, then (binary16) unpacking, then decode_record.
   Candidate examine_record(const std::byte* p, std::size_t avail, FastrakEvent& out) const;
+  // Items and plausibility of a framed record `rec` (logical bytes) of `station`
+  // (0-based); `consumed` wire bytes are accepted.
+  Candidate decode_record(const std::byte* rec, std::size_t station, std::size_t consumed,
+                          FastrakEvent& out) const;
   // Reads one output-list item at q into the pose (dcm_rows: bit per DCM row seen);
   // false when its bytes are not a valid item.
   bool read_item(Item item, const std::byte* q, FastrakPose& pose, unsigned& dcm_rows) const;

@@ -17,8 +17,21 @@
 #include "twister/tracker/fastrak_event.hpp"
 #include "twister/tracker/fastrak_parser.hpp"
 #include "twister/tracker/fastrak_wire.hpp"
+#include "twister/tracker/pose_continuity.hpp"
 
 namespace twister::tracker {
+
+// The unit's adaptive filter (`x` position, `v` attitude; spec §2): left as the unit
+// has it (EEPROM), switched off (`x,1`: FLOW = 1 disables it), or set to the four
+// parameters (the manual's "medium" is 0.2, 0.2, 0.8, 0.95). Each value 0..1.
+struct FilterSetting {
+  enum class Mode : std::uint8_t { leave, off, set };
+  Mode mode = Mode::leave;
+  float f = 0.2f;
+  float flow = 0.2f;
+  float fhigh = 0.8f;
+  float factor = 0.95f;
+};
 
 struct FastrakSessionConfig {
   FastrakConfig protocol{};  // format, units, enabled stations and their output lists
@@ -32,10 +45,16 @@ struct FastrakSessionConfig {
   std::int64_t settle_us = 500'000;             // before `S`, input is discarded
   std::int64_t reply_timeout_us = 2'000'000;    // wait for the status reply
   std::int64_t command_pause_us = 100'000;      // between configuration commands
+  std::int64_t filter_pause_us = 1'000'000;     // after `x` / `v` (VRPN waits 1 s)
   std::int64_t silence_timeout_us = 2'000'000;  // no valid pose -> fault (VRPN 2 s)
   std::int64_t backoff_initial_us = 250'000;    // first re-initialisation delay
   std::int64_t backoff_max_us = 8'000'000;      // back-off cap (doubles per failure)
   int reset_rung_limit = 3;                     // highest ladder rung: 1 `c`, 2 CR+`c`, 3 CR+`c`+^Y
+  FilterSetting position_filter{};              // `x`, sent after the output lists
+  FilterSetting attitude_filter{};              // `v`
+  // Jumps between a station's successive poses beyond these limits are held back
+  // (pose_continuity.hpp); max_speed_in_s = max_turn_rate_deg_s = 0 turns it off.
+  ContinuityLimits continuity{};
 };
 
 enum class SessionState : std::uint8_t {
@@ -60,6 +79,9 @@ struct FastrakSessionCounters {
   std::uint64_t silence_faults = 0;   // no bytes at all for silence_timeout
   std::uint64_t garbage_faults = 0;   // bytes but no valid pose for silence_timeout
   std::uint64_t rejected_poses = 0;   // plausibility errors reported by the parser
+  std::uint64_t jump_rejects = 0;     // poses held back by the continuity check
+  std::uint64_t warning_poses = 0;    // poses used whose status byte was a letter (§3.1)
+  char last_warning = ' ';            // that letter, most recent
   std::uint64_t reinit_requests = 0;  // reinitialise() calls
 };
 
@@ -95,12 +117,17 @@ class FastrakSession {
   bool send_text(const char* text, ports::TimestampUs now);
   void start_ladder(ports::TimestampUs now);
   void build_commands();
+  // Appends the `x` / `v` command of `setting` (nothing for Mode::leave).
+  bool append_filter(char command, const FilterSetting& setting, std::size_t& len);
+  // A validated pose while streaming: continuity and status bookkeeping. false: held back.
+  bool take_pose(const FastrakPose& pose, ports::TimestampUs now);
   void handle_event(const FastrakEvent& ev, ports::TimestampUs now);
 
   ports::ByteStream& stream_;
   ports::Clock& clock_;
   FastrakSessionConfig config_;
   FastrakParser parser_;
+  PoseContinuity continuity_;
   bool config_ok_ = false;
   bool port_open_ = false;
   SessionState state_ = SessionState::backoff;

@@ -51,8 +51,23 @@ enum class Item : std::uint8_t {
 // True for the codes listed in Item.
 bool is_supported_item(std::uint8_t code);
 
-enum class Format : std::uint8_t { ascii, binary };       // `F` / `f` (binary = IEEE LE float32)
+// `F` / `f`. binary = IEEE-754 LE float32 (Fastrak); binary16 = the 16-bit packed
+// format of the protocol family (Isotrak II / 3SPACE, spec §3.4): 16-bit LE integers,
+// sent in groups of 7 bytes with bit 7 stripped plus one byte of high bits, the
+// record's first byte marked by bit 7 (sync).
+enum class Format : std::uint8_t { ascii, binary, binary16 };
 enum class Units : std::uint8_t { inches, centimetres };  // `U` / `u`
+
+// 16-bit packed format (§3.4): the first wire byte of a record is '0' | 0x80; every
+// other wire byte has bit 7 clear. Position counts span +-65.48 in (+-166.32 cm) over
+// +-32768; angles +-180 degrees over +-32768 (assumed: 3SPACE convention); direction
+// cosines and quaternion parts count / 32767.
+inline constexpr std::uint8_t kPacked16Sync = 0x80;
+inline constexpr unsigned kPacked16Start = 0x30u | kPacked16Sync;  // '0' with the sync bit
+inline constexpr double kPacked16PositionFullScaleIn = 65.48;
+inline constexpr double kPacked16PositionFullScaleCm = 166.32;
+inline constexpr double kPacked16AngleFullScaleDeg = 180.0;
+inline constexpr double kPacked16UnitCounts = 32767.0;
 
 // One station's output list as sent with `O`s,i1,...,in.
 struct OutputList {
@@ -80,15 +95,35 @@ struct FastrakConfig {
   std::uint8_t ascii_stylus_width = 1;
 };
 
-// Bytes one item takes on the wire in `format`; 0 for an unsupported code.
+// Bytes one item takes in `format` (binary16: logical bytes before packing); 0 for an
+// unsupported code or an item the format cannot carry (extended items in binary16).
 std::size_t item_width(Item item, Format format, std::uint8_t ascii_stylus_width = 1);
 
-// Bytes of a whole data record (header included) for one station's list.
+// Logical bytes of a data record (header included): what the items add up to.
+std::size_t logical_record_length(const OutputList& list, Format format,
+                                  std::uint8_t ascii_stylus_width = 1);
+// Bytes of a whole data record on the wire (binary16: after packing, 8 per 7).
 std::size_t record_length(const OutputList& list, Format format,
                           std::uint8_t ascii_stylus_width = 1);
 
-// Checks a configuration: every list non-empty, supported items only, record <= 254
-// bytes, at least one station enabled, stylus width 1 or 2.
+// 16-bit packing (§3.4). Wire bytes for `logical` bytes: logical + ceil(logical / 7).
+constexpr std::size_t packed16_length(std::size_t logical) { return logical + (logical + 6) / 7; }
+// Logical bytes carried by `wire` packed bytes (the inverse of packed16_length).
+constexpr std::size_t unpacked16_length(std::size_t wire) { return wire - (wire + 7) / 8; }
+// Packs `logical` into `wire` (at least packed16_length bytes) and marks the first
+// byte with the sync bit; returns the wire bytes written.
+std::size_t pack16(const std::byte* logical, std::size_t n, std::byte* wire);
+// Unpacks `wire_n` wire bytes into `logical` (unpacked16_length bytes). false: the
+// first byte lacks the sync bit or another byte has bit 7 set (lost sync).
+bool unpack16(const std::byte* wire, std::size_t wire_n, std::byte* logical);
+
+// Orthonormality tolerance of a decoded orientation in `format` (spec §3.8, §4):
+// 0.01 for ASCII (4 decimals), 1e-3 for 16-bit counts, 1e-4 for IEEE floats.
+double orthonormal_tolerance(Format format);
+
+// Checks a configuration: every list non-empty, supported items only (binary16: no
+// extended items), record <= 254 bytes, at least one station enabled, stylus width
+// 1 or 2.
 // invalid_argument: any of these fails.
 Status validate(const FastrakConfig& config);
 

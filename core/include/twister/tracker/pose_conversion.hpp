@@ -23,7 +23,7 @@ struct TrackedFrame {
 // Per-receiver and world settings applied after decoding.
 struct PoseConversion {
   Units units = Units::inches;
-  Format format = Format::ascii;  // picks the orthonormality tolerance (0.01 / 1e-4)
+  Format format = Format::ascii;  // picks the orthonormality tolerance (orthonormal_tolerance)
   // Tool offset per station (index = station - 1), metres, in receiver coordinates:
   // the tool point is position + R * offset.
   std::array<glm::dvec3, kMaxStations> tool_offset_m{};

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -37,8 +38,12 @@ enum class FaultKind : std::uint8_t {
   truncate,    // the next `amount` records are cut short
   stall,       // no output and no command processing for `amount` seconds
   hangup,      // the line hangs up for `amount` seconds, then the unit powers up again
-  wrong_baud,  // for `amount` seconds both directions are garbled (baud mismatch)
+  wrong_baud,  // for `amount` seconds the line is mis-clocked (baud mismatch): mostly
+               // silence, occasional junk, both directions
+  corrupt,     // the next `amount` records each get one number field corrupted inside
+               // the record (digit, sign or float bit; syntax and framing intact)
 };
+inline constexpr std::size_t kFaultKindCount = 7;
 // The kind's keyword in the scenario text (parse_scenario reads these names).
 const char* fault_kind_name(FaultKind k);
 
@@ -58,6 +63,15 @@ struct ButtonEvent {
   bool pressed = false;
 };
 
+// A scripted header status byte (spec §3.1): records of `station` carry `code` (a
+// letter: a warning the host must accept) from t_s for duration_s.
+struct StatusEvent {
+  double t_s = 0.0;
+  int station = 1;
+  char code = ' ';
+  double duration_s = 0.0;
+};
+
 struct StationTrack {
   std::vector<KeyFrame> keys;  // sorted by time
   Circle circle;
@@ -70,6 +84,7 @@ struct Scenario {
   std::array<StationTrack, 4> stations;
   std::vector<Fault> faults;         // sorted by time
   std::vector<ButtonEvent> buttons;  // sorted by time (stable: file order at equal times)
+  std::vector<StatusEvent> status;   // header status letters, in file order
 };
 
 // Sample of one station at a time.

@@ -1,0 +1,267 @@
+// Longest-edge bisection (Rivara's LEPP) driven by the midpoint-error criterion.
+// A FIFO of triangles to examine starts with every triangle; a triangle with an
+// edge over the threshold is bisected (after the neighbours on its longest-edge
+// propagation path, so each split cuts an edge that is the longest of every
+// triangle on it), and every triangle a split touches is examined again. Edge
+// verdicts are cached per half-edge (shared with the twin) until a split changes
+// the edge, and S(v) per vertex, so each edge and vertex is warped once.
+#include "twister/mesh/mesh_refiner.hpp"
+
+#include <cmath>
+#include <glm/geometric.hpp>
+
+#include "twister/base/assert.hpp"
+
+namespace twister::mesh {
+namespace {
+
+constexpr std::uint8_t kUnknown = 0;
+constexpr std::uint8_t kWithin = 1;
+constexpr std::uint8_t kOver = 2;
+constexpr std::uint8_t kQueued = 1;
+constexpr std::uint8_t kReported = 2;
+
+constexpr std::uint32_t next(std::uint32_t i) { return i == 2 ? 0 : i + 1; }
+constexpr std::uint32_t prev(std::uint32_t i) { return i == 0 ? 2 : i - 1; }
+bool real_twin(std::uint32_t g) { return g != kBoundary && g != kNonManifold; }
+
+}  // namespace
+
+const char* refine_stop_name(RefineStop stop) {
+  switch (stop) {
+    case RefineStop::done:
+      return "done";
+    case RefineStop::vertex_capacity:
+      return "vertex_capacity";
+    case RefineStop::triangle_capacity:
+      return "triangle_capacity";
+  }
+  return "unknown";
+}
+
+MeshRefiner::MeshRefiner(MeshRefinerStorage storage)
+    : storage_(storage), adjacency_(storage.adjacency) {}
+
+bool MeshRefiner::fits(const Mesh& mesh) const {
+  const std::size_t v = mesh.vertex_capacity();
+  const std::size_t t = mesh.triangle_capacity();
+  return adjacency_.fits(mesh) && storage_.warped_x.size() >= v && storage_.warped_y.size() >= v &&
+         storage_.warped_z.size() >= v && storage_.warped_stamp.size() >= v &&
+         storage_.edge_state.size() >= 3 * t && storage_.triangle_flags.size() >= t &&
+         storage_.queue.size() >= t;
+}
+
+double MeshRefiner::midpoint_error(glm::dvec3 a, glm::dvec3 b, const PointWarp& warp) {
+  const glm::dvec3 chord_mid = 0.5 * (warp.warp(a) + warp.warp(b));
+  return glm::length(chord_mid - warp.warp(0.5 * (a + b)));
+}
+
+Result<RefineResult> MeshRefiner::refine(Mesh& mesh, const PointWarp& warp, double threshold_m,
+                                         RefineObserver* observer) {
+  if (!fits(mesh)) return StatusCode::failed_precondition;
+  if (!std::isfinite(threshold_m) || !(threshold_m > 0.0)) return StatusCode::invalid_argument;
+  TWISTER_TRY(adjacency_.build(mesh));
+  start(mesh, warp, threshold_m, observer);
+  const auto vertices_before = static_cast<std::uint32_t>(mesh.vertex_count());
+  while (queue_count_ > 0) {
+    const std::uint32_t t = storage_.queue[queue_head_];
+    queue_head_ = (queue_head_ + 1) % storage_.queue.size();
+    --queue_count_;
+    storage_.triangle_flags[t] &= static_cast<std::uint8_t>(~kQueued);
+    if (!has_offending_edge(t)) continue;
+    const Split s = bisect(t);
+    if (s == Split::no_room) break;
+    if (s == Split::blocked) ++result_.blocked;
+  }
+  for (std::uint32_t v = vertices_before; v < mesh.vertex_count(); ++v) (void)warped_of(v);
+  mesh_ = nullptr;
+  return result_;
+}
+
+void MeshRefiner::start(Mesh& mesh, const PointWarp& warp, double threshold_m,
+                        RefineObserver* observer) {
+  mesh_ = &mesh;
+  warp_ = &warp;
+  observer_ = observer;
+  threshold_m_ = threshold_m;
+  result_ = RefineResult{};
+  if (++generation_ == 1) {  // first call, or the stamps wrapped: none is valid
+    for (std::uint32_t& s : storage_.warped_stamp) s = 0;
+  }
+  const std::size_t triangles = mesh.triangle_count();
+  triangles_before_ = static_cast<std::uint32_t>(triangles);
+  for (std::size_t h = 0; h < 3 * triangles; ++h) storage_.edge_state[h] = kUnknown;
+  queue_head_ = 0;
+  queue_count_ = 0;
+  for (std::uint32_t t = 0; t < triangles; ++t) {
+    storage_.triangle_flags[t] = 0;
+    push(t);
+  }
+}
+
+glm::dvec3 MeshRefiner::rest(std::uint32_t v) const { return glm::dvec3(mesh_->position(v)); }
+
+glm::dvec3 MeshRefiner::warped_of(std::uint32_t v) {
+  if (storage_.warped_stamp[v] != generation_) {
+    const glm::dvec3 s = warp_->warp(rest(v));
+    storage_.warped_x[v] = s.x;
+    storage_.warped_y[v] = s.y;
+    storage_.warped_z[v] = s.z;
+    storage_.warped_stamp[v] = generation_;
+  }
+  return {storage_.warped_x[v], storage_.warped_y[v], storage_.warped_z[v]};
+}
+
+glm::dvec3 MeshRefiner::warped(std::uint32_t v) const {
+  TWISTER_ASSERT(v < storage_.warped_stamp.size() && storage_.warped_stamp[v] == generation_);
+  return {storage_.warped_x[v], storage_.warped_y[v], storage_.warped_z[v]};
+}
+
+std::uint32_t MeshRefiner::edge_vertex(std::uint32_t h, std::uint32_t end) const {
+  const std::uint32_t i = h % 3;
+  return mesh_->triangle(h / 3)[end == 0 ? i : next(i)];
+}
+
+double MeshRefiner::length2(std::uint32_t h) const {
+  const glm::dvec3 d = rest(edge_vertex(h, 1)) - rest(edge_vertex(h, 0));
+  return glm::dot(d, d);
+}
+
+std::uint32_t MeshRefiner::longest(std::uint32_t t) const {
+  std::uint32_t best = 3 * t;
+  double best_length = length2(best);
+  for (std::uint32_t h = 3 * t + 1; h < 3 * t + 3; ++h) {
+    const double l = length2(h);
+    if (l > best_length) {
+      best = h;
+      best_length = l;
+    }
+  }
+  return best;
+}
+
+bool MeshRefiner::offending(std::uint32_t h) {
+  std::uint8_t state = storage_.edge_state[h];
+  if (state == kUnknown) {
+    const std::uint32_t a = edge_vertex(h, 0);
+    const std::uint32_t b = edge_vertex(h, 1);
+    const glm::dvec3 chord_mid = 0.5 * (warped_of(a) + warped_of(b));
+    const double error = glm::length(chord_mid - warp_->warp(0.5 * (rest(a) + rest(b))));
+    state = error > threshold_m_ ? kOver : kWithin;
+    storage_.edge_state[h] = state;
+    const std::uint32_t g = adjacency_.twin(h);
+    if (real_twin(g)) storage_.edge_state[g] = state;
+  }
+  return state == kOver;
+}
+
+bool MeshRefiner::has_offending_edge(std::uint32_t t) {
+  bool any = false;
+  for (std::uint32_t h = 3 * t; h < 3 * t + 3; ++h) any = offending(h) || any;
+  return any;
+}
+
+// Rivara: follow the longest edges while the triangle across is longer still; the
+// last edge is the longest of both its triangles (or on the boundary): split it.
+// Repeat until t itself was split.
+MeshRefiner::Split MeshRefiner::bisect(std::uint32_t t) {
+  for (;;) {
+    std::uint32_t current = t;
+    std::uint32_t h = longest(t);
+    double length = length2(h);
+    std::uint32_t g = adjacency_.twin(h);
+    while (real_twin(g)) {
+      const std::uint32_t across = longest(g / 3);
+      const double across_length = length2(across);
+      if (across_length <= length) break;
+      current = g / 3;
+      h = across;
+      length = across_length;
+      g = adjacency_.twin(h);
+    }
+    if (g == kNonManifold) return Split::blocked;
+    if (!room(g == kBoundary ? 1 : 2)) return Split::no_room;
+    split(h);
+    if (current == t) return Split::done;
+  }
+}
+
+bool MeshRefiner::room(std::uint32_t triangles) {
+  if (mesh_->vertex_count() >= mesh_->vertex_capacity()) {
+    result_.stop = RefineStop::vertex_capacity;
+    return false;
+  }
+  if (mesh_->triangle_count() + triangles > mesh_->triangle_capacity()) {
+    result_.stop = RefineStop::triangle_capacity;
+    return false;
+  }
+  return true;
+}
+
+void MeshRefiner::split(std::uint32_t h) {
+  const glm::dvec3 mid = 0.5 * (rest(edge_vertex(h, 0)) + rest(edge_vertex(h, 1)));
+  const Result<std::uint32_t> added = mesh_->add_vertex(glm::vec3(mid));
+  TWISTER_ASSERT(added.ok());  // room() was checked
+  const std::uint32_t m = *added;
+  const std::uint32_t a = edge_vertex(h, 0);
+  const std::uint32_t g = adjacency_.twin(h);
+  const std::uint32_t t_new = split_one(h, m);
+  const std::uint32_t h_new = 3 * t_new + h % 3;  // (m, b); h is now (a, m)
+  ++result_.edges_split;
+  if (!real_twin(g)) {
+    adjacency_.link(h, g);
+    adjacency_.link(h_new, g);
+    return;
+  }
+  // g starts at a when its triangle is oriented against h's (an inconsistent mesh).
+  const bool same_start = edge_vertex(g, 0) == a;
+  const std::uint32_t u_new = split_one(g, m);
+  const std::uint32_t g_new = 3 * u_new + g % 3;  // g is now (p, m), g_new (m, q)
+  adjacency_.link(h, same_start ? g : g_new);
+  adjacency_.link(h_new, same_start ? g_new : g);
+}
+
+// Cuts triangle h/3 = (a, b, c) on edge h = (a, b) at m: it becomes (a, m, c) in
+// place and (m, b, c) is appended (same orientation, same slots). Links everything
+// but the two halves of h (the caller's); returns the new triangle.
+std::uint32_t MeshRefiner::split_one(std::uint32_t h, std::uint32_t m) {
+  const std::uint32_t t = h / 3;
+  const std::uint32_t i = h % 3;
+  changing(t);
+  std::array<std::uint32_t, 3> v = mesh_->triangle(t);
+  std::array<std::uint32_t, 3> w = v;
+  w[i] = m;
+  const Result<std::uint32_t> added = mesh_->add_triangle(w[0], w[1], w[2]);
+  TWISTER_ASSERT(added.ok());  // room() was checked
+  const std::uint32_t n = *added;
+  v[next(i)] = m;
+  mesh_->set_triangle(t, v);
+  ++result_.triangles_added;
+  const std::uint32_t outer = adjacency_.twin(3 * t + next(i));  // (b, c) moves to n
+  std::span<std::uint8_t> state = storage_.edge_state;
+  state[3 * n + next(i)] = state[3 * t + next(i)];
+  state[3 * t + i] = state[3 * t + next(i)] = kUnknown;
+  state[3 * n + i] = state[3 * n + prev(i)] = kUnknown;
+  adjacency_.link(3 * n + next(i), outer);
+  adjacency_.link(3 * t + next(i), 3 * n + prev(i));  // the median (m, c)
+  storage_.triangle_flags[n] = 0;
+  push(t);
+  push(n);
+  return n;
+}
+
+void MeshRefiner::changing(std::uint32_t t) {
+  if (t >= triangles_before_ || (storage_.triangle_flags[t] & kReported) != 0) return;
+  storage_.triangle_flags[t] |= kReported;
+  ++result_.triangles_changed;
+  if (observer_ != nullptr) observer_->triangle_changing(t, mesh_->triangle(t));
+}
+
+void MeshRefiner::push(std::uint32_t t) {
+  if ((storage_.triangle_flags[t] & kQueued) != 0) return;
+  storage_.triangle_flags[t] |= kQueued;
+  storage_.queue[(queue_head_ + queue_count_) % storage_.queue.size()] = t;
+  ++queue_count_;
+}
+
+}  // namespace twister::mesh

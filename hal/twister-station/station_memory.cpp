@@ -1,0 +1,83 @@
+#include "station_memory.hpp"
+
+#include <memory>
+#include <span>
+#include <type_traits>
+
+#include "twister/link/link_codec.hpp"
+
+namespace twister::station_app {
+namespace {
+
+// Carves `n` default-constructed T from the front of `rest` (T's alignment divides
+// every preceding block's size: the largest alignment comes first).
+template <typename T>
+std::span<T> carve(std::byte*& rest, std::size_t n) {
+  T* first = std::uninitialized_default_construct_n(reinterpret_cast<T*>(rest), n) - n;
+  rest += n * sizeof(T);
+  return {first, n};
+}
+
+}  // namespace
+
+MemoryBudget memory_budget(std::size_t vertex_capacity, std::size_t triangle_capacity,
+                           std::size_t undo_changes, std::size_t undo_entries, bool link,
+                           bool refine) {
+  MemoryBudget b;
+  b.mesh = 3 * sizeof(float) * vertex_capacity + 3 * sizeof(std::uint32_t) * triangle_capacity;
+  b.live = 3 * sizeof(float) * vertex_capacity;
+  b.plan = (sizeof(std::uint32_t) + 2 * sizeof(float)) * vertex_capacity;
+  b.undo = undo_changes * sizeof(input::VertexChange) + undo_entries * sizeof(input::UndoEntry);
+  b.normals = 3 * sizeof(float) * vertex_capacity;
+  if (refine) {
+    b.refine = mesh::kRefinerBytesPerVertex * vertex_capacity +
+               mesh::kRefinerBytesPerTriangle * triangle_capacity +
+               input::kDefaultUndoTriangleChanges * sizeof(input::TriangleChange);
+  }
+  if (link) {
+    b.link = 3 * sizeof(float) * vertex_capacity + 3 * sizeof(std::uint32_t) * triangle_capacity +
+             512 * link::kMaxFrameBytes;
+  }
+  return b;
+}
+
+WorkMemory::WorkMemory(std::size_t vertex_capacity, std::size_t undo_changes,
+                       std::size_t undo_entries) {
+  const MemoryBudget b = memory_budget(vertex_capacity, 0, undo_changes, undo_entries);
+  bytes_ = b.live + b.plan + b.undo + b.normals;
+  static_assert(alignof(input::UndoEntry) >= alignof(input::VertexChange));
+  static_assert(alignof(input::VertexChange) >= alignof(float));
+  static_assert(sizeof(input::UndoEntry) % alignof(input::VertexChange) == 0);
+  static_assert(sizeof(input::VertexChange) % alignof(float) == 0);
+  static_assert(alignof(input::UndoEntry) <= __STDCPP_DEFAULT_NEW_ALIGNMENT__);
+  static_assert(std::is_trivially_destructible_v<input::UndoEntry> &&
+                std::is_trivially_destructible_v<input::VertexChange>);
+  arena_.reset(new std::byte[bytes_]);
+  std::byte* rest = arena_.get();
+  storage_.undo_entries = carve<input::UndoEntry>(rest, undo_entries);
+  storage_.undo_changes = carve<input::VertexChange>(rest, undo_changes);
+  storage_.live_x = carve<float>(rest, vertex_capacity);
+  storage_.live_y = carve<float>(rest, vertex_capacity);
+  storage_.live_z = carve<float>(rest, vertex_capacity);
+  const std::span<float> w1 = carve<float>(rest, vertex_capacity);
+  const std::span<float> w2 = carve<float>(rest, vertex_capacity);
+  const std::span<std::uint32_t> indices = carve<std::uint32_t>(rest, vertex_capacity);
+  storage_.plan = math::WarpPlanStorage{indices, w1, w2};
+  storage_.normals =
+      mesh::NormalColumns{carve<float>(rest, vertex_capacity), carve<float>(rest, vertex_capacity),
+                          carve<float>(rest, vertex_capacity)};
+}
+
+input::SculptStorage WorkMemory::storage() { return storage_; }
+
+RefineMemory::RefineMemory(std::size_t vertex_capacity, std::size_t triangle_capacity)
+    : refiner_(vertex_capacity, triangle_capacity),
+      undo_triangles_(input::kDefaultUndoTriangleChanges) {}
+
+input::SculptStorage RefineMemory::attach(input::SculptStorage storage) {
+  storage.refine = refiner_.storage();
+  storage.undo_triangle_changes = undo_triangles_;
+  return storage;
+}
+
+}  // namespace twister::station_app

@@ -1,0 +1,70 @@
+// twister-station's memory, sized once at start-up from the model (docs/reliability.md
+// "Memory budget"). Per vertex of capacity: 12 B positions (MeshBuffer) + 12 B live
+// warped columns + 12 B warp plan (index + two weights); per triangle 12 B indices;
+// the undo history is fixed: undo_changes x 28 B (one per vertex a commit moves) +
+// undo_entries x 248 B (one per commit); 12 B per vertex of normals; with refinement on
+// ([sculpt] refine) the refiner's 32 B per vertex + 32 B per triangle and the undo pool
+// of refined triangles (262144 x 28 B); with --link the display link adds 12 B per
+// vertex + 12 B per triangle (its copy of the mesh) + its frame buffer (512 frames, as
+// DisplayLink::open sizes it).
+// WorkMemory is the core's working memory as ONE arena of exactly
+// budget.live + budget.plan + budget.undo + budget.normals bytes, carved into the spans
+// SculptStorage needs; nothing else is allocated for the core after start-up.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "twister/input/sculpt_session.hpp"
+#include "twister/meshio/refiner_buffer.hpp"
+
+namespace twister::station_app {
+
+struct MemoryBudget {
+  std::size_t mesh = 0;     // positions and triangle indices (the model)
+  std::size_t live = 0;     // the live stroke's warped columns
+  std::size_t plan = 0;     // warp plan: influenced indices and two weight columns
+  std::size_t undo = 0;     // undo history: vertex changes and entries
+  std::size_t normals = 0;  // vertex normals (for the display)
+  std::size_t refine = 0;   // refiner and refined triangles' undo pool (0 when off)
+  std::size_t link = 0;     // display link: its mesh copy and frame buffer (0 without --link)
+  std::size_t total() const { return mesh + live + plan + undo + normals + refine + link; }
+};
+
+MemoryBudget memory_budget(std::size_t vertex_capacity, std::size_t triangle_capacity,
+                           std::size_t undo_changes = input::kDefaultUndoChanges,
+                           std::size_t undo_entries = input::kDefaultUndoEntries, bool link = false,
+                           bool refine = false);
+
+// The SculptSession's working memory for a mesh of `vertex_capacity` vertices: one
+// arena of memory_budget(...).live + plan + undo + normals bytes.
+class WorkMemory {
+ public:
+  explicit WorkMemory(std::size_t vertex_capacity,
+                      std::size_t undo_changes = input::kDefaultUndoChanges,
+                      std::size_t undo_entries = input::kDefaultUndoEntries);
+  input::SculptStorage storage();
+  std::size_t arena_bytes() const { return bytes_; }
+
+ private:
+  std::size_t bytes_ = 0;
+  std::unique_ptr<std::byte[]> arena_;
+  input::SculptStorage storage_{};
+};
+
+// Refinement's working memory (only when [sculpt] refine is on): the refiner for the
+// mesh's capacities and the undo pool of refined commits' triangles.
+class RefineMemory {
+ public:
+  RefineMemory(std::size_t vertex_capacity, std::size_t triangle_capacity);
+  // `storage` with the refinement spans set.
+  input::SculptStorage attach(input::SculptStorage storage);
+
+ private:
+  meshio::RefinerBuffer refiner_;
+  std::vector<input::TriangleChange> undo_triangles_;
+};
+
+}  // namespace twister::station_app

@@ -1,0 +1,42 @@
+// A SculptSession over a model loaded from an OBJ file, for the tools that replay
+// journal records (`twister replay`, `twister journal check|salvage --mesh`): the mesh,
+// the session's working memory sized from it (refinement included: `spare_vertices`
+// more vertices and twice as many more triangles, as the station sizes its mesh), and
+// the history sizes the station uses unless told otherwise. Loading errors end the
+// command (exit 2, bad input).
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "twister/input/sculpt_session.hpp"
+#include "twister/meshio/obj_file.hpp"
+#include "twister/meshio/refiner_buffer.hpp"
+
+namespace twister::cli {
+
+class ModelSession {
+ public:
+  explicit ModelSession(const std::string& obj_path, std::size_t spare_vertices = 0,
+                        std::size_t undo_changes = input::kDefaultUndoChanges,
+                        std::size_t undo_entries = input::kDefaultUndoEntries);
+  ModelSession(const ModelSession&) = delete;
+  ModelSession& operator=(const ModelSession&) = delete;
+
+  mesh::Mesh& mesh() { return model_.buffer->mesh(); }
+  input::SculptSession& session() { return *session_; }
+
+ private:
+  meshio::ObjMesh model_;
+  std::vector<float> lx_, ly_, lz_, w1_, w2_;
+  std::vector<std::uint32_t> plan_indices_;
+  std::vector<input::VertexChange> changes_;
+  std::vector<input::UndoEntry> entries_;
+  meshio::RefinerBuffer refiner_;
+  std::vector<input::TriangleChange> triangles_;
+  std::unique_ptr<input::SculptSession> session_;
+};
+
+}  // namespace twister::cli
