@@ -93,19 +93,13 @@ HudText HudModel::update(const SceneReplica& r, const HudInput& in) {
                                    r.mesh().vertex_count(), r.mesh().triangle_count(), in.fps)
                           : format("display: %zu vertices, %zu triangles", r.mesh().vertex_count(),
                                    r.mesh().triangle_count()));
-  // Capacity reached: the station's mesh filled up during this session (refinement
-  // ran into the capacity; a mesh loaded full is reported on its line only), or a
-  // mesh larger than this display accepts was refused.
-  if (r.has_status()) {
-    const link::StatusReport& s = r.station_status();
-    if (!first_counts_known_) {
-      first_vertices_ = s.vertex_count;
-      first_triangles_ = s.triangle_count;
-      first_counts_known_ = true;
-    }
-    filled_ = full(s) && (s.vertex_count > first_vertices_ || s.triangle_count > first_triangles_);
-  }
-  const bool capacity = filled_ || r.counters().over_capacity > 0;
+  // Capacity reached: a refined commit was stopped by the mesh's capacity (for
+  // kShowS after the count grows), or this display refused a mesh above its limits.
+  const std::uint64_t stops = r.has_status() ? r.station_status().capacity_stops : 0;
+  if (stops > capacity_stops_) capacity_since_s_ = in.now_s;
+  capacity_stops_ = stops;
+  const bool capacity =
+      (stops > 0 && in.now_s - capacity_since_s_ < kShowS) || r.counters().over_capacity > 0;
   const std::uint64_t not_saved = r.has_status() ? r.station_status().strokes_not_saved : 0;
   if (not_saved > not_saved_) not_saved_since_s_ = in.now_s;
   not_saved_ = not_saved;
@@ -117,8 +111,10 @@ HudText HudModel::update(const SceneReplica& r, const HudInput& in) {
     out.detail = "no valid poses: check the tracker's cable and power";
   } else if (capacity) {
     out.banner = "CAPACITY REACHED";
-    out.detail = "the mesh is full: strokes cannot refine it further";
-  } else if (not_saved > 0 && in.now_s - not_saved_since_s_ < kNotSavedShowS) {
+    out.detail = r.counters().over_capacity > 0
+                     ? "the station's mesh is larger than this display accepts (--max-vertices)"
+                     : "the mesh is full: strokes are no longer refined";
+  } else if (not_saved > 0 && in.now_s - not_saved_since_s_ < kShowS) {
     out.banner = "STROKE NOT SAVED";
     out.detail = format("%llu stroke(s) not written to the journal",
                         static_cast<unsigned long long>(not_saved));

@@ -4,9 +4,10 @@
 //          the angle turned against the stroke's limit, mesh size, frames per second;
 //   banner: one full-screen message when something needs the sculptor's attention,
 //          the most urgent first: "LINK LOST", "TRACKER LOST", "CAPACITY REACHED",
-//          "STROKE NOT SAVED" (for kNotSavedShowS after the count grows). Capacity
-//          is reached when the station's mesh grew into its capacity during the
-//          session, or when this display refused a mesh above its own limits.
+//          "STROKE NOT SAVED" (for kShowS after the count grows). Capacity is
+//          reached when a refined commit was stopped by the mesh's capacity (the
+//          status's capacity_stops grew; also kShowS), or when this display
+//          refused a mesh above its own limits.
 // Station fields the session does not report yet (0 on the wire) show as such.
 #pragma once
 
@@ -36,17 +37,15 @@ struct HudText {
 
 class HudModel {
  public:
-  // How long "stroke not saved" stays up after the count grew.
-  static constexpr double kNotSavedShowS = 10.0;
+  // How long "capacity reached" and "stroke not saved" stay up after their count grew.
+  static constexpr double kShowS = 10.0;
   HudText update(const SceneReplica& replica, const HudInput& input);
 
  private:
   std::uint64_t not_saved_ = 0;
   double not_saved_since_s_ = -1e9;
-  bool first_counts_known_ = false;
-  std::uint32_t first_vertices_ = 0;
-  std::uint32_t first_triangles_ = 0;
-  bool filled_ = false;
+  std::uint64_t capacity_stops_ = 0;
+  double capacity_since_s_ = -1e9;
 };
 
 }  // namespace twister::bridge

@@ -185,6 +185,27 @@ void StationLink::on_display_message(const link::LinkMessage& m) {
   }
 }
 
+input::SessionCommand session_command(const link::Command& c) {
+  input::SessionCommand out;
+  out.hand = 0;  // a display's command belongs to no hand
+  switch (c.kind) {
+    case link::CommandKind::undo:
+      out.kind = input::SessionCommandKind::undo;
+      break;
+    case link::CommandKind::redo:
+      out.kind = input::SessionCommandKind::redo;
+      break;
+    case link::CommandKind::next_method:
+      out.kind = input::SessionCommandKind::next_method;
+      break;
+    case link::CommandKind::set_method:
+      out.kind = input::SessionCommandKind::set_method;
+      out.method = static_cast<math::WarpMethod>(c.method);
+      break;
+  }
+  return out;
+}
+
 bool StationLink::take_command(link::Command& out) {
   if (command_count_ == 0) return false;
   out = commands_[0];

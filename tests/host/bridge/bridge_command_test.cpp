@@ -49,5 +49,41 @@ TEST(BridgeCommand, OnlyTheAdmittedDisplaysCommandsReachTheStation) {
   EXPECT_EQ(rig.link->counters().commands_refused, 1u);
 }
 
+TEST(BridgeCommand, UndoKeyUndoesTheStrokeOnTheStationAndTheDisplayFollows) {
+  ports::NullLogSink log;
+  BridgeLinkRig rig(log);
+  rig.run();
+  const std::uint64_t before = rig.station.session->mesh().checksum();
+  rig.stroke(0.05);
+  for (int i = 0; i < 4; ++i) {
+    (void)rig.station.tick();
+    rig.run(4);
+  }
+  ASSERT_NE(rig.station.session->mesh().checksum(), before);
+  ASSERT_EQ(rig.bridge.replica().checksum(), rig.station.session->mesh().checksum());
+  ASSERT_TRUE(rig.bridge.send_command({link::CommandKind::undo, 0}));
+  rig.run(2);
+  link::Command got;
+  ASSERT_TRUE(rig.link->take_command(got));
+  // What twister-station's loop does (DisplayLink::route_commands): the session's
+  // command path, run by the next step.
+  ASSERT_TRUE(rig.station.session->submit(station::session_command(got)).ok());
+  (void)rig.station.tick();
+  EXPECT_EQ(rig.station.session->mesh().checksum(), before) << "not undone";
+  rig.run(10);
+  EXPECT_EQ(rig.bridge.replica().checksum(), before) << "the display did not follow";
+}
+
+TEST(BridgeCommand, EachLinkCommandMapsToItsSessionCommand) {
+  using input::SessionCommandKind;
+  EXPECT_EQ(station::session_command({link::CommandKind::undo, 0}).kind, SessionCommandKind::undo);
+  EXPECT_EQ(station::session_command({link::CommandKind::redo, 0}).kind, SessionCommandKind::redo);
+  EXPECT_EQ(station::session_command({link::CommandKind::next_method, 0}).kind,
+            SessionCommandKind::next_method);
+  const input::SessionCommand set = station::session_command({link::CommandKind::set_method, 2});
+  EXPECT_EQ(set.kind, SessionCommandKind::set_method);
+  EXPECT_EQ(set.method, math::WarpMethod::scodef);
+}
+
 }  // namespace
 }  // namespace twister::bridge::test_support

@@ -13,7 +13,7 @@ namespace twister::bridge::test {
 namespace {
 
 link::LinkMessage status(std::uint8_t tracker, std::uint32_t vertices, std::uint32_t capacity,
-                         std::uint64_t not_saved = 0) {
+                         std::uint64_t not_saved = 0, std::uint64_t capacity_stops = 0) {
   link::LinkMessage m;
   m.type = link::MessageType::status;
   m.status.tracker_state = tracker;
@@ -22,6 +22,7 @@ link::LinkMessage status(std::uint8_t tracker, std::uint32_t vertices, std::uint
   m.status.triangle_count = 2 * vertices;
   m.status.triangle_capacity = 4 * capacity;
   m.status.strokes_not_saved = not_saved;
+  m.status.capacity_stops = capacity_stops;
   return m;
 }
 
@@ -34,9 +35,11 @@ TEST(HudModel, BannersInOrderOfUrgency) {
   EXPECT_EQ(hud.update(r, in).banner, "");
   (void)r.apply(status(1, 100, 1000));
   EXPECT_EQ(hud.update(r, in).banner, "");
-  (void)r.apply(status(1, 1000, 1000));  // refinement filled the mesh
+  (void)r.apply(status(1, 1000, 1000, 0, 1));  // a refined commit stopped at capacity
   EXPECT_EQ(hud.update(r, in).banner, "CAPACITY REACHED");
-  (void)r.apply(status(2, 1000, 1000));
+  in.now_s = 11.0;
+  EXPECT_EQ(hud.update(r, in).banner, "") << "the capacity banner stays 10 s";
+  (void)r.apply(status(2, 1000, 1000, 0, 1));
   EXPECT_EQ(hud.update(r, in).banner, "TRACKER LOST");
   in.link = LinkView::lost;
   const HudText lost = hud.update(r, in);

@@ -79,6 +79,9 @@ struct StationLinkCounters {
   std::uint64_t commands_refused = 0;      // from a display not admitted, or queue full
 };
 
+// The session command of a display's command (link message `command`).
+input::SessionCommand session_command(const link::Command& command);
+
 class StationLink {
  public:
   StationLink(ports::LinkPort& port, StationLinkStorage storage, const StationLinkConfig& config,
