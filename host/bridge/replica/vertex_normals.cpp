@@ -1,33 +1,21 @@
 #include "vertex_normals.hpp"
 
-#include <cmath>
-#include <glm/geometric.hpp>
-#include <glm/vec3.hpp>
+#include "twister/mesh/vertex_normals.hpp"
 
 namespace twister::bridge {
 
 void compute_vertex_normals(const MeshData& mesh, std::vector<float>& out) {
   const std::size_t n = mesh.vertex_count();
-  std::vector<glm::dvec3> sum(n, glm::dvec3(0.0));
-  const auto at = [&mesh](std::uint32_t i) { return glm::dvec3(mesh.x[i], mesh.y[i], mesh.z[i]); };
-  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-    const std::uint32_t a = mesh.indices[3 * t];
-    const std::uint32_t b = mesh.indices[3 * t + 1];
-    const std::uint32_t c = mesh.indices[3 * t + 2];
-    if (a >= n || b >= n || c >= n) continue;  // verified meshes have none
-    // The cross product's length is twice the area: area weighting for free.
-    const glm::dvec3 face = glm::cross(at(b) - at(a), at(c) - at(a));
-    sum[a] += face;
-    sum[b] += face;
-    sum[c] += face;
-  }
-  out.resize(3 * n);
+  out.assign(3 * n, 0.0F);
+  // The station's own function (core mesh), on the replica's copy.
+  const auto core = to_core_mesh(mesh);
+  if (!core) return;  // a triangle index out of range: verified meshes have none
+  std::vector<float> x(n), y(n), z(n);
+  if (!mesh::compute_vertex_normals(core->mesh(), {x, y, z}).ok()) return;
   for (std::size_t i = 0; i < n; ++i) {
-    const double len = glm::length(sum[i]);
-    const glm::dvec3 u = len > 0.0 && std::isfinite(len) ? sum[i] / len : glm::dvec3(0, 0, 1);
-    out[3 * i] = static_cast<float>(u.x);
-    out[3 * i + 1] = static_cast<float>(u.y);
-    out[3 * i + 2] = static_cast<float>(u.z);
+    out[3 * i] = x[i];
+    out[3 * i + 1] = y[i];
+    out[3 * i + 2] = z[i];
   }
 }
 

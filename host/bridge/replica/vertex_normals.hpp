@@ -1,7 +1,7 @@
-// Smooth-shading normals of a MeshData: per vertex, the area-weighted sum of the
-// normals of the triangles around it (counter-clockwise winding), normalised.
-// A vertex in no triangle (or only in degenerate ones) gets (0, 0, 1). Object
-// frame; 3 floats per vertex (x y z ...), `out` resized to 3 * vertex_count.
+// Smooth-shading normals of a MeshData: core's mesh::compute_vertex_normals (the
+// station's own: area-weighted, counter-clockwise outward; (0, 0, 0) for a vertex
+// on no triangle of non-zero area), interleaved for the display: 3 floats per
+// vertex (x y z ...), `out` resized to 3 * vertex_count. Object frame.
 #pragma once
 
 #include <vector>
