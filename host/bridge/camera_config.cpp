@@ -10,6 +10,9 @@
 namespace twister::bridge {
 namespace {
 
+constexpr const char* kCameraKeys[] = {"azimuth_deg", "elevation_deg", "zoom", "fov_deg",
+                                       "up",          "target",        "fixed"};
+
 hal::Error bad(const std::string& file, const std::string& key, const std::string& what) {
   return hal::make_error(StatusCode::invalid_argument, file + ": camera." + key + ": " + what);
 }
@@ -46,10 +49,8 @@ hal::Expected<void> read_vec3(const toml::table& t, const std::string& file, con
 
 hal::Expected<void> read_camera(const toml::table& t, const std::string& file, CameraConfig& c) {
   for (const auto& [key, node] : t) {
-    static const char* const kKeys[] = {"azimuth_deg", "elevation_deg", "zoom", "fov_deg",
-                                        "up",          "target",        "fixed"};
     bool known = false;
-    for (const char* k : kKeys) known = known || key.str() == k;
+    for (const char* k : kCameraKeys) known = known || key.str() == k;
     if (!known) return bad(file, std::string(key.str()), "unknown key");
   }
   hal::Expected<void> ok = read_number(t, file, "azimuth_deg", -360.0, 360.0, c.view.azimuth_deg);
