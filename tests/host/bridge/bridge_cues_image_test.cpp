@@ -95,6 +95,20 @@ TEST_F(DisplayCues, CursorAtEachHandAndItsSphereOfInfluence) {
   const glm::vec2 h2 = at(hand_point(1));
   EXPECT_TRUE(is_red(both.at(int(h1.x), int(h1.y)))) << "no red cursor at hand 1";
   EXPECT_TRUE(is_green(both.at(int(h2.x), int(h2.y)))) << "no green cursor at hand 2";
+  // The cursor's own colour, drawn over everything: without the glyphs the pixel
+  // there is the (tinted) model's, far from it.
+  const auto cursor_like = [](std::array<int, 3> c, std::array<int, 3> want) {
+    return std::abs(c[0] - want[0]) + std::abs(c[1] - want[1]) + std::abs(c[2] - want[2]) < 40;
+  };
+  const std::array<int, 3> red{235, 36, 31};
+  const std::array<int, 3> green{38, 217, 31};
+  EXPECT_TRUE(cursor_like(both.at(int(h1.x), int(h1.y)), red));
+  EXPECT_TRUE(cursor_like(both.at(int(h2.x), int(h2.y)), green));
+  view_->options().cues.glyphs = false;
+  const Image bare = frame();
+  EXPECT_FALSE(cursor_like(bare.at(int(h1.x), int(h1.y)), red))
+      << "hand 1's pixel is cursor-red anyway";
+  EXPECT_FALSE(cursor_like(bare.at(int(h2.x), int(h2.y)), green));
   // Off the model, 80 % of the radius outwards from hand 1: the translucent ball
   // reddens the background.
   const glm::dvec3 out = hand_point(-1) + 0.8 * kRadiusM * glm::normalize(hand_point(-1));
