@@ -19,6 +19,8 @@ packages=(
   systemd  # systemd-analyze checks the deployment unit (tests/hal/twister-station)
   # host tools and display
   libpng-dev libglfw3-dev libepoxy-dev libegl-dev
+  libimgui-dev  # the display's heads-up text (Dear ImGui with its OpenGL 3 back end)
+  libtinygltf-dev  # twister-bridge --export FILE.glb / .gltf
   libgl1-mesa-dri xvfb xauth  # xvfb: the bridge's window path is tested on a virtual X server
   libcairo2-dev fonts-dejavu-core  # twister figure8 draws its SVG/PNG with cairo, text in DejaVu Sans
 )

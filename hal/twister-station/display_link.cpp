@@ -81,6 +81,22 @@ void DisplayLink::poll(const station::Station& core, ports::TimestampUs now_us) 
   log_changes();
 }
 
+std::size_t DisplayLink::route_commands(station::Station& core) {
+  if (!link_) return 0;
+  std::size_t n = 0;
+  link::Command command;
+  while (link_->take_command(command)) {
+    const input::SessionCommand c = station::session_command(command);
+    log_->info("link", "display command: %s", input::session_command_name(c.kind));
+    if (const Status s = core.submit(c); !s.ok()) {
+      log_->warning("link", "display command %s not queued: %s",
+                    input::session_command_name(c.kind), s.name());
+    }
+    ++n;
+  }
+  return n;
+}
+
 void DisplayLink::log_changes() {
   const station::StationLinkCounters& c = link_->counters();
   if (c.connects != logged_.connects) log_->notice("link", "display admitted");

@@ -42,6 +42,10 @@ class DisplayLink {
                            hal::Logger& log);
   bool is_open() const { return link_ != nullptr; }
   void poll(const station::Station& core, ports::TimestampUs now_us);
+  // Hands the admitted display's commands (its undo/redo/method keys) to the
+  // session's command path (Station::submit); their results come as the next
+  // step's session events, logged like the buttons'. Returns how many.
+  std::size_t route_commands(station::Station& core);
   // The link's descriptors for the loop's poll set (none without a link).
   std::size_t poll_fds(std::span<pollfd> out) const { return poll_ ? poll_->poll_fds(out) : 0; }
   // Real-time wait: true when a display holds our mesh within `seconds`.

@@ -106,6 +106,7 @@ bool StationLoop::step() {
     return false;
   }
   display_.poll(core_, now_us);
+  display_.route_commands(core_);  // run by the next core_.poll()
   log_events();
   retry_buttons(now_us);
   pet_watchdog(now_us);

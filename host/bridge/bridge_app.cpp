@@ -4,6 +4,8 @@
 #include <array>
 #include <chrono>
 
+#include "scene_view.hpp"
+
 namespace twister::bridge {
 
 using ports::LogLevel;
@@ -61,6 +63,7 @@ void BridgeApp::handle(const link::LinkMessage& m) {
   if (m.type == link::MessageType::hands) {
     const std::int64_t second = last_frame_ms_ / 1000;
     if (second != hands_second_) {
+      hands_last_second_ = second == hands_second_ + 1 ? hands_in_second_ : 0;
       hands_second_ = second;
       hands_in_second_ = 0;
     }
@@ -87,12 +90,17 @@ void BridgeApp::handle(const link::LinkMessage& m) {
 }
 
 void BridgeApp::handle_scene(const link::LinkMessage& m) {
-  // The live warp just before a commit is the stroke's final preview: picture it
-  // before the change set replaces the rest mesh.
-  if (m.type == link::MessageType::mesh_begin && !m.mesh_begin.full && replica_.live().active &&
-      !options_.snapshot_dir.empty()) {
+  // The live warp as the stroke ends (the hands leave it, or its commit arrives) is
+  // the stroke's final preview: picture it before the message ends it.
+  const LiveState& live = replica_.live();
+  const bool ends_live = (m.type == link::MessageType::mesh_begin && !m.mesh_begin.full) ||
+                         (m.type == link::MessageType::hands &&
+                          ((m.hands.flags & link::kStrokeActive) == 0 ||
+                           m.hands.stroke != static_cast<std::uint16_t>(live.stroke)));
+  if (ends_live && live.active && live.stroke != live_pictured_ && !options_.snapshot_dir.empty()) {
     refresh_display();
-    snapshot("live-" + std::to_string(m.mesh_begin.version));
+    snapshot("live-" + std::to_string(replica_.version() + 1));
+    live_pictured_ = live.stroke;
   }
   const std::uint64_t commits = replica_.counters().commits;
   const std::uint64_t fulls = replica_.counters().full_meshes;
@@ -132,6 +140,17 @@ void BridgeApp::handle_scene(const link::LinkMessage& m) {
   }
 }
 
+bool BridgeApp::send_command(const link::Command& command) {
+  if (!ready()) return false;
+  link::LinkMessage m;
+  m.type = link::MessageType::command;
+  m.command = command;
+  send(m);
+  flush();
+  ++counters_.commands_sent;
+  return true;
+}
+
 void BridgeApp::send(const link::LinkMessage& m) {
   std::array<std::byte, link::kMaxFrameBytes> frame{};
   const auto n = link::encode_frame(m, frame);
@@ -151,45 +170,101 @@ void BridgeApp::refresh_display() {
   if (renderer_ == nullptr || !replica_.has_mesh()) return;
   LiveState& live = replica_.live();
   const bool cpu_live = live.active && live.method == math::WarpMethod::scodef;
+  renderer_->set_object_pose(replica_.object_pose());
+  bool uploaded = false;
   if (replica_.mesh_changed() || (display_mesh_live_ && !cpu_live)) {
     const bool first = shown_version_ == 0;
-    renderer_->set_mesh(replica_.mesh(), !first);
+    renderer_->set_mesh(replica_.mesh(), replica_.normals(), !first);
     replica_.clear_mesh_changed();
     shown_version_ = replica_.version();
     display_mesh_live_ = false;
-    live.weights_changed = live.active;
+    uploaded = true;
   }
-  if (live.active && (live.weights_changed || live.stroke != shown_stroke_)) {
-    renderer_->set_weights(live.weight1, live.weight2);
-    live.weights_changed = false;
-    shown_stroke_ = live.stroke;
-  }
+  refresh_weights(uploaded);
   const std::uint64_t live_frames = replica_.counters().live_frames;
   if (cpu_live && (!display_mesh_live_ || live_frames != shown_live_frames_)) {
     // scodef has no closed form per vertex in the shader: show the CPU warp, once per
     // live frame. The renderer already holds this mesh's triangles and this stroke's
-    // weights, so only the positions change.
+    // weights, so only the positions (and their normals) change.
     const MeshData warped = replica_.cpu_warp();
     if (warped.vertex_count() == renderer_->vertex_count()) {
       renderer_->set_positions(warped);
     } else {  // no warp (the plan failed: nothing drawn), or the first one after that
       renderer_->set_mesh(warped, true);
-      renderer_->set_weights(live.weight1, live.weight2);
+      showing_live_weights_ = false;
+      refresh_weights(true);
     }
     display_mesh_live_ = true;
     shown_live_frames_ = live_frames;
   }
-  renderer_->set_show_weights(live.active);
+  renderer_->set_show_weights(live.active || preview_.hand_mask() != 0);
   renderer_->set_live(live.active ? &live : nullptr);
 }
 
+void BridgeApp::refresh_weights(bool mesh_uploaded) {
+  LiveState& live = replica_.live();
+  if (live.active) {
+    // The stroke's weights (plan order) in the colours of its session hands.
+    if (mesh_uploaded || !showing_live_weights_ || live.weights_changed ||
+        live.stroke != shown_stroke_) {
+      renderer_->set_weights(live.weight1, live.weight2,
+                             {live.hands[0].session_hand,
+                              live.hand_count > 1 ? live.hands[1].session_hand : std::uint8_t{1}});
+      renderer_->set_gradients(live.gradient1, live.gradient2);
+      live.weights_changed = false;
+      shown_stroke_ = live.stroke;
+      showing_live_weights_ = true;
+    }
+    return;
+  }
+  // Before a grab: what each hand would grab now, as the station would weigh it.
+  const bool rebuilt =
+      preview_.update(replica_.mesh(), replica_.version(), replica_.hands(), replica_.radius_m());
+  if (rebuilt || mesh_uploaded || showing_live_weights_) {
+    renderer_->set_weights(preview_.hand1(), preview_.hand2(), {0, 1});
+    renderer_->set_gradients({}, {});
+    showing_live_weights_ = false;
+  }
+}
+
+LinkView BridgeApp::link_view() const {
+  switch (stop_) {
+    case BridgeStop::displaced:
+      return LinkView::displaced;
+    case BridgeStop::unauthorised:
+    case BridgeStop::version:
+      return LinkView::refused;
+    case BridgeStop::none:
+      break;
+  }
+  if (connected_) return LinkView::connected;
+  return counters_.connects > 0 ? LinkView::lost : LinkView::waiting;
+}
+
+HudInput BridgeApp::hud_input() const {
+  HudInput in;
+  in.link = link_view();
+  in.ready = ready();
+  const std::int64_t now_s = std::chrono::duration_cast<std::chrono::seconds>(
+                                 std::chrono::steady_clock::now().time_since_epoch())
+                                 .count();
+  in.hands_rate_hz = static_cast<double>(now_s == hands_second_       ? hands_last_second_
+                                         : now_s == hands_second_ + 1 ? hands_in_second_
+                                                                      : 0);
+  return in;
+}
+
 void BridgeApp::draw() {
-  if (renderer_ != nullptr) renderer_->draw();
+  if (view_ != nullptr) {
+    view_->draw(replica_, hud_input());
+  } else if (renderer_ != nullptr) {
+    renderer_->draw();
+  }
 }
 
 std::string BridgeApp::snapshot(const std::string& name) {
   if (renderer_ == nullptr || options_.snapshot_dir.empty()) return {};
-  renderer_->draw();
+  draw();
   std::string path = options_.snapshot_dir + "/" + name + ".png";
   if (const hal::Expected<void> written =
           write_png(path, renderer_->width(), renderer_->height(), renderer_->read_rgba());

@@ -9,7 +9,7 @@
 // unauthorised, or a station speaking another protocol version stops all link
 // I/O for good (stopped() says why): two displays never fight over the link.
 // Snapshots (offscreen): the rest mesh when the first mesh arrives, the live warp
-// just before each commit is applied, and the committed mesh.
+// as each stroke segment ends (live-<next version>.png), and the committed mesh.
 // Messages go to the LogSink it is given (components "link", "replica",
 // "snapshot"): link loss and rejected change sets are warnings, being displaced a
 // warning, refusals errors, connects, meshes and commits notices, pictures info.
@@ -19,12 +19,14 @@
 #include <string>
 #include <vector>
 
+#include "hud_model.hpp"
 #include "mesh_renderer.hpp"
 #include "scene_replica.hpp"
 #include "twister/link/link_authenticator.hpp"
 #include "twister/link/link_codec.hpp"
 #include "twister/ports/link_port.hpp"
 #include "twister/ports/log_sink.hpp"
+#include "weight_preview.hpp"
 
 namespace twister::bridge {
 
@@ -43,6 +45,7 @@ struct BridgeCounters {
   std::uint64_t hellos_sent = 0;
   std::uint64_t ignored = 0;               // station messages before the handshake completed
   std::uint64_t hands_busiest_second = 0;  // most hands updates in one wall-clock second
+  std::uint64_t commands_sent = 0;         // keyboard commands sent to the station
 };
 
 // Why the bridge stopped using the link (none: it did not).
@@ -56,8 +59,17 @@ class BridgeApp {
             ports::LogSink& log);
   // One step: link I/O and replica updates (never blocks). Returns frames decoded.
   std::size_t step();
+  // Sends a sculptor's command (keys: undo, redo, method) to the station, which
+  // acts on it only from the admitted display. False when the link is not ready
+  // (nothing is queued for later: a stale undo must not fire on reconnect).
+  bool send_command(const link::Command& command);
+  // Draws through `view` (mesh, cues, HUD) from now on; null: the mesh alone.
+  void set_view(class SceneView* view) { view_ = view; }
   // Draws the current scene (window mode each frame; offscreen for snapshots).
   void draw();
+  // The link as the HUD shows it.
+  LinkView link_view() const;
+  HudInput hud_input() const;
   // Draws and writes <snapshot_dir>/<name>.png; returns the path ("" on failure).
   std::string snapshot(const std::string& name);
 
@@ -86,9 +98,11 @@ class BridgeApp {
   void send(const link::LinkMessage& m);
   void flush();
   void refresh_display();
+  void refresh_weights(bool mesh_uploaded);
 
   ports::LinkPort& port_;
   MeshRenderer* renderer_;
+  class SceneView* view_ = nullptr;
   ports::LogSink& log_;
   BridgeOptions options_;
   SceneReplica replica_;
@@ -105,12 +119,16 @@ class BridgeApp {
   std::int64_t last_frame_ms_ = 0;
   std::int64_t hands_second_ = 0;
   std::uint64_t hands_in_second_ = 0;
+  std::uint64_t hands_last_second_ = 0;
   BridgeStop stop_ = BridgeStop::none;
   // Display.
   bool display_mesh_live_ = false;  // the renderer holds CPU-warped positions (scodef)
   std::uint32_t shown_version_ = 0;
   std::uint32_t shown_stroke_ = 0;
   std::uint64_t shown_live_frames_ = 0;  // replica live frames when the CPU warp was shown
+  bool showing_live_weights_ = false;    // the renderer holds the stroke's weights
+  std::uint32_t live_pictured_ = 0;      // the stroke segment last pictured (live-<v>.png)
+  WeightPreview preview_;                // weights before a grab
   std::uint64_t over_capacity_logged_ = 0;
   BridgeCounters counters_{};
   std::vector<std::string> pictures_;

@@ -62,6 +62,7 @@ class WindowContext final : public GlContext {
     return h;
   }
   bool offscreen() const override { return false; }
+  GLFWwindow* window() override { return window_; }
 
  private:
   GLFWwindow* window_;

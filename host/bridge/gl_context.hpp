@@ -24,6 +24,8 @@ class GlContext {
   virtual int width() const = 0;
   virtual int height() const = 0;
   virtual bool offscreen() const = 0;
+  // The GLFW window (input callbacks); null offscreen.
+  virtual GLFWwindow* window() { return nullptr; }
 };
 
 // Surfaceless EGL + a current context (draw into an FBO).

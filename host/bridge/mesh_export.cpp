@@ -1,16 +1,35 @@
 #include "mesh_export.hpp"
 
+#include <unistd.h>
+
 #include <cstdio>
+#include <filesystem>
 #include <span>
 #include <string>
 
+#include "gltf_export.hpp"
 #include "twister/hal/posix_file_sink.hpp"
 #include "twister/meshio/obj_file.hpp"
+#include "vertex_normals.hpp"
 
 namespace twister::bridge {
 namespace {
 
-// Binary PLY through PosixFileSink: atomic, and never over anything but a regular file.
+// Bytes through PosixFileSink: atomic, and never over anything but a regular file.
+hal::Expected<void> write_file(const std::string& path, const std::string& out) {
+  hal::PosixFileSinkConfig config;
+  config.path = path;
+  config.replace = hal::PosixFileSinkConfig::Replace::regular;
+  hal::PosixFileSink sink(config);
+  Status s = sink.begin();
+  if (s.ok()) s = sink.write(std::as_bytes(std::span(out.data(), out.size())));
+  if (s.ok()) s = sink.commit();
+  if (s.ok()) return {};
+  sink.abort();
+  return hal::Error{s, "cannot write " + path + ": " + sink.last_error()};
+}
+
+// Binary PLY.
 hal::Expected<void> export_ply(const std::string& path, const MeshData& m) {
   std::string out;
   char header[512];
@@ -33,25 +52,48 @@ hal::Expected<void> export_ply(const std::string& path, const MeshData& m) {
     put(&three, 1);
     put(&m.indices[3 * t], 3 * sizeof(std::uint32_t));
   }
-  hal::PosixFileSinkConfig config;
-  config.path = path;
-  config.replace = hal::PosixFileSinkConfig::Replace::regular;
-  hal::PosixFileSink sink(config);
-  Status s = sink.begin();
-  if (s.ok()) s = sink.write(std::as_bytes(std::span(out.data(), out.size())));
-  if (s.ok()) s = sink.commit();
-  if (s.ok()) return {};
-  sink.abort();
-  return hal::Error{s, "cannot write " + path + ": " + sink.last_error()};
+  return write_file(path, out);
 }
 
 }  // namespace
 
-hal::Expected<void> export_mesh(const std::string& path, const MeshData& m) {
+hal::Expected<void> check_export_path(const std::string& path) {
+  if (!path.ends_with(".obj") && !path.ends_with(".ply") && !path.ends_with(".glb") &&
+      !path.ends_with(".gltf")) {
+    return hal::make_error(StatusCode::invalid_argument,
+                           "unknown mesh format (use .obj, .ply, .glb or .gltf): " + path);
+  }
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    return hal::make_error(StatusCode::invalid_argument, "export path is a directory: " + path);
+  }
+  std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  if (folder.empty()) folder = ".";
+  if (!std::filesystem::is_directory(folder, ec)) {
+    return hal::make_error(StatusCode::io_error, "export folder does not exist: " +
+                                                     folder.string() + " (for " + path + ")");
+  }
+  if (::access(folder.c_str(), W_OK) != 0) {
+    return hal::make_error(StatusCode::io_error,
+                           "export folder is not writable: " + folder.string());
+  }
+  return {};
+}
+
+hal::Expected<void> export_mesh(const std::string& path, const MeshData& m,
+                                const std::vector<float>& normals) {
   if (path.ends_with(".ply")) return export_ply(path, m);
+  if (path.ends_with(".glb") || path.ends_with(".gltf")) {
+    std::vector<float> computed;
+    if (normals.size() != 3 * m.vertex_count()) compute_vertex_normals(m, computed);
+    hal::Expected<std::string> bytes = gltf_bytes(
+        m, normals.size() == 3 * m.vertex_count() ? normals : computed, path.ends_with(".glb"));
+    if (!bytes) return bytes.error();
+    return write_file(path, *bytes);
+  }
   if (!path.ends_with(".obj")) {
     return hal::make_error(StatusCode::invalid_argument,
-                           "unknown mesh format (use .obj or .ply): " + path);
+                           "unknown mesh format (use .obj, .ply, .glb or .gltf): " + path);
   }
   const auto core = to_core_mesh(m);
   if (!core) {

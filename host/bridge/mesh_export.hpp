@@ -1,16 +1,27 @@
-// Mesh export of the replica: OBJ through hal/meshio (same writer as the CLI
-// tools) or binary little-endian PLY, chosen by the file extension.
+// Mesh export of the replica, chosen by the file extension: OBJ through hal/meshio
+// (the CLI's writer), binary little-endian PLY, or glTF 2.0 through tinygltf
+// (`.glb` binary, `.gltf` with the buffer embedded) with vertex normals. Object
+// frame, metres. check_export_path() is run at start, so a bad path or format is
+// refused before the session's work, not after it.
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "scene_replica.hpp"
 #include "twister/hal/expected.hpp"
 
 namespace twister::bridge {
 
-// Writes `mesh` to `path`. Errors: invalid_argument (unknown extension, triangle
-// index out of range), io_error (cannot open or write); the message names the path.
-hal::Expected<void> export_mesh(const std::string& path, const MeshData& mesh);
+// Errors: invalid_argument (unknown extension: names the ones accepted; the path
+// is a directory), io_error (the folder does not exist or is not writable).
+hal::Expected<void> check_export_path(const std::string& path);
+
+// Writes `mesh` to `path`; `normals` (3 per vertex, e.g. SceneReplica::normals())
+// go into glTF, computed when empty. Errors: invalid_argument (unknown extension,
+// triangle index out of range), io_error (cannot open or write); the message names
+// the path.
+hal::Expected<void> export_mesh(const std::string& path, const MeshData& mesh,
+                                const std::vector<float>& normals = {});
 
 }  // namespace twister::bridge

@@ -18,13 +18,16 @@
 #include <string>
 
 #include "bridge_app.hpp"
+#include "camera_config.hpp"
 #include "gl_context.hpp"
 #include "mesh_export.hpp"
+#include "scene_view.hpp"
 #include "twister/hal/expected.hpp"
 #include "twister/hal/logger.hpp"
 #include "twister/hal/serial_link.hpp"
 #include "twister/hal/socket_link.hpp"
 #include "twister/hal/sodium_authenticator.hpp"
+#include "window_input.hpp"
 
 namespace {
 
@@ -46,7 +49,9 @@ struct Options {
   std::string export_path;
   unsigned exit_after_commits = 0;
   double timeout_s = 0.0;
-  twister::bridge::ViewConfig view;  // --azimuth, --elevation
+  twister::bridge::ViewConfig view;  // --azimuth, --elevation, or --camera FILE
+  std::string camera_file;           // a kiosk's fixed camera (TOML)
+  bool fixed_camera = false;
   bool exit_on_disconnect = false;
   std::string log_level = "notice";
   bool quiet = false;
@@ -76,6 +81,7 @@ Expected<Size> parse_size(const std::string& text) {
 struct Display {
   std::unique_ptr<twister::bridge::GlContext> context;
   twister::bridge::MeshRenderer renderer;
+  twister::bridge::SceneView view{renderer};
 };
 
 Expected<void> open_display(const Options& opt, Size size, Display& display) {
@@ -84,8 +90,12 @@ Expected<void> open_display(const Options& opt, Size size, Display& display) {
                      : twister::bridge::make_window_context(size.width, size.height, opt.kiosk);
   if (!context) return context.error();
   display.context = std::move(*context);
-  return display.renderer.init(display.context->width(), display.context->height(), opt.offscreen,
-                               opt.view);
+  if (Expected<void> ready = display.renderer.init(
+          display.context->width(), display.context->height(), opt.offscreen, opt.view);
+      !ready) {
+    return ready;
+  }
+  return display.view.init();
 }
 
 // Steps the app until the window closes, the awaited commits or disconnect came, or
@@ -166,7 +176,9 @@ int export_final_mesh(const std::string& path, const BridgeApp& app) {
     logger().error("export", "no mesh received; nothing exported");
     return kExitFailure;
   }
-  if (const Expected<void> done = twister::bridge::export_mesh(path, app.replica().mesh()); !done) {
+  if (const Expected<void> done =
+          twister::bridge::export_mesh(path, app.replica().mesh(), app.replica().normals());
+      !done) {
     logger().error("export", "%s", done.error().message.c_str());
     return kExitFailure;
   }
@@ -196,9 +208,27 @@ int run(const Options& opt) {
     logger().error("options", "%s", size.error().message.c_str());
     return kExitBadOptions;
   }
+  // The export path is checked now, not after the session's work.
+  if (!opt.export_path.empty()) {
+    if (const Expected<void> ok = twister::bridge::check_export_path(opt.export_path); !ok) {
+      logger().error("options", "--export: %s", ok.error().message.c_str());
+      return kExitBadOptions;
+    }
+  }
   if (!opt.snapshots.empty()) std::filesystem::create_directories(opt.snapshots);
+  Options options = opt;
+  if (!opt.camera_file.empty()) {
+    const Expected<twister::bridge::CameraConfig> camera =
+        twister::bridge::load_camera_config(opt.camera_file);
+    if (!camera) {
+      logger().error("options", "--camera: %s", camera.error().message.c_str());
+      return kExitBadOptions;
+    }
+    options.view = camera->view;
+    options.fixed_camera = camera->fixed;
+  }
   Display display;
-  if (const Expected<void> opened = open_display(opt, *size, display); !opened) {
+  if (const Expected<void> opened = open_display(options, *size, display); !opened) {
     logger().error("display", "%s", opened.error().message.c_str());
     return kExitFailure;
   }
@@ -224,6 +254,9 @@ int run(const Options& opt) {
   bridge_options.authenticator = auth.get();
   bridge_options.limits = opt.limits;
   BridgeApp app(*transport.port, &display.renderer, bridge_options, logger());
+  app.set_view(&display.view);
+  twister::bridge::WindowInput input(app, display.view, options.fixed_camera);
+  input.attach(display.context->window());
   int rc = run_loop(opt, app, display, transport.poll_fd());
   if (!opt.export_path.empty()) {
     if (const int exported = export_final_mesh(opt.export_path, app); exported != kExitOk) {
@@ -255,13 +288,17 @@ void add_options(CLI::App& cli, Options& opt) {
   cli.add_option("--size", opt.size, "WxH in pixels (window or offscreen)");
   cli.add_option("--snapshots", opt.snapshots,
                  "directory for PNGs: rest.png, live-<version>.png, commit-<version>.png");
-  cli.add_option("--export", opt.export_path, "write the final mesh (.obj or .ply) at exit");
+  cli.add_option("--export", opt.export_path,
+                 "write the final mesh at exit: .obj, .ply, .glb or .gltf (checked at start)");
   cli.add_option("--exit-after-commits", opt.exit_after_commits,
                  "exit once this many commits were applied and verified");
   cli.add_flag("--exit-on-disconnect", opt.exit_on_disconnect,
                "exit when the station closes the link (after a mesh was received)");
   cli.add_option("--timeout", opt.timeout_s, "give up after this many seconds (0 = never)")
       ->check(CLI::NonNegativeNumber);
+  cli.add_option("--camera", opt.camera_file,
+                 "camera file (TOML [camera]: azimuth_deg, elevation_deg, zoom, fov_deg, up, "
+                 "target, fixed): a kiosk's fixed view");
   cli.add_option("--azimuth", opt.view.azimuth_deg, "camera azimuth in degrees");
   cli.add_option("--elevation", opt.view.elevation_deg, "camera elevation in degrees");
   cli.add_option("--log-level", opt.log_level,

@@ -268,6 +268,10 @@ bool write_body(ByteWriter& w, const LinkMessage& m) {
     case MessageType::status:
       write_status(w, m.status);
       return true;
+    case MessageType::command:
+      w.u8(static_cast<std::uint8_t>(m.command.kind));
+      w.u8(m.command.method);
+      return true;
   }
   return false;
 }
@@ -326,6 +330,13 @@ bool read_body(ByteReader& r, LinkMessage& m) {
     case MessageType::status:
       good = read_status(r, m.status);
       break;
+    case MessageType::command: {
+      const std::uint8_t kind = r.u8();
+      m.command.kind = static_cast<CommandKind>(kind);
+      m.command.method = r.u8();
+      good = kind >= 1 && kind <= kLastCommandKind && m.command.method <= 2;
+      break;
+    }
     default:
       return false;
   }

@@ -172,10 +172,47 @@ void StationLink::on_display_message(const link::LinkMessage& m) {
     case link::MessageType::bye:
       display_.admitted = false;  // the display leaves; its socket follows
       return;
+    case link::MessageType::command:
+      if (!display_.admitted || command_count_ == kMaxCommands) {
+        ++counters_.commands_refused;
+        return;
+      }
+      commands_[command_count_++] = m.command;
+      return;
     default:
       ++counters_.refused_protocol;  // only the station sends the other types
       return;
   }
+}
+
+input::SessionCommand session_command(const link::Command& c) {
+  input::SessionCommand out;
+  out.hand = 0;  // a display's command belongs to no hand
+  switch (c.kind) {
+    case link::CommandKind::undo:
+      out.kind = input::SessionCommandKind::undo;
+      break;
+    case link::CommandKind::redo:
+      out.kind = input::SessionCommandKind::redo;
+      break;
+    case link::CommandKind::next_method:
+      out.kind = input::SessionCommandKind::next_method;
+      break;
+    case link::CommandKind::set_method:
+      out.kind = input::SessionCommandKind::set_method;
+      out.method = static_cast<math::WarpMethod>(c.method);
+      break;
+  }
+  return out;
+}
+
+bool StationLink::take_command(link::Command& out) {
+  if (command_count_ == 0) return false;
+  out = commands_[0];
+  for (std::size_t i = 1; i < command_count_; ++i) commands_[i - 1] = commands_[i];
+  --command_count_;
+  ++counters_.commands;
+  return true;
 }
 
 void StationLink::poll_newcomer(ports::TimestampUs now_us) {

@@ -8,6 +8,7 @@
 #include "replica_plan.hpp"
 #include "scene_replica.hpp"
 #include "twister/link/math_conversion.hpp"
+#include "twister/math/decay.hpp"
 #include "twister/math/warp_kernels.hpp"
 
 namespace twister::bridge {
@@ -48,6 +49,8 @@ bool SceneReplica::ensure_plan() {
   }
   live_.weight1.assign(n, 0.0F);
   live_.weight2.assign(n, 0.0F);
+  live_.gradient1.assign(3 * n, 0.0F);
+  live_.gradient2.assign(3 * n, 0.0F);
   live_.weights_changed = true;
   const math::ConstVertexColumns rest{mesh_.x, mesh_.y, mesh_.z};
   if (!plan->build(rest, std::span<const math::Frame>(start.data(), hands), stroke_.radius_m,
@@ -64,7 +67,31 @@ bool SceneReplica::ensure_plan() {
     if (!w2.empty()) live_.weight2[idx[k]] = w2[k];
   }
   plan_->plan = std::move(plan);
+  fill_gradients(start, hands);
   return true;
+}
+
+void SceneReplica::fill_gradients(const std::array<math::Frame, 2>& start, std::size_t hands) {
+  const std::size_t n = mesh_.vertex_count();
+  const double step = 1e-3 * stroke_.radius_m;
+  for (std::size_t h = 0; h < hands; ++h) {
+    const glm::dvec3 grab = start[h].origin;
+    const glm::dvec3 other = start[1 - h].origin;
+    const glm::dvec3* other_ptr = hands == 2 ? &other : nullptr;
+    const std::vector<float>& w = h == 0 ? live_.weight1 : live_.weight2;
+    std::vector<float>& g = h == 0 ? live_.gradient1 : live_.gradient2;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (w[i] <= 0.0F) continue;
+      const glm::dvec3 p(mesh_.x[i], mesh_.y[i], mesh_.z[i]);
+      for (int a = 0; a < 3; ++a) {
+        glm::dvec3 e(0.0);
+        e[a] = step;
+        const double up = math::hand_weight(grab, other_ptr, stroke_.radius_m, p + e);
+        const double down = math::hand_weight(grab, other_ptr, stroke_.radius_m, p - e);
+        g[3 * i + static_cast<std::size_t>(a)] = static_cast<float>((up - down) / (2.0 * step));
+      }
+    }
+  }
 }
 
 void SceneReplica::on_hands(const link::Hands& h) {

@@ -9,6 +9,7 @@
 #include "replica_plan.hpp"
 #include "twister/link/math_conversion.hpp"
 #include "twister/mesh/mesh.hpp"
+#include "vertex_normals.hpp"
 
 namespace twister::bridge {
 
@@ -143,6 +144,7 @@ void SceneReplica::end(const link::MeshEnd& e, std::optional<link::ResendRequest
   }
   mesh_ = std::move(staged_);
   staged_ = MeshData{};
+  compute_vertex_normals(mesh_, normals_);
   version_ = e.version;
   checksum_ = *sum;
   mesh_changed_ = true;

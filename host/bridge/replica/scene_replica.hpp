@@ -94,7 +94,11 @@ struct LiveState {
   double radius_m = 0.0;
   std::array<LiveHand, link::kLinkHands> hands{};
   std::vector<float> weight1, weight2;  // per vertex, plan hands 0 and 1 (0 = not influenced)
-  bool weights_changed = false;         // set when rebuilt; the display clears it
+  // Per vertex (x y z each), the gradient of weight1 / weight2 at the rest position
+  // (core's decay with the squash, by central differences): with the screw's own
+  // derivative it gives the warped surface's normal (smooth shading while warping).
+  std::vector<float> gradient1, gradient2;
+  bool weights_changed = false;  // set when rebuilt; the display clears it
 };
 
 class SceneReplica {
@@ -113,6 +117,9 @@ class SceneReplica {
   std::uint32_t version() const { return version_; }
   std::uint64_t checksum() const { return checksum_; }
   const MeshData& mesh() const { return mesh_; }
+  // Smooth-shading normals of mesh() (compute_vertex_normals), kept with each
+  // verified version: 3 floats per vertex.
+  const std::vector<float>& normals() const { return normals_; }
   bool mesh_changed() const { return mesh_changed_; }
   void clear_mesh_changed() { mesh_changed_ = false; }
   LiveState& live() { return live_; }
@@ -142,9 +149,11 @@ class SceneReplica {
   void on_hands(const link::Hands& h);
   void update_live(const link::Hands& h);
   bool ensure_plan();
+  void fill_gradients(const std::array<math::Frame, 2>& start, std::size_t hands);
 
   ReplicaLimits limits_;
   MeshData mesh_;
+  std::vector<float> normals_;
   std::uint32_t version_ = 0;
   std::uint64_t checksum_ = 0;
   bool mesh_changed_ = false;

@@ -136,6 +136,10 @@ LinkMessage random_message() {
       m.status.live_dropped = *rc::gen::arbitrary<std::uint64_t>();
       m.status.strokes_not_saved = *rc::gen::arbitrary<std::uint64_t>();
       break;
+    case MessageType::command:
+      m.command.kind = static_cast<CommandKind>(*rc::gen::inRange(1, kLastCommandKind + 1));
+      m.command.method = static_cast<std::uint8_t>(*rc::gen::inRange(0, 3));
+      break;
   }
   return m;
 }
@@ -233,6 +237,26 @@ TEST(LinkCodec, NonFiniteOrDegenerateLivePosesAreRefused) {
   s.stroke.radius_m = 0.2;
   s.stroke.start[0].u.x = std::numeric_limits<double>::infinity();
   EXPECT_TRUE(feed(d, encode(s)).empty());
+}
+
+TEST(LinkCodec, CommandsOfUnknownKindOrMethodAreRefused) {
+  LinkMessage m;
+  m.type = MessageType::command;
+  m.command = Command{CommandKind::set_method, 2};
+  auto bytes = encode(m);
+  LinkDecoder decoder;
+  std::size_t decoded = 0;
+  for (const std::byte b : bytes) decoded += decoder.process(b).ok() ? 1 : 0;
+  EXPECT_EQ(decoded, 1u);
+  for (const Command bad : {Command{static_cast<CommandKind>(0), 0},
+                            Command{static_cast<CommandKind>(kLastCommandKind + 1), 0},
+                            Command{CommandKind::set_method, 3}}) {
+    m.command = bad;
+    bytes = encode(m);
+    decoded = 0;
+    for (const std::byte b : bytes) decoded += decoder.process(b).ok() ? 1 : 0;
+    EXPECT_EQ(decoded, 0u) << static_cast<int>(bad.kind) << " " << int{bad.method};
+  }
 }
 
 }  // namespace

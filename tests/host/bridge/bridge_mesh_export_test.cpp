@@ -1,8 +1,12 @@
 // Mesh export of the replica: OBJ reloads bit-identically (same checksum); PLY has
-// the header and exact binary size; unknown extensions are refused.
+// the header and exact binary size; binary glTF reloads (tinygltf) with the same
+// positions, triangles and unit normals; unknown formats and unwritable paths are
+// refused by the start-up check.
 #include <gtest/gtest.h>
+#include <tiny_gltf.h>
 #include <unistd.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -61,6 +65,67 @@ TEST(BridgeMeshExport, UnknownFormatAndBadPathAreErrors) {
   ASSERT_FALSE(stl);
   EXPECT_NE(stl.error().message.find("unknown mesh format"), std::string::npos);
   EXPECT_FALSE(export_mesh("/nonexistent-dir/m.ply", tetra()));
+}
+
+// The float3 / uint32 data of an accessor (tightly packed, as the exporter writes).
+template <typename T>
+std::vector<T> accessor_data(const tinygltf::Model& model, int index, std::size_t per_item) {
+  const tinygltf::Accessor& a = model.accessors[static_cast<std::size_t>(index)];
+  const tinygltf::BufferView& v = model.bufferViews[static_cast<std::size_t>(a.bufferView)];
+  const auto& bytes = model.buffers[static_cast<std::size_t>(v.buffer)].data;
+  std::vector<T> out(a.count * per_item);
+  std::memcpy(out.data(), bytes.data() + v.byteOffset + a.byteOffset, out.size() * sizeof(T));
+  return out;
+}
+
+TEST(BridgeMeshExport, GlbReloadsWithTheSamePositionsTrianglesAndNormals) {
+  const MeshData m = tetra();
+  const std::string path = temp("m.glb");
+  ASSERT_TRUE(check_export_path(path));
+  const hal::Expected<void> exported = export_mesh(path, m);
+  ASSERT_TRUE(exported) << exported.error().message;
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err;
+  std::string warn;
+  ASSERT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, path)) << err;
+  ASSERT_EQ(model.meshes.size(), 1u);
+  const tinygltf::Primitive& p = model.meshes[0].primitives.at(0);
+  EXPECT_EQ(p.mode, TINYGLTF_MODE_TRIANGLES);
+  const auto pos = accessor_data<float>(model, p.attributes.at("POSITION"), 3);
+  ASSERT_EQ(pos.size(), 3 * m.vertex_count());
+  for (std::size_t i = 0; i < m.vertex_count(); ++i) {
+    EXPECT_EQ(pos[3 * i], m.x[i]);
+    EXPECT_EQ(pos[3 * i + 1], m.y[i]);
+    EXPECT_EQ(pos[3 * i + 2], m.z[i]);
+  }
+  const auto indices = accessor_data<std::uint32_t>(model, p.indices, 1);
+  EXPECT_EQ(indices, m.indices);
+  EXPECT_EQ(indices.size() / 3, m.triangle_count());
+  const auto normals = accessor_data<float>(model, p.attributes.at("NORMAL"), 3);
+  ASSERT_EQ(normals.size(), pos.size());
+  for (std::size_t i = 0; i < m.vertex_count(); ++i) {
+    const float len =
+        std::sqrt(normals[3 * i] * normals[3 * i] + normals[3 * i + 1] * normals[3 * i + 1] +
+                  normals[3 * i + 2] * normals[3 * i + 2]);
+    EXPECT_NEAR(len, 1.0F, 1e-5F);
+  }
+  std::filesystem::remove(path);
+}
+
+TEST(BridgeMeshExport, StartUpCheckRefusesBadFormatsAndPaths) {
+  EXPECT_TRUE(check_export_path(temp("m.obj")));
+  EXPECT_TRUE(check_export_path(temp("m.gltf")));
+  EXPECT_FALSE(check_export_path(temp("m.stl")));
+  EXPECT_FALSE(check_export_path(temp("m")));
+  EXPECT_FALSE(check_export_path("/nonexistent-dir/m.glb"));
+  const std::string folder = temp("folder.glb");
+  std::filesystem::create_directory(folder);
+  EXPECT_FALSE(check_export_path(folder)) << "a directory is no file";
+  std::filesystem::remove(folder);
+  if (::geteuid() != 0) {
+    EXPECT_FALSE(check_export_path("/proc/m.glb"));
+  }
 }
 
 }  // namespace

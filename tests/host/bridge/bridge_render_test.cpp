@@ -24,6 +24,8 @@ namespace {
 
 constexpr int kW = 320;
 constexpr int kH = 240;
+// The clear colour (0.13, 0.14, 0.17) in 8 bits.
+constexpr std::array<int, 3> kBackground{33, 36, 43};
 
 MeshData sphere() {
   static mesh::MeshWithStorage<8192, 16384> m;
@@ -79,6 +81,18 @@ double differing(const std::vector<std::uint8_t>& a, const std::vector<std::uint
       }
     }
   }
+  return static_cast<double>(n) / static_cast<double>(a.size() / 4);
+}
+
+// Fraction of pixels that are background (the clear colour) in one picture only.
+double coverage_differs(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b) {
+  const auto background = [](const std::uint8_t* p) {
+    return std::abs(int{p[0]} - int{kBackground[0]}) + std::abs(int{p[1]} - int{kBackground[1]}) +
+               std::abs(int{p[2]} - int{kBackground[2]}) <=
+           3;
+  };
+  std::size_t n = 0;
+  for (std::size_t p = 0; p < a.size(); p += 4) n += background(&a[p]) != background(&b[p]);
   return static_cast<double>(n) / static_cast<double>(a.size() / 4);
 }
 
@@ -138,10 +152,16 @@ TEST_F(BridgeRender, LiveWarpInTheShaderEqualsTheCpuWarp) {
   renderer_.set_live(nullptr);
   renderer_.draw();
   const auto cpu = renderer_.read_rgba();
+  // Same geometry: the model covers the same pixels. Shading differs a little:
+  // the shader turns the rest normals with the warp, the CPU path averages the
+  // warped faces' normals.
+  const double coverage = coverage_differs(shader, cpu);
   const double diff = differing(shader, cpu, 12);
-  std::printf("rest vs live: %.2f%% of pixels differ; shader vs CPU warp: %.3f%%\n",
-              100.0 * differing(rest, shader, 8), 100.0 * diff);
-  EXPECT_LT(diff, 0.002) << "shader vs CPU warp differ in " << diff * 100 << "% of pixels";
+  std::printf(
+      "rest vs live: %.2f%% of pixels differ; shader vs CPU warp: coverage %.3f%%, colour %.3f%%\n",
+      100.0 * differing(rest, shader, 8), 100.0 * coverage, 100.0 * diff);
+  EXPECT_LT(coverage, 0.001) << "shader vs CPU warp cover different pixels";
+  EXPECT_LT(diff, 0.01) << "shader vs CPU warp differ in " << diff * 100 << "% of pixels";
 
   // Where every weight is zero the shader leaves the rest mesh alone.
   std::vector<float> zero(r.mesh().vertex_count(), 0.0F);

@@ -53,8 +53,9 @@ enum class MessageType : std::uint8_t {
   hands = 10,          // S->B: tracker-rate update: hands, buttons, radius, live stroke
   object = 11,         // S->B: the object's pose in the world
   status = 12,         // S->B: station status (tracker, capacity, counters)
+  command = 13,        // B->S: a sculptor's key (undo, redo, method), admitted display only
 };
-inline constexpr std::uint8_t kLastMessageType = 12;
+inline constexpr std::uint8_t kLastMessageType = 13;
 
 enum class Role : std::uint8_t { station = 1, bridge = 2 };
 
@@ -191,6 +192,17 @@ struct StatusReport {
   std::uint64_t frames_rejected = 0;
 };
 
+// A command from the display's keyboard, routed by the station into the session's
+// command path (the same as the hands' undo/redo/method buttons). The station acts
+// only on an admitted display's commands.
+enum class CommandKind : std::uint8_t { undo = 1, redo = 2, next_method = 3, set_method = 4 };
+inline constexpr std::uint8_t kLastCommandKind = 4;
+
+struct Command {
+  CommandKind kind = CommandKind::undo;
+  std::uint8_t method = 0;  // math::WarpMethod, set_method only
+};
+
 // One decoded or to-be-encoded message: `type` says which member is meaningful.
 struct LinkMessage {
   MessageType type = MessageType::hello;
@@ -206,6 +218,7 @@ struct LinkMessage {
   Hands hands{};
   ObjectPose object{};
   StatusReport status{};
+  Command command{};
 };
 
 }  // namespace twister::link

@@ -170,6 +170,10 @@ class Station {
   const StationCounters& counters() const { return counters_; }
   const tracker::FastrakSession& tracker_session() const { return session_; }
   const input::SculptSession& sculpt() const { return sculpt_; }
+  // Queues a session command (undo, redo, method) for the next poll(): the path
+  // of the hands' buttons, also used by the display's keys (StationLink commands).
+  // Errors as SculptSession::submit().
+  Status submit(const input::SessionCommand& command) { return sculpt_.submit(command); }
   const mesh::Mesh& mesh() const { return sculpt_.mesh(); }
   // Records in the journal file: the ones found at start() plus every record
   // appended (and synced) since.

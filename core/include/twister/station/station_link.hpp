@@ -75,7 +75,12 @@ struct StationLinkCounters {
   std::uint64_t refused_protocol = 0;      // wrong role, order or message
   std::uint64_t refused_version = 0;       // another protocol version
   std::uint64_t refused_timeout = 0;       // handshake not finished in time
+  std::uint64_t commands = 0;              // display commands accepted (take_command)
+  std::uint64_t commands_refused = 0;      // from a display not admitted, or queue full
 };
+
+// The session command of a display's command (link message `command`).
+input::SessionCommand session_command(const link::Command& command);
 
 class StationLink {
  public:
@@ -93,6 +98,10 @@ class StationLink {
   void poll(const input::SculptSession& session, ports::TimestampUs now_us) {
     poll(session, StationStatus{}, now_us);
   }
+  // The next command the admitted display sent (keys: undo, redo, method), oldest
+  // first; false when none. The station routes it into the session's command path.
+  // Commands from a peer that is not admitted are dropped and counted.
+  bool take_command(link::Command& out);
   // Tells the display the station stops (bye: shutdown), best effort.
   void say_goodbye();
 
@@ -123,6 +132,7 @@ class StationLink {
     ports::TimestampUs since_us = 0;
   };
   static constexpr std::size_t kUrgentBytes = 8192;
+  static constexpr std::size_t kMaxCommands = 8;
 
   // Handshakes (station_link.cpp).
   void receive(ports::TimestampUs now_us);
@@ -206,6 +216,8 @@ class StationLink {
   ports::TimestampUs last_status_us_ = 0;
   bool status_sent_ = false;
   link::StatusReport last_status_{};
+  std::array<link::Command, kMaxCommands> commands_{};
+  std::size_t command_count_ = 0;
   StationLinkCounters counters_{};
 };
 

@@ -1,0 +1,198 @@
+// What the sculptor's display costs per frame on Mesa llvmpipe (offscreen EGL,
+// 800x600), at 30k and 100k vertices, in one run:
+//   Plain/<n>        the baseline: the rest mesh alone (no weights, cues or HUD);
+//   CuesHud/<n>      a two-hand stroke: warp in the shader with warped normals,
+//                    weights, both hands' glyphs and spheres, the pink axes and
+//                    yellow trajectories, the HUD (SceneView::draw, as twister-bridge);
+//   CuesHudMoving/<n> before a grab with both hands moving every frame: the weight
+//                    preview (a WarpPlan on the whole mesh) rebuilt per frame, plus
+//                    cues and HUD.
+// After the table: the ratio of each to Plain/<n> from this run.
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "bridge_app.hpp"
+#include "gl_context.hpp"
+#include "scene_view.hpp"
+#include "twister/link/math_conversion.hpp"
+#include "twister/mesh/mesh.hpp"
+#include "twister/meshio/mesh_generator.hpp"
+
+namespace {
+
+using namespace twister;
+
+std::map<std::string, double>& seconds_per_frame() {
+  static std::map<std::string, double> m;
+  return m;
+}
+
+class QuietLink final : public ports::LinkPort {
+  Result<std::size_t> do_send(std::span<const std::byte> src) override { return src.size(); }
+  Result<std::size_t> do_receive(std::span<std::byte>) override { return std::size_t{0}; }
+};
+
+struct Display {
+  std::unique_ptr<bridge::GlContext> context;
+  bridge::MeshRenderer renderer;
+  std::unique_ptr<bridge::SceneView> view;
+  QuietLink link;
+  ports::NullLogSink log;
+  std::unique_ptr<bridge::BridgeApp> app;
+};
+
+// The sphere of about `n` vertices (0.1 m) in a fresh display.
+std::unique_ptr<Display> make_display(long n) {
+  ::unsetenv("DISPLAY");
+  auto d = std::make_unique<Display>();
+  auto context = bridge::make_offscreen_context(800, 600);
+  if (!context) return nullptr;
+  d->context = std::move(*context);
+  if (!d->renderer.init(800, 600, true, {})) return nullptr;
+  d->view = std::make_unique<bridge::SceneView>(d->renderer);
+  if (!d->view->init()) return nullptr;
+  d->app =
+      std::make_unique<bridge::BridgeApp>(d->link, &d->renderer, bridge::BridgeOptions{}, d->log);
+  d->app->set_view(d->view.get());
+  static mesh::MeshWithStorage<110000, 220000> sphere;
+  sphere.clear();
+  const std::size_t rings = n > 50000 ? 256 : 150;
+  (void)meshio::make_sphere(sphere, rings, n > 50000 ? 400 : 200, 0.1F);
+  link::LinkMessage m;
+  m.type = link::MessageType::mesh_begin;
+  const auto nv = static_cast<std::uint32_t>(sphere.vertex_count());
+  const auto nt = static_cast<std::uint32_t>(sphere.triangle_count());
+  m.mesh_begin = {true, 0, 1, nv, nt};
+  (void)d->app->replica().apply(m);
+  m.type = link::MessageType::vertices;
+  for (std::uint32_t i = 0; i < nv; ++i) {
+    m.vertices.items[m.vertices.count++] = {i, sphere.x()[i], sphere.y()[i], sphere.z()[i]};
+    if (m.vertices.count == link::kMaxVerticesPerChunk || i + 1 == nv) {
+      (void)d->app->replica().apply(m);
+      m.vertices.count = 0;
+    }
+  }
+  m.type = link::MessageType::triangles;
+  const auto idx = sphere.triangle_indices();
+  for (std::uint32_t k = 0; k < nt; k += link::kMaxTrianglesPerChunk) {
+    m.triangles.first = k;
+    m.triangles.count =
+        static_cast<std::uint16_t>(std::min<std::size_t>(link::kMaxTrianglesPerChunk, nt - k));
+    std::copy_n(idx.begin() + 3 * static_cast<std::ptrdiff_t>(k), 3 * m.triangles.count,
+                m.triangles.indices.begin());
+    (void)d->app->replica().apply(m);
+  }
+  m.type = link::MessageType::mesh_end;
+  m.mesh_end = {1, sphere.checksum()};
+  (void)d->app->replica().apply(m);
+  m.type = link::MessageType::status;
+  m.status.tracker_state = 1;
+  m.status.tracker_rate_hz = 120.0F;
+  (void)d->app->replica().apply(m);
+  d->app->step();
+  return d;
+}
+
+void record(const benchmark::State& state, const std::string& name, double seconds) {
+  seconds_per_frame()[name + "/" + std::to_string(state.range(0))] =
+      seconds / static_cast<double>(state.iterations());
+}
+
+void BM_Plain(benchmark::State& state) {
+  auto d = make_display(state.range(0));
+  if (!d) return state.SkipWithError("no offscreen GL context");
+  const auto t0 = std::chrono::steady_clock::now();
+  for (auto _ : state) d->renderer.draw();  // draw() ends with glFinish
+  record(state, "Plain",
+         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  state.counters["vertices"] = static_cast<double>(d->renderer.vertex_count());
+}
+
+void BM_CuesHud(benchmark::State& state) {
+  auto d = make_display(state.range(0));
+  if (!d) return state.SkipWithError("no offscreen GL context");
+  const std::array<math::Frame, 2> start{math::identity_frame({0.0, -0.1, 0.0}),
+                                         math::identity_frame({0.0, 0.1, 0.0})};
+  const auto turned = [](glm::dvec3 o, double a) {
+    return math::frame_from_uv(o, {1.0, 0.0, 0.0}, {0.0, std::cos(a), std::sin(a)});
+  };
+  const std::array<math::Frame, 2> end{turned({0.02, -0.14, -0.03}, 0.7),
+                                       turned({0.02, 0.14, -0.03}, -0.7)};
+  const auto live =
+      bridge::make_live_messages(1, 1, math::WarpMethod::twister, 0.08, 3, start, end);
+  (void)d->app->replica().apply(live.stroke);
+  (void)d->app->replica().apply(live.hands);
+  d->app->step();
+  const auto t0 = std::chrono::steady_clock::now();
+  for (auto _ : state) d->app->draw();
+  record(state, "CuesHud",
+         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+}
+
+void BM_CuesHudMoving(benchmark::State& state) {
+  auto d = make_display(state.range(0));
+  if (!d) return state.SkipWithError("no offscreen GL context");
+  link::LinkMessage m;
+  m.type = link::MessageType::hands;
+  m.hands.radius_m = 0.08F;
+  m.hands.flags =
+      link::kHandSample0 | link::kHandSample1 | link::kHandTracked0 | link::kHandTracked1;
+  double phase = 0.0;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (auto _ : state) {
+    phase += 0.01;  // 1 mm per frame: every frame rebuilds the preview
+    m.hands.hands[0] =
+        link::to_compact(math::identity_frame({0.0, -0.1 - 0.01 * std::sin(phase), 0.0}));
+    m.hands.hands[1] = link::to_compact(math::identity_frame({0.0, 0.1, 0.01 * std::sin(phase)}));
+    ++m.hands.sequence;
+    (void)d->app->replica().apply(m);
+    d->app->step();
+    d->app->draw();
+  }
+  record(state, "CuesHudMoving",
+         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+}
+
+BENCHMARK(BM_Plain)
+    ->Arg(30000)
+    ->Arg(100000)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0)
+    ->UseRealTime();
+BENCHMARK(BM_CuesHud)
+    ->Arg(30000)
+    ->Arg(100000)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0)
+    ->UseRealTime();
+BENCHMARK(BM_CuesHudMoving)
+    ->Arg(30000)
+    ->Arg(100000)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0)
+    ->UseRealTime();
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  for (const char* n : {"30000", "100000"}) {
+    const double plain = seconds_per_frame()[std::string("Plain/") + n];
+    if (plain <= 0.0) continue;
+    for (const char* row : {"CuesHud", "CuesHudMoving"}) {
+      const double t = seconds_per_frame()[std::string(row) + "/" + n];
+      std::printf("ratio %s/%s vs Plain/%s: %.2f (%.2f ms vs %.2f ms per frame)\n", row, n, n,
+                  t / plain, 1e3 * t, 1e3 * plain);
+    }
+  }
+  return 0;
+}

@@ -1,0 +1,53 @@
+// SceneView: what the sculptor sees in one frame: the mesh (MeshRenderer: weights,
+// live warp, smooth shading, at the object pose), the paper's cues over it
+// (cue_geometry.hpp, CueRenderer) and the heads-up text (HudModel, HudRenderer).
+// BridgeApp draws through it in every mode (window, kiosk, offscreen snapshots).
+// Needs a current context.
+#pragma once
+
+#include <chrono>
+
+#include "cue_geometry.hpp"
+#include "cue_renderer.hpp"
+#include "hud_model.hpp"
+#include "hud_renderer.hpp"
+#include "mesh_renderer.hpp"
+
+namespace twister::bridge {
+
+struct SceneViewOptions {
+  CueOptions cues{};
+  bool hud = true;
+};
+
+class SceneView {
+ public:
+  explicit SceneView(MeshRenderer& renderer, SceneViewOptions options = {})
+      : renderer_(renderer), options_(options) {}
+  // Error not_supported: a shader or the HUD's back end did not start.
+  hal::Expected<void> init();
+  // One frame of `replica` (already uploaded to the renderer by BridgeApp).
+  void draw(const SceneReplica& replica, HudInput input);
+  MeshRenderer& renderer() { return renderer_; }
+  const CueScene& cues() const { return cues_; }
+  const HudText& hud_text() const { return text_; }
+  const HudRenderer& hud() const { return hud_; }
+  SceneViewOptions& options() { return options_; }
+  // Frames per second over the last second of draws.
+  double fps() const { return fps_; }
+
+ private:
+  MeshRenderer& renderer_;
+  SceneViewOptions options_;
+  CueRenderer cue_renderer_;
+  HudRenderer hud_;
+  HudModel hud_model_;
+  CueScene cues_;
+  HudText text_;
+  std::chrono::steady_clock::time_point last_{};
+  std::chrono::steady_clock::time_point second_start_{};
+  int frames_in_second_ = 0;
+  double fps_ = 0.0;
+};
+
+}  // namespace twister::bridge

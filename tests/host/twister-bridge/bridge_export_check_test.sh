@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# twister-bridge checks --export at start: a folder that does not exist, a folder
+# that is a file, or an unknown format exits 2 at once (the bridge is given a long
+# timeout: a check at exit would wait for it), naming the problem; a good .glb path
+# passes the check (the run then ends at its short timeout, with no mesh to export).
+# Usage: bridge_export_check_test.sh BUILD_DIR WORK_DIR
+set -euo pipefail
+build="$1"
+work="$2"
+rm -rf "$work"
+mkdir -p "$work"
+unset DISPLAY WAYLAND_DISPLAY
+bridge() { "$build/bin/twister-bridge" --offscreen --size 64x48 --connect "unix:$work/absent.sock" "$@"; }
+fail() { echo "FAIL: $*"; exit 1; }
+touch "$work/file"
+for bad in "$work/no/such/dir/final.glb" "$work/file/final.glb" "$work/final.stl" "$work/final"; do
+  start=$(date +%s%N)
+  rc=0
+  bridge --timeout 30 --export "$bad" 2> "$work/err.log" || rc=$?
+  ms=$(( ($(date +%s%N) - start) / 1000000 ))
+  [[ $rc -eq 2 ]] || fail "$bad: exit $rc, want 2"
+  (( ms < 5000 )) || fail "$bad: refused after $ms ms, not at start"
+  grep -q "error: options: --export: " "$work/err.log" || fail "$bad: $(cat "$work/err.log")"
+done
+bridge --timeout 0.2 --export "$work/final.glb" 2> "$work/ok.log" || true
+grep -q "no mesh received" "$work/ok.log" || fail "a good path: $(cat "$work/ok.log")"
+grep -q "options:" "$work/ok.log" && fail "a good path refused: $(cat "$work/ok.log")"
+echo "export paths checked at start: ok"
