@@ -211,10 +211,14 @@ Result<UndoStep> UndoHistory::redo(mesh::Mesh& mesh) {
 Status UndoHistory::adopt(std::size_t entry_count, std::size_t undo_count, std::size_t dropped) {
   bool ok = !open_ && entry_count <= entries_.size() && undo_count <= entry_count;
   std::size_t next = 0;
+  std::size_t next_triangle = 0;
   for (std::size_t i = 0; ok && i < entry_count; ++i) {
     const UndoEntry& e = entries_[i];
-    ok = e.first_change == next && e.change_count <= changes_.size() - next;
+    ok = e.first_change == next && e.change_count <= changes_.size() - next &&
+         e.first_triangle_change == next_triangle &&
+         e.triangle_change_count <= triangle_changes_.size() - next_triangle;
     next += ok ? e.change_count : 0;
+    next_triangle += ok ? e.triangle_change_count : 0;
   }
   if (!ok) {
     clear();

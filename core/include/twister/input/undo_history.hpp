@@ -107,17 +107,25 @@ class UndoHistory {
   void clear();
 
   // Checkpoint support (SessionCheckpoint). The kept entries, oldest first, and their
-  // vertex changes (entries()[i] covers changes()[first_change, + change_count)).
+  // vertex and triangle changes (entries()[i] covers changes()[first_change, +
+  // change_count) and triangle_changes()[first_triangle_change, + triangle_change_count)).
   std::span<const UndoEntry> entries() const { return entries_.first(entry_count_); }
   std::span<const VertexChange> changes() const { return changes_.first(used_changes()); }
+  std::span<const TriangleChange> triangle_changes() const {
+    return triangle_changes_.first(used_triangle_changes());
+  }
   std::size_t entry_capacity() const { return entries_.size(); }
   std::size_t change_capacity() const { return changes_.size(); }
-  // Restore: the caller writes the entries and changes straight into these spans,
-  // then adopt() makes them the history. adopt() checks that the entries are packed
-  // and contiguous from change 0 and fit; invalid_argument (the history is then
-  // cleared) otherwise. No entry may be open.
+  std::size_t triangle_change_capacity() const { return triangle_changes_.size(); }
+  // Restore: the caller writes the entries and both kinds of changes straight into
+  // these spans, then adopt() makes them the history. adopt() checks that the entries
+  // are packed and contiguous from change 0 and triangle change 0 and fit both pools;
+  // invalid_argument (the history is then cleared) otherwise. No entry may be open.
+  // (Whether the entries fit the mesh is the caller's check: undo() and redo() still
+  // refuse an entry whose counts or vertex indices do not.)
   std::span<UndoEntry> entry_storage() { return entries_; }
   std::span<VertexChange> change_storage() { return changes_; }
+  std::span<TriangleChange> triangle_change_storage() { return triangle_changes_; }
   Status adopt(std::size_t entry_count, std::size_t undo_count, std::size_t dropped);
 
  private:
