@@ -261,5 +261,42 @@ TEST(RefineCheckpoint, AnotherMeshCapacityIsRefused) {
   EXPECT_EQ(verify_bytes(bytes, *other).code(), StatusCode::data_loss);
 }
 
+// What no check of the file can see without replaying its history: a triangle of the
+// mesh on a vertex that an undoable refined entry added although that entry did not
+// write it. The file verifies and restores; the undo of that entry is refused and
+// changes nothing (UndoHistory checks the triangles it leaves).
+TEST(RefineCheckpoint, AMeshTriangleOnAVertexARefinedEntryAddedStopsItsUndo) {
+  auto live = refined_session(kSpare, kThreshold);
+  const UndoHistory& history = live->session->history();
+  std::size_t k = history.undo_depth();
+  while (k-- > 0 && !history.entries()[k].topology) {
+  }
+  ASSERT_LT(k, history.undo_depth());
+  const std::uint32_t added = history.entries()[k].vertices_before;
+  Bytes bytes = checkpoint_of(*live, 0);
+  const CheckpointLayout l = layout_of(header_of(bytes));
+  const UndoEntry& e = history.entries()[k];
+  const auto rewritten_by_k = [&](std::size_t t) {
+    for (std::size_t i = 0; i < e.triangle_change_count; ++i) {
+      if (history.triangle_changes()[e.first_triangle_change + i].index == t) return true;
+    }
+    return false;
+  };
+  std::size_t t = 0;  // a triangle before it that entry k did not rewrite
+  while (t < e.triangles_before && rewritten_by_k(t)) ++t;
+  ASSERT_LT(t, e.triangles_before);
+  put_le(bytes, l.triangles + t * kCheckpointTriangleBytes, 4, added);
+  reseal(bytes);
+  auto restored = std::make_unique<RefineStation>(3, kSpare, refine_config(kThreshold), false);
+  ASSERT_TRUE(restore_bytes(bytes, *restored).ok());
+  for (std::size_t undone = history.undo_depth() - 1; undone > k; --undone) {
+    ASSERT_TRUE(restored->session->undo().ok());
+  }
+  const std::uint64_t before = restored->mesh().checksum();
+  EXPECT_EQ(restored->session->undo().code(), StatusCode::out_of_range);
+  EXPECT_EQ(restored->mesh().checksum(), before);
+  EXPECT_EQ(restored->mesh().vertex_count(), history.entries()[k].vertices_after);
+}
+
 }  // namespace
 }  // namespace twister::input

@@ -99,7 +99,10 @@ class UndoHistory {
   // Restores the positions (and topology) before the newest undoable entry.
   // failed_precondition: nothing to undo (or an entry is open).
   // out_of_range: an index or count does not match the mesh (mesh replaced under the
-  // history); nothing changed.
+  // history), or a refined entry's triangles do not (its own triangles not as it left
+  // them, or another triangle on a vertex it added: a history restored from a
+  // checkpoint that does not fit its mesh); nothing changed. A refined entry's undo
+  // looks at every triangle before its triangles_before once.
   Result<UndoStep> undo(mesh::Mesh& mesh);
   // Re-applies the oldest undone entry. failed_precondition: nothing to redo.
   Result<UndoStep> redo(mesh::Mesh& mesh);
@@ -138,6 +141,7 @@ class UndoHistory {
   bool make_room(End end, std::size_t pool_size);
   bool fits(const UndoEntry& e, const mesh::Mesh& mesh, bool after) const;
   void restore_triangles(const UndoEntry& e, mesh::Mesh& mesh, bool after) const;
+  bool undo_triangles(const UndoEntry& e, mesh::Mesh& mesh) const;
 
   std::span<VertexChange> changes_;
   std::span<UndoEntry> entries_;
