@@ -30,7 +30,9 @@
 // the counts the entries before it leave and the mesh holds the counts the undoable
 // entries end at; a refined entry's triangle changes are its rewritten triangles
 // (index < triangles_before) then every appended one in order, and its vertex and
-// triangle indices fit the counts before and after it.
+// triangle indices fit the counts before and after it. What only a replay of the
+// history could show (a mesh triangle on a vertex that an undoable refined entry added
+// without writing that triangle) UndoHistory::undo() refuses when that entry is undone.
 // A checkpoint fits a journal when the record ending at journal_offset has the CRC
 // field last_record_crc and journal_records records precede it, and fits a model
 // when base_checksum is the initial model's checksum (the caller's check: Station)
