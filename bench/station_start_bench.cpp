@@ -5,8 +5,14 @@
 //   StationStart/empty_journal      baseline: the same start-up with no records
 //   StationStart/full_replay        the 20,000 records replayed (no checkpoint)
 //   StationStart/checkpoint         a checkpoint of the 20,000 records restored
+// and, with [sculpt] refine on (spare_vertices 40,000), a journal of 2,000 such strokes
+// each refined to 1 mm at commit (checkpoint format 2 holds the grown mesh and the
+// topology in the history):
+//   StationStart/refined_full_replay  the 2,000 refined records replayed
+//   StationStart/refined_checkpoint   a checkpoint of them restored
 // The program prints ratio lines (full_replay / checkpoint, checkpoint /
-// empty_journal) from the same run. Files live in a temporary folder (page cache).
+// empty_journal, and the refined pair) from the same run. Files live in a temporary
+// folder (page cache).
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
@@ -33,6 +39,8 @@ namespace fs = std::filesystem;
 
 constexpr std::size_t kGrid = 100;
 constexpr std::uint32_t kRecords = 20'000;
+constexpr std::uint32_t kRefinedRecords = 2'000;
+constexpr double kRefineThreshold = 0.001;
 
 const fs::path& folder() {
   static const fs::path dir =
@@ -40,18 +48,19 @@ const fs::path& folder() {
   return dir;
 }
 
-// 20,000 one-hand strokes with a twist, at random grid points (radius 0.1 m: ~80
-// vertices each), encoded back to back.
-std::vector<std::byte> journal_bytes() {
+// `records` one-hand strokes with a twist, at random grid points (radius 0.1 m: ~80
+// vertices each), refined at commit to `threshold` (0: not), encoded back to back.
+std::vector<std::byte> journal_bytes(std::uint32_t records, double threshold) {
   std::vector<std::byte> out(journal::kFileHeader.begin(), journal::kFileHeader.end());
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> at(-0.9, 0.9);
   std::array<std::byte, journal::kMaxRecordBytes> buf{};
-  for (std::uint32_t k = 0; k < kRecords; ++k) {
+  for (std::uint32_t k = 0; k < records; ++k) {
     journal::JournalRecord r;
     r.sequence = k;
     r.stroke.hand_mask = 1;
     r.stroke.radius_m = 0.1;
+    r.stroke.refine_threshold_m = threshold;
     const glm::dvec3 p{at(rng), at(rng), 0.0};
     r.stroke.start[0].origin_m = p;
     r.stroke.end[0].origin_m = p + glm::dvec3(0.01, 0.0, 0.02);
@@ -63,16 +72,35 @@ std::vector<std::byte> journal_bytes() {
   return out;
 }
 
-station_app::StationConfig config_for(const std::string& journal) {
+station_app::StationConfig config_for(const std::string& journal, bool refine = false) {
   const std::string text =
       "[station]\njournal = \"" + journal + "\"\nmesh = \"" + (folder() / "grid.obj").string() +
-      "\"\n[tracker]\nbackend = \"sim\"\n[tracker.sim]\nscenario = \"idle\"\n"
-      "[buttons]\nbackend = \"stylus\"\n[systemd]\nnotify = false\nwatchdog = false\n";
+      "\"\n" + (refine ? "spare_vertices = 40000\n" : "") +
+      "[tracker]\nbackend = \"sim\"\n[tracker.sim]\nscenario = \"idle\"\n"
+      "[buttons]\nbackend = \"stylus\"\n[systemd]\nnotify = false\nwatchdog = false\n" +
+      (refine ? "[sculpt]\nrefine = true\nrefine_threshold_m = 0.001\n" : "");
   return station_app::parse_station_config(text, "bench.toml").config;
 }
 
+void write_bytes(const fs::path& path, const std::vector<std::byte>& bytes) {
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()),
+             static_cast<std::streamsize>(bytes.size()));
+}
+
+// A clean stop of `journal` writes its checkpoint.
+void write_checkpoint(const char* journal, bool refine) {
+  auto parts = station_app::assemble_station(config_for((folder() / journal).string(), refine),
+                                             {folder(), ""});
+  if (!parts) {
+    std::fprintf(stderr, "bench set-up: %s\n", parts.error().message.c_str());
+    std::exit(1);
+  }
+  (*parts)->core->stop();
+}
+
 // The files, once: the grid OBJ, an empty journal, the 20,000-record journal twice
-// (one with the checkpoint a clean stop writes, one without).
+// (one with the checkpoint a clean stop writes, one without), the refined journal twice.
 void prepare() {
   static bool done = false;
   if (done) return;
@@ -81,29 +109,24 @@ void prepare() {
   meshio::MeshBuffer grid(meshio::grid_vertices(kGrid), meshio::grid_triangles(kGrid));
   (void)meshio::make_grid(grid.mesh(), kGrid, 1.0f);
   (void)meshio::save_obj(folder() / "grid.obj", grid.mesh());
-  const std::vector<std::byte> bytes = journal_bytes();
-  for (const char* name : {"full.twj", "checkpointed.twj"}) {
-    std::ofstream(folder() / name, std::ios::binary)
-        .write(reinterpret_cast<const char*>(bytes.data()),
-               static_cast<std::streamsize>(bytes.size()));
-  }
-  std::ofstream(folder() / "empty.twj", std::ios::binary)
-      .write(reinterpret_cast<const char*>(journal::kFileHeader.data()),
-             journal::kFileHeader.size());
-  auto parts = station_app::assemble_station(config_for((folder() / "checkpointed.twj").string()),
-                                             {folder(), ""});
-  if (!parts) {
-    std::fprintf(stderr, "bench set-up: %s\n", parts.error().message.c_str());
-    std::exit(1);
-  }
-  (*parts)->core->stop();  // writes checkpointed.twj.ckpt
-  std::remove((folder() / "full.twj.ckpt").c_str());
+  const std::vector<std::byte> bytes = journal_bytes(kRecords, 0.0);
+  write_bytes(folder() / "full.twj", bytes);
+  write_bytes(folder() / "checkpointed.twj", bytes);
+  const std::vector<std::byte> refined = journal_bytes(kRefinedRecords, kRefineThreshold);
+  write_bytes(folder() / "refined_full.twj", refined);
+  write_bytes(folder() / "refined_checkpointed.twj", refined);
+  write_bytes(folder() / "empty.twj",
+              std::vector<std::byte>(journal::kFileHeader.begin(), journal::kFileHeader.end()));
+  write_checkpoint("checkpointed.twj", false);
+  write_checkpoint("refined_checkpointed.twj", true);
 }
 
-void start(benchmark::State& state, const char* journal) {
+void start(benchmark::State& state, const char* journal, bool refine = false) {
   prepare();
-  const station_app::StationConfig config = config_for((folder() / journal).string());
+  const station_app::StationConfig config = config_for((folder() / journal).string(), refine);
   std::uint64_t records = 0;
+  std::uint64_t replayed = 0;
+  std::size_t vertices = 0;
   for (auto _ : state) {
     auto parts = station_app::assemble_station(config, {folder(), ""});
     if (!parts) {
@@ -111,18 +134,28 @@ void start(benchmark::State& state, const char* journal) {
       return;
     }
     records = (*parts)->core->journal_records();
+    replayed = (*parts)->core->recovery().replayed;
+    vertices = (*parts)->core->mesh().vertex_count();
     benchmark::DoNotOptimize((*parts)->core->mesh().checksum());
   }
   state.counters["records"] = static_cast<double>(records);
+  state.counters["replayed"] = static_cast<double>(replayed);
+  state.counters["vertices"] = static_cast<double>(vertices);
 }
 
 void StationStart_empty_journal(benchmark::State& s) { start(s, "empty.twj"); }
 void StationStart_full_replay(benchmark::State& s) { start(s, "full.twj"); }
 void StationStart_checkpoint(benchmark::State& s) { start(s, "checkpointed.twj"); }
+void StationStart_refined_full_replay(benchmark::State& s) { start(s, "refined_full.twj", true); }
+void StationStart_refined_checkpoint(benchmark::State& s) {
+  start(s, "refined_checkpointed.twj", true);
+}
 
 BENCHMARK(StationStart_empty_journal)->Unit(benchmark::kMillisecond)->Iterations(10);
 BENCHMARK(StationStart_full_replay)->Unit(benchmark::kMillisecond)->Iterations(2);
 BENCHMARK(StationStart_checkpoint)->Unit(benchmark::kMillisecond)->Iterations(10);
+BENCHMARK(StationStart_refined_full_replay)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(StationStart_refined_checkpoint)->Unit(benchmark::kMillisecond)->Iterations(10);
 
 // Prints the ratios of the rows' real times from this very run.
 class RatioReporter : public benchmark::ConsoleReporter {
@@ -139,6 +172,12 @@ class RatioReporter : public benchmark::ConsoleReporter {
     if (empty > 0 && full > 0 && ckpt > 0) {
       std::printf("ratio full_replay / checkpoint: %.1f\n", full / ckpt);
       std::printf("ratio checkpoint / empty_journal: %.2f\n", ckpt / empty);
+    }
+    const double refined_full = times_["StationStart_refined_full_replay/iterations:1"];
+    const double refined_ckpt = times_["StationStart_refined_checkpoint/iterations:10"];
+    if (refined_full > 0 && refined_ckpt > 0) {
+      std::printf("ratio refined_full_replay / refined_checkpoint: %.1f\n",
+                  refined_full / refined_ckpt);
     }
     fs::remove_all(folder());
   }

@@ -1,106 +1,80 @@
-// Fuzz target of the session checkpoint reader (issue 11). Input: either a checkpoint
-// file as is (first byte even), or edits (offset, xor) applied to a valid checkpoint
-// of a small session that the harness writes itself (first byte odd), so damaged
-// files reach every section. Properties: never crashes or reads out of bounds;
-// verify_checkpoint() never changes the session; a checkpoint that verifies restores
-// into a model with only finite positions and a history that undoes within the mesh.
+// Fuzz target of the session checkpoint reader (issue 11; format version 2 with the
+// topology of refined commits). Input: either a checkpoint file as is (first byte
+// even), or edits (offset hi, offset lo, xor) applied to the valid checkpoint of a
+// refined session that the harness writes itself (first byte odd; with bit 1 set the
+// CRC is then made right again, so edits reach the structural checks behind it).
+// Properties: never crashes or reads out of bounds; verify_checkpoint() never changes
+// the session; a checkpoint that verifies restores into a model with only finite
+// positions and triangles within the vertex count, and a history that undoes and
+// redoes within the mesh. Seeds: tests/fuzz/corpus/checkpoint_reader_fuzz, written by
+// checkpoint_corpus (tests/fuzz/checkpoint_corpus.cpp).
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
-#include <new>
 #include <span>
 
-#include "fakes/fake_file_sink.hpp"
+#include "checkpoint_fuzz_session.hpp"
 #include "fakes/fake_storage.hpp"
-#include "twister/input/session_checkpoint.hpp"
+#include "twister/base/checksum.hpp"
 
 namespace {
 
 using namespace twister;
+using namespace twister::fuzz_support;
 
-constexpr std::size_t kMaxInput = 1 << 14;
+constexpr std::size_t kMaxInput = 1 << 15;  // the whole refined checkpoint fits
 using Storage = test::FakeStorageWithStorage<1 << 16>;
-using Sink = test::FakeFileSinkWithStorage<1 << 16>;
-using Session = input::SculptSessionWithStorage<81, 81, 256, 8>;
 
 void check(bool ok) {
   if (!ok) std::abort();
 }
 
-void make_grid(mesh::Mesh& m) {
-  m.clear();
-  for (int j = 0; j < 9; ++j) {
-    for (int i = 0; i < 9; ++i)
-      (void)m.add_vertex({0.25f * float(i) - 1.0f, 0.25f * float(j) - 1.0f, 0.0f});
-  }
-  for (std::uint32_t j = 0; j < 8; ++j) {
-    for (std::uint32_t i = 0; i < 8; ++i)
-      (void)m.add_triangle(j * 9 + i, j * 9 + i + 1, j * 9 + i + 9);
-  }
-}
-
-// A session with two strokes, a move and an undo behind it.
-Session& fresh_session(mesh::Mesh& mesh) {
-  alignas(Session) static std::byte memory[sizeof(Session)];
-  static Session* session = nullptr;
-  static input::SculptSessionConfig config;
-  if (session != nullptr) session->~Session();
-  make_grid(mesh);
-  session = new (memory) Session(config, mesh, nullptr);
-  return *session;
-}
-
-void sculpt(Session& s) {
-  journal::JournalRecord r;
-  r.stroke.hand_mask = 1;
-  r.stroke.radius_m = 0.6;
-  r.stroke.end[0].origin_m = {0.1, 0.0, 0.2};
-  (void)s.apply_record(r);
-  r.sequence = 1;
-  r.stroke.end[0].origin_m = {0.0, 0.1, -0.2};
-  (void)s.apply_record(r);
-  journal::JournalRecord move;
-  move.type = journal::RecordType::object_move;
-  move.sequence = 2;
-  move.move.object_after.origin_m = {0.5, 0, 0};
-  (void)s.apply_record(move);
-  journal::JournalRecord undo;
-  undo.type = journal::RecordType::undo;
-  undo.sequence = 3;
-  (void)s.apply_record(undo);
-}
-
-bool finite(const mesh::Mesh& m) {
+// Finite positions, triangles within the vertex count.
+bool sound(const mesh::Mesh& m) {
   for (std::size_t i = 0; i < m.vertex_count(); ++i) {
     if (!std::isfinite(m.x()[i]) || !std::isfinite(m.y()[i]) || !std::isfinite(m.z()[i]))
       return false;
   }
+  for (const std::uint32_t v : m.triangle_indices()) {
+    if (v >= m.vertex_count()) return false;
+  }
   return true;
+}
+
+// The harness's checkpoint with the input's edits (and the CRC made right again).
+void load_edited(Storage& file, mesh::Mesh& mesh, const std::uint8_t* data, std::size_t size) {
+  static Sink sink;  // the checkpoint, written once (the session is deterministic)
+  static const bool written = write_checkpoint(mesh, sink) != nullptr;
+  check(written);
+  static std::array<std::byte, 1 << 16> bytes;
+  const std::size_t n = sink.bytes().size();
+  check(n >= 4 && n <= bytes.size());
+  std::copy(sink.bytes().begin(), sink.bytes().end(), bytes.begin());
+  for (std::size_t i = 1; i + 2 < size; i += 3) {
+    const std::size_t at = (std::size_t{data[i]} << 8 | data[i + 1]) % n;
+    bytes[at] ^= std::byte{data[i + 2]};
+  }
+  if ((data[0] & 2) != 0) {
+    std::uint32_t crc = crc32(std::span<const std::byte>(bytes).first(n - 4));
+    for (std::size_t k = 0; k < 4; ++k, crc >>= 8) bytes[n - 4 + k] = std::byte(crc & 0xffu);
+  }
+  file.load(std::span<const std::byte>(bytes).first(n));
 }
 
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0 || size > kMaxInput) return 0;
-  static mesh::MeshWithStorage<81, 128> mesh;
+  static Mesh mesh;
   static Storage file;
   file = Storage();
   if ((data[0] & 1) == 0) {
     file.load(std::as_bytes(std::span(data + 1, size - 1)));
   } else {
-    Session& source = fresh_session(mesh);
-    sculpt(source);
-    static Sink sink;
-    sink = Sink();
-    input::CheckpointWriter writer(&sink);
-    check(writer.begin(source, {8, 4, 0}, 7).ok());
-    check(writer.step(source, 1 << 20).ok());
-    file.load(sink.bytes());
-    for (std::size_t i = 1; i + 2 < size; i += 3) {
-      const std::size_t at = (std::size_t{data[i]} << 8 | data[i + 1]) % sink.bytes().size();
-      file.corrupt(at, std::byte{data[i + 2]});
-    }
+    load_edited(file, mesh, data, size);
   }
   Session& target = fresh_session(mesh);
   const std::uint64_t before = mesh.checksum();
@@ -110,12 +84,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   check(mesh.checksum() == before);
   if (!verified.ok()) return 0;
   check(input::restore_checkpoint(file, *header, target).ok());
-  check(finite(mesh));
-  // Undo until the restored history is empty (at most its 8 entries). The harness
-  // calls only out-of-line session functions: core is built without RTTI, so UBSan's
-  // vptr check must not see its polymorphic members from here.
-  journal::JournalRecord undo;
-  undo.type = journal::RecordType::undo;
-  for (int i = 0; i < 16 && target.apply_record(undo).ok(); ++i) check(finite(mesh));
+  check(sound(mesh));
+  // Undo until the restored history is empty (at most its 8 entries), then redo it
+  // all. The harness calls only out-of-line session functions: core is built without
+  // RTTI, so UBSan's vptr check must not see its polymorphic members from here.
+  journal::JournalRecord step;
+  step.type = journal::RecordType::undo;
+  for (int i = 0; i < 16 && target.apply_record(step).ok(); ++i) check(sound(mesh));
+  step.type = journal::RecordType::redo;
+  for (int i = 0; i < 16 && target.apply_record(step).ok(); ++i) check(sound(mesh));
   return 0;
 }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "twister/base/internal/byte_cursor.hpp"
 
@@ -49,8 +50,9 @@ void encode_header(const CheckpointHeader& h, std::span<std::byte> out) {
   w.u64(h.base_checksum);
   w.u32(h.vertex_count);
   w.u32(h.triangle_count);
-  for (const std::uint64_t v : {h.change_capacity, h.entry_capacity, h.entry_count, h.undo_count,
-                                h.used_changes, h.dropped}) {
+  for (const std::uint64_t v : {h.vertex_capacity, h.triangle_capacity, h.change_capacity,
+                                h.entry_capacity, h.entry_count, h.undo_count, h.used_changes,
+                                h.dropped, h.triangle_change_capacity, h.used_triangle_changes}) {
     w.u64(v);
   }
   write_frame(w, h.object);
@@ -72,12 +74,11 @@ Result<CheckpointHeader> decode_header(std::span<const std::byte> in) {
   h.base_checksum = r.u64();
   h.vertex_count = r.u32();
   h.triangle_count = r.u32();
-  h.change_capacity = r.u64();
-  h.entry_capacity = r.u64();
-  h.entry_count = r.u64();
-  h.undo_count = r.u64();
-  h.used_changes = r.u64();
-  h.dropped = r.u64();
+  for (std::uint64_t* v : {&h.vertex_capacity, &h.triangle_capacity, &h.change_capacity,
+                           &h.entry_capacity, &h.entry_count, &h.undo_count, &h.used_changes,
+                           &h.dropped, &h.triangle_change_capacity, &h.used_triangle_changes}) {
+    *v = r.u64();
+  }
   h.object = read_frame(r);
   if (!r.ok() || !r.at_end()) return StatusCode::data_loss;
   return h;
@@ -85,25 +86,48 @@ Result<CheckpointHeader> decode_header(std::span<const std::byte> in) {
 
 void encode_entry(const UndoEntry& e, std::span<std::byte> out) {
   ByteWriter w(out.first(kCheckpointEntryBytes));
-  w.u64(e.first_change);
-  w.u64(e.change_count);
+  for (const std::size_t v :
+       {e.first_change, e.change_count, e.first_triangle_change, e.triangle_change_count}) {
+    w.u64(v);
+  }
+  for (const std::uint32_t v :
+       {e.vertices_before, e.vertices_after, e.triangles_before, e.triangles_after}) {
+    w.u32(v);
+  }
   w.u8(e.object_move ? 1 : 0);
-  for (int i = 0; i < 7; ++i) w.u8(0);
+  w.u8(e.topology ? 1 : 0);
+  for (int i = 0; i < 6; ++i) w.u8(0);
   write_frame(w, e.object_before);
   write_frame(w, e.object_after);
 }
 
 bool decode_entry(std::span<const std::byte> in, UndoEntry& e) {
   ByteReader r(in.first(kCheckpointEntryBytes));
-  e.first_change = static_cast<std::size_t>(r.u64());
-  e.change_count = static_cast<std::size_t>(r.u64());
-  const std::uint8_t flag = r.u8();
+  // A u64 that does not fit size_t (32-bit targets) is refused, not truncated.
+  bool fits = true;
+  for (std::size_t* v :
+       {&e.first_change, &e.change_count, &e.first_triangle_change, &e.triangle_change_count}) {
+    const std::uint64_t raw = r.u64();
+    fits = fits && raw <= std::numeric_limits<std::size_t>::max();
+    *v = static_cast<std::size_t>(raw);
+  }
+  for (std::uint32_t* v :
+       {&e.vertices_before, &e.vertices_after, &e.triangles_before, &e.triangles_after}) {
+    *v = r.u32();
+  }
+  const std::uint8_t move = r.u8();
+  const std::uint8_t topology = r.u8();
   bool zero = true;
-  for (int i = 0; i < 7; ++i) zero = zero && r.u8() == 0;
-  e.object_move = flag == 1;
+  for (int i = 0; i < 6; ++i) zero = zero && r.u8() == 0;
+  e.object_move = move == 1;
+  e.topology = topology == 1;
   e.object_before = read_frame(r);
   e.object_after = read_frame(r);
-  if (!r.ok() || flag > 1 || !zero) return false;
+  if (!r.ok() || !fits || move > 1 || topology > 1 || !zero) return false;
+  if (!e.topology && (e.triangle_change_count != 0 || e.vertices_before != 0 ||
+                      e.vertices_after != 0 || e.triangles_before != 0 || e.triangles_after != 0)) {
+    return false;
+  }
   return !e.object_move ||
          (math::is_orthonormal(e.object_before) && math::is_orthonormal(e.object_after));
 }
@@ -124,6 +148,34 @@ bool decode_change(std::span<const std::byte> in, VertexChange& c) {
   c.before = read_vec3(r);
   c.after = read_vec3(r);
   return r.ok() && finite(c.before) && finite(c.after);
+}
+
+void encode_triangle(const std::array<std::uint32_t, 3>& t, std::span<std::byte> out) {
+  ByteWriter w(out.first(kCheckpointTriangleBytes));
+  for (const std::uint32_t v : t) w.u32(v);
+}
+
+std::array<std::uint32_t, 3> decode_triangle(std::span<const std::byte> in) {
+  ByteReader r(in.first(kCheckpointTriangleBytes));
+  std::array<std::uint32_t, 3> t{};
+  for (std::uint32_t& v : t) v = r.u32();
+  return t;
+}
+
+void encode_triangle_change(const TriangleChange& c, std::span<std::byte> out) {
+  ByteWriter w(out.first(kCheckpointTriangleChangeBytes));
+  w.u32(c.index);
+  for (const std::uint32_t v : c.before) w.u32(v);
+  for (const std::uint32_t v : c.after) w.u32(v);
+}
+
+TriangleChange decode_triangle_change(std::span<const std::byte> in) {
+  ByteReader r(in.first(kCheckpointTriangleChangeBytes));
+  TriangleChange c;
+  c.index = r.u32();
+  for (std::uint32_t& v : c.before) v = r.u32();
+  for (std::uint32_t& v : c.after) v = r.u32();
+  return c;
 }
 
 }  // namespace twister::input::checkpoint_format

@@ -2,7 +2,10 @@
 // writer and reader (private to core/src/input).
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <span>
 
 #include "twister/base/result.hpp"
@@ -11,19 +14,27 @@
 
 namespace twister::input::checkpoint_format {
 
-inline constexpr std::size_t kMaxElementBytes = kCheckpointEntryBytes;
-static_assert(kCheckpointHeaderBytes <= kMaxElementBytes);
+inline constexpr std::size_t kMaxElementBytes =
+    std::max({kCheckpointHeaderBytes, kCheckpointEntryBytes, kCheckpointChangeBytes,
+              kCheckpointTriangleBytes, kCheckpointTriangleChangeBytes});
 
 void encode_header(const CheckpointHeader& header, std::span<std::byte> out);
-// data_loss: wrong magic or version.
+// data_loss: wrong magic or version (version 1 included).
 Result<CheckpointHeader> decode_header(std::span<const std::byte> in);
 
 void encode_entry(const UndoEntry& entry, std::span<std::byte> out);
-// false: a non-finite or non-orthonormal pose, or a bad flag byte.
+// false: a non-finite or non-orthonormal pose, a bad flag or padding byte, or an
+// entry without topology whose topology fields are not zero.
 bool decode_entry(std::span<const std::byte> in, UndoEntry& entry);
 
 void encode_change(const VertexChange& change, std::span<std::byte> out);
 // false: a non-finite position.
 bool decode_change(std::span<const std::byte> in, VertexChange& change);
+
+void encode_triangle(const std::array<std::uint32_t, 3>& triangle, std::span<std::byte> out);
+std::array<std::uint32_t, 3> decode_triangle(std::span<const std::byte> in);
+
+void encode_triangle_change(const TriangleChange& change, std::span<std::byte> out);
+TriangleChange decode_triangle_change(std::span<const std::byte> in);
 
 }  // namespace twister::input::checkpoint_format

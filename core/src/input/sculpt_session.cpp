@@ -93,6 +93,11 @@ void SculptSession::refresh_normals() {
   normals_sequence_ = history_.next_sequence();
 }
 
+void SculptSession::checkpoint_restored() {
+  normals_sequence_ = history_.next_sequence() + 1;  // whatever they were computed for
+  refresh_normals();
+}
+
 mesh::NormalColumns SculptSession::normals() const {
   if (normals_.x.empty()) return {};
   const std::size_t n = mesh_.mesh().vertex_count();

@@ -1,5 +1,6 @@
 // CheckpointWriter: the file, element by element, in the order of the format
-// (header, x, y, z, undo entries, vertex changes, CRC), a chunk at a time.
+// (header, x, y, z, triangles, undo entries, vertex changes, triangle changes, CRC),
+// a chunk at a time.
 #include "twister/input/session_checkpoint.hpp"
 
 #include <span>
@@ -11,13 +12,26 @@
 namespace twister::input {
 namespace {
 
-enum Section : int { kHeader = 0, kX, kY, kZ, kEntries, kChanges, kCrc, kDone };
+enum Section : int {
+  kHeader = 0,
+  kX,
+  kY,
+  kZ,
+  kTriangles,
+  kEntries,
+  kChanges,
+  kTriangleChanges,
+  kCrc,
+  kDone
+};
 
 }  // namespace
 
 std::uint64_t checkpoint_bytes(const CheckpointHeader& h) {
   return kCheckpointHeaderBytes + std::uint64_t{12} * h.vertex_count +
-         kCheckpointEntryBytes * h.entry_count + kCheckpointChangeBytes * h.used_changes + 4;
+         std::uint64_t{kCheckpointTriangleBytes} * h.triangle_count +
+         kCheckpointEntryBytes * h.entry_count + kCheckpointChangeBytes * h.used_changes +
+         kCheckpointTriangleChangeBytes * h.used_triangle_changes + 4;
 }
 
 Status CheckpointWriter::begin(const SculptSession& session, const CheckpointAnchor& anchor,
@@ -25,11 +39,7 @@ Status CheckpointWriter::begin(const SculptSession& session, const CheckpointAnc
   abort();
   if (sink_ == nullptr || session.busy()) return StatusCode::failed_precondition;
   const UndoHistory& history = session.history();
-  // Format version 1 holds no triangles: a model whose topology a refined commit
-  // changed (in the history) is not checkpointed; start-up replays the journal instead.
-  for (const UndoEntry& e : history.entries()) {
-    if (e.topology) return StatusCode::not_supported;
-  }
+  const mesh::Mesh& m = session.mesh();
   CheckpointHeader& h = header_;
   h = {};
   h.journal_offset = anchor.journal_offset;
@@ -37,14 +47,18 @@ Status CheckpointWriter::begin(const SculptSession& session, const CheckpointAnc
   h.last_record_crc = anchor.last_record_crc;
   h.next_sequence = session.next_sequence();
   h.base_checksum = base_checksum;
-  h.vertex_count = static_cast<std::uint32_t>(session.mesh().vertex_count());
-  h.triangle_count = static_cast<std::uint32_t>(session.mesh().triangle_count());
+  h.vertex_count = static_cast<std::uint32_t>(m.vertex_count());
+  h.triangle_count = static_cast<std::uint32_t>(m.triangle_count());
+  h.vertex_capacity = m.vertex_capacity();
+  h.triangle_capacity = m.triangle_capacity();
   h.change_capacity = history.change_capacity();
   h.entry_capacity = history.entry_capacity();
   h.entry_count = history.entries().size();
   h.undo_count = history.undo_depth();
   h.used_changes = history.changes().size();
   h.dropped = history.dropped_entries();
+  h.triangle_change_capacity = history.triangle_change_capacity();
+  h.used_triangle_changes = history.triangle_changes().size();
   h.object = session.object_pose();
   TWISTER_TRY(sink_->begin());
   active_ = true;
@@ -54,18 +68,22 @@ Status CheckpointWriter::begin(const SculptSession& session, const CheckpointAnc
   return ok_status();
 }
 
-std::uint64_t CheckpointWriter::section_size(const SculptSession& session) const {
+std::uint64_t CheckpointWriter::section_size() const {
   switch (section_) {
     case kHeader:
       return 1;
     case kX:
     case kY:
     case kZ:
-      return session.mesh().vertex_count();
+      return header_.vertex_count;
+    case kTriangles:
+      return header_.triangle_count;
     case kEntries:
       return header_.entry_count;
     case kChanges:
       return header_.used_changes;
+    case kTriangleChanges:
+      return header_.used_triangle_changes;
     default:
       return 0;
   }
@@ -86,12 +104,18 @@ std::size_t CheckpointWriter::encode(const SculptSession& session, std::span<std
       twister::internal::ByteWriter(out.first(4)).f32(axis[i]);
       return 4;
     }
+    case kTriangles:
+      f::encode_triangle(m.triangle(static_cast<std::uint32_t>(i)), out);
+      return kCheckpointTriangleBytes;
     case kEntries:
       f::encode_entry(session.history().entries()[i], out);
       return kCheckpointEntryBytes;
     case kChanges:
       f::encode_change(session.history().changes()[i], out);
       return kCheckpointChangeBytes;
+    case kTriangleChanges:
+      f::encode_triangle_change(session.history().triangle_changes()[i], out);
+      return kCheckpointTriangleChangeBytes;
     default:
       return 0;
   }
@@ -103,7 +127,7 @@ Result<bool> CheckpointWriter::step(const SculptSession& session, std::size_t bu
   while (section_ != kDone) {
     std::size_t fill = 0;
     while (section_ < kCrc && fill + checkpoint_format::kMaxElementBytes <= chunk_.size()) {
-      if (index_ == section_size(session)) {
+      if (index_ == section_size()) {
         ++section_;
         index_ = 0;
         continue;

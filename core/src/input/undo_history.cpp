@@ -175,17 +175,44 @@ void UndoHistory::restore_triangles(const UndoEntry& e, mesh::Mesh& mesh, bool a
   }
 }
 
+// Puts back the triangles of refined entry `e` (the mesh as after it) when that leaves
+// every triangle before triangles_before on vertices before vertices_before: its own
+// triangles must hold their indices after it and every other triangle must already
+// refer to the older vertices. Always so for a history recorded here; a restored one
+// (a checkpoint's) is only known to be so by this check. false: nothing changed.
+bool UndoHistory::undo_triangles(const UndoEntry& e, mesh::Mesh& mesh) const {
+  const auto below = [](const std::array<std::uint32_t, 3>& t, std::uint32_t n) {
+    return t[0] < n && t[1] < n && t[2] < n;
+  };
+  for (std::size_t i = 0; i < e.triangle_change_count; ++i) {
+    const TriangleChange& c = triangle_changes_[e.first_triangle_change + i];
+    if (c.index >= mesh.triangle_count() || mesh.triangle(c.index) != c.after ||
+        (c.index < e.triangles_before && !below(c.before, e.vertices_before))) {
+      return false;
+    }
+  }
+  restore_triangles(e, mesh, false);
+  const std::span<const std::uint32_t> kept =
+      mesh.triangle_indices().first(std::size_t{3} * e.triangles_before);
+  if (std::all_of(kept.begin(), kept.end(),
+                  [&](std::uint32_t v) { return v < e.vertices_before; })) {
+    return true;
+  }
+  restore_triangles(e, mesh, true);  // exactly as it was: each held its `after`
+  return false;
+}
+
 Result<UndoStep> UndoHistory::undo(mesh::Mesh& mesh) {
   if (open_ || undo_count_ == 0) return StatusCode::failed_precondition;
   const UndoEntry& e = entries_[undo_count_ - 1];
   if (!fits(e, mesh, true)) return StatusCode::out_of_range;
+  if (e.topology && !undo_triangles(e, mesh)) return StatusCode::out_of_range;
   // Newest change first, so a vertex recorded twice ends at its oldest position.
   for (std::size_t i = e.change_count; i-- > 0;) {
     const VertexChange& c = changes_[e.first_change + i];
     if (!e.topology || c.index < e.vertices_before) mesh.set_position(c.index, c.before);
   }
   if (e.topology) {
-    restore_triangles(e, mesh, false);
     mesh.resize(e.vertices_before, e.triangles_before).ignore();  // shrinking always fits
   }
   --undo_count_;
@@ -211,10 +238,14 @@ Result<UndoStep> UndoHistory::redo(mesh::Mesh& mesh) {
 Status UndoHistory::adopt(std::size_t entry_count, std::size_t undo_count, std::size_t dropped) {
   bool ok = !open_ && entry_count <= entries_.size() && undo_count <= entry_count;
   std::size_t next = 0;
+  std::size_t next_triangle = 0;
   for (std::size_t i = 0; ok && i < entry_count; ++i) {
     const UndoEntry& e = entries_[i];
-    ok = e.first_change == next && e.change_count <= changes_.size() - next;
+    ok = e.first_change == next && e.change_count <= changes_.size() - next &&
+         e.first_triangle_change == next_triangle &&
+         e.triangle_change_count <= triangle_changes_.size() - next_triangle;
     next += ok ? e.change_count : 0;
+    next_triangle += ok ? e.triangle_change_count : 0;
   }
   if (!ok) {
     clear();

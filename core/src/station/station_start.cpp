@@ -112,7 +112,7 @@ const char* checkpoint_use_name(JournalRecovery::Checkpoint use) {
     case C::damaged:
       return "damaged";
     case C::other_model:
-      return "made from another model or history size";
+      return "made from another model, mesh capacity or history size";
     case C::other_journal:
       return "made for another journal (or a longer one)";
   }
@@ -124,8 +124,11 @@ Status Station::use_checkpoint(const input::CheckpointHeader& h,
   using C = JournalRecovery::Checkpoint;
   ports::Storage& file = *files_.checkpoint_in;
   const input::UndoHistory& history = sculpt_.history();
+  const mesh::Mesh& m = sculpt_.mesh();
   if (h.base_checksum != base_checksum_ || h.change_capacity != history.change_capacity() ||
-      h.entry_capacity != history.entry_capacity()) {
+      h.entry_capacity != history.entry_capacity() ||
+      h.triangle_change_capacity != history.triangle_change_capacity() ||
+      h.vertex_capacity != m.vertex_capacity() || h.triangle_capacity != m.triangle_capacity()) {
     recovery_.checkpoint = C::other_model;
     return ok_status();
   }

@@ -159,7 +159,7 @@ TEST(SessionCheckpoint, EveryDamagedByteIsRefusedWithoutTouchingTheSession) {
   EXPECT_FALSE(verify_checkpoint(cut, *read_checkpoint_header(cut), *target->session).ok());
 }
 
-TEST(SessionCheckpoint, AnotherModelSizeOrHistorySizeIsRefused) {
+TEST(SessionCheckpoint, AnotherMeshCapacityOrHistorySizeIsRefused) {
   auto live = std::make_unique<Station>(9);
   first_part(*live);
   Sink sink;
@@ -168,11 +168,22 @@ TEST(SessionCheckpoint, AnotherModelSizeOrHistorySizeIsRefused) {
   file.load(sink.bytes());
   const auto header = read_checkpoint_header(file);
   ASSERT_TRUE(header.ok());
-  auto bigger = std::make_unique<Station>(11, test_config(), false);
-  EXPECT_EQ(verify_checkpoint(file, *header, *bigger->session).code(), StatusCode::data_loss);
+  auto smaller = std::make_unique<mesh::MeshWithStorage<kVertices / 2, kVertices>>();
+  make_grid(*smaller, 9);
+  auto other_capacity = std::make_unique<TestSession>(test_config(), *smaller, nullptr);
+  EXPECT_EQ(verify_checkpoint(file, *header, *other_capacity).code(), StatusCode::data_loss);
+  auto target = std::make_unique<Station>(9, test_config(), false);
   auto other_history = std::make_unique<SculptSessionWithStorage<kVertices, kVertices, 4096, 32>>(
-      test_config(), bigger->mesh, nullptr);
+      test_config(), target->mesh, nullptr);
   EXPECT_EQ(verify_checkpoint(file, *header, *other_history).code(), StatusCode::data_loss);
+  // No triangle change pool (no refinement memory): another history size too.
+  auto no_refinement = std::make_unique<SculptSessionWithStorage<kVertices, kVertices, 8192, 32>>(
+      test_config(), target->mesh, nullptr);
+  EXPECT_EQ(verify_checkpoint(file, *header, *no_refinement).code(), StatusCode::data_loss);
+  // The model itself is the caller's check (base_checksum, compared by the station):
+  // another start mesh of the same capacity verifies.
+  auto other_model = std::make_unique<Station>(11, test_config(), false);
+  EXPECT_TRUE(verify_checkpoint(file, *header, *other_model->session).ok());
 }
 
 TEST(SessionCheckpoint, NoCheckpointOfAnOpenStroke) {

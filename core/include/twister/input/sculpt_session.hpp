@@ -169,8 +169,10 @@ class SculptSession {
   std::uint32_t next_sequence() const { return history_.next_sequence(); }
   const UndoHistory& history() const { return history_.undo_history(); }
 
-  // For SessionCheckpoint's restore only: the state a checkpoint holds (mesh
-  // positions, undo history, object pose, next sequence), as parts to write into.
+  // For SessionCheckpoint's restore only: the state a checkpoint holds (mesh counts,
+  // positions and triangles, undo history, object pose, next sequence), as parts to
+  // write into; then checkpoint_restored() recomputes what derives from the model
+  // (vertex normals).
   struct RestoreTarget {
     mesh::Mesh& mesh;
     UndoHistory& history;
@@ -178,6 +180,7 @@ class SculptSession {
     SessionHistory& commits;
   };
   RestoreTarget restore_target() { return {mesh_.mesh(), history_.restorable(), poses_, history_}; }
+  void checkpoint_restored();
 
  private:
   void apply_action(const Action& action, SessionEvents& out);

@@ -99,7 +99,10 @@ class UndoHistory {
   // Restores the positions (and topology) before the newest undoable entry.
   // failed_precondition: nothing to undo (or an entry is open).
   // out_of_range: an index or count does not match the mesh (mesh replaced under the
-  // history); nothing changed.
+  // history), or a refined entry's triangles do not (its own triangles not as it left
+  // them, or another triangle on a vertex it added: a history restored from a
+  // checkpoint that does not fit its mesh); nothing changed. A refined entry's undo
+  // looks at every triangle before its triangles_before once.
   Result<UndoStep> undo(mesh::Mesh& mesh);
   // Re-applies the oldest undone entry. failed_precondition: nothing to redo.
   Result<UndoStep> redo(mesh::Mesh& mesh);
@@ -107,17 +110,25 @@ class UndoHistory {
   void clear();
 
   // Checkpoint support (SessionCheckpoint). The kept entries, oldest first, and their
-  // vertex changes (entries()[i] covers changes()[first_change, + change_count)).
+  // vertex and triangle changes (entries()[i] covers changes()[first_change, +
+  // change_count) and triangle_changes()[first_triangle_change, + triangle_change_count)).
   std::span<const UndoEntry> entries() const { return entries_.first(entry_count_); }
   std::span<const VertexChange> changes() const { return changes_.first(used_changes()); }
+  std::span<const TriangleChange> triangle_changes() const {
+    return triangle_changes_.first(used_triangle_changes());
+  }
   std::size_t entry_capacity() const { return entries_.size(); }
   std::size_t change_capacity() const { return changes_.size(); }
-  // Restore: the caller writes the entries and changes straight into these spans,
-  // then adopt() makes them the history. adopt() checks that the entries are packed
-  // and contiguous from change 0 and fit; invalid_argument (the history is then
-  // cleared) otherwise. No entry may be open.
+  std::size_t triangle_change_capacity() const { return triangle_changes_.size(); }
+  // Restore: the caller writes the entries and both kinds of changes straight into
+  // these spans, then adopt() makes them the history. adopt() checks that the entries
+  // are packed and contiguous from change 0 and triangle change 0 and fit both pools;
+  // invalid_argument (the history is then cleared) otherwise. No entry may be open.
+  // (Whether the entries fit the mesh is the caller's check: undo() and redo() still
+  // refuse an entry whose counts or vertex indices do not.)
   std::span<UndoEntry> entry_storage() { return entries_; }
   std::span<VertexChange> change_storage() { return changes_; }
+  std::span<TriangleChange> triangle_change_storage() { return triangle_changes_; }
   Status adopt(std::size_t entry_count, std::size_t undo_count, std::size_t dropped);
 
  private:
@@ -130,6 +141,7 @@ class UndoHistory {
   bool make_room(End end, std::size_t pool_size);
   bool fits(const UndoEntry& e, const mesh::Mesh& mesh, bool after) const;
   void restore_triangles(const UndoEntry& e, mesh::Mesh& mesh, bool after) const;
+  bool undo_triangles(const UndoEntry& e, mesh::Mesh& mesh) const;
 
   std::span<VertexChange> changes_;
   std::span<UndoEntry> entries_;

@@ -117,8 +117,8 @@ struct JournalRecovery {
   enum class Checkpoint : std::uint8_t {
     none,           // no checkpoint file
     used,           // restored: checkpoint_records came from it, `replayed` after it
-    damaged,        // ignored: not a checkpoint, or its checks (CRC, values) fail
-    other_model,    // ignored: made from another initial model or history size
+    damaged,        // ignored: not a checkpoint (or format version 1), or its checks fail
+    other_model,    // ignored: made from another initial model, mesh capacity or history size
     other_journal,  // ignored: its anchor is not a record boundary of this journal
   };
   Checkpoint checkpoint = Checkpoint::none;
