@@ -1,5 +1,6 @@
 #include "hud_model.hpp"
 
+#include <algorithm>
 #include <cstdarg>
 #include <cstdio>
 #include <numbers>
@@ -17,7 +18,7 @@ std::string format(const char* fmt, ...) {
   return buffer;
 }
 
-double degrees(float rad) { return static_cast<double>(rad) * 180.0 / std::numbers::pi; }
+double degrees(double rad) { return rad * 180.0 / std::numbers::pi; }
 
 const char* link_text(LinkView link) {
   switch (link) {
@@ -48,6 +49,17 @@ bool full(const link::StatusReport& s) {
          (s.triangle_capacity > 0 && s.triangle_count >= s.triangle_capacity);
 }
 
+// The angle turned in the open stroke: the live screws follow the hands at the
+// tracker rate (past a half turn too); the status's copy comes once a second.
+double turned_rad(const SceneReplica& r, const link::StatusReport& s) {
+  const LiveState& live = r.live();
+  if (!live.active) return s.turned_rad;
+  double most = 0.0;
+  for (std::size_t k = 0; k < live.hand_count; ++k)
+    most = std::max(most, live.hands[k].screw.angle);
+  return most;
+}
+
 void station_lines(const SceneReplica& r, std::vector<std::string>& lines) {
   if (!r.has_status()) {
     lines.emplace_back("tracker: no status yet");
@@ -59,10 +71,11 @@ void station_lines(const SceneReplica& r, std::vector<std::string>& lines) {
                                              : "starting";
   lines.push_back(
       format("tracker: %s, %.0f poses/s", state, static_cast<double>(s.tracker_rate_hz)));
+  const double turned = turned_rad(r, s);
   const std::string turn =
       s.turn_limit_rad > 0.0F
-          ? format("%.0f of %.0f deg", degrees(s.turned_rad), degrees(s.turn_limit_rad))
-          : format("%.0f deg (no limit reported)", degrees(s.turned_rad));
+          ? format("%.0f of %.0f deg", degrees(turned), degrees(s.turn_limit_rad))
+          : format("%.0f deg (no limit reported)", degrees(turned));
   lines.push_back(
       format("method: %s   clutch: %s%s%s   turn: %s",
              std::string(math::warp_method_name(static_cast<math::WarpMethod>(s.method))).c_str(),
@@ -88,7 +101,7 @@ HudText HudModel::update(const SceneReplica& r, const HudInput& in) {
   for (std::size_t h = 0; h < r.hands().size(); ++h)
     out.lines.push_back(hand_line(h, r.hands()[h]));
   out.lines.push_back(format("radius: %.3f m", static_cast<double>(r.radius_m())));
-  out.lines.push_back(in.fps > 0.0
+  out.lines.push_back(in.fps >= 0.1  // offscreen runs in virtual time have no frame rate
                           ? format("display: %zu vertices, %zu triangles, %.1f fps",
                                    r.mesh().vertex_count(), r.mesh().triangle_count(), in.fps)
                           : format("display: %zu vertices, %zu triangles", r.mesh().vertex_count(),

@@ -10,10 +10,12 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "bridge_link_rig.hpp"
 #include "gl_context.hpp"
+#include "hud_model.hpp"
 #include "mesh_renderer.hpp"
 
 namespace twister::bridge {
@@ -77,6 +79,21 @@ TEST(BridgeTurn, TheBridgeRebuildsTheStationsScrewPast180Degrees) {
     EXPECT_GE(d, 0.0);
     EXPECT_LT(d, 2e-5) << turn;
   }
+}
+
+// The heads-up text shows the angle turned as the hands turn (the live screws), not
+// the status's once-a-second copy (this rig sends no StationStatus, so no limit).
+TEST(BridgeTurn, TheHudShowsTheTurnPast180DegreesAsItHappens) {
+  Rig r;
+  r.twist(1.5 * kPi);
+  ASSERT_TRUE(r.bridge.replica().has_status());
+  HudModel hud;
+  const HudText text = hud.update(r.bridge.replica(), HudInput{});
+  bool found = false;
+  for (const std::string& line : text.lines) {
+    found = found || line.find("turn: 270 ") != std::string::npos;
+  }
+  EXPECT_TRUE(found) << (text.lines.size() > 2 ? text.lines[2] : std::string{});
 }
 
 // Fraction of pixels whose channels differ by more than `tol`.
