@@ -21,10 +21,8 @@ void Station::checkpoint_step() {
       return;
     }
     if (const Status s = begin_checkpoint(); !s.ok()) {
-      ++counters_.checkpoints_failed;
-      ++counters_.journal_errors;
       records_at_checkpoint_ = journal_records();  // try again one interval later
-      push_event({StationEventKind::checkpoint_failed, 0, 0, 0, s, clock_.now_us()});
+      checkpoint_failed(s);
       return;
     }
   }
@@ -36,19 +34,11 @@ void Station::checkpoint_step() {
   }
   const auto done = checkpoint_.step(sculpt_, config_.checkpoint_bytes_per_poll);
   if (!done.ok()) {
-    ++counters_.checkpoints_failed;
-    ++counters_.journal_errors;
     records_at_checkpoint_ = journal_records();
-    push_event({StationEventKind::checkpoint_failed, 0, 0, 0, done.status(), clock_.now_us()});
+    checkpoint_failed(done.status());
     return;
   }
-  if (!*done) return;
-  const input::CheckpointHeader& h = checkpoint_.header();
-  records_at_checkpoint_ = h.journal_records;
-  ++counters_.checkpoints_written;
-  push_event({StationEventKind::checkpoint_written, 0,
-              static_cast<std::uint32_t>(h.journal_records), input::checkpoint_bytes(h),
-              ok_status(), clock_.now_us()});
+  if (*done) checkpoint_written();
 }
 
 void Station::final_checkpoint() {
@@ -60,18 +50,26 @@ void Station::final_checkpoint() {
     const auto done = checkpoint_.step(sculpt_, std::numeric_limits<std::size_t>::max());
     s = done.status();
   }
-  if (!s.ok()) {
-    ++counters_.checkpoints_failed;
-    ++counters_.journal_errors;
-    push_event({StationEventKind::checkpoint_failed, 0, 0, 0, s, clock_.now_us()});
-    return;
+  if (s.ok()) {
+    checkpoint_written();
+  } else {
+    checkpoint_failed(s);
   }
+}
+
+void Station::checkpoint_written() {
   const input::CheckpointHeader& h = checkpoint_.header();
   records_at_checkpoint_ = h.journal_records;
   ++counters_.checkpoints_written;
   push_event({StationEventKind::checkpoint_written, 0,
               static_cast<std::uint32_t>(h.journal_records), input::checkpoint_bytes(h),
               ok_status(), clock_.now_us()});
+}
+
+void Station::checkpoint_failed(Status s) {
+  ++counters_.checkpoints_failed;
+  ++counters_.journal_errors;
+  push_event({StationEventKind::checkpoint_failed, 0, 0, 0, s, clock_.now_us()});
 }
 
 }  // namespace twister::station

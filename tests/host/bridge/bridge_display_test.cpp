@@ -18,6 +18,8 @@
 namespace twister::bridge {
 namespace {
 
+using test_support::warp_difference;
+
 using input::test_support::kGrab1;
 using input::test_support::kMove0;
 using input::test_support::kRadius0;
@@ -31,21 +33,6 @@ struct Rig : test_support::BridgeLinkRig {
     run(rounds);
   }
 };
-
-// Largest distance between the station's live positions and the bridge's CPU warp
-// over the stroke's influenced vertices; -1 when either side has no live stroke.
-double warp_difference(const Rig& r) {
-  const input::LiveWarp live = r.station.session->live();
-  const MeshData bridge = r.bridge.replica().cpu_warp();
-  if (!live.active || live.plan == nullptr || bridge.vertex_count() == 0) return -1.0;
-  double worst = 0.0;
-  for (const std::uint32_t i : live.plan->indices()) {
-    const glm::dvec3 s(live.positions.x[i], live.positions.y[i], live.positions.z[i]);
-    const glm::dvec3 b(bridge.x[i], bridge.y[i], bridge.z[i]);
-    worst = std::max(worst, glm::length(s - b));
-  }
-  return worst;
-}
 
 TEST(BridgeDisplay, StationWarpEqualsBridgeWarpForOneAndTwoHands) {
   Rig r;

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <glm/geometric.hpp>
 #include <memory>
 #include <vector>
 
@@ -62,5 +64,20 @@ struct BridgeLinkRig {
   std::unique_ptr<station::StationLink> link;
   BridgeApp bridge;
 };
+
+// Largest distance between the station's live positions and the bridge's CPU warp
+// over the stroke's influenced vertices; -1 when either side has no live stroke.
+inline double warp_difference(const BridgeLinkRig& r) {
+  const input::LiveWarp live = r.station.session->live();
+  const MeshData bridge = r.bridge.replica().cpu_warp();
+  if (!live.active || live.plan == nullptr || bridge.vertex_count() == 0) return -1.0;
+  double worst = 0.0;
+  for (const std::uint32_t i : live.plan->indices()) {
+    const glm::dvec3 s(live.positions.x[i], live.positions.y[i], live.positions.z[i]);
+    const glm::dvec3 b(bridge.x[i], bridge.y[i], bridge.z[i]);
+    worst = std::max(worst, glm::length(s - b));
+  }
+  return worst;
+}
 
 }  // namespace twister::bridge::test_support

@@ -21,6 +21,8 @@
 namespace twister::bridge {
 namespace {
 
+using test_support::warp_difference;
+
 using input::test_support::kGrab0;
 using input::test_support::z_turn;
 
@@ -47,20 +49,6 @@ struct Rig : test_support::BridgeLinkRig {
     }
   }
 };
-
-// Largest distance between the station's live positions and the bridge's CPU warp.
-double warp_difference(const Rig& r) {
-  const input::LiveWarp live = r.station.session->live();
-  const MeshData bridge = r.bridge.replica().cpu_warp();
-  if (!live.active || live.plan == nullptr || bridge.vertex_count() == 0) return -1.0;
-  double worst = 0.0;
-  for (const std::uint32_t i : live.plan->indices()) {
-    const glm::dvec3 s(live.positions.x[i], live.positions.y[i], live.positions.z[i]);
-    const glm::dvec3 b(bridge.x[i], bridge.y[i], bridge.z[i]);
-    worst = std::max(worst, glm::length(s - b));
-  }
-  return worst;
-}
 
 TEST(BridgeTurn, TheBridgeRebuildsTheStationsScrewPast180Degrees) {
   for (const double turn : {0.8 * kPi, 1.5 * kPi, 1.8 * kPi}) {

@@ -208,6 +208,8 @@ class Station {
   void checkpoint_step();
   void final_checkpoint();
   Status begin_checkpoint();
+  void checkpoint_written();         // counted, records_at_checkpoint_, event
+  void checkpoint_failed(Status s);  // counted, event (the previous one stays)
   void drain_tracker(ports::TimestampUs now_us);
   void drain_buttons(ports::TimestampUs now_us);
   void report(const input::SessionEvent& event, ports::TimestampUs now_us);
