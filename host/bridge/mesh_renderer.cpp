@@ -292,7 +292,7 @@ void MeshRenderer::draw() {
       std::cos(el) * (std::cos(az) * fwd + std::sin(az) * side) + std::sin(el) * up;
   const glm::vec3 center(center_[0], center_[1], center_[2]);
   const float fov = glm::radians(35.0F);
-  const float distance = 1.1F * radius_ / std::sin(0.5F * fov);
+  const float distance = 1.1F * view_.zoom_out * radius_ / std::sin(0.5F * fov);
   const glm::vec3 eye = center + distance * dir;
   const glm::mat4 proj =
       glm::perspective(fov, static_cast<float>(width_) / static_cast<float>(std::max(height_, 1)),

@@ -20,6 +20,7 @@ namespace twister::bridge {
 struct ViewConfig {
   float azimuth_deg = 200.0F;   // around the up axis
   float elevation_deg = 25.0F;  // above the horizontal
+  float zoom_out = 1.0F;        // camera distance x this (room for a model that grows)
   // Object-frame up (tracker frame: +Z points down, so up is -Z).
   float up[3] = {0.0F, 0.0F, -1.0F};
 };

@@ -1,0 +1,123 @@
+#!/usr/bin/env python3
+"""Runs one scenario of sim/scenarios/ through the real programs.
+
+The scenario's header names its start mesh and station settings:
+  # @mesh ARGS        `twister mesh ARGS --out OUT/start.obj`
+  # @sculpt KEY = V   a line of the station's [sculpt] section (repeatable)
+  # @station KEY = V  a line of its [station] section (repeatable)
+  # @toml LINE       a line appended to the station config (e.g. [sculpt.buttons.right])
+  # @view ARGS        twister-bridge camera options
+  # @replay ARGS      `twister replay` options (e.g. --spare-vertices N with refinement)
+twister-station plays it (in-process simulated Fastrak with scripted buttons,
+virtual time unless --time real) and, with --bridge, serves a Unix-socket link to
+twister-bridge --offscreen, which writes PNG snapshots and exports the final mesh.
+Then `twister replay` rebuilds the model from the journal.
+
+    run_scenario.py SCENARIO --bin BUILD/bin --out DIR [--bridge] [--time real]
+Prints `station CHECKSUM`, `display CHECKSUM` (with --bridge), `replay CHECKSUM`
+and the station's counters line; exit 0 when the programs succeeded and all
+printed checksums agree (the caller compares them with other runs).
+"""
+import argparse
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+
+def header(path):
+    h = {"mesh": None, "sculpt": [], "station": [], "toml": [], "view": "", "replay": ""}
+    for line in open(path):
+        m = re.match(r"#\s*@(\w+)\s+(.*)$", line.strip())
+        if m and m.group(1) in ("mesh", "view", "replay"):
+            h[m.group(1)] = m.group(2)
+        elif m and m.group(1) in ("sculpt", "station", "toml"):
+            h[m.group(1)].append(m.group(2))
+    if not h["mesh"]:
+        sys.exit("run_scenario: %s names no @mesh" % path)
+    return h
+
+
+def write_config(out, scenario, h, time_mode):
+    cfg = os.path.join(out, "station.toml")
+    text = ('[station]\njournal = "%s/journal.twj"\nmesh = "%s/start.obj"\n%s\n'
+            '[tracker]\nbackend = "sim"\nleft_station = 1\nright_station = 2\n'
+            '[tracker.sim]\nscenario_file = "%s"\ntime = "%s"\n'
+            '[buttons]\nbackend = "sim"\ndebounce_ms = 10\n'
+            '[systemd]\nnotify = false\nwatchdog = false\n'
+            % (out, out, "\n".join(h["station"]), os.path.abspath(scenario), time_mode))
+    if h["sculpt"]:
+        text += "[sculpt]\n" + "\n".join(h["sculpt"]) + "\n"
+    text += "".join(line + "\n" for line in h["toml"])
+    open(cfg, "w").write(text)
+    return cfg
+
+
+def checksum(pattern, text):
+    m = re.findall(pattern, text, re.M)
+    return m[-1] if m else None
+
+
+def run(args):
+    out = os.path.abspath(args.out)
+    shutil.rmtree(out, ignore_errors=True)
+    os.makedirs(os.path.join(out, "pictures"))
+    h = header(args.scenario)
+    exe = lambda name: os.path.join(args.bin, name)  # noqa: E731
+    subprocess.run([exe("twister"), "mesh"] + h["mesh"].split() +
+                   ["--out", os.path.join(out, "start.obj")], check=True,
+                   stdout=subprocess.DEVNULL)
+    cfg = write_config(out, args.scenario, h, args.time)
+    station_cmd = [exe("twister-station"), "--config", cfg, "--log-level", "info"]
+    bridge = None
+    if args.bridge:
+        sock = os.path.join(out, "link.sock")
+        station_cmd += ["--link", "unix:" + sock, "--link-wait", "30"]
+        env = dict(os.environ, EGL_PLATFORM="surfaceless")
+        env.pop("DISPLAY", None)
+        env.pop("WAYLAND_DISPLAY", None)
+        bridge_cmd = [exe("twister-bridge"), "--connect", "unix:" + sock, "--offscreen",
+                      "--size", args.size, "--snapshots", os.path.join(out, "pictures"),
+                      "--export", os.path.join(out, "final.obj"), "--exit-on-disconnect",
+                      "--timeout", "120"] + h["view"].split()
+    with open(os.path.join(out, "station.log"), "w") as slog:
+        station = subprocess.Popen(station_cmd, stdout=slog, stderr=subprocess.STDOUT)
+        if args.bridge:
+            with open(os.path.join(out, "bridge.log"), "w") as blog, \
+                    open(os.path.join(out, "pictures.txt"), "w") as pics:
+                bridge = subprocess.run(bridge_cmd, env=env, stdout=pics, stderr=blog)
+        station.wait()
+    stext = open(os.path.join(out, "station.log")).read()
+    result = {"station": checksum(r"^twister-station: mesh checksum ([0-9a-f]+)$", stext)}
+    ok = station.returncode == 0
+    if bridge is not None:
+        btext = open(os.path.join(out, "bridge.log")).read()
+        result["display"] = checksum(r"exported mesh version \d+ \(checksum ([0-9a-f]+)\)", btext)
+        ok = ok and bridge.returncode == 0
+    r = subprocess.run([exe("twister"), "replay", os.path.join(out, "journal.twj"), "--mesh",
+                        os.path.join(out, "start.obj"), "--out",
+                        os.path.join(out, "replayed.obj")] + h["replay"].split(),
+                       capture_output=True, text=True)
+    result["replay"] = checksum(r"checksum ([0-9a-f]{16})", r.stdout)
+    for k, v in result.items():
+        print("%s %s" % (k, v))
+    summary = [ln for ln in stext.splitlines() if "stopped (" in ln]
+    print(summary[-1] if summary else "station: no summary")
+    return ok and len(set(result.values())) == 1 and None not in result.values()
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("scenario")
+    ap.add_argument("--bin", required=True)
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--bridge", action="store_true")
+    ap.add_argument("--time", default="virtual", choices=["virtual", "real"])
+    ap.add_argument("--size", default="640x480")
+    args = ap.parse_args()
+    sys.exit(0 if run(args) else 1)
+
+
+if __name__ == "__main__":
+    main()
