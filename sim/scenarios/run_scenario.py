@@ -7,6 +7,7 @@ The scenario's header names its start mesh and station settings:
   # @station KEY = V  a line of its [station] section (repeatable)
   # @toml LINE       a line appended to the station config (e.g. [sculpt.buttons.right])
   # @view ARGS        twister-bridge camera options
+  # @buttons stylus  the receiver-1 stylus instead of the scripted button lines
   # @replay ARGS      `twister replay` options (e.g. --spare-vertices N with refinement)
 twister-station plays it (in-process simulated Fastrak with scripted buttons,
 virtual time unless --time real) and, with --bridge, serves a Unix-socket link to
@@ -24,13 +25,14 @@ import re
 import shutil
 import subprocess
 import sys
+import time
 
 
 def header(path):
-    h = {"mesh": None, "sculpt": [], "station": [], "toml": [], "view": "", "replay": ""}
+    h = {"mesh": None, "sculpt": [], "station": [], "toml": [], "view": "", "replay": "", "buttons": "sim"}
     for line in open(path):
         m = re.match(r"#\s*@(\w+)\s+(.*)$", line.strip())
-        if m and m.group(1) in ("mesh", "view", "replay"):
+        if m and m.group(1) in ("mesh", "view", "replay", "buttons"):
             h[m.group(1)] = m.group(2)
         elif m and m.group(1) in ("sculpt", "station", "toml"):
             h[m.group(1)].append(m.group(2))
@@ -44,14 +46,33 @@ def write_config(out, scenario, h, time_mode):
     text = ('[station]\njournal = "%s/journal.twj"\nmesh = "%s/start.obj"\n%s\n'
             '[tracker]\nbackend = "sim"\nleft_station = 1\nright_station = 2\n'
             '[tracker.sim]\nscenario_file = "%s"\ntime = "%s"\n'
-            '[buttons]\nbackend = "sim"\ndebounce_ms = 10\n'
+            '[buttons]\nbackend = "%s"\ndebounce_ms = 10\n'
             '[systemd]\nnotify = false\nwatchdog = false\n'
-            % (out, out, "\n".join(h["station"]), os.path.abspath(scenario), time_mode))
+            % (out, out, "\n".join(h["station"]), os.path.abspath(scenario), time_mode,
+               h["buttons"]))
     if h["sculpt"]:
         text += "[sculpt]\n" + "\n".join(h["sculpt"]) + "\n"
     text += "".join(line + "\n" for line in h["toml"])
     open(cfg, "w").write(text)
     return cfg
+
+
+def cut_link(out, bridge_cmd, env):
+    """A first display, SIGKILLed once the station committed its first stroke: the
+    final display then connects to a station whose link lost its peer."""
+    with open(os.path.join(out, "bridge-cut.log"), "w") as log:
+        first = subprocess.Popen(bridge_cmd, env=env, stdout=log, stderr=log)
+        found = False
+        for _ in range(1200):
+            text = open(os.path.join(out, "station.log")).read()
+            if "committed as journal record 0" in text or "stopped (" in text:
+                found = True
+                break
+            time.sleep(0.05)
+        first.kill()
+        first.wait()
+    if not found:
+        sys.exit("run_scenario: no commit to cut the link after")
 
 
 def checksum(pattern, text):
@@ -83,6 +104,8 @@ def run(args):
                       "--timeout", "120"] + h["view"].split()
     with open(os.path.join(out, "station.log"), "w") as slog:
         station = subprocess.Popen(station_cmd, stdout=slog, stderr=subprocess.STDOUT)
+        if args.bridge and args.cut_link:
+            cut_link(out, bridge_cmd[:4] + ["--offscreen", "-q"], env)
         if args.bridge:
             with open(os.path.join(out, "bridge.log"), "w") as blog, \
                     open(os.path.join(out, "pictures.txt"), "w") as pics:
@@ -115,6 +138,8 @@ def main():
     ap.add_argument("--bridge", action="store_true")
     ap.add_argument("--time", default="virtual", choices=["virtual", "real"])
     ap.add_argument("--size", default="640x480")
+    ap.add_argument("--cut-link", action="store_true",
+                    help="with --bridge: a first display is killed after the first commit")
     args = ap.parse_args()
     sys.exit(0 if run(args) else 1)
 
