@@ -49,11 +49,11 @@ def main():
         if k == 3:  # the radius gesture: both radius buttons, hands 24 in -> 7.5 in apart
             buttons.append("# radius: hands 24 in apart, then 7.5 in: radius x 0.31")
             for s, q0, q1 in ((1, p(0, -12, -20), p(0, -3.75, -20)), (2, p(0, 12, -20), p(0, 3.75, -20))):
-                lines[s] += [key(t + 1.0, s, q0, zero), key(t + 3.0, s, q1, zero),
-                             key(t + 3.5, s, q1, zero)]
+                lines[s] += [key(t + 1.0, s, q0, zero), key(t + 2.0, s, q0, zero),
+                             key(t + 3.5, s, q1, zero), key(t + 4.5, s, q1, zero)]
             buttons += ["button %.2f 1 1" % (t + 1.5), "button %.2f 4 1" % (t + 1.5),
-                        "button %.2f 1 0" % (t + 3.25), "button %.2f 4 0" % (t + 3.25)]
-            t += 3.5
+                        "button %.2f 1 0" % (t + 4.0), "button %.2f 4 0" % (t + 4.0)]
+            t += 4.5
         buttons.append("# " + label)
         for s, q0, q1, ang in ((1, a0, a1, ang0), (2, b0, b1, ang1)):
             lines[s] += [key(t + 1.0, s, q0, zero), key(t + 2.0, s, q0, zero),

@@ -80,6 +80,64 @@ def checksum(pattern, text):
     return m[-1] if m else None
 
 
+def bridge_command(args, exe, out, sock, view):
+    """twister-bridge's command line and environment: offscreen unless --window."""
+    env = dict(os.environ)
+    mode = []
+    if not args.window:
+        env["EGL_PLATFORM"] = "surfaceless"
+        env.pop("DISPLAY", None)
+        env.pop("WAYLAND_DISPLAY", None)
+        mode = ["--offscreen"]
+    cmd = [exe("twister-bridge"), "--connect", "unix:" + sock] + mode + [
+        "--size", args.size, "--snapshots", os.path.join(out, "pictures"),
+        "--export", os.path.join(out, "final.obj"), "--exit-on-disconnect",
+        "--timeout", "120"] + view.split()
+    return cmd, env
+
+
+def follow(out, procs, strokes):
+    """Waits for the processes; with strokes > 0 prints each commit as it happens."""
+    shown = set()
+    while any(p.poll() is None for p in procs):
+        if strokes:
+            text = open(os.path.join(out, "station.log"), errors="replace").read()
+            for n in re.findall(r"committed as journal record (\d+)", text):
+                if n not in shown:
+                    shown.add(n)
+                    print("  stroke %d of %d committed (journal record %s)"
+                          % (len(shown), strokes, n), flush=True)
+        time.sleep(0.1)
+
+
+def run_programs(args, h, out, exe):
+    """Station (and bridge); returns their exit codes (bridge: None without one)."""
+    cfg = write_config(out, args.scenario, h, args.time)
+    station_cmd = [exe("twister-station"), "--config", cfg, "--log-level", "info"]
+    sock = os.path.join(out, "link.sock")
+    if args.bridge:
+        station_cmd += ["--link", "unix:" + sock, "--link-wait", "30"]
+        bridge_cmd, env = bridge_command(args, exe, out, sock, h["view"])
+    procs = []
+    try:
+        with open(os.path.join(out, "station.log"), "w") as slog:
+            procs.append(subprocess.Popen(station_cmd, stdout=slog, stderr=subprocess.STDOUT))
+            if args.bridge and args.cut_link:
+                cut_link(out, bridge_cmd[:3] + ["--offscreen", "-q"], env)
+            if args.bridge:
+                with open(os.path.join(out, "bridge.log"), "w") as blog, \
+                        open(os.path.join(out, "pictures.txt"), "w") as pics:
+                    procs.append(subprocess.Popen(bridge_cmd, env=env, stdout=pics,
+                                                  stderr=blog))
+            follow(out, procs, args.progress)
+    finally:
+        for p in procs:
+            if p.poll() is None:
+                p.kill()
+                p.wait()
+    return procs[0].returncode, (procs[1].returncode if len(procs) > 1 else None)
+
+
 def run(args):
     out = os.path.abspath(args.out)
     shutil.rmtree(out, ignore_errors=True)
@@ -89,35 +147,14 @@ def run(args):
     subprocess.run([exe("twister"), "mesh"] + h["mesh"].split() +
                    ["--out", os.path.join(out, "start.obj")], check=True,
                    stdout=subprocess.DEVNULL)
-    cfg = write_config(out, args.scenario, h, args.time)
-    station_cmd = [exe("twister-station"), "--config", cfg, "--log-level", "info"]
-    bridge = None
-    if args.bridge:
-        sock = os.path.join(out, "link.sock")
-        station_cmd += ["--link", "unix:" + sock, "--link-wait", "30"]
-        env = dict(os.environ, EGL_PLATFORM="surfaceless")
-        env.pop("DISPLAY", None)
-        env.pop("WAYLAND_DISPLAY", None)
-        bridge_cmd = [exe("twister-bridge"), "--connect", "unix:" + sock, "--offscreen",
-                      "--size", args.size, "--snapshots", os.path.join(out, "pictures"),
-                      "--export", os.path.join(out, "final.obj"), "--exit-on-disconnect",
-                      "--timeout", "120"] + h["view"].split()
-    with open(os.path.join(out, "station.log"), "w") as slog:
-        station = subprocess.Popen(station_cmd, stdout=slog, stderr=subprocess.STDOUT)
-        if args.bridge and args.cut_link:
-            cut_link(out, bridge_cmd[:4] + ["--offscreen", "-q"], env)
-        if args.bridge:
-            with open(os.path.join(out, "bridge.log"), "w") as blog, \
-                    open(os.path.join(out, "pictures.txt"), "w") as pics:
-                bridge = subprocess.run(bridge_cmd, env=env, stdout=pics, stderr=blog)
-        station.wait()
+    station_rc, bridge_rc = run_programs(args, h, out, exe)
     stext = open(os.path.join(out, "station.log")).read()
     result = {"station": checksum(r"^twister-station: mesh checksum ([0-9a-f]+)$", stext)}
-    ok = station.returncode == 0
-    if bridge is not None:
+    ok = station_rc == 0
+    if bridge_rc is not None:
         btext = open(os.path.join(out, "bridge.log")).read()
         result["display"] = checksum(r"exported mesh version \d+ \(checksum ([0-9a-f]+)\)", btext)
-        ok = ok and bridge.returncode == 0
+        ok = ok and bridge_rc == 0
     r = subprocess.run([exe("twister"), "replay", os.path.join(out, "journal.twj"), "--mesh",
                         os.path.join(out, "start.obj"), "--out",
                         os.path.join(out, "replayed.obj")] + h["replay"].split(),
@@ -138,6 +175,10 @@ def main():
     ap.add_argument("--bridge", action="store_true")
     ap.add_argument("--time", default="virtual", choices=["virtual", "real"])
     ap.add_argument("--size", default="640x480")
+    ap.add_argument("--window", action="store_true",
+                    help="with --bridge: a window on $DISPLAY instead of offscreen")
+    ap.add_argument("--progress", type=int, default=0, metavar="STROKES",
+                    help="print each commit as 'stroke k of STROKES' while it runs")
     ap.add_argument("--cut-link", action="store_true",
                     help="with --bridge: a first display is killed after the first commit")
     args = ap.parse_args()
