@@ -21,8 +21,8 @@ STROKES = [
      p(0, -R, 0), p(0, -R - 16, 0), p(0, R, 0), p(0, R + 2, 0), (0, 0, 0), (0, 0, 0)),
     ("stroke 2 of 5: pull the handle longer and thinner, the body held",
      p(0, -R - 15, 0), p(0, -R - 30, -2), p(0, -2, 0), p(0, -2, 0), (0, 0, 0), (0, 0, 0)),
-    ("stroke 3 of 5: press the bowl into the top of the +Y end, its bottom held",
-     p(0, 6, -R + 1), p(0, 7, -R + 12), p(0, 6, R), p(0, 6, R - 1), (0, 0, 0), (0, 0, 0)),
+    ("stroke 3 of 5: press the bowl into the top of the +Y end, its bottom pushed up",
+     p(0, 5, -R + 1), p(0, 6, -R + 11), p(0, 5, R - 1), p(0, 5, R - 9), (0, 0, 0), (0, 0, 0)),
     ("stroke 4 of 5: pull two tines out of the tip",
      p(-4, R - 0.5, -1), p(-6.5, R + 13, -1), p(4, R - 0.5, -1), p(6.5, R + 13, -1), (0, 0, 0), (0, 0, 0)),
     ("stroke 5 of 5: pull the middle tine, the handle held",
@@ -77,7 +77,7 @@ HEADER = """
 # Both hands hold still 0.5 s before every press and after every release.
 #   1. hand 0 pulls the handle out of the -Y side while hand 1 holds the +Y side;
 #   2. the handle is pulled longer (thinner) while hand 1 holds the body;
-#   3. hand 1 presses the bowl into the top (-Z) of the +Y end, hand 0 holds its bottom;
+#   3. hand 0 presses the bowl into the top (-Z) of the +Y end, hand 1 pushes its bottom up;
 #   then both radius buttons: the hands come together (24 -> 7.5 in), radius x 0.31;
 #   4. both hands pull a tine each out of the tip;
 #   5. hand 0 pulls the middle tine while hand 1 holds the handle.
