@@ -9,7 +9,8 @@
    after the first commit and a second one connects.
 Checks: station = display = `twister replay` of the journal = reference; the
 station's "poses:" line reports no conversion error (no invalid pose reached a hand;
-rejected and held-back ones never do); at least --min-commits strokes; the rest and
+rejected and held-back ones never do) and, with --min-caught, that the faults did
+produce bad poses that were caught; at least --min-commits strokes; the rest and
 final snapshots are not blank: the model covers 3-90 % of the picture and the final
 picture differs from the rest picture.
 
@@ -89,6 +90,8 @@ def main():
     ap.add_argument("--time", default="virtual", choices=["virtual", "real"])
     ap.add_argument("--cut-link", action="store_true")
     ap.add_argument("--min-commits", type=int, default=1)
+    ap.add_argument("--min-caught", type=int, default=0,
+                    help="at least this many poses rejected or held back (fault scenarios)")
     a = ap.parse_args()
     problems = []
     ref, ref_sums = run([a.scenario, "--bin", a.bin, "--out", os.path.join(a.out, "reference")])
@@ -109,6 +112,8 @@ def main():
                   r"held back (\d+)", log)
     if not m or int(m.group(1)) == 0 or int(m.group(2)) != 0:
         problems.append("poses line: %s" % (m.group(0) if m else "missing"))
+    elif int(m.group(3)) + int(m.group(4)) < a.min_caught:
+        problems.append("%s: fewer than %d bad poses caught" % (m.group(0), a.min_caught))
     commits = len(re.findall(r"committed as journal record", log))
     if commits < a.min_commits:
         problems.append("%d commits, at least %d expected" % (commits, a.min_commits))
