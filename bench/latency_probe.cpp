@@ -10,11 +10,12 @@
 //   link     the bridge's side reads the Unix socket and decodes byte-wise into the
 //            scene replica (message out -> received and applied);
 //   frame    MeshRenderer::set_live + draw, which ends with glFinish (offscreen
-//            llvmpipe, 800x600): received -> frame finished;
+//            llvmpipe, 800x600 unless --size): received -> frame finished;
 //   total    record write -> frame finished.
 // Worst case for the station: the grab radius covers the whole model. The hands
 // message is built with bridge::make_live_messages (the content StationLink sends).
-// Usage: latency_probe [VERTICES...] (default 30000 100000 1000000); prints median
+// Usage: latency_probe [--size WxH] [VERTICES...] (default 800x600; 30000 100000
+// 1000000 vertices); prints median
 // and p99 of each stage in microseconds.
 #include <fcntl.h>
 #include <poll.h>
@@ -162,21 +163,30 @@ bool measure(bench::LatencyRig& rig, bridge::MeshRenderer& renderer, int iterati
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<long> sizes{30'000, 100'000, 1'000'000};
-  if (argc > 1) sizes.clear();
-  for (int i = 1; i < argc; ++i) sizes.push_back(std::strtol(argv[i], nullptr, 10));
+  std::vector<long> sizes;
+  int width = 800;
+  int height = 600;
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) == "--size" && i + 1 < argc) {
+      std::sscanf(argv[++i], "%dx%d", &width, &height);
+    } else {
+      sizes.push_back(std::strtol(argv[i], nullptr, 10));
+    }
+  }
+  if (sizes.empty()) sizes = {30'000, 100'000, 1'000'000};
   ::unsetenv("DISPLAY");
-  auto context = bridge::make_offscreen_context(800, 600);
+  auto context = bridge::make_offscreen_context(width, height);
   if (!context) {
     std::fprintf(stderr, "latency_probe: no offscreen GL context\n");
     return 1;
   }
-  std::printf("%-10s %-8s %10s %10s\n", "vertices", "stage", "median_us", "p99_us");
+  std::printf("frame %dx%d\n%-10s %-8s %10s %10s\n", width, height, "vertices", "stage",
+              "median_us", "p99_us");
   const char* names[] = {"read", "station", "link", "frame", "total"};
   for (const long v : sizes) {
     bench::LatencyRig rig(static_cast<std::size_t>(v));
     bridge::MeshRenderer renderer;
-    if (!rig.ready() || !renderer.init(800, 600, true, {})) return 1;
+    if (!rig.ready() || !renderer.init(width, height, true, {})) return 1;
     renderer.set_mesh(rig.replica().mesh(), false);
     renderer.set_weights(rig.replica().live().weight1, rig.replica().live().weight2);
     Stages st;
