@@ -1,12 +1,15 @@
 # Twister Station: thin wrapper over the CMake presets (the PX4 convention).
 #   make demo   - install deps, build, run the simulated station demo (headless-safe)
 #   make test   - install deps, build, run the whole test suite (what CI runs)
+#   make soak   - the whole chain with every fault kind for SOAK_MINUTES (default 60)
 # Other targets: deps build bench asan fuzz lint format clean
 
 JOBS ?= $(shell nproc)
 FUZZ_SECONDS ?= 600
+SOAK_MINUTES ?= 60
+SOAK_OUT ?= build/soak
 
-.PHONY: all deps build test test-only fuzz-smoke demo bench asan fuzz lint format clean
+.PHONY: all deps build test test-only fuzz-smoke demo bench soak asan fuzz lint format clean
 
 all: build
 
@@ -34,6 +37,12 @@ demo: build
 
 bench: build
 	.ci/bench.sh
+
+# twister-sim (PTY) -> twister-station -> link -> twister-bridge with every fault kind,
+# station SIGKILLs and link cuts; checks nothing committed is lost and RSS stays flat.
+soak: build
+	python3 tests/soak/soak.py --bin build/bin --deploy hal/twister-station/deploy \
+	  --minutes $(SOAK_MINUTES) --out $(SOAK_OUT)
 
 asan: deps
 	cmake --preset asan

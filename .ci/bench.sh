@@ -12,3 +12,13 @@ for b in build/bin/*_bench; do
   "$b" --benchmark_out="build/bench/$name.json" --benchmark_out_format=json "$@"
 done
 [ "$found" -eq 1 ] || { echo "bench: no benchmark programs were built" >&2; exit 1; }
+# Latency by stage, tracker record -> presented frame (docs/performance.md).
+if [ -x build/bin/latency_probe ]; then
+  echo "== latency_probe"
+  build/bin/latency_probe | tee build/bench/latency_probe.txt
+fi
+# Latency by stage, tracker record -> presented frame (docs/performance.md).
+if [ -x build/bin/latency_probe ]; then
+  echo "== latency_probe"
+  build/bin/latency_probe | tee build/bench/latency_probe.txt
+fi

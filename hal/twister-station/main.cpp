@@ -115,6 +115,12 @@ void log_summary(hal::Logger& results, const twister::station::Station& core,
                  static_cast<unsigned long long>(tc.streams_started),
                  static_cast<unsigned long long>(c.poses),
                  static_cast<unsigned long long>(tc.io_errors));
+  // Poses the faults spoiled, none of which reached a hand (scripts parse this line).
+  results.notice("", "poses: applied %llu, conversion errors %llu, rejected %llu, held back %llu",
+                 static_cast<unsigned long long>(c.poses),
+                 static_cast<unsigned long long>(c.pose_errors),
+                 static_cast<unsigned long long>(tc.rejected_poses),
+                 static_cast<unsigned long long>(tc.jump_rejects));
   if (c.strokes_not_saved > 0) {
     results.error("", "%llu stroke(s) were not saved (see the errors above); exit status 1",
                   static_cast<unsigned long long>(c.strokes_not_saved));

@@ -301,6 +301,10 @@ void add_options(CLI::App& cli, Options& opt) {
                  "target, fixed): a kiosk's fixed view");
   cli.add_option("--azimuth", opt.view.azimuth_deg, "camera azimuth in degrees");
   cli.add_option("--elevation", opt.view.elevation_deg, "camera elevation in degrees");
+  cli.add_option_function<float>(
+         "--zoom-out", [&opt](float f) { opt.view.zoom = 1.0F / f; },
+         "camera distance x this (default 1: the first mesh fills the view)")
+      ->check(CLI::Range(0.25, 10.0));
   cli.add_option("--log-level", opt.log_level,
                  "error | warning | notice (default) | info (each picture) | debug")
       ->check(CLI::IsMember({"error", "warning", "notice", "info", "debug"}));

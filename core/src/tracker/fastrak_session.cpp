@@ -336,7 +336,10 @@ bool FastrakSession::take_pose(const FastrakPose& pose, ports::TimestampUs now) 
 Result<FastrakPose> FastrakSession::poll() {
   if (!config_ok_) return StatusCode::invalid_argument;
   const ports::TimestampUs now = clock_.now_us();
-  step_timers(now);
+  // While streaming, silence is judged only once the input is drained: a host that
+  // stalled (a slow fsync, a starved process) finds the records that came meanwhile
+  // instead of calling a unit that kept sending "lost".
+  if (state_ != SessionState::streaming) step_timers(now);
   for (;;) {
     // The parser may still hold an event (an accepted record queued behind its
     // resync report) even when no bytes are left, so ask it before reading.
@@ -358,7 +361,10 @@ Result<FastrakPose> FastrakSession::poll() {
       fault(now);
       return StatusCode::unavailable;
     }
-    if (*n == 0) return StatusCode::unavailable;
+    if (*n == 0) {
+      if (state_ == SessionState::streaming) step_timers(now);
+      return StatusCode::unavailable;
+    }
     rx_len_ = *n;
     rx_pos_ = 0;
     last_byte_ = now;

@@ -158,6 +158,24 @@ TEST(FastrakSession, SilenceTriggersReinitialisation) {
   EXPECT_EQ(rig.session.counters().streams_started, 2u);
 }
 
+// A host that stalls longer than the silence timeout (a slow fsync, a starved
+// process) while the unit keeps sending: the records that came meanwhile are read
+// before silence is judged, so the stream is not called lost.
+TEST(FastrakSession, AStalledHostFindsTheRecordsThatCameMeanwhile) {
+  Rig rig;
+  rig.start_streaming();
+  rig.stream.push_rx(record(5));
+  rig.poll_all();
+  rig.clock.advance_us(3'000'000);
+  rig.stream.push_rx(record(6));
+  rig.poll_all();
+  EXPECT_EQ(rig.session.state(), SessionState::streaming);
+  EXPECT_EQ(rig.session.counters().silence_faults, 0u);
+  EXPECT_EQ(rig.session.counters().garbage_faults, 0u);
+  ASSERT_FALSE(rig.poses.empty());
+  EXPECT_FLOAT_EQ(rig.poses.back().position[0], 6.0f);
+}
+
 TEST(FastrakSession, EndlessGarbageIsDetected) {
   Rig rig;
   rig.start_streaming();
