@@ -58,6 +58,8 @@ struct Options {
   int baud = 230400;                      // serial: links
   std::string link_key;                   // pre-shared key file (the station's psk_file)
   twister::bridge::ReplicaLimits limits;  // --max-vertices / --max-triangles
+  bool no_cues = false;                   // the model alone (no glyphs, spheres, axes, ...)
+  bool no_hud = false;
 };
 
 twister::hal::Logger& logger() { return twister::hal::process_log(); }
@@ -95,6 +97,9 @@ Expected<void> open_display(const Options& opt, Size size, Display& display) {
       !ready) {
     return ready;
   }
+  if (opt.no_cues)
+    display.view.options().cues = twister::bridge::CueOptions{false, false, false, false, false};
+  display.view.options().hud = !opt.no_hud;
   return display.view.init();
 }
 
@@ -308,6 +313,9 @@ void add_options(CLI::App& cli, Options& opt) {
   cli.add_option("--log-level", opt.log_level,
                  "error | warning | notice (default) | info (each picture) | debug")
       ->check(CLI::IsMember({"error", "warning", "notice", "info", "debug"}));
+  cli.add_flag("--no-cues", opt.no_cues,
+               "draw the model alone: no hand glyphs, spheres, axes, trajectories (key C)");
+  cli.add_flag("--no-hud", opt.no_hud, "no heads-up text or banners (key H)");
   cli.add_flag("-q,--quiet", opt.quiet, "same as --log-level warning (which wins if given)");
 }
 

@@ -92,7 +92,7 @@ def bridge_command(args, exe, out, sock, view):
     cmd = [exe("twister-bridge"), "--connect", "unix:" + sock] + mode + [
         "--size", args.size, "--snapshots", os.path.join(out, "pictures"),
         "--export", os.path.join(out, "final.glb"), "--exit-on-disconnect",
-        "--timeout", "120"] + view.split()
+        "--timeout", "120"] + view.split() + (["--no-cues", "--no-hud"] if args.plain else [])
     return cmd, env
 
 
@@ -179,6 +179,8 @@ def main():
                     help="with --bridge: a window on $DISPLAY instead of offscreen")
     ap.add_argument("--progress", type=int, default=0, metavar="STROKES",
                     help="print each commit as 'stroke k of STROKES' while it runs")
+    ap.add_argument("--plain", action="store_true",
+                    help="snapshots of the model alone (twister-bridge --no-cues --no-hud)")
     ap.add_argument("--cut-link", action="store_true",
                     help="with --bridge: a first display is killed after the first commit")
     args = ap.parse_args()
