@@ -92,7 +92,8 @@ def bridge_command(args, exe, out, sock, view):
     cmd = [exe("twister-bridge"), "--connect", "unix:" + sock] + mode + [
         "--size", args.size, "--snapshots", os.path.join(out, "pictures"),
         "--export", os.path.join(out, "final.glb"), "--exit-on-disconnect",
-        "--timeout", "120"] + view.split() + (["--no-cues", "--no-hud"] if args.plain else [])
+        "--timeout", "120"] + view.split() + (["--no-cues", "--no-hud"] if args.plain else
+                                              ["--no-hud"] if args.no_hud else [])
     return cmd, env
 
 
@@ -181,6 +182,8 @@ def main():
                     help="print each commit as 'stroke k of STROKES' while it runs")
     ap.add_argument("--plain", action="store_true",
                     help="snapshots of the model alone (twister-bridge --no-cues --no-hud)")
+    ap.add_argument("--no-hud", action="store_true",
+                    help="snapshots with the cues but without the heads-up text")
     ap.add_argument("--cut-link", action="store_true",
                     help="with --bridge: a first display is killed after the first commit")
     args = ap.parse_args()
