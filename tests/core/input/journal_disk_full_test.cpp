@@ -30,7 +30,8 @@ struct Sculptor {
   Station& s;
   Reported& seen;
   void tick() {
-    for (const SessionEvent& e : s.tick().items()) {
+    const SessionEvents events = s.tick();  // items() views it: keep it alive
+    for (const SessionEvent& e : events.items()) {
       if (e.kind == SessionEventKind::committed || e.kind == SessionEventKind::move_committed) {
         EXPECT_TRUE(e.status.ok());
         seen.saved.insert(e.sequence);

@@ -173,7 +173,8 @@ TEST(UnwrappedStroke, HoldsAtTheLimitAndSaysSo) {
   glm::dvec3 held{};
   for (int k = 1; k <= 34; ++k) {  // to 340 degrees
     s.hand(1, z_turn({0, 0, 0}, deg(10.0 * k)));
-    for (const SessionEvent& e : s.tick().items()) {
+    const SessionEvents events = s.tick();  // items() views it: keep it alive
+    for (const SessionEvent& e : events.items()) {
       if (e.kind == SessionEventKind::turn_limit_reached) {
         ++reached;
         EXPECT_EQ(e.hand, 1);
@@ -194,7 +195,8 @@ TEST(UnwrappedStroke, HoldsAtTheLimitAndSaysSo) {
   EXPECT_NEAR(s.session->live().plan->screw(0).angle, deg(300), 1e-9);
   for (int k = 33; k >= 29; --k) {  // back to 290 degrees
     s.hand(1, z_turn({0, 0, 0}, deg(10.0 * k)));
-    for (const SessionEvent& e : s.tick().items()) {
+    const SessionEvents events = s.tick();  // items() views it: keep it alive
+    for (const SessionEvent& e : events.items()) {
       left += e.kind == SessionEventKind::turn_limit_left ? 1 : 0;
     }
   }
