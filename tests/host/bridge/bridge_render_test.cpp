@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "bridge_app.hpp"
+#include "bridge_test_mesh.hpp"
 #include "gl_context.hpp"
 #include "mesh_renderer.hpp"
 #include "scene_replica.hpp"
@@ -22,67 +23,14 @@
 namespace twister::bridge {
 namespace {
 
+using test::differing;
+using test::load_mesh;
+using test::sphere_mesh;
+
 constexpr int kW = 320;
 constexpr int kH = 240;
 // The clear colour (0.13, 0.14, 0.17) in 8 bits.
 constexpr std::array<int, 3> kBackground{33, 36, 43};
-
-MeshData sphere() {
-  static mesh::MeshWithStorage<8192, 16384> m;
-  EXPECT_TRUE(meshio::make_sphere(m, 48, 64, 0.1F).ok());
-  MeshData d;
-  d.x.assign(m.x().begin(), m.x().end());
-  d.y.assign(m.y().begin(), m.y().end());
-  d.z.assign(m.z().begin(), m.z().end());
-  d.indices.assign(m.triangle_indices().begin(), m.triangle_indices().end());
-  return d;
-}
-
-void load(SceneReplica& r, const MeshData& m) {
-  link::LinkMessage b;
-  b.type = link::MessageType::mesh_begin;
-  b.mesh_begin = {true, 0, 1, static_cast<std::uint32_t>(m.vertex_count()),
-                  static_cast<std::uint32_t>(m.triangle_count())};
-  (void)r.apply(b);
-  link::LinkMessage v;
-  v.type = link::MessageType::vertices;
-  for (std::uint32_t i = 0; i < m.vertex_count(); ++i) {
-    v.vertices.items[v.vertices.count++] = {i, m.x[i], m.y[i], m.z[i]};
-    if (v.vertices.count == link::kMaxVerticesPerChunk || i + 1 == m.vertex_count()) {
-      (void)r.apply(v);
-      v.vertices.count = 0;
-    }
-  }
-  link::LinkMessage t;
-  t.type = link::MessageType::triangles;
-  for (std::uint32_t k = 0; k < m.triangle_count(); k += link::kMaxTrianglesPerChunk) {
-    const auto n = std::min<std::size_t>(link::kMaxTrianglesPerChunk, m.triangle_count() - k);
-    t.triangles.first = k;
-    t.triangles.count = static_cast<std::uint16_t>(n);
-    std::copy_n(m.indices.begin() + 3 * static_cast<std::ptrdiff_t>(k), 3 * n,
-                t.triangles.indices.begin());
-    (void)r.apply(t);
-  }
-  link::LinkMessage e;
-  e.type = link::MessageType::mesh_end;
-  e.mesh_end = {1, *mesh_checksum(m)};
-  ASSERT_FALSE(r.apply(e));
-  ASSERT_EQ(r.version(), 1u);
-}
-
-// Fraction of pixels whose channels differ by more than `tol`.
-double differing(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b, int tol) {
-  std::size_t n = 0;
-  for (std::size_t p = 0; p < a.size(); p += 4) {
-    for (std::size_t c = 0; c < 3; ++c) {
-      if (std::abs(int{a[p + c]} - int{b[p + c]}) > tol) {
-        ++n;
-        break;
-      }
-    }
-  }
-  return static_cast<double>(n) / static_cast<double>(a.size() / 4);
-}
 
 // Fraction of pixels that are background (the clear colour) in one picture only.
 double coverage_differs(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b) {
@@ -115,7 +63,7 @@ class BridgeRender : public ::testing::Test {
 
 TEST_F(BridgeRender, LiveWarpInTheShaderEqualsTheCpuWarp) {
   SceneReplica r;
-  load(r, sphere());
+  load_mesh(r, sphere_mesh(0.1F));
   renderer_.set_mesh(r.mesh(), false);
   renderer_.draw();
   const auto rest = renderer_.read_rgba();
@@ -188,7 +136,7 @@ TEST_F(BridgeRender, ScodefPreviewOfTheAppIsTheCpuWarpOfEachLiveFrame) {
   QuietLink link;
   ports::NullLogSink log;
   BridgeApp app(link, &renderer_, {}, log);
-  load(app.replica(), sphere());
+  load_mesh(app.replica(), sphere_mesh(0.1F));
   app.step();
   const std::array<math::Frame, 2> start{math::identity_frame({0.0, -0.1, 0.0}), math::Frame{}};
   std::uint16_t sequence = 0;

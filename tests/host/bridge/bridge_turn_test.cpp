@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "bridge_link_rig.hpp"
+#include "bridge_test_mesh.hpp"
 #include "gl_context.hpp"
 #include "hud_model.hpp"
 #include "mesh_renderer.hpp"
@@ -21,6 +22,7 @@
 namespace twister::bridge {
 namespace {
 
+using test::differing;
 using test_support::warp_difference;
 
 using input::test_support::kGrab0;
@@ -82,20 +84,6 @@ TEST(BridgeTurn, TheHudShowsTheTurnPast180DegreesAsItHappens) {
     found = found || line.find("turn: 270 ") != std::string::npos;
   }
   EXPECT_TRUE(found) << (text.lines.size() > 2 ? text.lines[2] : std::string{});
-}
-
-// Fraction of pixels whose channels differ by more than `tol`.
-double differing(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b, int tol) {
-  std::size_t n = 0;
-  for (std::size_t p = 0; p < a.size(); p += 4) {
-    for (std::size_t c = 0; c < 3; ++c) {
-      if (std::abs(int{a[p + c]} - int{b[p + c]}) > tol) {
-        ++n;
-        break;
-      }
-    }
-  }
-  return static_cast<double>(n) / static_cast<double>(a.size() / 4);
 }
 
 // The vertex shader's warp of a 270-degree twist equals the CPU warp drawn as plain
