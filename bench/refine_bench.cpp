@@ -20,6 +20,7 @@
 #include <numbers>
 #include <vector>
 
+#include "counting_storage.hpp"
 #include "twister/input/sculpt_session.hpp"
 #include "twister/journal/journal_writer.hpp"
 #include "twister/meshio/mesh_buffer.hpp"
@@ -33,23 +34,7 @@ using namespace twister;
 constexpr std::size_t kRings = 122;  // 2 * 122 segments: 29,770 vertices
 constexpr std::size_t kSpare = 200'000;
 
-// Journal storage that keeps only the length (the disk's fsync is not measured).
-class CountingStorage final : public ports::Storage {
-  Result<std::uint64_t> do_size() override { return size_; }
-  Result<std::size_t> do_read_at(std::uint64_t, std::span<std::byte>) override {
-    return std::size_t{0};
-  }
-  Status do_append(std::span<const std::byte> src) override {
-    size_ += src.size();
-    return ok_status();
-  }
-  Status do_sync() override { return ok_status(); }
-  Status do_truncate(std::uint64_t length) override {
-    size_ = length;
-    return ok_status();
-  }
-  std::uint64_t size_ = 0;
-};
+using bench::CountingStorage;
 
 struct Rig {
   explicit Rig(double threshold_m)

@@ -13,6 +13,7 @@
 #include <memory>
 #include <vector>
 
+#include "counting_storage.hpp"
 #include "twister/input/sculpt_session.hpp"
 #include "twister/journal/journal_writer.hpp"
 #include "twister/meshio/mesh_buffer.hpp"
@@ -22,24 +23,7 @@ namespace {
 
 using namespace twister;
 
-// Journal storage that keeps only the length (the bench measures the session, not
-// the disk; a real fsync is the POSIX backend's cost).
-class CountingStorage final : public ports::Storage {
-  Result<std::uint64_t> do_size() override { return size_; }
-  Result<std::size_t> do_read_at(std::uint64_t, std::span<std::byte>) override {
-    return std::size_t{0};
-  }
-  Status do_append(std::span<const std::byte> src) override {
-    size_ += src.size();
-    return ok_status();
-  }
-  Status do_sync() override { return ok_status(); }
-  Status do_truncate(std::uint64_t length) override {
-    size_ = length;
-    return ok_status();
-  }
-  std::uint64_t size_ = 0;
-};
+using bench::CountingStorage;
 
 struct Rig {
   explicit Rig(std::size_t rings)

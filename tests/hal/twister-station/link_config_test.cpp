@@ -5,9 +5,12 @@
 #include <string>
 
 #include "config/station_config.hpp"
+#include "config_test_support.hpp"
 
 namespace twister::station_app {
 namespace {
+
+using test::messages;
 
 const std::string kBase = R"([station]
 journal = "/tmp/j.bin"
@@ -21,12 +24,6 @@ backend = "gpiod"
 [buttons.gpiod]
 lines = [17, 27]
 )";
-
-std::string messages(const ConfigParseResult& r) {
-  std::string s;
-  for (const auto& e : r.errors) s += e.to_string() + "\n";
-  return s;
-}
 
 ConfigParseResult parse_link(const std::string& link) {
   return parse_station_config(kBase + "[link]\n" + link, "t.toml");

@@ -9,10 +9,13 @@
 #include <string>
 
 #include "config/station_config.hpp"
+#include "config_test_support.hpp"
 #include "station_setup.hpp"
 
 namespace twister::station_app {
 namespace {
+
+using test::messages;
 
 using ::testing::HasSubstr;
 
@@ -30,12 +33,6 @@ backend = "gpiod"
 lines = [17, 27, 22, 23, 24, 25]
 )";
 constexpr std::uint32_t kBaseLines = 11;  // the [sculpt] text starts on line 12
-
-std::string messages(const ConfigParseResult& r) {
-  std::string s;
-  for (const auto& e : r.errors) s += e.to_string() + "\n";
-  return s;
-}
 
 ConfigParseResult parse(const std::string& sculpt, const std::string& base = kBase) {
   return parse_station_config(base + sculpt, "t.toml");

@@ -6,8 +6,12 @@
 
 #include <string>
 
+#include "config_test_support.hpp"
+
 namespace twister::station_app {
 namespace {
+
+using test::messages;
 
 using ::testing::HasSubstr;
 
@@ -24,13 +28,6 @@ backend = "gpiod"
 [buttons.gpiod]
 lines = [17, 27]
 )";
-
-// All messages joined, one per line, for readable failures.
-std::string messages(const ConfigParseResult& r) {
-  std::string s;
-  for (const auto& e : r.errors) s += e.to_string() + "\n";
-  return s;
-}
 
 ConfigParseResult parse(const std::string& text) { return parse_station_config(text, "t.toml"); }
 
