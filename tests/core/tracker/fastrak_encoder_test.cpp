@@ -265,8 +265,9 @@ RC_GTEST_PROP(FastrakRoundTrip, ExtendedItemsRoundTripByteForByte, ()) {
   RC_ASSERT(again == stream);
 }
 
-// 16-bit packed records (docs/fastrak-protocol.md §3.4): any records in any split decode to the sent values
-// within one count, and re-encoding a decoded record gives back its bytes.
+// 16-bit packed records (docs/fastrak-protocol.md §3.4): any records in any split decode
+// to the sent values within one count, and re-encoding a decoded record gives back its
+// bytes.
 RC_GTEST_PROP(FastrakRoundTrip, Packed16RecordsDecodeWithinOneCountAndReencodeExactly, ()) {
   const FastrakConfig c = gen_config(true);
   const int count = *rc::gen::inRange(1, 40);
