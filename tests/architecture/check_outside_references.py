@@ -28,6 +28,8 @@ PATTERNS = [
     re.compile(r"\btwister-paper[.]txt\b"),
 ]
 
+ANY = re.compile("|".join(p.pattern for p in PATTERNS))
+
 
 def skipped_dir(name):
     return name == ".git" or name.startswith("build")
@@ -61,7 +63,7 @@ def offending_lines(root):
             files += 1
             rel = os.path.relpath(path, root)
             for number, line in enumerate(lines, 1):
-                if any(p.search(line) for p in PATTERNS):
+                if ANY.search(line):
                     hits.append(f"{rel}:{number}: {line.strip()}")
     return files, hits
 
