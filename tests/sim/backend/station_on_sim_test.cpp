@@ -29,7 +29,7 @@ using tracker::OutputList;
 constexpr double kInch = 0.0254;
 constexpr std::size_t kGrid = 11;
 using Mesh = mesh::MeshWithStorage<kGrid * kGrid, 2 * kGrid * kGrid>;
-using Work = input::SculptStorageArrays<kGrid * kGrid, kGrid * kGrid, 2048, 8>;
+using Work = session::SculptStorageArrays<kGrid * kGrid, kGrid * kGrid, 2048, 8>;
 
 struct FaultCase {
   const char* name;
