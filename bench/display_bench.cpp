@@ -20,6 +20,7 @@
 #include "bridge_app.hpp"
 #include "gl_context.hpp"
 #include "scene_view.hpp"
+#include "twister/hal/monotonic_clock.hpp"
 #include "twister/link/math_conversion.hpp"
 #include "twister/mesh/mesh.hpp"
 #include "twister/meshio/mesh_generator.hpp"
@@ -41,6 +42,7 @@ class QuietLink final : public ports::LinkPort {
 struct Display {
   std::unique_ptr<bridge::GlContext> context;
   bridge::MeshRenderer renderer;
+  hal::MonotonicClock clock;
   std::unique_ptr<bridge::SceneView> view;
   QuietLink link;
   ports::NullLogSink log;
@@ -55,10 +57,10 @@ std::unique_ptr<Display> make_display(long n) {
   if (!context) return nullptr;
   d->context = std::move(*context);
   if (!d->renderer.init(800, 600, true, {})) return nullptr;
-  d->view = std::make_unique<bridge::SceneView>(d->renderer);
+  d->view = std::make_unique<bridge::SceneView>(d->renderer, d->clock);
   if (!d->view->init()) return nullptr;
-  d->app =
-      std::make_unique<bridge::BridgeApp>(d->link, &d->renderer, bridge::BridgeOptions{}, d->log);
+  d->app = std::make_unique<bridge::BridgeApp>(d->link, d->clock, &d->renderer,
+                                               bridge::BridgeOptions{}, d->log);
   d->app->set_view(d->view.get());
   static mesh::MeshWithStorage<110000, 220000> sphere;
   sphere.clear();

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 
 #include "scene_view.hpp"
 
@@ -10,9 +9,10 @@ namespace twister::bridge {
 
 using ports::LogLevel;
 
-BridgeApp::BridgeApp(ports::LinkPort& port, MeshRenderer* renderer, BridgeOptions options,
-                     ports::LogSink& log)
+BridgeApp::BridgeApp(ports::LinkPort& port, ports::Clock& clock, MeshRenderer* renderer,
+                     BridgeOptions options, ports::LogSink& log)
     : port_(port),
+      clock_(clock),
       renderer_(renderer),
       log_(log),
       options_(std::move(options)),
@@ -57,9 +57,7 @@ std::size_t BridgeApp::step() {
 }
 
 void BridgeApp::handle(const link::LinkMessage& m) {
-  last_frame_ms_ = std::chrono::duration_cast<std::chrono::milliseconds>(
-                       std::chrono::steady_clock::now().time_since_epoch())
-                       .count();
+  last_frame_ms_ = now_ms();
   if (m.type == link::MessageType::hands) {
     const std::int64_t second = last_frame_ms_ / 1000;
     if (second != hands_second_) {
@@ -245,9 +243,7 @@ HudInput BridgeApp::hud_input() const {
   HudInput in;
   in.link = link_view();
   in.ready = ready();
-  const std::int64_t now_s = std::chrono::duration_cast<std::chrono::seconds>(
-                                 std::chrono::steady_clock::now().time_since_epoch())
-                                 .count();
+  const std::int64_t now_s = now_ms() / 1000;
   in.hands_rate_hz = static_cast<double>(now_s == hands_second_       ? hands_last_second_
                                          : now_s == hands_second_ + 1 ? hands_in_second_
                                                                       : 0);

@@ -10,6 +10,8 @@
 // I/O for good (stopped() says why): two displays never fight over the link.
 // Snapshots (offscreen): the rest mesh when the first mesh arrives, the live warp
 // as each stroke segment ends (live-<next version>.png), and the committed mesh.
+// Time (hello retry, silence, the hands rate) comes from the ports::Clock the
+// program hands in (hal::MonotonicClock; tests drive a fake).
 // Messages go to the LogSink it is given (components "link", "replica",
 // "snapshot"): link loss and rejected change sets are warnings, being displaced a
 // warning, refusals errors, connects, meshes and commits notices, pictures info.
@@ -24,6 +26,7 @@
 #include "scene_replica.hpp"
 #include "twister/link/link_authenticator.hpp"
 #include "twister/link/link_codec.hpp"
+#include "twister/ports/clock.hpp"
 #include "twister/ports/link_port.hpp"
 #include "twister/ports/log_sink.hpp"
 #include "weight_preview.hpp"
@@ -53,10 +56,10 @@ enum class BridgeStop : std::uint8_t { none, displaced, unauthorised, version };
 
 class BridgeApp {
  public:
-  // `renderer` may be null (headless replica, tests). `port`, `log` and the
+  // `renderer` may be null (headless replica, tests). `port`, `clock`, `log` and the
   // authenticator must outlive the app.
-  BridgeApp(ports::LinkPort& port, MeshRenderer* renderer, BridgeOptions options,
-            ports::LogSink& log);
+  BridgeApp(ports::LinkPort& port, ports::Clock& clock, MeshRenderer* renderer,
+            BridgeOptions options, ports::LogSink& log);
   // One step: link I/O and replica updates (never blocks). Returns frames decoded.
   std::size_t step();
   // Sends a sculptor's command (keys: undo, redo, method) to the station, which
@@ -99,8 +102,10 @@ class BridgeApp {
   void flush();
   void refresh_display();
   void refresh_weights(bool mesh_uploaded);
+  std::int64_t now_ms() const { return clock_.now_us() / 1000; }
 
   ports::LinkPort& port_;
+  ports::Clock& clock_;
   MeshRenderer* renderer_;
   class SceneView* view_ = nullptr;
   ports::LogSink& log_;

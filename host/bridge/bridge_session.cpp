@@ -2,22 +2,11 @@
 // hello on every connection and again while the station is silent, the
 // challenge-response with a pre-shared key, and backing off for good when the
 // station says displaced or unauthorised, or speaks another protocol version.
-#include <chrono>
-
 #include "bridge_app.hpp"
 
 namespace twister::bridge {
-namespace {
 
 using ports::LogLevel;
-
-std::int64_t now_ms() {
-  return std::chrono::duration_cast<std::chrono::milliseconds>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
-
-}  // namespace
 
 void BridgeApp::on_connect() {
   connected_ = true;

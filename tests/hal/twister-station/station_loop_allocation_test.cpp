@@ -29,6 +29,7 @@
 #include "station_assembly.hpp"
 #include "station_loop.hpp"
 #include "twister/hal/logger.hpp"
+#include "twister/hal/monotonic_clock.hpp"
 #include "twister/hal/socket_link.hpp"
 
 namespace twister::station_app {
@@ -58,7 +59,7 @@ StationConfig loop_config(const std::string& journal) {
 class BridgePeer {
  public:
   explicit BridgePeer(const std::string& address)
-      : link_({address, false, 20}), app_(link_, nullptr, {}, quiet_) {
+      : link_({address, false, 20}), app_(link_, clock_, nullptr, {}, quiet_) {
     EXPECT_TRUE(link_.open());
     thread_ = std::thread([this] { run(); });
   }
@@ -108,6 +109,7 @@ class BridgePeer {
   ports::NullLogSink quiet_;  // the peer's messages are not under test
 
   hal::SocketLink link_;
+  hal::MonotonicClock clock_;
   bridge::BridgeApp app_;
   std::atomic<bool> stop_{false};
   std::mutex mutex_;

@@ -86,7 +86,7 @@ TEST(WindowInput, CameraKeysMoveAFreeCameraOnlyAndCommandKeysReachTheStation) {
   ports::NullLogSink log;
   test_support::BridgeLinkRig rig(log);
   MeshRenderer renderer;  // no GL: the camera only
-  SceneView view(renderer);
+  SceneView view(renderer, rig.clock);
   renderer.camera().frame(glm::vec3(0.0F), 0.1F);
   const glm::vec3 eye = renderer.camera().eye();
   WindowInput kiosk(rig.bridge, view, true);

@@ -10,6 +10,7 @@
 
 #include "allocation_counter.hpp"
 #include "bridge_app.hpp"
+#include "fakes/fake_clock.hpp"
 #include "fakes/memory_wire.hpp"
 #include "scene_replica.hpp"
 #include "twister/link/link_codec.hpp"
@@ -97,7 +98,8 @@ TEST(ReplicaCapacity, BridgeAppSurvivesAndLogsTheRefusal) {
       errors += level == ports::LogLevel::error ? 1 : 0;
     }
   } log;
-  BridgeApp app(display, nullptr, {}, log);
+  twister::test::FakeClock clock;
+  BridgeApp app(display, clock, nullptr, {}, log);
   app.step();  // connects and says hello
   link::LinkMessage hello;
   hello.type = link::MessageType::hello;

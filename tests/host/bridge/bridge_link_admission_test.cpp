@@ -18,6 +18,7 @@
 
 #include "bridge_app.hpp"
 #include "session_harness.hpp"
+#include "twister/hal/monotonic_clock.hpp"
 #include "twister/hal/socket_link.hpp"
 #include "twister/hal/sodium_authenticator.hpp"
 #include "twister/station/station_link.hpp"
@@ -71,9 +72,10 @@ struct Display {
     if (key != nullptr) auth = std::make_unique<hal::SodiumAuthenticator>(*key);
     BridgeOptions options;
     options.authenticator = auth.get();
-    app = std::make_unique<BridgeApp>(socket, nullptr, options, log);
+    app = std::make_unique<BridgeApp>(socket, clock, nullptr, options, log);
   }
   ports::NullLogSink log;
+  hal::MonotonicClock clock;  // real sockets, real time
   hal::SocketLink socket;
   std::unique_ptr<hal::SodiumAuthenticator> auth;
   std::unique_ptr<BridgeApp> app;
