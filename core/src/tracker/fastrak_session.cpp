@@ -86,7 +86,7 @@ void FastrakSession::build_commands() {
   auto end_cmd = [&] { commands_[len++] = '\0'; };
   bool ok = true;
   for (int s = 1; s <= kMaxStations; ++s) {
-    const StationConfig& st = config_.protocol.stations[static_cast<std::size_t>(s - 1)];
+    const ReceiverConfig& st = config_.protocol.stations[static_cast<std::size_t>(s - 1)];
     ok = ok && append(commands_, len, "l") && append_int(commands_, len, s) &&
          append(commands_, len, st.enabled ? ",1\r" : ",0\r");
     end_cmd();
