@@ -51,11 +51,10 @@ class LatencyRig {
 
   // The station's work for one pose of hand 1: the session step (live warp on the
   // CPU), then the hands message for the display.
-  link::LinkMessage step(const tracker::TrackedFrame& pose) {
-    const math::Frame end{pose.origin, pose.u, pose.v, pose.w};
-    (void)session_->set_hand(1, true, end);
+  link::LinkMessage step(const Pose& pose) {
+    (void)session_->set_hand(1, true, pose);
     (void)session_->step(++now_);
-    return messages(end).hands;
+    return messages(pose).hands;
   }
 
  private:

@@ -13,7 +13,7 @@
 
 namespace twister::station_app {
 
-StationLoopConfig make_loop_config(const StationConfig& config, double duration_s,
+StationLoopConfig make_loop_config(const StationFileConfig& config, double duration_s,
                                    const Backends& backends) {
   StationLoopConfig c;
   c.timeout_ms = static_cast<int>(config.station.loop_timeout_ms);

@@ -4,7 +4,6 @@
 #include <span>
 
 #include "twister/input/button_map.hpp"
-#include "twister/session/journal_pose.hpp"
 #include "twister/math/frame.hpp"
 #include "twister/math/warp_method.hpp"
 
@@ -38,8 +37,8 @@ Status JournalReplay::apply_stroke(const journal::StrokeRecord& s) {
   std::uint8_t long_turns = 0;  // by plan hand, as WarpPlan::update_turns wants it
   for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
     if ((s.hand_mask & (1u << h)) == 0) continue;
-    start[n] = from_journal(s.start[h]);
-    end[n] = from_journal(s.end[h]);
+    start[n] = s.start[h];
+    end[n] = s.end[h];
     if ((s.long_turns & (1u << h)) != 0)
       long_turns = static_cast<std::uint8_t>(long_turns | (1u << n));
     ++n;
@@ -69,7 +68,7 @@ Status JournalReplay::apply_stroke(const journal::StrokeRecord& s) {
 }
 
 Status JournalReplay::apply_move(const journal::ObjectMoveRecord& move) {
-  const math::Frame after = from_journal(move.object_after);
+  const math::Frame after = move.object_after;
   if (!math::is_orthonormal(after)) return StatusCode::data_loss;
   history_.apply_move(poses_.object(), after);
   poses_.set_object(after);

@@ -2,7 +2,6 @@
 
 #include <span>
 
-#include "twister/session/journal_pose.hpp"
 
 namespace twister::session {
 namespace {
@@ -216,8 +215,8 @@ SessionEvent StrokeController::commit_segment(std::uint8_t hand, input::Reason r
   std::size_t i = 0;
   for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
     if ((hand_mask_ & bit_of(h)) == 0) continue;
-    r.start[h] = to_journal(plan_.start_frame(i));
-    r.end[h] = to_journal(plan_.end_frame(i));
+    r.start[h] = journal::as_stored(plan_.start_frame(i));
+    r.end[h] = journal::as_stored(plan_.end_frame(i));
     if ((plan_.long_turns() & (1u << i)) != 0) r.long_turns |= bit_of(h);
     ++i;
   }

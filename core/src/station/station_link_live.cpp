@@ -75,7 +75,7 @@ void StationLink::send_stroke(const session::LiveWarp& live, ports::TimestampUs 
   std::size_t k = 0;
   for (std::size_t h = 0; h < link::kLinkHands; ++h) {
     if ((live.hand_mask & (1u << h)) == 0 || k >= plan.hand_count()) continue;
-    s.start[h] = link::to_wire(plan.start_frame(k++));
+    s.start[h] = plan.start_frame(k++);
   }
   if (queue_urgent(scratch_)) last_stroke_us_ = now_us;
 }

@@ -45,7 +45,7 @@ bool SceneReplica::ensure_plan() {
   std::array<math::Frame, 2> start{};
   std::size_t hands = 0;
   for (std::size_t h = 0; h < link::kLinkHands; ++h) {
-    if ((stroke_.hand_mask & (1u << h)) != 0) start[hands++] = link::to_frame(stroke_.start[h]);
+    if ((stroke_.hand_mask & (1u << h)) != 0) start[hands++] = stroke_.start[h];
   }
   live_.weight1.assign(n, 0.0F);
   live_.weight2.assign(n, 0.0F);
@@ -115,7 +115,7 @@ void SceneReplica::on_hands(const link::Hands& h) {
     if (stroke_on && !stroke_ok) {
       v.present = false;  // relative to a start frame we do not hold yet
     } else if (v.in_stroke) {
-      v.pose = link::live_end_frame(link::to_frame(stroke_.start[k]), h.hands[k]);
+      v.pose = link::live_end_frame(stroke_.start[k], h.hands[k]);
     } else {
       v.pose = link::from_compact(h.hands[k]);
     }
@@ -145,7 +145,7 @@ void SceneReplica::update_live(const link::Hands& h) {
     if (!hands_[k].present) return;  // a stroke hand without its sample: not drawn
     LiveHand& lh = live_.hands[live_.hand_count++];
     lh.session_hand = static_cast<std::uint8_t>(k);
-    lh.start = link::to_frame(stroke_.start[k]);
+    lh.start = stroke_.start[k];
     lh.end = hands_[k].pose;
     lh.screw = link::live_screw(lh.start, lh.end, h.hands[k]);
   }
@@ -220,7 +220,7 @@ LiveMessages make_live_messages(std::uint32_t mesh_version, std::uint32_t stroke
   for (std::size_t h = 0; h < link::kLinkHands; ++h) {
     if ((hand_mask & (1u << h)) == 0) continue;
     const math::Screw s = screws != nullptr ? (*screws)[k] : math::compute_screw(start[k], end[k]);
-    out.stroke.stroke.start[h] = link::to_wire(start[k]);
+    out.stroke.stroke.start[h] = start[k];
     out.hands.hands.hands[h] = link::to_live_compact(start[k], end[k], s);
     out.hands.hands.flags = static_cast<std::uint8_t>(
         out.hands.hands.flags | (link::kHandSample0 << h) | (link::kHandTracked0 << h));

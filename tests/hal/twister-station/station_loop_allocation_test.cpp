@@ -39,7 +39,7 @@ std::string temp_path(const char* name) {
   return "/tmp/twister_loop_alloc_" + std::to_string(::getpid()) + "_" + name;
 }
 
-StationConfig loop_config(const std::string& journal) {
+StationFileConfig loop_config(const std::string& journal) {
   const std::string text = std::string("[station]\njournal = \"") + journal +
                            "\"\nmesh = \"" TWISTER_DEPLOY_DIR
                            "/sim_sphere.obj\"\nspare_vertices = 20000\n"
@@ -135,7 +135,7 @@ TEST(StationLoopAllocation, SteadyStateWithStrokesButtonsLinkAndLogAllocatesNoth
   const std::string log_path = temp_path("log.txt");
   const std::string address = "unix:" + temp_path("link.sock");
   ::unlink(journal.c_str());
-  const StationConfig config = loop_config(journal);
+  const StationFileConfig config = loop_config(journal);
   auto assembled = assemble_station(config, {TWISTER_DEPLOY_DIR, address});
   ASSERT_TRUE(assembled) << assembled.error().message;
   StationParts& parts = **assembled;

@@ -11,6 +11,8 @@
 #include <cstdint>
 #include <glm/vec3.hpp>
 
+#include "twister/base/pose.hpp"
+
 namespace twister::link {
 
 inline constexpr std::uint8_t kProtocolVersion = 2;
@@ -21,16 +23,6 @@ inline constexpr std::size_t kMaxTrianglesPerChunk = 300;  // 12 bytes each
 inline constexpr std::size_t kLinkHands = 2;
 inline constexpr std::size_t kNonceBytes = 16;
 inline constexpr std::size_t kAuthTagBytes = 32;
-
-// An exact pose: origin and orthonormal axes, doubles (math::Frame's fields; the
-// link stays independent of the math library, its users convert). Used where the
-// bridge must rebuild what the station computed bit for bit (stroke start frames).
-struct Pose {
-  glm::dvec3 origin{0.0};
-  glm::dvec3 u{1.0, 0.0, 0.0};
-  glm::dvec3 v{0.0, 1.0, 0.0};
-  glm::dvec3 w{0.0, 0.0, 1.0};
-};
 
 // A compact pose: position and orientation as a unit quaternion (w, x, y, z),
 // floats (28 bytes on the wire). The quaternion's sign carries information where a
@@ -132,7 +124,7 @@ struct StrokeBegin {
   std::uint8_t method = 0;         // math::WarpMethod
   std::uint8_t hand_mask = 0;      // session hands in the segment (bit h), 1..3
   double radius_m = 0.0;
-  std::array<Pose, kLinkHands> start{};  // per session hand in hand_mask
+  std::array<twister::Pose, kLinkHands> start{};  // exact; per session hand in hand_mask
 };
 
 // Hands flags.
