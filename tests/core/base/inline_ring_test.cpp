@@ -136,7 +136,8 @@ RC_GTEST_PROP(InlineRingProperty, BehavesAsABoundedStdDeque, ()) {
   std::array<int, kCap> slots{};
   SpanRing<int> s(slots);
   std::deque<int> model;
-  const auto ops = *rc::gen::container<std::vector<std::uint8_t>>(rc::gen::inRange<std::uint8_t>(0, 5));
+  const auto ops =
+      *rc::gen::container<std::vector<std::uint8_t>>(rc::gen::inRange<std::uint8_t>(0, 5));
   int next = 0;
   for (const std::uint8_t op : ops) {
     if (op == 0) {

@@ -155,7 +155,8 @@ RC_GTEST_PROP(InlineVectorProperty, BehavesAsABoundedStdVector, ()) {
   constexpr std::size_t kCap = 12;
   InlineVector<int, kCap> v;
   std::vector<int> model;
-  const auto ops = *rc::gen::container<std::vector<std::uint8_t>>(rc::gen::inRange<std::uint8_t>(0, 6));
+  const auto ops =
+      *rc::gen::container<std::vector<std::uint8_t>>(rc::gen::inRange<std::uint8_t>(0, 6));
   int next = 0;
   for (const std::uint8_t op : ops) {
     switch (op) {

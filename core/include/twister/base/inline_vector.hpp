@@ -131,11 +131,10 @@ class InlineVector {
   constexpr const_iterator begin() const { return items_.data(); }
   constexpr const_iterator end() const { return items_.data() + size(); }
 
-  // The elements as a span (also implicitly, where a span is expected).
+  // The elements as a span. Where a span is expected, the vector itself converts
+  // (it is a contiguous range: std::span's range constructor takes it).
   constexpr std::span<T> span() { return {items_.data(), size()}; }
   constexpr std::span<const T> span() const { return {items_.data(), size()}; }
-  constexpr operator std::span<T>() { return span(); }  // NOLINT: implicit by design
-  constexpr operator std::span<const T>() const { return span(); }  // NOLINT
 
   friend constexpr bool operator==(const InlineVector& a, const InlineVector& b) {
     return std::equal(a.begin(), a.end(), b.begin(), b.end());
