@@ -77,9 +77,7 @@ void WeightPreview::rebuild(const MeshData& mesh, const std::array<glm::dvec3, 2
   // Both hands at one point: the squash is undefined (the station refuses such a
   // grab too); show each hand's own ball.
   for (std::size_t k = 0; k < start.size(); ++k) {
-    if (plan->build(rest, start.span().subspan(k, 1), radius_m,
-                    math::WarpMethod::twister)
-            .ok()) {
+    if (plan->build(rest, start.span().subspan(k, 1), radius_m, math::WarpMethod::twister).ok()) {
       copy_out(k);
     }
   }
