@@ -205,9 +205,10 @@ void BridgeApp::refresh_weights(bool mesh_uploaded) {
     // The stroke's weights (plan order) in the colours of its session hands.
     if (mesh_uploaded || !showing_live_weights_ || live.weights_changed ||
         live.stroke != shown_stroke_) {
-      renderer_->set_weights(live.weight1, live.weight2,
-                             {live.hands[0].session_hand,
-                              live.hand_count > 1 ? live.hands[1].session_hand : std::uint8_t{1}});
+      renderer_->set_weights(
+          live.weight1, live.weight2,
+          {live.hands.empty() ? std::uint8_t{0} : live.hands[0].session_hand,
+           live.hands.size() > 1 ? live.hands[1].session_hand : std::uint8_t{1}});
       renderer_->set_gradients(live.gradient1, live.gradient2);
       live.weights_changed = false;
       shown_stroke_ = live.stroke;

@@ -139,11 +139,12 @@ void SceneReplica::update_live(const link::Hands& h) {
   live_.method = static_cast<math::WarpMethod>(stroke_.method);
   live_.hand_mask = stroke_.hand_mask;
   live_.radius_m = stroke_.radius_m;
-  live_.hand_count = 0;
+  live_.hands.clear();
   for (std::size_t k = 0; k < link::kLinkHands; ++k) {
     if ((stroke_.hand_mask & (1u << k)) == 0) continue;
     if (!hands_[k].present) return;  // a stroke hand without its sample: not drawn
-    LiveHand& lh = live_.hands[live_.hand_count++];
+    live_.hands.push_back({}).ignore();  // one per link hand: fits
+    LiveHand& lh = live_.hands.back();
     lh.session_hand = static_cast<std::uint8_t>(k);
     lh.start = stroke_.start[k];
     lh.end = hands_[k].pose;
@@ -162,15 +163,15 @@ MeshData SceneReplica::cpu_warp() const {
   if (live_.method == math::WarpMethod::scodef) {
     // scodef has no screw: the plan's own update from the end frames.
     math::WarpPlan copy = plan;
-    std::array<math::Frame, 2> end{};
-    for (std::size_t k = 0; k < live_.hand_count; ++k) end[k] = live_.hands[k].end;
-    if (!copy.update(std::span<const math::Frame>(end.data(), live_.hand_count)).ok()) return {};
+    math::PlanFrames end;
+    for (const LiveHand& lh : live_.hands) end.push_back(lh.end).ignore();  // as many: fits
+    if (!copy.update(end).ok()) return {};
     (void)copy.apply(rest, math::VertexColumns{out.x, out.y, out.z});
     return out;
   }
   std::array<math::KernelHand, 2> k{};
   bool long_way = false;
-  for (std::size_t i = 0; i < live_.hand_count; ++i) {
+  for (std::size_t i = 0; i < live_.hands.size(); ++i) {
     const LiveHand& lh = live_.hands[i];
     math::fill_kernel_hand(k[i], lh.screw, lh.start, lh.end, live_.method);
     long_way = long_way || lh.screw.angle > 3.141592653589793;
@@ -178,7 +179,7 @@ MeshData SceneReplica::cpu_warp() const {
   const auto idx = plan.indices();
   const auto w1 = plan.weights(0);
   std::vector<float> zeros(idx.size(), 0.0F);
-  const auto w2 = live_.hand_count == 2 ? plan.weights(1) : std::span<const float>(zeros);
+  const auto w2 = live_.hands.size() == 2 ? plan.weights(1) : std::span<const float>(zeros);
   std::vector<float> gx(idx.size()), gy(idx.size()), gz(idx.size());
   std::vector<float> rx(idx.size()), ry(idx.size()), rz(idx.size());
   for (std::size_t i = 0; i < idx.size(); ++i) {
@@ -190,7 +191,7 @@ MeshData SceneReplica::cpu_warp() const {
                            rx.data(), ry.data(), rz.data(), idx.size()};
   // The station's simd kernel; the scalar one past a half turn (the simd sin/cos
   // covers half angles up to pi/2 only on this core).
-  if (live_.hand_count == 2) {
+  if (live_.hands.size() == 2) {
     long_way ? math::warp_two_scalar(k[0], k[1], s) : math::warp_two_simd(k[0], k[1], s);
   } else {
     long_way ? math::warp_one_scalar(k[0], s) : math::warp_one_simd(k[0], s);

@@ -175,9 +175,9 @@ TEST_F(DisplayCues, StrokeShowsPinkScrewAxesAndYellowTrajectories) {
   const Image without = frame();
   const LiveState& state = app_->replica().live();
   std::vector<glm::vec2> cursors;
-  for (std::size_t k = 0; k < state.hand_count; ++k)
+  for (std::size_t k = 0; k < state.hands.size(); ++k)
     cursors.push_back(at(state.hands[k].end.origin));
-  for (std::size_t k = 0; k < state.hand_count; ++k) {
+  for (std::size_t k = 0; k < state.hands.size(); ++k) {
     const LiveHand& hand = state.hands[k];
     const auto axis = screw_axis_segment(hand, state.method, 0.8 * renderer_.model_radius());
     ASSERT_TRUE(axis.has_value());
