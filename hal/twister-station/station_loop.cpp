@@ -105,8 +105,7 @@ bool StationLoop::step() {
     stop_reason_ = StopReason::station_failed;
     return false;
   }
-  display_.poll(core_, now_us);
-  display_.route_commands(core_);  // run by the next core_.poll()
+  display_.poll(core_, now_us);  // the display's commands run at the next core_.poll()
   log_events();
   retry_buttons(now_us);
   pet_watchdog(now_us);

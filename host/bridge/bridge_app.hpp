@@ -17,6 +17,8 @@
 // warning, refusals errors, connects, meshes and commits notices, pictures info.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -98,7 +100,14 @@ class BridgeApp {
   // Display (bridge_app.cpp).
   void handle(const link::LinkMessage& m);
   void handle_scene(const link::LinkMessage& m);
-  void send(const link::LinkMessage& m);
+  // Queues one message (each type encoded directly, no LinkMessage built).
+  template <link::LinkBody M>
+  void send(const M& m) {
+    std::array<std::byte, link::kMaxFrameBytes> frame{};
+    const auto n = link::encode_frame(m, frame);
+    if (n.ok())
+      out_.insert(out_.end(), frame.begin(), frame.begin() + static_cast<std::ptrdiff_t>(*n));
+  }
   void flush();
   void refresh_display();
   void refresh_weights(bool mesh_uploaded);

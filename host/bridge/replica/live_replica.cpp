@@ -210,21 +210,19 @@ LiveMessages make_live_messages(std::uint32_t mesh_version, std::uint32_t stroke
                                 const std::array<math::Frame, 2>& end,
                                 const std::array<math::Screw, 2>* screws) {
   LiveMessages out;
-  out.stroke.type = link::MessageType::stroke;
-  out.stroke.stroke = link::StrokeBegin{stroke,    mesh_version, static_cast<std::uint8_t>(method),
-                                        hand_mask, radius_m,     {}};
-  out.hands.type = link::MessageType::hands;
-  out.hands.hands.stroke = static_cast<std::uint16_t>(stroke);
-  out.hands.hands.flags = link::kStrokeActive;
-  out.hands.hands.radius_m = static_cast<float>(radius_m);
+  out.stroke = link::StrokeBegin{stroke,    mesh_version, static_cast<std::uint8_t>(method),
+                                 hand_mask, radius_m,     {}};
+  out.hands.stroke = static_cast<std::uint16_t>(stroke);
+  out.hands.flags = link::kStrokeActive;
+  out.hands.radius_m = static_cast<float>(radius_m);
   std::size_t k = 0;
   for (std::size_t h = 0; h < link::kLinkHands; ++h) {
     if ((hand_mask & (1u << h)) == 0) continue;
     const math::Screw s = screws != nullptr ? (*screws)[k] : math::compute_screw(start[k], end[k]);
-    out.stroke.stroke.start[h] = start[k];
-    out.hands.hands.hands[h] = link::to_live_compact(start[k], end[k], s);
-    out.hands.hands.flags = static_cast<std::uint8_t>(
-        out.hands.hands.flags | (link::kHandSample0 << h) | (link::kHandTracked0 << h));
+    out.stroke.start[h] = start[k];
+    out.hands.hands[h] = link::to_live_compact(start[k], end[k], s);
+    out.hands.flags = static_cast<std::uint8_t>(out.hands.flags | (link::kHandSample0 << h) |
+                                                (link::kHandTracked0 << h));
     ++k;
   }
   return out;

@@ -181,8 +181,8 @@ class SceneReplica {
 // a stroke of the session hands in `hand_mask` from `start` to `end` (plan order),
 // with the screws math::compute_screw gives (previous axes as given).
 struct LiveMessages {
-  link::LinkMessage stroke;
-  link::LinkMessage hands;
+  link::StrokeBegin stroke;
+  link::Hands hands;
 };
 LiveMessages make_live_messages(std::uint32_t mesh_version, std::uint32_t stroke,
                                 math::WarpMethod method, double radius_m, std::uint8_t hand_mask,

@@ -35,22 +35,21 @@ struct ClockRig {
   explicit ClockRig(ports::TimestampUs start_us)
       : clock(start_us), bridge(bridge_end, clock, nullptr, {}, log) {}
 
-  void station_sends(const link::LinkMessage& m) {
+  template <typename M>
+  void station_sends(const M& m) {
     std::vector<std::byte> f(link::kMaxFrameBytes);
     const auto n = link::encode_frame(m, f);
     ASSERT_TRUE(n.ok());
     ASSERT_EQ(*station_end.send(std::span<const std::byte>(f.data(), *n)), *n);
   }
   void station_hello() {
-    link::LinkMessage hello;
-    hello.type = link::MessageType::hello;
-    hello.hello.role = link::Role::station;
+    link::Hello hello;
+    hello.role = link::Role::station;
     station_sends(hello);
   }
   void station_hands(std::uint16_t sequence) {
-    link::LinkMessage hands;
-    hands.type = link::MessageType::hands;
-    hands.hands.sequence = sequence;
+    link::Hands hands;
+    hands.sequence = sequence;
     station_sends(hands);
   }
   std::uint64_t hellos() const { return bridge.counters().hellos_sent; }

@@ -146,7 +146,7 @@ TEST_F(BridgeRender, ScodefPreviewOfTheAppIsTheCpuWarpOfEachLiveFrame) {
     const std::array<math::Frame, 2> end{math::identity_frame({0.0, -0.1 - lift, 0.0}),
                                          math::Frame{}};
     LiveMessages live = make_live_messages(1, 1, math::WarpMethod::scodef, 0.12, 1, start, end);
-    live.hands.hands.sequence = sequence++;
+    live.hands.sequence = sequence++;
     (void)app.replica().apply(live.stroke);
     (void)app.replica().apply(live.hands);
     app.step();
