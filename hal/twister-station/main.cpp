@@ -11,8 +11,6 @@
 // Exit codes: 0 clean stop with every stroke saved, 1 runtime failure or a stroke not
 // saved, 2 invalid config or options, or a missing file the config names (all checked
 // before the journal is opened).
-#include <pthread.h>
-
 #include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdio>
@@ -27,6 +25,7 @@
 #include "station_setup.hpp"
 #include "twister/hal/logger.hpp"
 #include "twister/hal/sodium_authenticator.hpp"
+#include "twister/hal/startup_signals.hpp"
 
 namespace {
 
@@ -149,6 +148,10 @@ int run(const Options& opt, const StationConfig& cfg, hal::Logger& log, hal::Log
     log.error("", "%s", assembled.error().message.c_str());
     return kExitFailure;
   }
+  if (const int sig = hal::startup_stop_signal(); sig != 0) {
+    log.notice("", "stopped by signal %d during start-up", sig);
+    return kExitFailure;
+  }
   app::StationParts& parts = **assembled;
   for (const auto& note : parts.recovery_notes) {
     if (note.warning) {
@@ -170,6 +173,9 @@ int run(const Options& opt, const StationConfig& cfg, hal::Logger& log, hal::Log
     log.warning("", "no bridge on %s after %.1f s; running without", opt.link_address.c_str(),
                 opt.link_wait_s);
   }
+  // From here the loop's signalfd takes the stop signals (one that came during
+  // start-up stops the first pass).
+  hal::end_startup_signals();
   app::StationLoop loop(*parts.core, parts.backends, parts.display, log,
                         app::make_loop_config(cfg, opt.duration_s, parts.backends));
   results.notice("", "running (tracker %s, buttons %s, journal %s)",
@@ -214,12 +220,10 @@ int station_main(int argc, char** argv) {
   // A file size limit (RLIMIT_FSIZE) must fail the write (EFBIG: "stroke not saved"),
   // not kill the station with SIGXFSZ.
   std::signal(SIGXFSZ, SIG_IGN);
-  // A stop signal during start-up waits for the loop's first pass (then the stop
-  // policy and the summary run) instead of killing the station half-started.
-  sigset_t stop_signals;
-  sigemptyset(&stop_signals);
-  for (const int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&stop_signals, sig);
-  pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
+  // A stop signal during start-up ends it cleanly at its next step (the journal's
+  // lock released), within a second whatever it waits on; after start-up the loop's
+  // signalfd takes over (hal/startup_signals.hpp).
+  hal::begin_startup_signals();
   CLI::App cli{
       "twister-station: the Twister sculpting station (tracker + buttons -> strokes -> journal)"};
   Options opt;
