@@ -9,6 +9,7 @@
 #include "cli_log.hpp"
 #include "figure8_experiment.hpp"
 #include "figure8_plot.hpp"
+#include "twister/hal/output_file.hpp"
 
 namespace twister::cli {
 
@@ -17,6 +18,7 @@ namespace {
 struct Figure8Options {
   std::string svg;
   std::string png;
+  bool force = false;  // replace an existing SVG / PNG
 };
 
 constexpr math::WarpMethod kMethods[] = {math::WarpMethod::twister, math::WarpMethod::rottran,
@@ -66,6 +68,11 @@ void check_written(const hal::Expected<void>& written) {
 }
 
 void run_figure8(const Figure8Options& opt) {
+  // The output rule before the work (twister/hal/output_file.hpp).
+  if (!opt.svg.empty())
+    check_written(hal::check_output_path(opt.svg, {hal::OutputKind::svg, opt.force}));
+  if (!opt.png.empty())
+    check_written(hal::check_output_path(opt.png, {hal::OutputKind::png, opt.force}));
   // Both experiments of spec §9: the paper-like one and the small displacement.
   const Figure8Setup paper_like{};
   const Figure8Setup small{2001, 1.0, 0.3};
@@ -81,8 +88,8 @@ void run_figure8(const Figure8Options& opt) {
   picture.panels[0].curves = run_table(paper_like);
   std::printf("\n");
   picture.panels[1].curves = run_table(small);
-  if (!opt.svg.empty()) check_written(write_figure8_svg(opt.svg, picture));
-  if (!opt.png.empty()) check_written(write_figure8_png(opt.png, picture));
+  if (!opt.svg.empty()) check_written(write_figure8_svg(opt.svg, picture, opt.force));
+  if (!opt.png.empty()) check_written(write_figure8_png(opt.png, picture, opt.force));
 }
 
 }  // namespace
@@ -93,6 +100,8 @@ void add_figure8_command(CLI::App& app) {
   auto opt = std::make_shared<Figure8Options>();
   cmd->add_option("--svg", opt->svg, "write the grid of curves as SVG");
   cmd->add_option("--png", opt->png, "write the grid of curves as PNG");
+  cmd->add_flag("--force", opt->force,
+                "replace an existing SVG / PNG (never another kind of file)");
   cmd->callback([opt] {
     start_command_log("figure8");
     run_figure8(*opt);

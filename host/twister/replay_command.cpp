@@ -14,6 +14,7 @@
 #include "cli_exit.hpp"
 #include "cli_log.hpp"
 #include "model_session.hpp"
+#include "twister/hal/output_file.hpp"
 #include "twister/input/sculpt_session.hpp"
 #include "twister/journal/journal_reader.hpp"
 #include "twister/journal/journal_scanner.hpp"
@@ -53,6 +54,7 @@ struct Options {
   bool world = false;
   bool quiet = false;
   bool progress = false;
+  bool force = false;  // --force: replace an existing OBJ (never anything else)
 };
 
 [[noreturn]] void fail(int code, const std::string& message) {
@@ -93,7 +95,22 @@ void report_refinement(const input::RefineStatus& r, const Options& o) {
   }
 }
 
+// Before any work: the output may not be an input, and must pass the output rule
+// (never a journal, checkpoint, locked file such as a running station's journal or
+// base model; an existing OBJ only with --force).
+void check_output(const Options& o) {
+  for (const std::string* input : {&o.journal, &o.mesh_in}) {
+    if (hal::same_file(o.mesh_out, *input)) {
+      fail(kExitBadInput, o.mesh_out + " is the input " + *input + "; it is not replaced");
+    }
+  }
+  if (auto free = hal::check_output_path(o.mesh_out, {hal::OutputKind::obj, o.force}); !free) {
+    fail(kExitBadInput, free.error().message);
+  }
+}
+
 void run_replay(const Options& o) {
+  check_output(o);
   ModelSession model(o.mesh_in, o.spare_vertices, o.undo_changes, o.undo_entries);
   mesh::Mesh& mesh = model.mesh();
   input::SculptSession& session = model.session();
@@ -145,7 +162,7 @@ void run_replay(const Options& o) {
                       reader.good_end());
   }
   if (o.world) to_world(mesh, session.object_pose());
-  if (auto saved = meshio::save_obj(o.mesh_out, mesh); !saved) {
+  if (auto saved = meshio::save_obj(o.mesh_out, mesh, o.force); !saved) {
     fail(kExitFailure, saved.error().message);
   }
   const input::ReplayStats& st = session.replay_stats();
@@ -179,6 +196,9 @@ void add_replay_command(CLI::App& app) {
   cmd->add_option("--spare-vertices", options->spare_vertices,
                   "Room for refinement beyond the OBJ's vertices, and twice as many triangles "
                   "(the station's station.spare_vertices; default 0)");
+  cmd->add_flag("--force", options->force,
+                "Replace an existing OBJ at --out (never a journal, checkpoint, a file a "
+                "running station holds, or another kind of file)");
   cmd->add_flag("--world", options->world, "Write world coordinates (apply the object pose)");
   cmd->add_flag("--progress", options->progress,
                 "Always print progress (default: journals > 64 KiB)");

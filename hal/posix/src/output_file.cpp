@@ -246,9 +246,9 @@ Expected<FileReadLock> FileReadLock::hold(const std::string& path) {
   shared.l_start = 0;
   shared.l_len = 0;
   if (::fcntl(fd, F_OFD_SETLK, &shared) != 0) {
-    return make_error(StatusCode::failed_precondition,
-                      path + " is being written by another process (locked): " +
-                          std::strerror(errno));
+    return make_error(
+        StatusCode::failed_precondition,
+        path + " is being written by another process (locked): " + std::strerror(errno));
   }
   return lock;
 }

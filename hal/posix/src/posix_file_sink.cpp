@@ -1,8 +1,6 @@
 // PosixFileSink: errno is translated to StatusCode here, at the boundary.
 #include "twister/hal/posix_file_sink.hpp"
 
-#include "twister/hal/output_file.hpp"
-
 #include <dirent.h>
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -13,6 +11,8 @@
 #include <cstdio>
 #include <cstring>
 #include <utility>
+
+#include "twister/hal/output_file.hpp"
 
 namespace twister::hal {
 namespace {
@@ -62,8 +62,7 @@ bool is_temp_suffix(const char* s) {
 int PosixFileSink::remove_stale_temporaries(const std::string& path) {
   const std::string dir = directory_of(path);
   const auto slash = path.rfind('/');
-  const std::string prefix =
-      (slash == std::string::npos ? path : path.substr(slash + 1)) + ".tmp-";
+  const std::string prefix = (slash == std::string::npos ? path : path.substr(slash + 1)) + ".tmp-";
   DIR* d = ::opendir(dir.c_str());
   if (d == nullptr) return 0;
   int removed = 0;
@@ -155,8 +154,8 @@ Status PosixFileSink::check_target() {
   }
   if (config_.replace == PosixFileSinkConfig::Replace::output) {
     last_errno_ = 0;
-    const Status s = inspect_output_target(config_.path.c_str(), config_.output,
-                                           last_error_.data(), last_error_.size());
+    const Status s = inspect_output_target(config_.path.c_str(), config_.output, last_error_.data(),
+                                           last_error_.size());
     if (s.code() == StatusCode::io_error) last_errno_ = errno;
     return s;
   }
@@ -254,6 +253,20 @@ void PosixFileSink::do_abort() {
     ::unlink(temp_path_.data());
     temp_path_[0] = '\0';
   }
+}
+
+Expected<void> write_output_file(const std::string& path, std::string_view bytes, OutputRule rule) {
+  PosixFileSinkConfig config;
+  config.path = path;
+  config.replace = PosixFileSinkConfig::Replace::output;
+  config.output = rule;
+  PosixFileSink sink(config);
+  Status s = sink.begin();
+  if (s.ok()) s = sink.write(std::as_bytes(std::span(bytes.data(), bytes.size())));
+  if (s.ok()) s = sink.commit();
+  if (s.ok()) return {};
+  sink.abort();
+  return Error{s, "cannot write " + path + ": " + sink.last_error()};
 }
 
 }  // namespace twister::hal

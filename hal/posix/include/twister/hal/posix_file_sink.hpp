@@ -23,8 +23,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "twister/hal/expected.hpp"
 #include "twister/hal/output_file.hpp"
 #include "twister/ports/file_sink.hpp"
 
@@ -86,5 +88,10 @@ class PosixFileSink final : public ports::FileSink {
   int last_errno_ = 0;
   std::array<char, 256> last_error_{};
 };
+
+// Writes `bytes` to `path` atomically under the output rule (Replace::output): what
+// the programs' writers of whole files in memory use. Error naming the path.
+Expected<void> write_output_file(const std::string& path, std::string_view bytes,
+                                 OutputRule rule);
 
 }  // namespace twister::hal
