@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <string_view>
 
 namespace twister::hal {
 namespace {
@@ -33,17 +34,27 @@ std::size_t skip_blanks(const std::array<char, 64>& head, std::size_t n) {
   return i;
 }
 
-// An OBJ starts (after blanks) with a comment or one of its statements, in text.
+// An OBJ is text that starts (after blanks) with a comment or one of its statements.
 bool looks_like_obj(const std::array<char, 64>& head, std::size_t n) {
   for (std::size_t i = 0; i < n; ++i) {
     const auto c = static_cast<unsigned char>(head[i]);
     if (c < 0x20 && c != '\t' && c != '\r' && c != '\n') return false;
   }
   const std::size_t i = skip_blanks(head, n);
-  if (i == n) return true;
-  const char c = head[i];
-  return c == '#' || c == 'v' || c == 'f' || c == 'o' || c == 'g' || c == 's' || c == 'm' ||
-         c == 'u' || c == 'l' || c == 'p';
+  if (i == n || head[i] == '#') return true;
+  std::size_t end = i;
+  while (end < n && head[end] != ' ' && head[end] != '\t' && head[end] != '\r' &&
+         head[end] != '\n') {
+    ++end;
+  }
+  if (end == n) return false;  // no whole first word within the first bytes
+  const std::string_view word(head.data() + i, end - i);
+  constexpr std::string_view kStatements[] = {"v", "vt", "vn", "vp", "f",      "o",
+                                              "g", "s",  "l",  "p",  "mtllib", "usemtl"};
+  for (const std::string_view statement : kStatements) {
+    if (word == statement) return true;
+  }
+  return false;
 }
 
 bool is_kind(OutputKind kind, const std::array<char, 64>& head, std::size_t n) {
