@@ -142,7 +142,8 @@ Status inspect_open(int fd, const char* path, OutputRule rule, char* message, st
   }
   if (!is_kind(rule.kind, head, got)) {
     char why[64];
-    std::snprintf(why, sizeof why, "exists and is not a %s file", output_kind_name(rule.kind));
+    std::snprintf(why, sizeof why, "exists and its first bytes are not %s",
+                  output_kind_name(rule.kind));
     return refuse(message, size, path, why);
   }
   return ok_status();
@@ -193,7 +194,11 @@ Status inspect_output_target(const char* path, OutputRule rule, char* message, s
     std::snprintf(message, size, "cannot inspect %s: %s", path, std::strerror(errno));
     return StatusCode::io_error;
   }
-  if (!S_ISREG(before.st_mode)) return refuse(message, size, path, type_name(before.st_mode));
+  if (!S_ISREG(before.st_mode)) {
+    char why[64];
+    std::snprintf(why, sizeof why, "is %s", type_name(before.st_mode));
+    return refuse(message, size, path, why);
+  }
   const int fd = ::open(path, O_RDONLY | O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC);
   if (fd < 0) {
     std::snprintf(message, size, "cannot open %s to check it: %s", path, std::strerror(errno));

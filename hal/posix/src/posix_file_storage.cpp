@@ -46,6 +46,10 @@ Status PosixFileStorage::open(const PosixFileStorageConfig& config) {
   // file is used (a journal or checkpoint is nothing else).
   const int flags = access | O_CLOEXEC | O_NONBLOCK | (config.create_if_missing ? O_CREAT : 0);
   const int fd = ::open(config.path.c_str(), flags, 0644);
+  if (fd < 0 && errno == EISDIR) {
+    last_errno_ = EISDIR;
+    return StatusCode::invalid_argument;
+  }
   if (fd < 0) return fail(errno);
   struct stat opened {};
   if (::fstat(fd, &opened) != 0 || !S_ISREG(opened.st_mode)) {
