@@ -141,7 +141,8 @@ void log_link_summary(hal::Logger& results, const app::DisplayLink& display) {
       static_cast<unsigned long long>(l->full_sends), static_cast<unsigned long long>(refused));
 }
 
-int run(const Options& opt, const StationConfig& cfg, hal::Logger& log, hal::Logger& results) {
+int run(const Options& opt, const StationConfig& cfg, hal::Logger& log, hal::Logger& results,
+        hal::StartupSignals& startup_signals) {
   auto assembled = app::assemble_station(
       cfg, {std::filesystem::path(opt.config_path).parent_path(), opt.link_address});
   if (!assembled) {
@@ -175,7 +176,7 @@ int run(const Options& opt, const StationConfig& cfg, hal::Logger& log, hal::Log
   }
   // From here the loop's signalfd takes the stop signals (one that came during
   // start-up stops the first pass).
-  hal::end_startup_signals();
+  startup_signals.end();
   app::StationLoop loop(*parts.core, parts.backends, parts.display, log,
                         app::make_loop_config(cfg, opt.duration_s, parts.backends));
   results.notice("", "running (tracker %s, buttons %s, journal %s)",
@@ -223,7 +224,7 @@ int station_main(int argc, char** argv) {
   // A stop signal during start-up ends it cleanly at its next step (the journal's
   // lock released), within a second whatever it waits on; after start-up the loop's
   // signalfd takes over (hal/startup_signals.hpp).
-  hal::begin_startup_signals();
+  hal::StartupSignals startup_signals;
   CLI::App cli{
       "twister-station: the Twister sculpting station (tracker + buttons -> strokes -> journal)"};
   Options opt;
@@ -255,7 +256,7 @@ int station_main(int argc, char** argv) {
                 app::to_string(parsed.config.buttons.backend));
     return kExitOk;
   }
-  return run(opt, parsed.config, log, results);
+  return run(opt, parsed.config, log, results, startup_signals);
 }
 
 }  // namespace

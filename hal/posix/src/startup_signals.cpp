@@ -1,58 +1,62 @@
-// Stop signals during start-up (see the header). The handler only does
-// async-signal-safe things: store to a sig_atomic_t, alarm(2).
+// Stop signals during start-up (see the header): a watcher thread waits for them
+// with sigtimedwait while every other thread keeps them blocked.
 #include "twister/hal/startup_signals.hpp"
 
 #include <pthread.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <csignal>
+#include <ctime>
+#include <thread>
 
 namespace twister::hal {
 namespace {
 
-volatile std::sig_atomic_t g_stop_signal = 0;
-constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP};
-
-void on_stop_signal(int sig) {
-  if (g_stop_signal == 0) {
-    g_stop_signal = sig;
-    ::alarm(1);  // the limit for start-up to give up by itself
-  }
-}
+std::atomic<int> g_stop_signal{0};
+std::atomic<bool> g_watching{false};
+std::thread g_watcher;
 
 sigset_t stop_set() {
   sigset_t set;
   sigemptyset(&set);
-  for (const int sig : kStopSignals) sigaddset(&set, sig);
+  for (const int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&set, sig);
   return set;
+}
+
+void watch(sigset_t set) {
+  const timespec tick{0, 20'000'000};  // how soon end() is noticed
+  while (g_watching.load()) {
+    const int sig = ::sigtimedwait(&set, nullptr, &tick);
+    int none = 0;
+    if (sig > 0 && g_stop_signal.compare_exchange_strong(none, sig)) {
+      ::alarm(1);  // the limit for start-up to give up by itself
+    }
+  }
 }
 
 }  // namespace
 
-void begin_startup_signals() {
-  g_stop_signal = 0;
-  struct sigaction action {};
-  action.sa_handler = on_stop_signal;
-  sigemptyset(&action.sa_mask);
-  action.sa_flags = 0;  // no SA_RESTART: a blocking call returns EINTR
-  for (const int sig : kStopSignals) ::sigaction(sig, &action, nullptr);
-  std::signal(SIGALRM, SIG_DFL);
-  const sigset_t set = stop_set();
-  pthread_sigmask(SIG_UNBLOCK, &set, nullptr);
-}
-
-int startup_stop_signal() { return g_stop_signal; }
-
-void end_startup_signals() {
+StartupSignals::StartupSignals() {
   const sigset_t set = stop_set();
   pthread_sigmask(SIG_BLOCK, &set, nullptr);
-  ::alarm(0);
-  struct sigaction action {};
-  action.sa_handler = SIG_DFL;
-  sigemptyset(&action.sa_mask);
-  for (const int sig : kStopSignals) ::sigaction(sig, &action, nullptr);
-  // Blocked now: the signal stays pending until the loop's signalfd reads it.
-  if (const int sig = g_stop_signal; sig != 0) ::raise(sig);
+  std::signal(SIGALRM, SIG_DFL);
+  g_stop_signal = 0;
+  g_watching = true;
+  g_watcher = std::thread(watch, set);
 }
+
+StartupSignals::~StartupSignals() { end(); }
+
+void StartupSignals::end() {
+  if (!g_watcher.joinable()) return;
+  g_watching = false;
+  g_watcher.join();
+  ::alarm(0);
+  // Blocked here: the signal stays pending until the loop's signalfd reads it.
+  if (const int sig = g_stop_signal.load(); sig != 0) ::raise(sig);
+}
+
+int startup_stop_signal() { return g_stop_signal.load(); }
 
 }  // namespace twister::hal

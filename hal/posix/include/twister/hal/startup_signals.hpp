@@ -2,22 +2,32 @@
 // journal, setting up the link) must always be stoppable, also while it holds the
 // journal's lock, and must never sit on a stop signal.
 //
-// begin_startup_signals(): SIGINT, SIGTERM and SIGHUP get a handler installed without
-// SA_RESTART (a blocking call returns EINTR) that records the signal and arms a
-// one-second alarm. Start-up checks startup_stop_signal() between its steps and gives
-// up cleanly (closing the journal releases its lock); if it is stuck for a second
-// anyway, SIGALRM ends the process, which is no worse than a SIGKILL (the journal is
-// made to survive one) and the kernel drops the lock.
-// end_startup_signals(): blocks the three signals (the loop's signalfd takes them),
-// cancels the alarm, and re-raises a signal that came during start-up, so it is
-// pending for the loop: its first pass then stops as on any stop signal.
+// StartupSignals (one, in main, before anything else): SIGINT, SIGTERM and SIGHUP are
+// blocked in the calling thread (so every thread it starts inherits the block, as
+// the loop's signalfd needs) and a watcher thread takes them with sigtimedwait(2):
+// the first one is recorded and arms a one-second alarm. Start-up checks
+// startup_stop_signal() between its steps and gives up cleanly (closing the journal
+// releases its lock); if it is stuck for a second anyway, SIGALRM ends the process,
+// which is no worse than a SIGKILL (the journal is made to survive one) and the
+// kernel drops the lock.
+// end(): stops the watcher, cancels the alarm, and re-raises a signal that came
+// during start-up in the calling thread, where it stays pending (blocked) for the
+// loop's signalfd: its first pass then stops as on any stop signal. The destructor
+// ends it too (an early return from main).
 #pragma once
 
 namespace twister::hal {
 
-void begin_startup_signals();
-// The stop signal received since begin_startup_signals() (0: none).
+class StartupSignals {
+ public:
+  StartupSignals();
+  ~StartupSignals();
+  StartupSignals(const StartupSignals&) = delete;
+  StartupSignals& operator=(const StartupSignals&) = delete;
+  void end();
+};
+
+// The stop signal received during start-up (0: none).
 int startup_stop_signal();
-void end_startup_signals();
 
 }  // namespace twister::hal
