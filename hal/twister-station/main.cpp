@@ -170,7 +170,8 @@ int run(const Options& opt, const StationConfig& cfg, hal::Logger& log, hal::Log
                refine.threshold_m, refine.spare_vertices);
   }
   if (parts.display.is_open() && opt.link_wait_s > 0.0 &&
-      !parts.display.wait_for_peer(*parts.core, opt.link_wait_s)) {
+      !parts.display.wait_for_peer(*parts.core, opt.link_wait_s) &&
+      hal::startup_stop_signal() == 0) {
     log.warning("", "no bridge on %s after %.1f s; running without", opt.link_address.c_str(),
                 opt.link_wait_s);
   }
