@@ -183,8 +183,7 @@ int export_final_mesh(const std::string& path, bool force, const BridgeApp& app)
     return kExitFailure;
   }
   if (const Expected<void> done =
-          twister::bridge::export_mesh(path, app.replica().mesh(), app.replica().normals(),
-                                       force);
+          twister::bridge::export_mesh(path, app.replica().mesh(), app.replica().normals(), force);
       !done) {
     logger().error("export", "%s", done.error().message.c_str());
     return kExitFailure;
@@ -267,7 +266,8 @@ int run(const Options& opt) {
   input.attach(display.context->window());
   int rc = run_loop(opt, app, display, transport.poll_fd());
   if (!opt.export_path.empty()) {
-    if (const int exported = export_final_mesh(opt.export_path, opt.force, app); exported != kExitOk) {
+    if (const int exported = export_final_mesh(opt.export_path, opt.force, app);
+        exported != kExitOk) {
       return exported;
     }
   }

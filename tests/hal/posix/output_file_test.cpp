@@ -150,9 +150,9 @@ TEST_F(OutputFile, StaleTemporariesOfOurOwnPatternAloneAreRemoved) {
   EXPECT_EQ(PosixFileSink::remove_stale_temporaries(ckpt), 2);
   EXPECT_FALSE(fs::exists(path("j.twj.ckpt.tmp-123-0")));
   EXPECT_FALSE(fs::exists(path("j.twj.ckpt.tmp-9-17")));
-  for (const char* kept : {"j.twj.ckpt.tmp-abc", "j.twj.ckpt.tmp-1-2-3", "j.twj.ckpt.tmp-12",
-                           "k.twj.ckpt.tmp-1-1", "j.twj.ckpt", "j.twj.ckpt.tmp-5-5x",
-                           "j.twj.ckpt.tmp-7-7"}) {
+  for (const char* kept :
+       {"j.twj.ckpt.tmp-abc", "j.twj.ckpt.tmp-1-2-3", "j.twj.ckpt.tmp-12", "k.twj.ckpt.tmp-1-1",
+        "j.twj.ckpt", "j.twj.ckpt.tmp-5-5x", "j.twj.ckpt.tmp-7-7"}) {
     EXPECT_TRUE(fs::exists(path(kept))) << kept;
   }
 }
@@ -161,9 +161,9 @@ TEST_F(OutputFile, StorageOpensAFifoOrDeviceWithoutBlockingAndRefusesIt) {
   ASSERT_EQ(::mkfifo(path("fifo").c_str(), 0600), 0);
   const auto start = std::chrono::steady_clock::now();
   PosixFileStorage storage;
-  EXPECT_EQ(storage.open({.path = path("fifo"), .create_if_missing = false, .read_only = true})
-                .code(),
-            StatusCode::invalid_argument);
+  EXPECT_EQ(
+      storage.open({.path = path("fifo"), .create_if_missing = false, .read_only = true}).code(),
+      StatusCode::invalid_argument);
   EXPECT_EQ(storage.open({.path = path("fifo"), .lock = true}).code(),
             StatusCode::invalid_argument);
   EXPECT_EQ(storage.open({.path = "/dev/zero", .read_only = true}).code(),

@@ -31,9 +31,8 @@ class StartupIntegrity : public ::testing::Test {
   std::string journal() const { return path("j.twj"); }
   std::string config() {
     write_file(path("still.scn"), still_scenario(60));
-    write_file(path("station.toml"),
-               station_config(journal(), TWISTER_DEPLOY_DIR "/sim_sphere.obj", path("still.scn"),
-                              "real"));
+    write_file(path("station.toml"), station_config(journal(), TWISTER_DEPLOY_DIR "/sim_sphere.obj",
+                                                    path("still.scn"), "real"));
     return path("station.toml");
   }
   // A listening Unix socket with backlog 0 whose queue is full: a blocking connect

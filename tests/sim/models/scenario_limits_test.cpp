@@ -125,8 +125,8 @@ TEST_F(ScenarioLimits, MemoryIsWhatTheScenarioHoldsNotTheFile) {
   const long large = peak_kib_loading(path("large.scn"));
   ASSERT_GT(small, 0);
   ASSERT_GT(large, 0);
-  EXPECT_LT(large - small, 4 * 1024) << "a 15 MiB file of comments took " << large - small
-                                     << " KiB more than a two-line one";
+  EXPECT_LT(large - small, 4 * 1024)
+      << "a 15 MiB file of comments took " << large - small << " KiB more than a two-line one";
 }
 
 TEST(ScenarioLimitsDevice, AnAbsurdNoiseAmountIsCountedNotGenerated) {

@@ -91,7 +91,6 @@ class PosixFileSink final : public ports::FileSink {
 
 // Writes `bytes` to `path` atomically under the output rule (Replace::output): what
 // the programs' writers of whole files in memory use. Error naming the path.
-Expected<void> write_output_file(const std::string& path, std::string_view bytes,
-                                 OutputRule rule);
+Expected<void> write_output_file(const std::string& path, std::string_view bytes, OutputRule rule);
 
 }  // namespace twister::hal
