@@ -108,7 +108,7 @@ void prepare() {
   fs::create_directories(folder());
   meshio::MeshBuffer grid(meshio::grid_vertices(kGrid), meshio::grid_triangles(kGrid));
   (void)meshio::make_grid(grid.mesh(), kGrid, 1.0f);
-  (void)meshio::save_obj(folder() / "grid.obj", grid.mesh());
+  (void)meshio::save_obj(folder() / "grid.obj", grid.mesh(), true);
   const std::vector<std::byte> bytes = journal_bytes(kRecords, 0.0);
   write_bytes(folder() / "full.twj", bytes);
   write_bytes(folder() / "checkpointed.twj", bytes);

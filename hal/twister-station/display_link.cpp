@@ -4,6 +4,8 @@
 #include <array>
 #include <chrono>
 
+#include "twister/hal/startup_signals.hpp"
+
 namespace twister::station_app {
 namespace {
 
@@ -127,7 +129,7 @@ bool DisplayLink::wait_for_peer(station::Station& core, double seconds) {
   if (!link_) return false;
   const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                         std::chrono::duration<double>(seconds));
-  while (Clock::now() < until) {
+  while (Clock::now() < until && hal::startup_stop_signal() == 0) {
     poll(core, 0);
     if (link_->peer_synced()) return true;
     wait_ready(ms_left(until));

@@ -1,7 +1,14 @@
 #include "station_assembly.hpp"
 
+#include <algorithm>
+#include <array>
+#include <cstdio>
+
 #include "station_setup.hpp"
+#include "twister/base/checksum.hpp"
 #include "twister/checkpoint/session_checkpoint.hpp"
+#include "twister/hal/output_file.hpp"
+#include "twister/hal/startup_signals.hpp"
 #include "twister/meshio/obj_file.hpp"
 
 namespace twister::station_app {
@@ -14,6 +21,11 @@ hal::Expected<void> open_journal(hal::PosixFileStorage& journal, const std::stri
     return hal::Error{s, "journal " + path + " is in use by another twister-station (" +
                              (pid > 0 ? "PID " + std::to_string(pid) : "PID unknown") +
                              "); refusing to start (the file was not changed)"};
+  }
+  if (s.code() == StatusCode::invalid_argument) {
+    return hal::Error{s, "journal " + path +
+                             " is not a regular file (a FIFO, device, socket or directory); "
+                             "refusing to start"};
   }
   if (!s.ok()) {
     return hal::Error{s, "cannot open journal " + path + " (" + s.name() + ", errno " +
@@ -78,8 +90,9 @@ std::vector<StationParts::Note> recovery_notes(const station::JournalRecovery& r
 }
 
 // JOURNAL.ckpt for reading, when there is one (a failure to open it only means a
-// full replay), and the sink that writes new ones.
-void open_checkpoint_files(StationParts& parts, const std::string& journal) {
+// full replay), and the sink that writes new ones. Something other than a regular
+// file there (a FIFO, a device) is refused without blocking: it is never a checkpoint.
+hal::Expected<void> open_checkpoint_files(StationParts& parts, const std::string& journal) {
   hal::PosixFileSinkConfig out;
   out.path = journal + ".ckpt";
   out.replace = hal::PosixFileSinkConfig::Replace::own_magic;
@@ -87,9 +100,71 @@ void open_checkpoint_files(StationParts& parts, const std::string& journal) {
   out.writeback_bytes = std::size_t{1} << 20;
   parts.checkpoint_out = std::make_unique<hal::PosixFileSink>(out);
   auto in = std::make_unique<hal::PosixFileStorage>();
-  if (in->open({.path = out.path, .create_if_missing = false, .read_only = true}).ok()) {
+  const Status opened = in->open({.path = out.path, .create_if_missing = false, .read_only = true});
+  if (opened.ok()) {
     parts.checkpoint_in = std::move(in);
+  } else if (opened.code() == StatusCode::invalid_argument) {
+    return hal::Error{opened, "checkpoint " + out.path +
+                                  " is not a regular file (a FIFO, device, socket or "
+                                  "directory); refusing to start (nothing was written)"};
   }
+  return {};
+}
+
+// Is the whole checkpoint file intact (its last 4 bytes are the CRC-32 of the rest)?
+bool checkpoint_crc_ok(ports::Storage& file) {
+  auto size = file.size();
+  if (!size.ok() || *size < 4) return false;
+  std::array<std::byte, 1 << 16> chunk{};
+  std::uint32_t crc = 0;
+  const std::uint64_t body = *size - 4;
+  for (std::uint64_t at = 0; at < body;) {
+    const auto want = static_cast<std::size_t>(std::min<std::uint64_t>(chunk.size(), body - at));
+    auto n = file.read_at(at, std::span(chunk).first(want));
+    if (!n.ok() || *n != want) return false;
+    crc = crc32(std::span(chunk).first(want), crc);
+    at += want;
+  }
+  std::array<std::byte, 4> stored{};
+  auto n = file.read_at(body, stored);
+  if (!n.ok() || *n != stored.size()) return false;
+  std::uint32_t value = 0;
+  for (std::size_t i = 0; i < 4; ++i) value |= static_cast<std::uint32_t>(stored[i]) << (8 * i);
+  return value == crc;
+}
+
+// An intact checkpoint names the checksum of the model its journal was started on.
+// Another checksum means station.mesh changed since (say a tool wrote the sculpted
+// model over it): replaying the journal onto it would not give the sculpture, and
+// the next checkpoint would replace the only good one. So start-up stops here,
+// before anything is written. A damaged checkpoint is only ignored (full replay).
+hal::Expected<void> check_checkpoint_base(const StationParts& parts) {
+  if (!parts.checkpoint_in) return {};
+  auto header = input::read_checkpoint_header(*parts.checkpoint_in);
+  if (!header.ok() || !checkpoint_crc_ok(*parts.checkpoint_in)) return {};
+  const std::uint64_t base = parts.model->mesh().checksum();
+  if (header->base_checksum == base) return {};
+  char sums[96];
+  std::snprintf(sums, sizeof sums, "(checksum %016llx, this model %016llx)",
+                static_cast<unsigned long long>(header->base_checksum),
+                static_cast<unsigned long long>(base));
+  return hal::Error{StatusCode::failed_precondition,
+                    "checkpoint " + parts.checkpoint_out->path() +
+                        " was made from another model than " + parts.mesh_path.string() + " " +
+                        sums +
+                        ": the model changed since this journal was started; refusing to start "
+                        "before anything is written (replaying onto it would not give the "
+                        "sculpture). Put the original model back, or move the journal and its "
+                        "checkpoint aside to start a new sculpture"};
+}
+
+hal::Expected<void> stop_requested(const char* during) {
+  if (const int sig = hal::startup_stop_signal(); sig != 0) {
+    return hal::Error{StatusCode::unavailable, std::string("stopped by signal ") +
+                                                   std::to_string(sig) + " during start-up (" +
+                                                   during + ")"};
+  }
+  return {};
 }
 
 }  // namespace
@@ -118,11 +193,22 @@ hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationFileC
   if (auto opened = open_journal(parts->journal, config.station.journal); !opened) {
     return opened.error();
   }
+  // Ours alone now (the lock): what a killed checkpoint or tail writer left goes.
+  for (const char* suffix : {".ckpt", ".torn-tail"}) {
+    parts->stale_temporaries +=
+        hal::PosixFileSink::remove_stale_temporaries(config.station.journal + suffix);
+  }
   parts->mesh_path = config.station.mesh;
   if (parts->mesh_path.is_relative()) parts->mesh_path = options.config_dir / parts->mesh_path;
+  // Held while the station runs: the tools refuse to write over a locked file.
+  auto base_lock = hal::FileReadLock::hold(parts->mesh_path.string());
+  if (!base_lock) return hal::Error{base_lock.error().status, "mesh " + base_lock.error().message};
+  parts->base_lock = std::move(*base_lock);
+  if (auto stop = stop_requested("journal opened"); !stop) return stop.error();
   auto model = load_station_mesh(parts->mesh_path, config.station.spare_vertices);
   if (!model) return model.error();
   parts->model = std::move(*model);
+  if (auto stop = stop_requested("model loaded"); !stop) return stop.error();
   mesh::Mesh& mesh = parts->model->mesh();
   parts->work = std::make_unique<WorkMemory>(mesh.vertex_capacity());
   session::SculptStorage storage = parts->work->storage();
@@ -136,7 +222,10 @@ hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationFileC
   archive.path = config.station.journal + ".torn-tail";
   archive.replace = hal::PosixFileSinkConfig::Replace::never;
   parts->tail_archive = std::make_unique<hal::PosixFileSink>(archive);
-  open_checkpoint_files(*parts, config.station.journal);
+  if (auto opened = open_checkpoint_files(*parts, config.station.journal); !opened) {
+    return opened.error();
+  }
+  if (auto base = check_checkpoint_base(*parts); !base) return base.error();
   station::StationFiles files;
   files.tail_archive = parts->tail_archive.get();
   files.checkpoint_in = parts->checkpoint_in.get();
@@ -148,7 +237,13 @@ hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationFileC
     return started.error();
   }
   parts->recovery_notes = recovery_notes(parts->core->recovery(), *parts);
+  if (parts->stale_temporaries > 0) {
+    parts->recovery_notes.push_back(
+        {false, "removed " + std::to_string(parts->stale_temporaries) +
+                    " temporary file(s) a stopped checkpoint or tail writer left"});
+  }
   parts->checkpoint_in.reset();  // read: the next checkpoint replaces it
+  if (auto stop = stop_requested("journal replayed"); !stop) return stop.error();
   LinkSection link = config.link;
   if (!options.link_address.empty()) link.address = options.link_address;  // --link wins
   if (!link.address.empty()) {

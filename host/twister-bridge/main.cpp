@@ -47,6 +47,7 @@ struct Options {
   std::string size = "800x600";
   std::string snapshots;
   std::string export_path;
+  bool force = false;  // --force: --export may replace a file of the same kind
   unsigned exit_after_commits = 0;
   double timeout_s = 0.0;
   twister::bridge::ViewConfig view;  // --azimuth, --elevation, or --camera FILE
@@ -177,13 +178,13 @@ Expected<void> open_transport(const Options& opt, Transport& t) {
   return {};
 }
 
-int export_final_mesh(const std::string& path, const BridgeApp& app) {
+int export_final_mesh(const std::string& path, bool force, const BridgeApp& app) {
   if (!app.replica().has_mesh()) {
     logger().error("export", "no mesh received; nothing exported");
     return kExitFailure;
   }
   if (const Expected<void> done =
-          twister::bridge::export_mesh(path, app.replica().mesh(), app.replica().normals());
+          twister::bridge::export_mesh(path, app.replica().mesh(), app.replica().normals(), force);
       !done) {
     logger().error("export", "%s", done.error().message.c_str());
     return kExitFailure;
@@ -216,7 +217,8 @@ int run(const Options& opt) {
   }
   // The export path is checked now, not after the session's work.
   if (!opt.export_path.empty()) {
-    if (const Expected<void> ok = twister::bridge::check_export_path(opt.export_path); !ok) {
+    if (const Expected<void> ok = twister::bridge::check_export_path(opt.export_path, opt.force);
+        !ok) {
       logger().error("options", "--export: %s", ok.error().message.c_str());
       return kExitBadOptions;
     }
@@ -267,7 +269,8 @@ int run(const Options& opt) {
   input.attach(display.context->window());
   int rc = run_loop(opt, app, display, transport.poll_fd(), clock);
   if (!opt.export_path.empty()) {
-    if (const int exported = export_final_mesh(opt.export_path, app); exported != kExitOk) {
+    if (const int exported = export_final_mesh(opt.export_path, opt.force, app);
+        exported != kExitOk) {
       return exported;
     }
   }
@@ -298,6 +301,9 @@ void add_options(CLI::App& cli, Options& opt) {
                  "directory for PNGs: rest.png, live-<version>.png, commit-<version>.png");
   cli.add_option("--export", opt.export_path,
                  "write the final mesh at exit: .obj, .ply, .glb or .gltf (checked at start)");
+  cli.add_flag("--force", opt.force,
+               "--export may replace an existing file of the same kind (never a journal, "
+               "checkpoint, a file a running station holds, or another kind of file)");
   cli.add_option("--exit-after-commits", opt.exit_after_commits,
                  "exit once this many commits were applied and verified");
   cli.add_flag("--exit-on-disconnect", opt.exit_on_disconnect,

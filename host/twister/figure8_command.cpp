@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,7 @@
 #include "cli_log.hpp"
 #include "figure8_experiment.hpp"
 #include "figure8_plot.hpp"
+#include "twister/hal/output_file.hpp"
 
 namespace twister::cli {
 
@@ -18,6 +20,7 @@ namespace {
 struct Figure8Options {
   std::string svg;
   std::string png;
+  bool force = false;  // replace an existing SVG / PNG
 };
 
 constexpr math::WarpMethod kMethods[] = {math::WarpMethod::twister, math::WarpMethod::rottran,
@@ -63,6 +66,15 @@ std::string panel_heading(const char* label, const Figure8Setup& s) {
 }
 
 int run_figure8(const Figure8Options& opt) {
+  // The output rule before the work (twister/hal/output_file.hpp).
+  const std::pair<const std::string*, hal::OutputKind> outputs[] = {
+      {&opt.svg, hal::OutputKind::svg}, {&opt.png, hal::OutputKind::png}};
+  for (const auto& [path, kind] : outputs) {
+    if (path->empty()) continue;
+    if (auto free = hal::check_output_path(*path, {kind, opt.force}); !free) {
+      return fail(kExitFailure, free.error().message);
+    }
+  }
   // Both experiments of docs/math.md §9: the paper-like one and the small displacement.
   const Figure8Setup paper_like{};
   const Figure8Setup small{2001, 1.0, 0.3};
@@ -83,12 +95,12 @@ int run_figure8(const Figure8Options& opt) {
   if (!small_curves) return kExitFailure;
   picture.panels[1].curves = std::move(*small_curves);
   if (!opt.svg.empty()) {
-    if (auto written = write_figure8_svg(opt.svg, picture); !written) {
+    if (auto written = write_figure8_svg(opt.svg, picture, opt.force); !written) {
       return fail(kExitFailure, written.error().message);
     }
   }
   if (!opt.png.empty()) {
-    if (auto written = write_figure8_png(opt.png, picture); !written) {
+    if (auto written = write_figure8_png(opt.png, picture, opt.force); !written) {
       return fail(kExitFailure, written.error().message);
     }
   }
@@ -103,6 +115,8 @@ void add_figure8_command(CLI::App& app, int& exit_code) {
   auto opt = std::make_shared<Figure8Options>();
   cmd->add_option("--svg", opt->svg, "write the grid of curves as SVG");
   cmd->add_option("--png", opt->png, "write the grid of curves as PNG");
+  cmd->add_flag("--force", opt->force,
+                "replace an existing SVG / PNG (never another kind of file)");
   cmd->callback([opt, &exit_code] {
     start_command_log("figure8");
     exit_code = run_figure8(*opt);

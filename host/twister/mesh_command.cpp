@@ -9,6 +9,7 @@
 
 #include "cli_exit_code.hpp"
 #include "cli_log.hpp"
+#include "twister/hal/output_file.hpp"
 #include "twister/meshio/mesh_generator.hpp"
 #include "twister/meshio/obj_file.hpp"
 
@@ -23,6 +24,7 @@ struct Options {
   float size_m = 1.0f;                            // half size (grid, box) or radius
   float half_height_m = 0.0f;                     // cylinder; 0: the radius
   std::vector<float> center_m{0.0f, 0.0f, 0.0f};  // translation of the whole mesh
+  bool force = false;                             // replace an existing OBJ
 };
 
 // CLI11's number checks let "nan" and "inf" through: every size must be finite.
@@ -63,6 +65,10 @@ int run_mesh(const Options& o) {
   if (!all_finite(o)) {
     return fail(kExitBadInput, "--size, --half-height and --center must be finite numbers");
   }
+  // Before any work: the output rule (twister/hal/output_file.hpp).
+  if (auto free = hal::check_output_path(o.out, {hal::OutputKind::obj, o.force}); !free) {
+    return fail(kExitBadInput, free.error().message);
+  }
   const Counts c = counts_of(o);
   meshio::MeshBuffer buffer(c.vertices, c.triangles);
   const Status s = generate(o, buffer.mesh());
@@ -74,7 +80,7 @@ int run_mesh(const Options& o) {
   for (std::uint32_t i = 0; i < buffer.mesh().vertex_count(); ++i) {
     buffer.mesh().set_position(i, buffer.mesh().position(i) + center);
   }
-  if (auto saved = meshio::save_obj(o.out, buffer.mesh()); !saved) {
+  if (auto saved = meshio::save_obj(o.out, buffer.mesh(), o.force); !saved) {
     return fail(kExitFailure, saved.error().message);
   }
   std::printf("%s: %zu vertices, %zu triangles\n", o.out.c_str(), buffer.mesh().vertex_count(),
@@ -92,6 +98,9 @@ void add_mesh_command(CLI::App& app, int& exit_code) {
       ->required()
       ->check(CLI::IsMember({"grid", "plane", "box", "cylinder", "sphere"}));
   cmd->add_option("--out", options->out, "Output OBJ file")->required();
+  cmd->add_flag("--force", options->force,
+                "Replace an existing OBJ at --out (never a journal, checkpoint, a file a "
+                "running station holds, or another kind of file)");
   cmd->add_option("-n", options->n,
                   "resolution: plane vertices per side, box vertices per edge, sphere rings "
                   "(all >= 2); cylinder bands along the height (>= 1)")

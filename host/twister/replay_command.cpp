@@ -15,6 +15,7 @@
 #include "cli_exit_code.hpp"
 #include "cli_log.hpp"
 #include "model_session.hpp"
+#include "twister/hal/output_file.hpp"
 #include "twister/session/sculpt_session.hpp"
 #include "twister/journal/journal_reader.hpp"
 #include "twister/journal/journal_scanner.hpp"
@@ -54,6 +55,7 @@ struct Options {
   bool world = false;
   bool quiet = false;
   bool progress = false;
+  bool force = false;  // --force: replace an existing OBJ (never anything else)
 };
 
 // The whole file, or nothing when it cannot be opened.
@@ -90,7 +92,23 @@ void report_refinement(const session::RefineStatus& r, const Options& o) {
   }
 }
 
+// Before any work: the output may not be an input, and must pass the output rule
+// (never a journal, checkpoint, locked file such as a running station's journal or
+// base model; an existing OBJ only with --force). kExitOk when it may be written.
+int check_output(const Options& o) {
+  for (const std::string* input : {&o.journal, &o.mesh_in}) {
+    if (hal::same_file(o.mesh_out, *input)) {
+      return fail(kExitBadInput, o.mesh_out + " is the input " + *input + "; it is not replaced");
+    }
+  }
+  if (auto free = hal::check_output_path(o.mesh_out, {hal::OutputKind::obj, o.force}); !free) {
+    return fail(kExitBadInput, free.error().message);
+  }
+  return kExitOk;
+}
+
 int run_replay(const Options& o) {
+  if (const int refused = check_output(o); refused != kExitOk) return refused;
   auto model = ModelSession::open(o.mesh_in, o.spare_vertices, o.undo_changes, o.undo_entries);
   if (!model) return fail(kExitBadInput, model.error().message);
   mesh::Mesh& mesh = (*model)->mesh();
@@ -148,7 +166,7 @@ int run_replay(const Options& o) {
                       reader.good_end());
   }
   if (o.world) to_world(mesh, session.object_pose());
-  if (auto saved = meshio::save_obj(o.mesh_out, mesh); !saved) {
+  if (auto saved = meshio::save_obj(o.mesh_out, mesh, o.force); !saved) {
     return fail(kExitFailure, saved.error().message);
   }
   const session::ReplayStats& st = session.replay_stats();
@@ -183,6 +201,9 @@ void add_replay_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--spare-vertices", options->spare_vertices,
                   "Room for refinement beyond the OBJ's vertices, and twice as many triangles "
                   "(the station's station.spare_vertices; default 0)");
+  cmd->add_flag("--force", options->force,
+                "Replace an existing OBJ at --out (never a journal, checkpoint, a file a "
+                "running station holds, or another kind of file)");
   cmd->add_flag("--world", options->world, "Write world coordinates (apply the object pose)");
   cmd->add_flag("--progress", options->progress,
                 "Always print progress (default: journals > 64 KiB)");

@@ -79,7 +79,7 @@ def journal_sequences(path):
 
 
 def replay_checksum(cli, journal, mesh, out):
-    r = subprocess.run([cli, "replay", journal, "--mesh", mesh, "--out", out, "-q"],
+    r = subprocess.run([cli, "replay", journal, "--mesh", mesh, "--out", out, "--force", "-q"],
                        capture_output=True, text=True)
     m = re.search(r"checksum ([0-9a-f]{16})", r.stdout)
     return m.group(1) if m else None
