@@ -21,6 +21,8 @@
 namespace twister::station {
 namespace {
 
+using session::SessionEvent;
+using session::SessionEventKind;
 using tracker::Item;
 constexpr double kInch = 0.0254;
 
@@ -156,8 +158,8 @@ class StationTest : public ::testing::Test {
     ASSERT_TRUE(station_.tracker_session().streaming());
     run_ticks(3);
   }
-  std::vector<StationEvent> events() {
-    std::vector<StationEvent> out;
+  std::vector<SessionEvent> events() {
+    std::vector<SessionEvent> out;
     for (auto e = station_.next_event(); e.ok(); e = station_.next_event()) out.push_back(*e);
     return out;
   }
@@ -204,7 +206,7 @@ TEST_F(StationTest, StrokeIsCommittedToTheJournalWithItsPoses) {
   const std::uint64_t before = station_.mesh().checksum();
   run_until_streaming();
   right_stroke({10.0f, 0.0f, 5.0f}, {12.0f, 1.0f, 5.0f});
-  EXPECT_EQ(station_.counters().strokes_committed, 1u);
+  EXPECT_EQ(station_.counters().events.strokes_committed, 1u);
   const auto records = journal_records();
   ASSERT_EQ(records.size(), 1u);
   const auto& s = records[0].stroke;
@@ -216,7 +218,7 @@ TEST_F(StationTest, StrokeIsCommittedToTheJournalWithItsPoses) {
   EXPECT_NEAR(s.end[1].origin_m.y, 1.0 * kInch, 1e-6);
   bool saw_commit = false;
   for (const auto& e : events()) {
-    saw_commit |= e.kind == StationEventKind::stroke_committed && e.hand == 1;
+    saw_commit |= e.kind == SessionEventKind::committed && e.hand == 1;
   }
   EXPECT_TRUE(saw_commit);
   EXPECT_NE(station_.mesh().checksum(), before);  // the stroke warped the model
@@ -254,7 +256,7 @@ TEST_F(StationTest, StatusCarriesTheClutchAndTheTurnAgainstItsLimit) {
   run_ticks(3);
   st = station_.status();
   EXPECT_EQ(st.turned_rad, 0.0f);  // no open stroke
-  EXPECT_EQ(st.strokes_committed, station_.counters().strokes_committed);
+  EXPECT_EQ(st.strokes_committed, station_.counters().events.strokes_committed);
   EXPECT_EQ(st.capacity_stops, 0u);
 }
 
@@ -262,7 +264,7 @@ TEST_F(StationTest, UnplugMidStrokeCancelsItAndReplugContinues) {
   ASSERT_TRUE(station_.start().ok());
   run_until_streaming();
   right_stroke({10.0f, 0.0f, 5.0f}, {11.0f, 0.0f, 5.0f});
-  ASSERT_EQ(station_.counters().strokes_committed, 1u);
+  ASSERT_EQ(station_.counters().events.strokes_committed, 1u);
 
   // Grab, then the cable is pulled in the middle of the drag.
   buttons_.press(3, true, clock_.now_us());
@@ -275,14 +277,14 @@ TEST_F(StationTest, UnplugMidStrokeCancelsItAndReplugContinues) {
   buttons_.press(3, false, clock_.now_us());
   run_ticks(3);
   EXPECT_FALSE(station_.tracker_session().streaming());
-  EXPECT_EQ(station_.counters().strokes_cancelled, 1u);
-  EXPECT_EQ(station_.counters().strokes_committed, 1u);
+  EXPECT_EQ(station_.counters().events.strokes_cancelled, 1u);
+  EXPECT_EQ(station_.counters().events.strokes_committed, 1u);
 
   // Plugged back: the session re-initialises and the next stroke commits.
   stream_.set_present(true);
   run_until_streaming();
   right_stroke({20.0f, 0.0f, 5.0f}, {21.0f, 2.0f, 5.0f});
-  EXPECT_EQ(station_.counters().strokes_committed, 2u);
+  EXPECT_EQ(station_.counters().events.strokes_committed, 2u);
 
   const auto records = journal_records();
   ASSERT_EQ(records.size(), 2u);
@@ -295,8 +297,8 @@ TEST_F(StationTest, UnplugMidStrokeCancelsItAndReplugContinues) {
   int lost = 0;
   int streaming = 0;
   for (const auto& e : events()) {
-    lost += e.kind == StationEventKind::tracker_lost;
-    streaming += e.kind == StationEventKind::tracker_streaming;
+    lost += e.kind == SessionEventKind::tracker_lost;
+    streaming += e.kind == SessionEventKind::tracker_streaming;
   }
   EXPECT_EQ(lost, 1);
   EXPECT_EQ(streaming, 2);
@@ -328,7 +330,7 @@ TEST_F(StationTest, StylusSwitchDrivesItsConfiguredButtonLine) {
   tick(3);
   stylus_ = false;
   tick(3);
-  EXPECT_EQ(station.counters().strokes_committed, 1u);
+  EXPECT_EQ(station.counters().events.strokes_committed, 1u);
   const auto records = journal_records();
   ASSERT_EQ(records.size(), 1u);
   EXPECT_EQ(records[0].stroke.hand_mask, 1);
@@ -356,8 +358,8 @@ TEST_F(StationTest, RestartContinuesTheJournalAfterATornTail) {
   EXPECT_EQ(restarted.mesh().checksum(), station_.mesh().checksum());
   auto e = restarted.next_event();
   ASSERT_TRUE(e.ok());
-  EXPECT_EQ(e->kind, StationEventKind::journal_recovered);
-  EXPECT_EQ(e->value, torn.size());
+  EXPECT_EQ(e->kind, SessionEventKind::journal_recovered);
+  EXPECT_EQ(e->journal_recovered().torn_tail_bytes, torn.size());
   EXPECT_EQ(journal_records().size(), 1u);
 }
 
@@ -373,9 +375,9 @@ TEST_F(StationTest, ButtonSourceFailureIsReportedOnce) {
   buttons_.fail(true);
   run_ticks(5);
   int reports = 0;
-  for (const auto& e : events()) reports += e.kind == StationEventKind::button_source_error;
+  for (const auto& e : events()) reports += e.kind == SessionEventKind::button_source_error;
   EXPECT_EQ(reports, 1);
-  EXPECT_EQ(station_.counters().button_errors, 5u);
+  EXPECT_EQ(station_.counters().input.button_errors, 5u);
 }
 
 TEST_F(StationTest, PollDoesNotAllocateWhileStreamingAndCommitting) {
@@ -390,7 +392,7 @@ TEST_F(StationTest, PollDoesNotAllocateWhileStreamingAndCommitting) {
     run_ticks(5);
   };
   EXPECT_NO_ALLOCATIONS(stroke());
-  EXPECT_EQ(station_.counters().strokes_committed, 1u);
+  EXPECT_EQ(station_.counters().events.strokes_committed, 1u);
 }
 
 }  // namespace
