@@ -3,8 +3,6 @@
 // (scripted button edges, FakeStorage, virtual time).
 #pragma once
 
-#include "twister/station/station.hpp"
-
 #include <gtest/gtest.h>
 
 #include <array>
@@ -19,6 +17,7 @@
 #include "fakes/fake_storage.hpp"
 #include "support/allocation_counter.hpp"
 #include "twister/journal/journal_reader.hpp"
+#include "twister/station/station.hpp"
 #include "twister/tracker/fastrak_encoder.hpp"
 
 namespace twister::station {
