@@ -21,6 +21,7 @@
 #include "twister/checkpoint/session_checkpoint.hpp"
 
 namespace twister::checkpoint::test_support {
+using namespace session::test_support;  // the session harness this one extends
 
 using CheckpointSink = twister::test::FakeFileSinkWithStorage<std::size_t{1} << 23>;
 using CheckpointFile = twister::test::FakeStorageWithStorage<std::size_t{1} << 23>;

@@ -16,7 +16,7 @@
 namespace twister::checkpoint {
 namespace {
 
-using namespace session::test_support;
+using namespace test_support;
 
 void random_steps(RefineStation& s, int strokes) {
   for (int i = 0; i < strokes; ++i) {

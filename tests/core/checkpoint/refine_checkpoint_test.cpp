@@ -21,7 +21,7 @@
 namespace twister::checkpoint {
 namespace {
 
-using namespace session::test_support;
+using namespace test_support;
 
 constexpr std::size_t kSpare = 4000;
 constexpr double kThreshold = 0.01;
