@@ -108,21 +108,21 @@ void log_summary(hal::Logger& results, const twister::station::Station& core,
                  "stopped (%s); journal %s (%u records); strokes committed %llu, cancelled %llu, "
                  "not saved %llu; tracker start-ups %llu, poses %llu, io errors %llu",
                  app::stop_reason_name(loop.stop_reason()), flushed.ok() ? "synced" : "SYNC FAILED",
-                 core.journal_records(), static_cast<unsigned long long>(c.strokes_committed),
-                 static_cast<unsigned long long>(c.strokes_cancelled),
-                 static_cast<unsigned long long>(c.strokes_not_saved),
+                 core.journal_records(), static_cast<unsigned long long>(c.events.strokes_committed),
+                 static_cast<unsigned long long>(c.events.strokes_cancelled),
+                 static_cast<unsigned long long>(c.events.strokes_not_saved),
                  static_cast<unsigned long long>(tc.streams_started),
-                 static_cast<unsigned long long>(c.poses),
+                 static_cast<unsigned long long>(c.input.poses),
                  static_cast<unsigned long long>(tc.io_errors));
   // Poses the faults spoiled, none of which reached a hand (scripts parse this line).
   results.notice("", "poses: applied %llu, conversion errors %llu, rejected %llu, held back %llu",
-                 static_cast<unsigned long long>(c.poses),
-                 static_cast<unsigned long long>(c.pose_errors),
+                 static_cast<unsigned long long>(c.input.poses),
+                 static_cast<unsigned long long>(c.input.pose_errors),
                  static_cast<unsigned long long>(tc.rejected_poses),
                  static_cast<unsigned long long>(tc.jump_rejects));
-  if (c.strokes_not_saved > 0) {
+  if (c.events.strokes_not_saved > 0) {
     results.error("", "%llu stroke(s) were not saved (see the errors above); exit status 1",
-                  static_cast<unsigned long long>(c.strokes_not_saved));
+                  static_cast<unsigned long long>(c.events.strokes_not_saved));
   }
 }
 
@@ -188,7 +188,7 @@ int run(const Options& opt, const StationFileConfig& cfg, hal::Logger& log, hal:
   log_summary(results, *parts.core, loop, flushed);
   log_link_summary(results, parts.display);
   // A run that lost a stroke did not succeed, whatever else went well.
-  const bool all_saved = parts.core->counters().strokes_not_saved == 0;
+  const bool all_saved = parts.core->counters().events.strokes_not_saved == 0;
   return flushed.ok() && all_saved ? kExitOk : kExitFailure;
 }
 

@@ -118,7 +118,7 @@ bool StationLoop::step() {
 
 void StationLoop::log_events() {
   for (auto e = core_.next_event(); e.ok(); e = core_.next_event()) {
-    if (e->kind == station::StationEventKind::button_source_error) buttons_broken_ = true;
+    if (e->kind == session::SessionEventKind::button_source_error) buttons_broken_ = true;
     log_station_event(*e, log_, journal_ != nullptr ? journal_->last_errno() : 0);
   }
 }

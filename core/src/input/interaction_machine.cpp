@@ -65,6 +65,8 @@ const char* reason_name(Reason reason) {
       return "nothing_to_undo";
     case Reason::nothing_to_redo:
       return "nothing_to_redo";
+    case Reason::stopped:
+      return "stopped";
   }
   return "unknown";
 }

@@ -44,7 +44,9 @@ void StrokeController::apply(const input::Action& action, SessionEvents& out) {
       break;
     case input::ActionKind::commit:
     case input::ActionKind::cancel:
-      if ((hand_mask_ & bit) != 0) end_grab(action.hand, action.kind == input::ActionKind::commit, out);
+      if ((hand_mask_ & bit) != 0) {
+        end_grab(action.hand, action.kind == input::ActionKind::commit, action.reason, out);
+      }
       break;
     default:
       return;
@@ -83,10 +85,10 @@ void StrokeController::grab(std::uint8_t hand, SessionEvents& out) {
   }
   const Status s = begin_segment(mask);
   if (s.ok()) {
-    out.push({SessionEventKind::grab_begin, hand, input::Reason::none, s, 0});
+    out.push(make_event(SessionEventKind::grab_begin, hand, {}, s));
     return;
   }
-  out.push({SessionEventKind::refused, hand, input::Reason::none, s, 0});
+  out.push(make_event(SessionEventKind::refused, hand, payload::Reasoned{}, s));
   const auto previous = static_cast<std::uint8_t>(mask & ~bit);
   if (previous != 0) {
     const Status again = begin_segment(previous);
@@ -103,7 +105,7 @@ void StrokeController::freeze(std::uint8_t hand, SessionEvents& out) {
   restart_segment(true, out);
   if ((hand_mask_ & bit_of(hand)) == 0) return;
   drives_[hand].set_engaged(false);
-  out.push({SessionEventKind::disengaged, hand, input::Reason::none, ok_status(), last_sequence_});
+  out.push(make_event(SessionEventKind::disengaged, hand, payload::RecordRef{last_sequence_}));
 }
 
 void StrokeController::unfreeze(std::uint8_t hand, SessionEvents& out) {
@@ -120,7 +122,7 @@ void StrokeController::unfreeze(std::uint8_t hand, SessionEvents& out) {
   drives_[hand].set_engaged(true);
   restart_segment(commit, out);
   if ((hand_mask_ & bit_of(hand)) != 0) {
-    out.push({SessionEventKind::engaged, hand, input::Reason::none, ok_status(), 0});
+    out.push(make_event(SessionEventKind::engaged, hand));
   }
 }
 
@@ -133,7 +135,9 @@ void StrokeController::end_not_saved(std::uint8_t hand, const SessionEvent& fail
   const auto others = static_cast<std::uint8_t>(hand_mask_ & ~bit_of(hand));
   drop_segment();
   SessionEvent e = failed;
-  e.repeat = true;
+  payload::StrokeEnd again = failed.stroke_end();
+  again.repeat = true;
+  e.payload = again;
   for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
     drives_[h].set_engaged(true);
     if ((others & bit_of(h)) == 0) continue;
@@ -155,22 +159,25 @@ void StrokeController::restart_segment(bool committed, SessionEvents& out) {
   end_hands(mask, rebased, out);
 }
 
-void StrokeController::end_grab(std::uint8_t hand, bool commit, SessionEvents& out) {
+void StrokeController::end_grab(std::uint8_t hand, bool commit, input::Reason cancel_reason,
+                                SessionEvents& out) {
   auto remaining = static_cast<std::uint8_t>(hand_mask_ & ~bit_of(hand));
   if (commit) {
-    SessionEvent committed{SessionEventKind::committed, hand, input::Reason::released, ok_status(),
-                           last_sequence_};
+    SessionEvent committed;
     if (segment_can_change()) {
       committed = commit_segment(hand, input::Reason::released, out, input::Reason::released);
     } else {
       // Every hand is on the clutch: the freeze step before was the last commit.
-      committed.repeat = true;
+      committed = make_event(SessionEventKind::committed, hand,
+                             payload::StrokeEnd{input::Reason::released, last_sequence_, true});
       out.push(committed);
     }
     // The other hands of this segment released in the same step end with this very
     // commit (their own commit actions then find nothing open).
     const auto together = static_cast<std::uint8_t>(remaining & releasing_mask_);
-    committed.repeat = true;
+    payload::StrokeEnd repeated = committed.stroke_end();
+    repeated.repeat = true;
+    committed.payload = repeated;
     for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
       if ((together & bit_of(h)) == 0) continue;
       committed.hand = h;
@@ -179,7 +186,8 @@ void StrokeController::end_grab(std::uint8_t hand, bool commit, SessionEvents& o
     }
     remaining = static_cast<std::uint8_t>(remaining & ~together);
   } else {
-    out.push({SessionEventKind::cancelled, hand, input::Reason::tracking_timeout, ok_status(), 0});
+    // tracking_timeout from the machine; stopped from cancel_open().
+    out.push(make_event(SessionEventKind::cancelled, hand, payload::StrokeEnd{cancel_reason}));
   }
   drives_[hand].set_engaged(true);
   drop_segment();
@@ -222,9 +230,10 @@ SessionEvent StrokeController::commit_segment(std::uint8_t hand, input::Reason r
   // A commit that did not happen (journal failure, plan error) is `not_saved`.
   const SessionEvent committed =
       done.status.ok()
-          ? SessionEvent{SessionEventKind::committed, hand, reason, done.status, done.sequence}
-          : SessionEvent{SessionEventKind::not_saved, hand, reason_if_not_saved, done.status,
-                         done.sequence};
+          ? make_event(SessionEventKind::committed, hand,
+                       payload::StrokeEnd{reason, done.sequence}, done.status)
+          : make_event(SessionEventKind::not_saved, hand,
+                       payload::StrokeEnd{reason_if_not_saved, done.sequence}, done.status);
   out.push(committed);
   return committed;
 }
@@ -240,7 +249,7 @@ void StrokeController::end_hands(std::uint8_t mask, Status status, SessionEvents
   for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
     if ((mask & bit_of(h)) == 0) continue;
     drives_[h].set_engaged(true);
-    out.push({SessionEventKind::cancelled, h, input::Reason::none, status, 0});
+    out.push(make_event(SessionEventKind::cancelled, h, payload::StrokeEnd{}, status));
   }
 }
 
@@ -259,7 +268,7 @@ Status StrokeController::update_plan(SessionEvents* out) {
     if (change != TurnLimitChange::none && out != nullptr) {
       const auto kind = change == TurnLimitChange::reached ? SessionEventKind::turn_limit_reached
                                                            : SessionEventKind::turn_limit_left;
-      out->push({kind, h, input::Reason::none, ok_status(), 0, drive.limit_rad()});
+      out->push(make_event(kind, h, payload::TurnLimit{drive.limit_rad()}));
     }
     if (drive.long_turn()) {
       long_turns = static_cast<std::uint8_t>(long_turns | (1u << ends.size()));

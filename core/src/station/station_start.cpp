@@ -39,7 +39,7 @@ Status Station::start() {
     return StatusCode::failed_precondition;
   }
   recovery_ = {};
-  base_checksum_ = sculpt_.mesh().checksum();
+  checkpoints_.reset(sculpt_.mesh().checksum(), 0);
   // The checkpoint's anchor is checked against the journal in the same scan.
   Result<checkpoint::CheckpointHeader> header = StatusCode::unavailable;
   if (files_.checkpoint_in != nullptr)
@@ -94,11 +94,13 @@ Status Station::start() {
     return opened;
   }
   records_at_start_ = survey->records;
-  records_at_checkpoint_ = recovery_.checkpoint_records;
+  checkpoints_.reset(checkpoints_.base_checksum(), recovery_.checkpoint_records);
   recovery_.outcome = O::ok;
   started_ = true;
-  push_event({StationEventKind::journal_recovered, 0, static_cast<std::uint32_t>(survey->records),
-              recovery_.tail_cut, ok_status(), clock_.now_us()});
+  emit(session::make_event(session::SessionEventKind::journal_recovered, 0,
+                           session::payload::JournalRecovered{
+                               static_cast<std::uint32_t>(survey->records), recovery_.tail_cut}),
+       clock_.now_us());
   return ok_status();
 }
 
@@ -125,7 +127,7 @@ Status Station::use_checkpoint(const checkpoint::CheckpointHeader& h,
   ports::Storage& file = *files_.checkpoint_in;
   const session::UndoHistory& history = sculpt_.history();
   const mesh::Mesh& m = sculpt_.mesh();
-  if (h.base_checksum != base_checksum_ || h.change_capacity != history.change_capacity() ||
+  if (h.base_checksum != checkpoints_.base_checksum() || h.change_capacity != history.change_capacity() ||
       h.entry_capacity != history.entry_capacity() ||
       h.triangle_change_capacity != history.triangle_change_capacity() ||
       h.vertex_capacity != m.vertex_capacity() || h.triangle_capacity != m.triangle_capacity()) {

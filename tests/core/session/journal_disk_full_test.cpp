@@ -34,7 +34,8 @@ struct Sculptor {
     for (const SessionEvent& e : events.items()) {
       if (e.kind == SessionEventKind::committed || e.kind == SessionEventKind::move_committed) {
         EXPECT_TRUE(e.status.ok());
-        seen.saved.insert(e.sequence);
+        seen.saved.insert(e.kind == SessionEventKind::move_committed ? e.record().sequence
+                                                                       : e.stroke_end().sequence);
       }
       if (e.kind == SessionEventKind::not_saved) ++seen.not_saved;
     }

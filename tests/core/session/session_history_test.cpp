@@ -101,7 +101,7 @@ TEST(SessionHistory, ACommitTooLargeForTheHistoryStandsButIsNotUndoable) {
       static_cast<StrokeCommitSink&>(r->history).commit(r->plan, one_hand_stroke(), out);
   EXPECT_TRUE(done.status.ok());
   ASSERT_EQ(count_events(out, SessionEventKind::history_overflow), 1u);
-  EXPECT_EQ(out.items()[0].sequence, done.sequence);
+  EXPECT_EQ(out.items()[0].record().sequence, done.sequence);
   EXPECT_NEAR(r->mesh.position(8 * 17 + 8).z, 0.25f, 1e-6f);
   EXPECT_FALSE(r->history.undo_history().can_undo());
   EXPECT_EQ(r->history.next_sequence(), 1u);  // journaled all the same

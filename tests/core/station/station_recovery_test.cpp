@@ -108,7 +108,7 @@ std::vector<std::byte> checkpoint_of(Rig& rig) {
   test::FakeFileSink out;
   EXPECT_TRUE(rig.station({nullptr, nullptr, &out}).start().ok());
   rig.core->stop();
-  EXPECT_EQ(rig.core->counters().checkpoints_written, 1u);
+  EXPECT_EQ(rig.core->counters().events.checkpoints_written, 1u);
   return {out.bytes().begin(), out.bytes().end()};
 }
 

@@ -60,11 +60,11 @@ TEST(StationCheckpointLoop, TheLoopWritesCheckpointsWithoutAllocatingAndRestartM
     }
     const station::StationCounters& c = parts.core->counters();
     EXPECT_EQ(allocations, 0u);
-    EXPECT_EQ(c.strokes_committed, 16u);  // 4 strokes x (3 freezes + release)
-    EXPECT_GE(c.checkpoints_written, 4u);
-    EXPECT_EQ(c.checkpoints_failed, 0u);
+    EXPECT_EQ(c.events.strokes_committed, 16u);  // 4 strokes x (3 freezes + release)
+    EXPECT_GE(c.events.checkpoints_written, 4u);
+    EXPECT_EQ(c.events.checkpoints_failed, 0u);
     std::printf("in-loop checkpoints: %llu written, %llu restarted by a commit\n",
-                static_cast<unsigned long long>(c.checkpoints_written),
+                static_cast<unsigned long long>(c.events.checkpoints_written),
                 static_cast<unsigned long long>(c.checkpoints_restarted));
     ASSERT_TRUE(loop.finish().ok());
     final_checksum = parts.core->mesh().checksum();
@@ -135,21 +135,21 @@ TEST(StationCheckpointLoop, WithRefinementOnRefinedCommitsAreCheckpointedAndRest
         allocations += counter.count();
       }
       // The second checkpoint, kept for a restart with records after it.
-      if (c.checkpoints_written == 2 && !fs::exists(middle))
+      if (c.events.checkpoints_written == 2 && !fs::exists(middle))
         fs::copy_file(journal + ".ckpt", middle);
     }
     EXPECT_EQ(allocations, 0u);
-    EXPECT_EQ(c.strokes_committed, 4u);
-    EXPECT_EQ(c.refined_commits, 4u);
-    EXPECT_GE(c.checkpoints_written, 4u);
-    EXPECT_EQ(c.checkpoints_failed, 0u);
-    EXPECT_EQ(c.journal_errors, 0u);
+    EXPECT_EQ(c.events.strokes_committed, 4u);
+    EXPECT_EQ(c.events.refined_commits, 4u);
+    EXPECT_GE(c.events.checkpoints_written, 4u);
+    EXPECT_EQ(c.events.checkpoints_failed, 0u);
+    EXPECT_EQ(c.events.journal_errors, 0u);
     ASSERT_TRUE(loop.finish().ok());
     EXPECT_GT(parts.core->mesh().vertex_count(), start_vertices);
     final_checksum = parts.core->mesh().checksum();
     std::printf("refined: %llu commits, %llu checkpoints written, %zu -> %zu vertices\n",
-                static_cast<unsigned long long>(c.refined_commits),
-                static_cast<unsigned long long>(c.checkpoints_written), start_vertices,
+                static_cast<unsigned long long>(c.events.refined_commits),
+                static_cast<unsigned long long>(c.events.checkpoints_written), start_vertices,
                 parts.core->mesh().vertex_count());
   }
   const std::string last = (dir / "last.ckpt").string();

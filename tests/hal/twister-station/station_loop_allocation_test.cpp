@@ -175,9 +175,9 @@ TEST(StationLoopAllocation, SteadyStateWithStrokesButtonsLinkAndLogAllocatesNoth
   // Four two-hand strokes: one journal record each, counted once each (issue 12:
   // strokes count as strokes, not hands).
   EXPECT_EQ(parts.core->journal_records(), 4u);
-  EXPECT_EQ(counters.strokes_committed, 4u);
-  EXPECT_EQ(counters.strokes_cancelled, 0u);
-  EXPECT_EQ(counters.refined_commits, 4u);
+  EXPECT_EQ(counters.events.strokes_committed, 4u);
+  EXPECT_EQ(counters.events.strokes_cancelled, 0u);
+  EXPECT_EQ(counters.events.refined_commits, 4u);
   EXPECT_GT(parts.core->mesh().vertex_count(), 266u);
   std::printf(
       "steady state: %.1f s simulated, %llu passes, %u strokes committed, %zu "

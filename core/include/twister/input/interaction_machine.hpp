@@ -58,6 +58,7 @@ enum class Reason : std::uint8_t {
   busy,              // a command (undo, redo, method) while a stroke or move is open
   nothing_to_undo,   // undo with an empty history
   nothing_to_redo,   // redo with nothing undone
+  stopped,           // cancelled from outside: the station stops (SculptSession::cancel_open)
 };
 
 const char* action_kind_name(ActionKind kind);

@@ -129,7 +129,8 @@ class SculptSession {
 
   // Ends what is open without committing it (the station stopping): every hand of an
   // open stroke is cancelled (the model stays as after the last commit) and an open
-  // object move is cancelled (the object goes back). Returns those events.
+  // object move is cancelled (the object goes back), each with reason stopped.
+  // Returns those events.
   SessionEvents cancel_open();
 
   // Undo / redo of committed strokes (journaled), at once, without events.
