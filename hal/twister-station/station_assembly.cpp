@@ -140,7 +140,7 @@ bool checkpoint_crc_ok(ports::Storage& file) {
 // before anything is written. A damaged checkpoint is only ignored (full replay).
 hal::Expected<void> check_checkpoint_base(const StationParts& parts) {
   if (!parts.checkpoint_in) return {};
-  auto header = input::read_checkpoint_header(*parts.checkpoint_in);
+  auto header = checkpoint::read_checkpoint_header(*parts.checkpoint_in);
   if (!header.ok() || !checkpoint_crc_ok(*parts.checkpoint_in)) return {};
   const std::uint64_t base = parts.model->mesh().checksum();
   if (header->base_checksum == base) return {};

@@ -199,7 +199,7 @@ void FastrakDevice::error(std::string_view echo, int code, ports::TimestampUs at
 void FastrakDevice::queue_noise(std::uint64_t count, ports::TimestampUs now) {
   // Random bytes, straight into the line (what does not fit is lost and counted
   // without being made: an absurd amount must not spin the caller's loop).
-  const std::uint64_t room = line_.room();
+  const std::uint64_t room = line_.queue().room();
   if (count > room) {
     counters_.line_overflow += count - room;
     count = room;
