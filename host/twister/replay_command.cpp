@@ -100,17 +100,29 @@ void run_replay(const Options& o) {
 
   ReadOnlyStorage storage(read_file(o.journal));
   journal::JournalReader reader(storage);
-  if (!reader.open().ok()) fail(kExitBadInput, "'" + o.journal + "' is not a Twister journal");
+  if (const Status opened = reader.open(); !opened.ok()) {
+    fail(kExitBadInput, "'" + o.journal + (opened.code() == StatusCode::not_supported
+                                               ? "' is a journal of a newer format than this "
+                                                 "twister reads"
+                                               : "' is not a Twister journal"));
+  }
   const std::uint64_t total_bytes = storage.size().value_or(0);
-  // A damaged record with valid records after it is corruption, not a torn tail:
-  // replaying up to it would silently drop the later strokes.
+  // A damaged record with valid records after it, or a complete record that is refused
+  // (unknown version or type, invalid values, another journal's, out of order), is
+  // corruption, not a torn tail: replaying up to it would silently drop later strokes,
+  // and twister-station refuses the same journal.
   if (const auto survey = journal::survey_journal(storage); survey.ok() && survey->corrupt()) {
-    fail(kExitBadInput, o.journal + ": damaged record at offset " +
-                            std::to_string(survey->good_end) + " (" +
-                            journal::tail_problem_name(survey->problem) + ") with " +
+    const bool refused = survey->refused_records > 0 &&
+                         (survey->later_records == 0 ||
+                          survey->first_refused_offset <= survey->good_end);
+    const std::uint64_t at = refused ? survey->first_refused_offset : survey->good_end;
+    const journal::TailProblem what = refused ? survey->first_refused : survey->problem;
+    fail(kExitBadInput, o.journal + ": record at offset " + std::to_string(at) + ": " +
+                            journal::tail_problem_text(what) + " (" +
+                            journal::tail_problem_name(what) + "); " +
                             std::to_string(survey->later_records) +
-                            " valid record(s) after it; nothing written "
-                            "(`twister journal salvage` makes a copy that keeps them)");
+                            " valid record(s) after the first damage; nothing written "
+                            "(`twister journal salvage` makes a copy of what can be kept)");
   }
 
   // Progress for long journals: a line per 10% of the file, on stderr (notice).
