@@ -96,7 +96,7 @@ TEST_F(StationOrderIntegrity, DuplicateSplicedGapAndTooNewRecordsAreRefusedWithO
       {"spliced", slice(good, 0, at[3]) + slice(other, at[3], at[4]) + slice(good, at[3], at[6]),
        at[3], "other_journal", 6},
       {"gap", slice(good, 0, at[2]) + slice(good, at[3], at[6]), at[2], "sequence_gap", 2},
-      {"too new", slice(good, 0, at[5]) + too_new, at[5], "unknown_version", 5},
+      {"too_new", slice(good, 0, at[5]) + too_new, at[5], "unknown_version", 5},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
