@@ -51,20 +51,20 @@ std::string corrupt_message(const station::JournalRecovery& r) {
          "), so it is not a torn tail" + advice;
 }
 
-hal::Error start_error(Status s, const station::JournalRecovery& r,
-                                const std::string& journal_path,
-                                const hal::PosixFileStorage& journal,
-                                const hal::PosixFileSink& archive) {
+hal::Error start_error(Status s, const station::JournalRecovery& r, const std::string& journal_path,
+                       const hal::PosixFileStorage& journal, const hal::PosixFileSink& archive) {
   using O = station::JournalRecovery::Outcome;
   std::string why = s.name();
   if (r.outcome == O::corrupt) {
     why = corrupt_message(r);
   } else if (r.outcome == O::not_a_journal) {
-    why = "is not a Twister journal, or does not fit this mesh (left untouched): not a journal "
-          "(or its header is damaged)";
+    why =
+        "is not a Twister journal, or does not fit this mesh (left untouched): not a journal "
+        "(or its header is damaged)";
   } else if (r.outcome == O::too_new) {
-    why = "is a journal of a newer format than this twister-station reads (left untouched); "
-          "use the twister-station that wrote it";
+    why =
+        "is a journal of a newer format than this twister-station reads (left untouched); "
+        "use the twister-station that wrote it";
   } else if (r.outcome == O::does_not_fit) {
     why = "is not a Twister journal, or does not fit this mesh (left untouched): record " +
           std::to_string(r.record_index) + " (sequence " + std::to_string(r.record_sequence) +

@@ -57,8 +57,8 @@ struct Findings {
   std::array<std::uint64_t, 5> by_type{};  // indexed by RecordType
   std::uint64_t records = 0;
   std::uint64_t damaged = 0;
-  std::uint64_t gaps = 0;      // version 1: sequences out of order (not proven by the format)
-  std::uint64_t refused = 0;   // complete records refused (version, type, values, order)
+  std::uint64_t gaps = 0;     // version 1: sequences out of order (not proven by the format)
+  std::uint64_t refused = 0;  // complete records refused (version, type, values, order)
   std::optional<std::uint32_t> first_sequence, last_sequence;
   std::uint64_t not_applied = 0;  // with --mesh
 };
@@ -87,14 +87,14 @@ void note_record(Findings& f, const journal::ScanItem& item, ModelSession* model
 void print_damage(Findings& f, const journal::ScanItem& item) {
   if (journal::may_be_torn(item.problem)) {
     ++f.damaged;
-    std::printf("damage at offset %llu: %llu bytes (%s)\n",
-                static_cast<unsigned long long>(item.offset),
-                static_cast<unsigned long long>(item.bytes),
-                journal::tail_problem_name(item.problem));
+    std::printf(
+        "damage at offset %llu: %llu bytes (%s)\n", static_cast<unsigned long long>(item.offset),
+        static_cast<unsigned long long>(item.bytes), journal::tail_problem_name(item.problem));
     return;
   }
   ++f.refused;
-  std::printf("refused: record at offset %llu (%llu bytes", static_cast<unsigned long long>(item.offset),
+  std::printf("refused: record at offset %llu (%llu bytes",
+              static_cast<unsigned long long>(item.offset),
               static_cast<unsigned long long>(item.bytes));
   if (journal::is_order_problem(item.problem)) {
     std::printf(", sequence %u, %s", item.record.sequence, type_name(item.record.type));
@@ -206,8 +206,7 @@ class SalvageLog final : public journal::SalvageObserver {
   void dropped(const journal::ScanItem& item, Drop why) override {
     std::printf("dropped: record at offset %llu (sequence %u, %s): %s\n",
                 static_cast<unsigned long long>(item.offset), item.record.sequence,
-                type_name(item.record.type),
-                why_text(why));
+                type_name(item.record.type), why_text(why));
   }
 };
 
@@ -261,7 +260,8 @@ void run_salvage(const Options& o) {
       static_cast<unsigned long long>(r.damaged_ranges),
       static_cast<unsigned long long>(r.damaged_bytes),
       static_cast<unsigned long long>(r.broken_chain), static_cast<unsigned long long>(r.refused),
-      static_cast<unsigned long long>(r.out_of_order), static_cast<unsigned long long>(r.after_gap));
+      static_cast<unsigned long long>(r.out_of_order),
+      static_cast<unsigned long long>(r.after_gap));
 }
 
 }  // namespace

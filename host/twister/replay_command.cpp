@@ -93,28 +93,15 @@ void report_refinement(const input::RefineStatus& r, const Options& o) {
   }
 }
 
-void run_replay(const Options& o) {
-  ModelSession model(o.mesh_in, o.spare_vertices, o.undo_changes, o.undo_entries);
-  mesh::Mesh& mesh = model.mesh();
-  input::SculptSession& session = model.session();
-
-  ReadOnlyStorage storage(read_file(o.journal));
-  journal::JournalReader reader(storage);
-  if (const Status opened = reader.open(); !opened.ok()) {
-    fail(kExitBadInput, "'" + o.journal + (opened.code() == StatusCode::not_supported
-                                               ? "' is a journal of a newer format than this "
-                                                 "twister reads"
-                                               : "' is not a Twister journal"));
-  }
-  const std::uint64_t total_bytes = storage.size().value_or(0);
-  // A damaged record with valid records after it, or a complete record that is refused
-  // (unknown version or type, invalid values, another journal's, out of order), is
-  // corruption, not a torn tail: replaying up to it would silently drop later strokes,
-  // and twister-station refuses the same journal.
+// A damaged record with valid records after it, or a complete record that is refused
+// (unknown version or type, invalid values, another journal's, out of order), is
+// corruption, not a torn tail: replaying up to it would silently drop later strokes,
+// and twister-station refuses the same journal.
+void refuse_corrupt(ports::Storage& storage, const Options& o) {
   if (const auto survey = journal::survey_journal(storage); survey.ok() && survey->corrupt()) {
-    const bool refused = survey->refused_records > 0 &&
-                         (survey->later_records == 0 ||
-                          survey->first_refused_offset <= survey->good_end);
+    const bool refused =
+        survey->refused_records > 0 &&
+        (survey->later_records == 0 || survey->first_refused_offset <= survey->good_end);
     const std::uint64_t at = refused ? survey->first_refused_offset : survey->good_end;
     const journal::TailProblem what = refused ? survey->first_refused : survey->problem;
     fail(kExitBadInput, o.journal + ": record at offset " + std::to_string(at) + ": " +
@@ -124,6 +111,24 @@ void run_replay(const Options& o) {
                             " valid record(s) after the first damage; nothing written "
                             "(`twister journal salvage` makes a copy of what can be kept)");
   }
+}
+
+void run_replay(const Options& o) {
+  ModelSession model(o.mesh_in, o.spare_vertices, o.undo_changes, o.undo_entries);
+  mesh::Mesh& mesh = model.mesh();
+  input::SculptSession& session = model.session();
+
+  ReadOnlyStorage storage(read_file(o.journal));
+  journal::JournalReader reader(storage);
+  if (const Status opened = reader.open(); !opened.ok()) {
+    fail(kExitBadInput, "'" + o.journal +
+                            (opened.code() == StatusCode::not_supported
+                                 ? "' is a journal of a newer format than this "
+                                   "twister reads"
+                                 : "' is not a Twister journal"));
+  }
+  const std::uint64_t total_bytes = storage.size().value_or(0);
+  refuse_corrupt(storage, o);
 
   // Progress for long journals: a line per 10% of the file, on stderr (notice).
   const bool show_progress = o.progress || total_bytes > (std::uint64_t{1} << 16);

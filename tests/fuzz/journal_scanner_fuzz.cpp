@@ -35,8 +35,8 @@ void check_tiling(Storage& storage, std::size_t size) {
   journal::JournalScanner scanner(storage);
   if (!scanner.open().ok()) return;
   std::uint64_t at = scanner.header() == journal::HeaderCheck::ok && size > 0
-                        ? scanner.format().header_bytes()
-                        : 0;
+                         ? scanner.format().header_bytes()
+                         : 0;
   bool refused = false;
   for (auto item = scanner.next(); item.ok(); item = scanner.next()) {
     check(item->offset == at && item->bytes > 0);

@@ -20,9 +20,9 @@ std::uint32_t load_u32(std::span<const std::byte> bytes) { return ByteReader(byt
 TailProblem undecodable(std::uint8_t version, std::uint8_t type) {
   if (type < 1 || type > kTypeCount) return TailProblem::unknown_type;
   const bool stroke = type == static_cast<std::uint8_t>(RecordType::stroke);
-  const bool known = version == kRecordVersion ||
-                     (stroke && (version == kRecordVersionLongTurns ||
-                                 version == kRecordVersionRefined));
+  const bool known =
+      version == kRecordVersion ||
+      (stroke && (version == kRecordVersionLongTurns || version == kRecordVersionRefined));
   return known ? TailProblem::bad_payload : TailProblem::unknown_version;
 }
 

@@ -43,14 +43,18 @@ Status copy_record(ports::Storage& in, ports::FileSink& out, const ScanItem& ite
 
 class Copier {
  public:
-  Copier(ports::Storage& in, ports::FileSink& out, SalvageObserver* observer,
-         RecordFilter* filter, bool ordered, SalvageReport& report)
-      : in_(in), out_(out), observer_(observer), filter_(filter), ordered_(ordered),
+  Copier(ports::Storage& in, ports::FileSink& out, SalvageObserver* observer, RecordFilter* filter,
+         bool ordered, SalvageReport& report)
+      : in_(in),
+        out_(out),
+        observer_(observer),
+        filter_(filter),
+        ordered_(ordered),
         report_(report) {}
 
   Status take(const ScanItem& item) {
-    const bool candidate = item.kind == ScanItem::Kind::record ||
-                           (ordered_ && is_order_problem(item.problem));
+    const bool candidate =
+        item.kind == ScanItem::Kind::record || (ordered_ && is_order_problem(item.problem));
     if (!candidate) {
       ++report_.damaged_ranges;
       report_.damaged_bytes += item.bytes;

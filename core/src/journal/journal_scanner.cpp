@@ -60,7 +60,8 @@ TailProblem JournalScanner::parse_at(std::uint64_t offset, JournalRecord& record
   if (left < head) return TailProblem::torn_header;
   if (!load(offset, head)) return TailProblem::torn_header;
   const std::byte* at = window_.data() + (offset - window_offset_);
-  const TailProblem length = check_record_header(std::span<const std::byte>(at, head), format_, total);
+  const TailProblem length =
+      check_record_header(std::span<const std::byte>(at, head), format_, total);
   if (length != TailProblem::none) return length;
   if (left < total) return TailProblem::torn_record;
   if (!load(offset, total)) return TailProblem::torn_record;

@@ -67,7 +67,8 @@ std::size_t offset_of(const JournalFormat& format, const std::vector<Bytes>& rec
 void reseal(Bytes& record) {
   const std::size_t body = record.size() - kRecordCrcBytes;
   const std::uint32_t crc = crc32(std::span<const std::byte>(record).first(body));
-  for (std::size_t i = 0; i < 4; ++i) record[body + i] = static_cast<std::byte>((crc >> (8 * i)) & 0xffu);
+  for (std::size_t i = 0; i < 4; ++i)
+    record[body + i] = static_cast<std::byte>((crc >> (8 * i)) & 0xffu);
 }
 
 std::unique_ptr<test::FakeStorage> storage_of(const Bytes& bytes) {
@@ -217,8 +218,8 @@ TEST(JournalOrder, UndecodableCompleteRecordsAreRefusedNotCutAsATornTail) {
     // A NaN in the end pose (the first f64 after the fixed stroke fields and the start pose).
     const std::size_t pose = format.record_header_bytes() + 4 + 4 + 8 + 72;
     expect_refused(edit([&](Bytes& r) {
-                     const auto nan = std::bit_cast<std::uint64_t>(
-                         std::numeric_limits<double>::quiet_NaN());
+                     const auto nan =
+                         std::bit_cast<std::uint64_t>(std::numeric_limits<double>::quiet_NaN());
                      for (std::size_t i = 0; i < 8; ++i)
                        r[pose + i] = static_cast<std::byte>((nan >> (8 * i)) & 0xffu);
                    }),
@@ -251,8 +252,8 @@ TEST(JournalOrder, DamagedOrNewerHeadersAreRefusedAndLeftAlone) {
   damaged[9] ^= std::byte{0x01};  // the identity
   Bytes newer = file_of(kV2, strokes(2, kV2));
   newer[4] = std::byte{3};
-  for (const auto& [file, code] : {std::pair{damaged, StatusCode::data_loss},
-                                   std::pair{newer, StatusCode::not_supported}}) {
+  for (const auto& [file, code] :
+       {std::pair{damaged, StatusCode::data_loss}, std::pair{newer, StatusCode::not_supported}}) {
     const auto s = storage_of(file);
     JournalReader reader(*s);
     EXPECT_EQ(reader.open().code(), code);

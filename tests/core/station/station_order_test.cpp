@@ -121,7 +121,8 @@ TEST(StationOrder, AnUndecodableLastRecordIsRefusedNotCut) {
   file[at[2] + 4] = std::byte{9};  // a record version from a newer station
   const std::size_t body = file.size() - journal::kRecordCrcBytes;
   const std::uint32_t crc = crc32(std::span<const std::byte>(file).subspan(at[2], body - at[2]));
-  for (std::size_t i = 0; i < 4; ++i) file[body + i] = static_cast<std::byte>((crc >> (8 * i)) & 0xffu);
+  for (std::size_t i = 0; i < 4; ++i)
+    file[body + i] = static_cast<std::byte>((crc >> (8 * i)) & 0xffu);
   Rig edited;
   edited.storage.load(file);
   test::FakeFileSink archive;

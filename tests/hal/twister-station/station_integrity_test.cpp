@@ -89,8 +89,7 @@ TEST_F(StationIntegrity, ABitFlipInRecord5Of20IsRefusedTheFileIsUntouchedAndSalv
   ASSERT_EQ(salvage.exit_code, 0) << salvage.output;
   EXPECT_NE(salvage.output.find("salvaged 4 of 19 valid records"), std::string::npos)
       << salvage.output;
-  EXPECT_NE(salvage.output.find("15 after-a-gap record(s)"), std::string::npos)
-      << salvage.output;
+  EXPECT_NE(salvage.output.find("15 after-a-gap record(s)"), std::string::npos) << salvage.output;
   const Journal saved = read_journal(path("saved.twj"));
   ASSERT_EQ(saved.records.size(), 4u);
   EXPECT_EQ(saved.records[3].sequence, 3u);

@@ -71,7 +71,8 @@ std::string slice(const std::string& s, std::size_t from, std::size_t to) {
 void reseal(std::string& record) {
   const std::size_t body = record.size() - 4;
   const std::uint32_t crc = crc32(std::as_bytes(std::span(record.data(), body)));
-  for (std::size_t i = 0; i < 4; ++i) record[body + i] = static_cast<char>((crc >> (8 * i)) & 0xffu);
+  for (std::size_t i = 0; i < 4; ++i)
+    record[body + i] = static_cast<char>((crc >> (8 * i)) & 0xffu);
 }
 
 TEST_F(StationOrderIntegrity, DuplicateSplicedGapAndTooNewRecordsAreRefusedWithOffsets) {
@@ -107,8 +108,9 @@ TEST_F(StationOrderIntegrity, DuplicateSplicedGapAndTooNewRecordsAreRefusedWithO
     EXPECT_EQ(r.exit_code, 1) << r.output;
     EXPECT_NE(r.output.find(where), std::string::npos) << r.output;
     EXPECT_NE(r.output.find(c.problem), std::string::npos) << r.output;
-    const RunResult replay = cli("replay " + journal + " --mesh " TWISTER_DEPLOY_DIR
-                                 "/sim_sphere.obj --out " + path("o.obj"));
+    const RunResult replay =
+        cli("replay " + journal + " --mesh " TWISTER_DEPLOY_DIR "/sim_sphere.obj --out " +
+            path("o.obj"));
     EXPECT_EQ(replay.exit_code, 2) << replay.output;
     EXPECT_NE(replay.output.find(where), std::string::npos) << replay.output;
     const RunResult check = cli("journal check " + journal);
@@ -139,9 +141,9 @@ TEST_F(StationOrderIntegrity, ATornTailIsNotCutWhenStartUpFailsOnTheLink) {
   EXPECT_FALSE(fs::exists(journal + ".torn-tail"));
   // A new journal is not even created... its header is not written either.
   const std::string fresh = path("fresh.twj");
-  EXPECT_NE(station("--config " + config_for(fresh) + " --link unix:" + path("not-a-socket"))
-                .exit_code,
-            0);
+  EXPECT_NE(
+      station("--config " + config_for(fresh) + " --link unix:" + path("not-a-socket")).exit_code,
+      0);
   EXPECT_TRUE(!fs::exists(fresh) || fs::file_size(fresh) == 0);
 }
 

@@ -17,7 +17,6 @@
 
 namespace twister::journal {
 
-
 class JournalReader {
  public:
   explicit JournalReader(ports::Storage& storage) : storage_(storage) {}
@@ -34,8 +33,8 @@ class JournalReader {
   HeaderCheck header() const { return header_; }
 
   // Continues reading at `offset`, the start of a record (e.g. the end of the records
-  // a checkpoint stands for); the sequence check takes the next record's as right. out_of_range: before the first record or past the end;
-  // failed_precondition: open() did not succeed.
+  // a checkpoint stands for); the sequence check takes the next record's as right. out_of_range:
+  // before the first record or past the end; failed_precondition: open() did not succeed.
   Status seek(std::uint64_t offset);
 
   // Next good record. unavailable: clean end of the journal. data_loss: a torn or

@@ -55,7 +55,8 @@ class RecordFilter {
 };
 
 // Copies `in`'s valid records into a new file through `out` (begin ... commit).
-// data_loss: `in` is not a journal; not_supported: a newer format; io_error: reading `in` or writing `out` failed
+// data_loss: `in` is not a journal; not_supported: a newer format; io_error: reading `in` or
+// writing `out` failed
 // (`out` aborted, nothing named); `out`'s own refusals (failed_precondition).
 Result<SalvageReport> salvage_journal(ports::Storage& in, ports::FileSink& out,
                                       SalvageObserver* observer = nullptr,

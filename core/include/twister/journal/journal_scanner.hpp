@@ -4,9 +4,9 @@
 // bytes, CRC and content all check; a random match needs a 32-bit CRC to agree).
 // survey_journal() uses it to tell a torn tail (damage an interrupted append can leave,
 // with no valid or refused record after it: safe to cut) from corruption (valid
-// records after the damage, or any refused record: refuse, never cut); `twister journal check|salvage` use it to list and
-// keep every valid record.
-// No allocation: a 4 KiB read window inside the scanner. Not thread-safe.
+// records after the damage, or any refused record: refuse, never cut); `twister journal
+// check|salvage` use it to list and keep every valid record. No allocation: a 4 KiB read window
+// inside the scanner. Not thread-safe.
 #pragma once
 
 #include <array>

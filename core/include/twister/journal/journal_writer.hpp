@@ -31,10 +31,10 @@ class JournalWriter {
   Status open();
 
   // Encodes (in the file's format), appends and syncs one record. The caller numbers
-  // records 0, 1, 2, ... (SessionHistory does); a version 2 reader refuses anything else. invalid_argument: the record is invalid
-  // (nothing written). io_error: the append or sync failed; the writer then tries
-  // to cut the partial record off again, and when that fails too it refuses every
-  // further append (failed_precondition) so no good record lands after a torn one.
+  // records 0, 1, 2, ... (SessionHistory does); a version 2 reader refuses anything else.
+  // invalid_argument: the record is invalid (nothing written). io_error: the append or sync failed;
+  // the writer then tries to cut the partial record off again, and when that fails too it refuses
+  // every further append (failed_precondition) so no good record lands after a torn one.
   Status append(const JournalRecord& record);
 
   // After a failure that left the writer broken: cuts the file back to the end of
