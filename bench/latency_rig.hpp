@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "scene_replica.hpp"
-#include "twister/input/sculpt_session.hpp"
+#include "twister/session/sculpt_session.hpp"
 #include "twister/link/link_codec.hpp"
 #include "twister/meshio/mesh_buffer.hpp"
 #include "twister/meshio/mesh_generator.hpp"
@@ -28,14 +28,14 @@ class LatencyRig {
     const std::size_t n = buffer_.mesh().vertex_count();
     for (auto* v : {&lx_, &ly_, &lz_, &w1_, &w2_}) v->resize(n);
     indices_.resize(n);
-    changes_.resize(input::kDefaultUndoChanges);
-    entries_.resize(input::kDefaultUndoEntries);
-    input::SculptSessionConfig config;
+    changes_.resize(session::kDefaultUndoChanges);
+    entries_.resize(session::kDefaultUndoEntries);
+    session::SculptSessionConfig config;
     for (auto& i : config.debounce.interval_us) i = 0;
     config.interaction.initial_radius_m = 1.0F;
-    session_ = std::make_unique<input::SculptSession>(
+    session_ = std::make_unique<session::SculptSession>(
         config, buffer_.mesh(),
-        input::SculptStorage{lx_, ly_, lz_, math::WarpPlanStorage{indices_, w1_, w2_}, changes_,
+        session::SculptStorage{lx_, ly_, lz_, math::WarpPlanStorage{indices_, w1_, w2_}, changes_,
                              entries_},
         nullptr);
     start_ = math::frame_from_uv({0.0, 0.0, 0.5}, {1.0, 0.0, 0.0}, {0.0, 1.0, 0.0});
@@ -109,9 +109,9 @@ class LatencyRig {
   meshio::MeshBuffer buffer_;
   std::vector<float> lx_, ly_, lz_, w1_, w2_;
   std::vector<std::uint32_t> indices_;
-  std::vector<input::VertexChange> changes_;
-  std::vector<input::UndoEntry> entries_;
-  std::unique_ptr<input::SculptSession> session_;
+  std::vector<session::VertexChange> changes_;
+  std::vector<session::UndoEntry> entries_;
+  std::unique_ptr<session::SculptSession> session_;
   bridge::SceneReplica replica_;
   math::Frame start_{};
   ports::TimestampUs now_ = 0;

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "counting_storage.hpp"
-#include "twister/input/sculpt_session.hpp"
+#include "twister/session/sculpt_session.hpp"
 #include "twister/journal/journal_writer.hpp"
 #include "twister/meshio/mesh_buffer.hpp"
 #include "twister/meshio/mesh_generator.hpp"
@@ -46,18 +46,18 @@ struct Rig {
     const std::size_t n = buffer.mesh().vertex_capacity();
     for (auto* v : {&lx, &ly, &lz, &w1, &w2}) v->resize(n);
     indices.resize(n);
-    changes.resize(input::kDefaultUndoChanges);
-    entries.resize(input::kDefaultUndoEntries);
-    triangles.resize(input::kDefaultUndoTriangleChanges);
-    input::SculptSessionConfig config;
+    changes.resize(session::kDefaultUndoChanges);
+    entries.resize(session::kDefaultUndoEntries);
+    triangles.resize(session::kDefaultUndoTriangleChanges);
+    session::SculptSessionConfig config;
     for (auto& i : config.debounce.interval_us) i = 0;
     config.interaction.initial_radius_m = 0.6f;
     config.refine.enabled = threshold_m > 0.0;
     config.refine.threshold_m = threshold_m;
     (void)writer.open();
-    session = std::make_unique<input::SculptSession>(
+    session = std::make_unique<session::SculptSession>(
         config, buffer.mesh(),
-        input::SculptStorage{lx, ly, lz, math::WarpPlanStorage{indices, w1, w2}, changes, entries,
+        session::SculptStorage{lx, ly, lz, math::WarpPlanStorage{indices, w1, w2}, changes, entries,
                              refiner.storage(), triangles},
         &writer);
   }
@@ -94,10 +94,10 @@ struct Rig {
   journal::JournalWriter writer;
   std::vector<float> lx, ly, lz, w1, w2;
   std::vector<std::uint32_t> indices;
-  std::vector<input::VertexChange> changes;
-  std::vector<input::UndoEntry> entries;
-  std::vector<input::TriangleChange> triangles;
-  std::unique_ptr<input::SculptSession> session;
+  std::vector<session::VertexChange> changes;
+  std::vector<session::UndoEntry> entries;
+  std::vector<session::TriangleChange> triangles;
+  std::unique_ptr<session::SculptSession> session;
   ports::TimestampUs now = 0;
 };
 

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "counting_storage.hpp"
-#include "twister/input/sculpt_session.hpp"
+#include "twister/session/sculpt_session.hpp"
 #include "twister/journal/journal_writer.hpp"
 #include "twister/meshio/mesh_buffer.hpp"
 #include "twister/meshio/mesh_generator.hpp"
@@ -34,15 +34,15 @@ struct Rig {
     const std::size_t n = buffer.mesh().vertex_count();
     for (auto* v : {&lx, &ly, &lz, &w1, &w2}) v->resize(n);
     indices.resize(n);
-    changes.resize(input::kDefaultUndoChanges);
-    entries.resize(input::kDefaultUndoEntries);
-    input::SculptSessionConfig config;
+    changes.resize(session::kDefaultUndoChanges);
+    entries.resize(session::kDefaultUndoEntries);
+    session::SculptSessionConfig config;
     for (auto& i : config.debounce.interval_us) i = 0;
     config.interaction.initial_radius_m = 1.0f;
     (void)writer.open();
-    session = std::make_unique<input::SculptSession>(
+    session = std::make_unique<session::SculptSession>(
         config, buffer.mesh(),
-        input::SculptStorage{lx, ly, lz, math::WarpPlanStorage{indices, w1, w2}, changes, entries},
+        session::SculptStorage{lx, ly, lz, math::WarpPlanStorage{indices, w1, w2}, changes, entries},
         &writer);
   }
   math::Frame pose(double t) const {
@@ -65,9 +65,9 @@ struct Rig {
   journal::JournalWriter writer;
   std::vector<float> lx, ly, lz, w1, w2;
   std::vector<std::uint32_t> indices;
-  std::vector<input::VertexChange> changes;
-  std::vector<input::UndoEntry> entries;
-  std::unique_ptr<input::SculptSession> session;
+  std::vector<session::VertexChange> changes;
+  std::vector<session::UndoEntry> entries;
+  std::unique_ptr<session::SculptSession> session;
   ports::TimestampUs now = 0;
 };
 

@@ -21,7 +21,7 @@ DisplayLink::DisplayLink() = default;
 DisplayLink::~DisplayLink() = default;
 
 hal::Expected<void> DisplayLink::open(const LinkSection& settings,
-                                      const input::SculptSession& session, hal::Logger& log) {
+                                      const session::SculptSession& session, hal::Logger& log) {
   log_ = &log;
   const std::string& address = settings.address;
   if (!settings.psk_file.empty()) {
@@ -86,11 +86,11 @@ std::size_t DisplayLink::route_commands(station::Station& core) {
   std::size_t n = 0;
   link::Command command;
   while (link_->take_command(command)) {
-    const input::SessionCommand c = station::session_command(command);
-    log_->info("link", "display command: %s", input::session_command_name(c.kind));
+    const session::SessionCommand c = station::session_command(command);
+    log_->info("link", "display command: %s", session::session_command_name(c.kind));
     if (const Status s = core.submit(c); !s.ok()) {
       log_->warning("link", "display command %s not queued: %s",
-                    input::session_command_name(c.kind), s.name());
+                    session::session_command_name(c.kind), s.name());
     }
     ++n;
   }

@@ -38,7 +38,7 @@ class DisplayLink {
   // Opens `settings.address` and takes the session's mesh as version 1. Errors
   // name the link: the key file's (load_link_key), the transport's (SocketLink /
   // SerialLink open), or the StationLink's (resource_exhausted).
-  hal::Expected<void> open(const LinkSection& settings, const input::SculptSession& session,
+  hal::Expected<void> open(const LinkSection& settings, const session::SculptSession& session,
                            hal::Logger& log);
   bool is_open() const { return link_ != nullptr; }
   void poll(const station::Station& core, ports::TimestampUs now_us);

@@ -7,7 +7,7 @@
 
 #include "station_log.hpp"
 #include "station_setup.hpp"
-#include "twister/input/session_checkpoint.hpp"
+#include "twister/checkpoint/session_checkpoint.hpp"
 #include "twister/meshio/obj_file.hpp"
 
 namespace twister::station_app {
@@ -116,7 +116,7 @@ void open_checkpoint_files(StationParts& parts, const std::string& journal) {
   hal::PosixFileSinkConfig out;
   out.path = journal + ".ckpt";
   out.replace = hal::PosixFileSinkConfig::Replace::own_magic;
-  out.magic.assign(input::kCheckpointMagic.begin(), input::kCheckpointMagic.end());
+  out.magic.assign(checkpoint::kCheckpointMagic.begin(), checkpoint::kCheckpointMagic.end());
   out.writeback_bytes = std::size_t{1} << 20;
   parts.checkpoint_out = std::make_unique<hal::PosixFileSink>(out);
   auto in = std::make_unique<hal::PosixFileStorage>();
@@ -158,7 +158,7 @@ hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationConfi
   parts->model = std::move(*model);
   mesh::Mesh& mesh = parts->model->mesh();
   parts->work = std::make_unique<WorkMemory>(mesh.vertex_capacity());
-  input::SculptStorage storage = parts->work->storage();
+  session::SculptStorage storage = parts->work->storage();
   if (config.sculpt.refine) {
     parts->refine =
         std::make_unique<RefineMemory>(mesh.vertex_capacity(), mesh.triangle_capacity());

@@ -19,7 +19,7 @@
 #include "twister/hal/expected.hpp"
 #include "twister/hal/posix_file_sink.hpp"
 #include "twister/hal/posix_file_storage.hpp"
-#include "twister/input/sculpt_session.hpp"
+#include "twister/session/sculpt_session.hpp"
 #include "twister/meshio/mesh_buffer.hpp"
 #include "twister/station/station.hpp"
 

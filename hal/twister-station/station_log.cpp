@@ -5,7 +5,7 @@
 #include <numbers>
 
 #include "twister/input/interaction_machine.hpp"
-#include "twister/input/session_command.hpp"
+#include "twister/session/session_command.hpp"
 #include "twister/math/warp_method.hpp"
 #include "twister/mesh/mesh_refiner.hpp"
 
@@ -45,8 +45,8 @@ const char* capacity_text(std::uint64_t value) {
 }
 
 const char* command_text(std::uint64_t value) {
-  return value < input::kSessionCommandKindCount
-             ? input::session_command_name(static_cast<input::SessionCommandKind>(value))
+  return value < session::kSessionCommandKindCount
+             ? session::session_command_name(static_cast<session::SessionCommandKind>(value))
              : "?";
 }
 

@@ -27,12 +27,12 @@ MemoryBudget memory_budget(std::size_t vertex_capacity, std::size_t triangle_cap
   b.mesh = 3 * sizeof(float) * vertex_capacity + 3 * sizeof(std::uint32_t) * triangle_capacity;
   b.live = 3 * sizeof(float) * vertex_capacity;
   b.plan = (sizeof(std::uint32_t) + 2 * sizeof(float)) * vertex_capacity;
-  b.undo = undo_changes * sizeof(input::VertexChange) + undo_entries * sizeof(input::UndoEntry);
+  b.undo = undo_changes * sizeof(session::VertexChange) + undo_entries * sizeof(session::UndoEntry);
   b.normals = 3 * sizeof(float) * vertex_capacity;
   if (refine) {
     b.refine = mesh::kRefinerBytesPerVertex * vertex_capacity +
                mesh::kRefinerBytesPerTriangle * triangle_capacity +
-               input::kDefaultUndoTriangleChanges * sizeof(input::TriangleChange);
+               session::kDefaultUndoTriangleChanges * sizeof(session::TriangleChange);
   }
   if (link) {
     b.link = 3 * sizeof(float) * vertex_capacity + 3 * sizeof(std::uint32_t) * triangle_capacity +
@@ -45,17 +45,17 @@ WorkMemory::WorkMemory(std::size_t vertex_capacity, std::size_t undo_changes,
                        std::size_t undo_entries) {
   const MemoryBudget b = memory_budget(vertex_capacity, 0, undo_changes, undo_entries);
   bytes_ = b.live + b.plan + b.undo + b.normals;
-  static_assert(alignof(input::UndoEntry) >= alignof(input::VertexChange));
-  static_assert(alignof(input::VertexChange) >= alignof(float));
-  static_assert(sizeof(input::UndoEntry) % alignof(input::VertexChange) == 0);
-  static_assert(sizeof(input::VertexChange) % alignof(float) == 0);
-  static_assert(alignof(input::UndoEntry) <= __STDCPP_DEFAULT_NEW_ALIGNMENT__);
-  static_assert(std::is_trivially_destructible_v<input::UndoEntry> &&
-                std::is_trivially_destructible_v<input::VertexChange>);
+  static_assert(alignof(session::UndoEntry) >= alignof(session::VertexChange));
+  static_assert(alignof(session::VertexChange) >= alignof(float));
+  static_assert(sizeof(session::UndoEntry) % alignof(session::VertexChange) == 0);
+  static_assert(sizeof(session::VertexChange) % alignof(float) == 0);
+  static_assert(alignof(session::UndoEntry) <= __STDCPP_DEFAULT_NEW_ALIGNMENT__);
+  static_assert(std::is_trivially_destructible_v<session::UndoEntry> &&
+                std::is_trivially_destructible_v<session::VertexChange>);
   arena_.reset(new std::byte[bytes_]);
   std::byte* rest = arena_.get();
-  storage_.undo_entries = carve<input::UndoEntry>(rest, undo_entries);
-  storage_.undo_changes = carve<input::VertexChange>(rest, undo_changes);
+  storage_.undo_entries = carve<session::UndoEntry>(rest, undo_entries);
+  storage_.undo_changes = carve<session::VertexChange>(rest, undo_changes);
   storage_.live_x = carve<float>(rest, vertex_capacity);
   storage_.live_y = carve<float>(rest, vertex_capacity);
   storage_.live_z = carve<float>(rest, vertex_capacity);
@@ -68,13 +68,13 @@ WorkMemory::WorkMemory(std::size_t vertex_capacity, std::size_t undo_changes,
                           carve<float>(rest, vertex_capacity)};
 }
 
-input::SculptStorage WorkMemory::storage() { return storage_; }
+session::SculptStorage WorkMemory::storage() { return storage_; }
 
 RefineMemory::RefineMemory(std::size_t vertex_capacity, std::size_t triangle_capacity)
     : refiner_(vertex_capacity, triangle_capacity),
-      undo_triangles_(input::kDefaultUndoTriangleChanges) {}
+      undo_triangles_(session::kDefaultUndoTriangleChanges) {}
 
-input::SculptStorage RefineMemory::attach(input::SculptStorage storage) {
+session::SculptStorage RefineMemory::attach(session::SculptStorage storage) {
   storage.refine = refiner_.storage();
   storage.undo_triangle_changes = undo_triangles_;
   return storage;

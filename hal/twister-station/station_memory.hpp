@@ -17,7 +17,7 @@
 #include <memory>
 #include <vector>
 
-#include "twister/input/sculpt_session.hpp"
+#include "twister/session/sculpt_session.hpp"
 #include "twister/meshio/refiner_buffer.hpp"
 
 namespace twister::station_app {
@@ -34,8 +34,8 @@ struct MemoryBudget {
 };
 
 MemoryBudget memory_budget(std::size_t vertex_capacity, std::size_t triangle_capacity,
-                           std::size_t undo_changes = input::kDefaultUndoChanges,
-                           std::size_t undo_entries = input::kDefaultUndoEntries, bool link = false,
+                           std::size_t undo_changes = session::kDefaultUndoChanges,
+                           std::size_t undo_entries = session::kDefaultUndoEntries, bool link = false,
                            bool refine = false);
 
 // The SculptSession's working memory for a mesh of `vertex_capacity` vertices: one
@@ -43,15 +43,15 @@ MemoryBudget memory_budget(std::size_t vertex_capacity, std::size_t triangle_cap
 class WorkMemory {
  public:
   explicit WorkMemory(std::size_t vertex_capacity,
-                      std::size_t undo_changes = input::kDefaultUndoChanges,
-                      std::size_t undo_entries = input::kDefaultUndoEntries);
-  input::SculptStorage storage();
+                      std::size_t undo_changes = session::kDefaultUndoChanges,
+                      std::size_t undo_entries = session::kDefaultUndoEntries);
+  session::SculptStorage storage();
   std::size_t arena_bytes() const { return bytes_; }
 
  private:
   std::size_t bytes_ = 0;
   std::unique_ptr<std::byte[]> arena_;
-  input::SculptStorage storage_{};
+  session::SculptStorage storage_{};
 };
 
 // Refinement's working memory (only when [sculpt] refine is on): the refiner for the
@@ -60,11 +60,11 @@ class RefineMemory {
  public:
   RefineMemory(std::size_t vertex_capacity, std::size_t triangle_capacity);
   // `storage` with the refinement spans set.
-  input::SculptStorage attach(input::SculptStorage storage);
+  session::SculptStorage attach(session::SculptStorage storage);
 
  private:
   meshio::RefinerBuffer refiner_;
-  std::vector<input::TriangleChange> undo_triangles_;
+  std::vector<session::TriangleChange> undo_triangles_;
 };
 
 }  // namespace twister::station_app

@@ -39,7 +39,7 @@ math::WarpMethod method_of(SculptMethod m) {
 
 // [sculpt]: method, radius, turns, lost-tracking timeout and the button map (the
 // paper's map unless [sculpt.buttons] is given).
-void set_sculpt(const StationConfig& config, input::SculptSessionConfig& s, std::string& error) {
+void set_sculpt(const StationConfig& config, session::SculptSessionConfig& s, std::string& error) {
   const SculptConfig& sc = config.sculpt;
   s.method = method_of(sc.method);
   s.interaction.initial_radius_m = static_cast<float>(sc.radius_m);
@@ -48,9 +48,9 @@ void set_sculpt(const StationConfig& config, input::SculptSessionConfig& s, std:
   s.interaction.radius_gesture = sc.radius_gesture;
   s.interaction.lost_timeout_us = static_cast<ports::TimestampUs>(sc.lost_timeout_ms) * 1000;
   s.turns.tracking = sc.turn_tracking == TurnTrackingMode::unwrapped
-                         ? input::TurnTracking::unwrapped
-                         : input::TurnTracking::minimal;
-  s.turns.limit_rad = sc.turn_limit_deg * input::kDegree;
+                         ? session::TurnTracking::unwrapped
+                         : session::TurnTracking::minimal;
+  s.turns.limit_rad = sc.turn_limit_deg * session::kDegree;
   s.refine.enabled = sc.refine;
   s.refine.threshold_m = sc.refine_threshold_m;
   if (!sc.buttons_configured) return;

@@ -29,13 +29,13 @@ ModelSession::ModelSession(const std::string& obj_path, std::size_t spare_vertic
                            std::size_t undo_changes, std::size_t undo_entries)
     : model_(load(obj_path, spare_vertices)),
       refiner_(mesh().vertex_capacity(), mesh().triangle_capacity()),
-      triangles_(input::kDefaultUndoTriangleChanges) {
+      triangles_(session::kDefaultUndoTriangleChanges) {
   const std::size_t n = mesh().vertex_capacity();
   for (auto* v : {&lx_, &ly_, &lz_, &w1_, &w2_}) v->resize(n);
   plan_indices_.resize(n);
   changes_.resize(undo_changes);
   entries_.resize(std::max<std::size_t>(undo_entries, 1));
-  const input::SculptStorage work{lx_,
+  const session::SculptStorage work{lx_,
                                   ly_,
                                   lz_,
                                   math::WarpPlanStorage{plan_indices_, w1_, w2_},
@@ -44,7 +44,7 @@ ModelSession::ModelSession(const std::string& obj_path, std::size_t spare_vertic
                                   refiner_.storage(),
                                   triangles_};
   session_ =
-      std::make_unique<input::SculptSession>(input::SculptSessionConfig{}, mesh(), work, nullptr);
+      std::make_unique<session::SculptSession>(session::SculptSessionConfig{}, mesh(), work, nullptr);
 }
 
 }  // namespace twister::cli

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "twister/input/sculpt_session.hpp"
+#include "twister/session/sculpt_session.hpp"
 #include "twister/meshio/obj_file.hpp"
 #include "twister/meshio/refiner_buffer.hpp"
 
@@ -20,23 +20,23 @@ namespace twister::cli {
 class ModelSession {
  public:
   explicit ModelSession(const std::string& obj_path, std::size_t spare_vertices = 0,
-                        std::size_t undo_changes = input::kDefaultUndoChanges,
-                        std::size_t undo_entries = input::kDefaultUndoEntries);
+                        std::size_t undo_changes = session::kDefaultUndoChanges,
+                        std::size_t undo_entries = session::kDefaultUndoEntries);
   ModelSession(const ModelSession&) = delete;
   ModelSession& operator=(const ModelSession&) = delete;
 
   mesh::Mesh& mesh() { return model_.buffer->mesh(); }
-  input::SculptSession& session() { return *session_; }
+  session::SculptSession& session() { return *session_; }
 
  private:
   meshio::ObjMesh model_;
   std::vector<float> lx_, ly_, lz_, w1_, w2_;
   std::vector<std::uint32_t> plan_indices_;
-  std::vector<input::VertexChange> changes_;
-  std::vector<input::UndoEntry> entries_;
+  std::vector<session::VertexChange> changes_;
+  std::vector<session::UndoEntry> entries_;
   meshio::RefinerBuffer refiner_;
-  std::vector<input::TriangleChange> triangles_;
-  std::unique_ptr<input::SculptSession> session_;
+  std::vector<session::TriangleChange> triangles_;
+  std::unique_ptr<session::SculptSession> session_;
 };
 
 }  // namespace twister::cli

@@ -14,7 +14,7 @@
 #include "cli_exit.hpp"
 #include "cli_log.hpp"
 #include "model_session.hpp"
-#include "twister/input/sculpt_session.hpp"
+#include "twister/session/sculpt_session.hpp"
 #include "twister/journal/journal_reader.hpp"
 #include "twister/journal/journal_scanner.hpp"
 #include "twister/meshio/obj_file.hpp"
@@ -47,8 +47,8 @@ struct Options {
   std::string journal;
   std::string mesh_in;
   std::string mesh_out;
-  std::size_t undo_changes = input::kDefaultUndoChanges;
-  std::size_t undo_entries = input::kDefaultUndoEntries;
+  std::size_t undo_changes = session::kDefaultUndoChanges;
+  std::size_t undo_entries = session::kDefaultUndoEntries;
   std::size_t spare_vertices = 0;  // refinement's room: the station's station.spare_vertices
   bool world = false;
   bool quiet = false;
@@ -79,7 +79,7 @@ void to_world(mesh::Mesh& m, const math::Frame& pose) {
 
 // Refined commits: what they added, and a warning when the capacity stopped one (the
 // station's was larger, or the result differs from the station's).
-void report_refinement(const input::RefineStatus& r, const Options& o) {
+void report_refinement(const session::RefineStatus& r, const Options& o) {
   if (r.refined_commits == 0) return;
   std::printf("refined %llu commits, %llu vertices added\n",
               static_cast<unsigned long long>(r.refined_commits),
@@ -116,7 +116,7 @@ void refuse_corrupt(ports::Storage& storage, const Options& o) {
 void run_replay(const Options& o) {
   ModelSession model(o.mesh_in, o.spare_vertices, o.undo_changes, o.undo_entries);
   mesh::Mesh& mesh = model.mesh();
-  input::SculptSession& session = model.session();
+  session::SculptSession& session = model.session();
 
   ReadOnlyStorage storage(read_file(o.journal));
   journal::JournalReader reader(storage);
@@ -165,7 +165,7 @@ void run_replay(const Options& o) {
   if (auto saved = meshio::save_obj(o.mesh_out, mesh); !saved) {
     fail(kExitFailure, saved.error().message);
   }
-  const input::ReplayStats& st = session.replay_stats();
+  const session::ReplayStats& st = session.replay_stats();
   const math::Frame& pose = session.object_pose();
   std::printf("replayed %zu records (strokes %zu, moves %zu, undos %zu, redos %zu)\n", applied,
               st.strokes, st.moves, st.undos, st.redos);

@@ -62,11 +62,11 @@ std::vector<Edit> set_u32(std::span<const std::byte> file, std::size_t at, std::
 // A mesh triangle that the last undoable refined entry did not rewrite, moved onto the
 // first vertex that entry added: only its undo can tell (UndoHistory refuses it).
 std::vector<Edit> triangle_on_added_vertex(std::span<const std::byte> file, std::size_t triangles,
-                                           const input::UndoHistory& history) {
+                                           const session::UndoHistory& history) {
   std::size_t k = history.undo_depth();
   while (k-- > 0 && !history.entries()[k].topology) {
   }
-  const input::UndoEntry& e = history.entries()[k];
+  const session::UndoEntry& e = history.entries()[k];
   std::uint32_t t = 0;
   for (std::size_t i = 0; i < e.triangle_change_count; ++i) {
     if (history.triangle_changes()[e.first_triangle_change + i].index == t) {
@@ -74,7 +74,7 @@ std::vector<Edit> triangle_on_added_vertex(std::span<const std::byte> file, std:
       i = std::size_t(-1);  // again from the first
     }
   }
-  return set_u32(file, triangles + input::kCheckpointTriangleBytes * t, e.vertices_before);
+  return set_u32(file, triangles + checkpoint::kCheckpointTriangleBytes * t, e.vertices_before);
 }
 
 Seed raw(std::span<const std::byte> bytes) {
@@ -83,9 +83,10 @@ Seed raw(std::span<const std::byte> bytes) {
   return s;
 }
 
-std::map<std::string, Seed> seeds(std::span<const std::byte> file, const input::CheckpointHeader& h,
-                                  const input::UndoHistory& history) {
-  using namespace input;
+std::map<std::string, Seed> seeds(std::span<const std::byte> file, const checkpoint::CheckpointHeader& h,
+                                  const session::UndoHistory& history) {
+  using namespace checkpoint;
+  using session::UndoEntry;
   const std::size_t positions = kCheckpointHeaderBytes;
   const std::size_t triangles = positions + std::size_t{12} * h.vertex_count;
   const std::size_t entries = triangles + kCheckpointTriangleBytes * h.triangle_count;
@@ -141,7 +142,7 @@ int main(int argc, char** argv) {
   const Session* source = write_checkpoint(mesh, sink);
   test::FakeStorageWithStorage<1 << 16> file;
   file.load(sink.bytes());
-  const auto header = input::read_checkpoint_header(file);
+  const auto header = checkpoint::read_checkpoint_header(file);
   if (source == nullptr || !header.ok() || header->entry_count < 2 ||
       !source->history().entries().back().topology ||
       source->history().entries()[header->entry_count - 2].topology) {

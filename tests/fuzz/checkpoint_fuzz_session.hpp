@@ -12,8 +12,8 @@
 #include <new>
 
 #include "fakes/fake_file_sink.hpp"
-#include "twister/input/sculpt_session.hpp"
-#include "twister/input/session_checkpoint.hpp"
+#include "twister/session/sculpt_session.hpp"
+#include "twister/checkpoint/session_checkpoint.hpp"
 
 namespace twister::fuzz_support {
 
@@ -22,9 +22,9 @@ inline constexpr std::size_t kSpare = 96;
 inline constexpr std::size_t kVertices = kGrid * kGrid + kSpare;
 inline constexpr std::size_t kTriangles = 2 * (kGrid - 1) * (kGrid - 1) + 2 * kSpare;
 using Mesh = mesh::MeshWithStorage<kVertices, kTriangles>;
-using Session = input::SculptSessionWithStorage<kVertices, kVertices, 512, 8, kTriangles>;
+using Session = session::SculptSessionWithStorage<kVertices, kVertices, 512, 8, kTriangles>;
 using Sink = test::FakeFileSinkWithStorage<1 << 16>;
-inline constexpr input::CheckpointAnchor kAnchor{8, 5, 0};
+inline constexpr checkpoint::CheckpointAnchor kAnchor{8, 5, 0};
 inline constexpr std::uint64_t kBaseChecksum = 7;
 
 // 9 x 9 vertices over [-1, 1]^2 at z = 0, two triangles per cell.
@@ -48,7 +48,7 @@ inline void make_grid(mesh::Mesh& m) {
 inline Session& fresh_session(mesh::Mesh& mesh) {
   alignas(Session) static std::byte memory[sizeof(Session)];
   static Session* session = nullptr;
-  static const input::SculptSessionConfig config;
+  static const session::SculptSessionConfig config;
   if (session != nullptr) session->~Session();
   make_grid(mesh);
   session = new (memory) Session(config, mesh, nullptr);
@@ -94,7 +94,7 @@ inline const Session* write_checkpoint(mesh::Mesh& mesh, Sink& sink) {
   Session& source = fresh_session(mesh);
   sculpt(source);
   sink = Sink();
-  input::CheckpointWriter writer(&sink);
+  checkpoint::CheckpointWriter writer(&sink);
   if (!writer.begin(source, kAnchor, kBaseChecksum).ok()) return nullptr;
   const auto done = writer.step(source, 1 << 20);
   return done.ok() && *done ? &source : nullptr;

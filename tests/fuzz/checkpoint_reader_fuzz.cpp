@@ -78,12 +78,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   Session& target = fresh_session(mesh);
   const std::uint64_t before = mesh.checksum();
-  const auto header = input::read_checkpoint_header(file);
+  const auto header = checkpoint::read_checkpoint_header(file);
   if (!header.ok()) return 0;
-  const Status verified = input::verify_checkpoint(file, *header, target);
+  const Status verified = checkpoint::verify_checkpoint(file, *header, target);
   check(mesh.checksum() == before);
   if (!verified.ok()) return 0;
-  check(input::restore_checkpoint(file, *header, target).ok());
+  check(checkpoint::restore_checkpoint(file, *header, target).ok());
   check(sound(mesh));
   // Undo until the restored history is empty (at most its 8 entries), then redo it
   // all. The harness calls only out-of-line session functions: core is built without

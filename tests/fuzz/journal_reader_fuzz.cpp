@@ -13,10 +13,10 @@
 #include <span>
 
 #include "fakes/fake_storage.hpp"
-#include "twister/input/sculpt_session.hpp"
 #include "twister/journal/journal_format.hpp"
 #include "twister/journal/journal_reader.hpp"
 #include "twister/journal/journal_record.hpp"
+#include "twister/session/sculpt_session.hpp"
 
 namespace {
 
@@ -24,7 +24,7 @@ using namespace twister;
 
 constexpr std::size_t kMaxInput = 1 << 16;
 using Storage = test::FakeStorageWithStorage<kMaxInput>;
-using Session = input::SculptSessionWithStorage<256, 256, 1024, 8>;
+using Session = session::SculptSessionWithStorage<256, 256, 1024, 8>;
 
 void check(bool ok) {
   if (!ok) std::abort();
@@ -56,7 +56,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (size > kMaxInput) return 0;
   static Storage storage;
   static mesh::MeshWithStorage<256, 256> mesh;
-  static input::SculptSessionConfig config;
+  static session::SculptSessionConfig config;
   storage.load(std::as_bytes(std::span(data, size)));
   make_grid(mesh);
   static Session* session = nullptr;

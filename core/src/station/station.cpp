@@ -17,7 +17,7 @@ math::Frame to_frame(const tracker::TrackedFrame& f) {
 }  // namespace
 
 Station::Station(ports::ByteStream& tracker, ports::ButtonSource& buttons, ports::Clock& clock,
-                 ports::Storage& storage, mesh::Mesh& mesh, input::SculptStorage work,
+                 ports::Storage& storage, mesh::Mesh& mesh, session::SculptStorage work,
                  const StationConfig& config, StationFiles files)
     : buttons_(buttons),
       clock_(clock),
@@ -111,9 +111,9 @@ Status Station::poll() {
     // invalid_argument: not orthonormal; the session then treats the hand as lost.
     if (!sculpt_.set_hand(h, valid, to_frame(hands_[h].pose)).ok()) ++counters_.pose_errors;
   }
-  const input::SessionEvents events = sculpt_.step(now_us);
+  const session::SessionEvents events = sculpt_.step(now_us);
   counters_.session_events_dropped += events.dropped();
-  for (const input::SessionEvent& e : events.items()) report(e, now_us);
+  for (const session::SessionEvent& e : events.items()) report(e, now_us);
   checkpoint_step();
   if (now_us - rate_window_us_ >= 1'000'000) {
     const double seconds = static_cast<double>(now_us - rate_window_us_) / 1e6;
@@ -135,10 +135,10 @@ StationStatus Station::status() const {
   }
   s.strokes_committed = counters_.strokes_committed;
   s.strokes_not_saved = counters_.strokes_not_saved;
-  const input::SessionState& state = sculpt_.state();
+  const session::SessionState& state = sculpt_.state();
   s.method = state.method;
   for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
-    const input::HandView& v = state.hands[h];
+    const session::HandView& v = state.hands[h];
     if (v.in_stroke && !v.engaged) s.clutch |= static_cast<std::uint8_t>(1u << h);
     if (v.in_stroke)
       s.turned_rad = std::max(s.turned_rad, static_cast<float>(std::abs(v.turn_rad)));
@@ -148,8 +148,8 @@ StationStatus Station::status() const {
   return s;
 }
 
-void Station::report(const input::SessionEvent& e, ports::TimestampUs now_us) {
-  using K = input::SessionEventKind;
+void Station::report(const session::SessionEvent& e, ports::TimestampUs now_us) {
+  using K = session::SessionEventKind;
   const auto reason = static_cast<std::uint64_t>(e.reason);
   switch (e.kind) {
     case K::grab_begin:
@@ -184,8 +184,8 @@ void Station::report(const input::SessionEvent& e, ports::TimestampUs now_us) {
   }
 }
 
-void Station::report_sculpt(const input::SessionEvent& e, ports::TimestampUs now_us) {
-  using K = input::SessionEventKind;
+void Station::report_sculpt(const session::SessionEvent& e, ports::TimestampUs now_us) {
+  using K = session::SessionEventKind;
   StationEvent out{StationEventKind::radius_set, e.hand, e.sequence, 0, e.status, now_us, e.value};
   switch (e.kind) {
     case K::radius_set:
@@ -257,9 +257,9 @@ Result<StationEvent> Station::next_event() {
 void Station::stop() {
   if (!started_) return;
   const ports::TimestampUs now_us = clock_.now_us();
-  const input::SessionEvents events = sculpt_.cancel_open();
-  for (const input::SessionEvent& e : events.items()) {
-    if (e.kind != input::SessionEventKind::cancelled) continue;
+  const session::SessionEvents events = sculpt_.cancel_open();
+  for (const session::SessionEvent& e : events.items()) {
+    if (e.kind != session::SessionEventKind::cancelled) continue;
     ++counters_.strokes_cancelled;
     push_event({StationEventKind::stroke_cancelled, e.hand, 0,
                 static_cast<std::uint64_t>(input::Reason::none), ok_status(), now_us});

@@ -9,7 +9,7 @@
 namespace twister::station {
 
 Status Station::begin_checkpoint() {
-  const input::CheckpointAnchor anchor{writer_.size(), journal_records(), writer_.last_crc()};
+  const checkpoint::CheckpointAnchor anchor{writer_.size(), journal_records(), writer_.last_crc()};
   return checkpoint_.begin(sculpt_, anchor, base_checksum_);
 }
 
@@ -58,11 +58,11 @@ void Station::final_checkpoint() {
 }
 
 void Station::checkpoint_written() {
-  const input::CheckpointHeader& h = checkpoint_.header();
+  const checkpoint::CheckpointHeader& h = checkpoint_.header();
   records_at_checkpoint_ = h.journal_records;
   ++counters_.checkpoints_written;
   push_event({StationEventKind::checkpoint_written, 0,
-              static_cast<std::uint32_t>(h.journal_records), input::checkpoint_bytes(h),
+              static_cast<std::uint32_t>(h.journal_records), checkpoint::checkpoint_bytes(h),
               ok_status(), clock_.now_us()});
 }
 

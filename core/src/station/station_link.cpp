@@ -29,7 +29,7 @@ StationLink::StationLink(ports::LinkPort& port, StationLinkStorage storage,
       shadow_(storage.x, storage.y, storage.z, storage.triangle_indices),
       out_(storage.out) {}
 
-Status StationLink::start(const input::SculptSession& session) {
+Status StationLink::start(const session::SculptSession& session) {
   if (out_.size() < 4 * link::kMaxFrameBytes) return StatusCode::resource_exhausted;
   TWISTER_TRY(shadow_.copy_from(session.mesh()));
   version_ = 1;
@@ -38,7 +38,7 @@ Status StationLink::start(const input::SculptSession& session) {
   return ok_status();
 }
 
-void StationLink::poll(const input::SculptSession& session, const StationStatus& status,
+void StationLink::poll(const session::SculptSession& session, const StationStatus& status,
                        ports::TimestampUs now_us) {
   if (!started_) return;
   receive(now_us);
@@ -185,21 +185,21 @@ void StationLink::on_display_message(const link::LinkMessage& m) {
   }
 }
 
-input::SessionCommand session_command(const link::Command& c) {
-  input::SessionCommand out;
+session::SessionCommand session_command(const link::Command& c) {
+  session::SessionCommand out;
   out.hand = 0;  // a display's command belongs to no hand
   switch (c.kind) {
     case link::CommandKind::undo:
-      out.kind = input::SessionCommandKind::undo;
+      out.kind = session::SessionCommandKind::undo;
       break;
     case link::CommandKind::redo:
-      out.kind = input::SessionCommandKind::redo;
+      out.kind = session::SessionCommandKind::redo;
       break;
     case link::CommandKind::next_method:
-      out.kind = input::SessionCommandKind::next_method;
+      out.kind = session::SessionCommandKind::next_method;
       break;
     case link::CommandKind::set_method:
-      out.kind = input::SessionCommandKind::set_method;
+      out.kind = session::SessionCommandKind::set_method;
       out.method = static_cast<math::WarpMethod>(c.method);
       break;
   }

@@ -37,9 +37,9 @@ std::uint8_t button_bits(const input::HandButtons& b) {
 
 }  // namespace
 
-void StationLink::send_live(const input::SculptSession& session, const StationStatus& status,
+void StationLink::send_live(const session::SculptSession& session, const StationStatus& status,
                             ports::TimestampUs now_us) {
-  const input::LiveWarp live = session.live();
+  const session::LiveWarp live = session.live();
   const bool active = live.active && live.plan != nullptr && live.plan->built();
   if (active) {
     bool new_segment = !live_was_active_;
@@ -56,13 +56,13 @@ void StationLink::send_live(const input::SculptSession& session, const StationSt
   send_object(session);
   // At the tracker rate: a new pose changes the update; an unchanged one is not sent.
   if (!hands_sent_ || now_us - last_live_us_ >= config_.live_interval_us) {
-    send_hands(session, active ? live : input::LiveWarp{});
+    send_hands(session, active ? live : session::LiveWarp{});
     last_live_us_ = now_us;
   }
   send_status(session, status, now_us);
 }
 
-void StationLink::send_stroke(const input::LiveWarp& live, ports::TimestampUs now_us) {
+void StationLink::send_stroke(const session::LiveWarp& live, ports::TimestampUs now_us) {
   const math::WarpPlan& plan = *live.plan;
   link::StrokeBegin& s = scratch_.stroke;
   scratch_.type = link::MessageType::stroke;
@@ -80,7 +80,7 @@ void StationLink::send_stroke(const input::LiveWarp& live, ports::TimestampUs no
   if (queue_urgent(scratch_)) last_stroke_us_ = now_us;
 }
 
-void StationLink::send_hands(const input::SculptSession& session, const input::LiveWarp& live) {
+void StationLink::send_hands(const session::SculptSession& session, const session::LiveWarp& live) {
   link::Hands l;
   l.stroke = static_cast<std::uint16_t>(stroke_);
   l.radius_m = session.radius_m();
@@ -118,7 +118,7 @@ void StationLink::send_hands(const input::SculptSession& session, const input::L
   hands_sent_ = true;
 }
 
-void StationLink::send_object(const input::SculptSession& session) {
+void StationLink::send_object(const session::SculptSession& session) {
   const math::Frame& pose = session.object_pose();
   if (object_sent_valid_ && same_frame(pose, object_sent_)) return;
   scratch_.type = link::MessageType::object;
@@ -128,7 +128,7 @@ void StationLink::send_object(const input::SculptSession& session) {
   object_sent_valid_ = true;
 }
 
-void StationLink::send_status(const input::SculptSession& session, const StationStatus& status,
+void StationLink::send_status(const session::SculptSession& session, const StationStatus& status,
                               ports::TimestampUs now_us) {
   link::StatusReport s;
   const mesh::Mesh& mesh = session.mesh();

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <array>
 
-#include "twister/input/session_checkpoint.hpp"
+#include "twister/checkpoint/session_checkpoint.hpp"
 #include "twister/journal/journal_reader.hpp"
 #include "twister/station/station.hpp"
 
@@ -50,9 +50,9 @@ Status Station::recover() {
   recovery_ = {};
   base_checksum_ = sculpt_.mesh().checksum();
   // The checkpoint's anchor is checked against the journal in the same scan.
-  Result<input::CheckpointHeader> header = StatusCode::unavailable;
+  Result<checkpoint::CheckpointHeader> header = StatusCode::unavailable;
   if (files_.checkpoint_in != nullptr)
-    header = input::read_checkpoint_header(*files_.checkpoint_in);
+    header = checkpoint::read_checkpoint_header(*files_.checkpoint_in);
   if (files_.checkpoint_in != nullptr && !header.ok()) {
     recovery_.checkpoint = JournalRecovery::Checkpoint::damaged;
   }
@@ -142,11 +142,11 @@ const char* checkpoint_use_name(JournalRecovery::Checkpoint use) {
   return "unknown";
 }
 
-Status Station::use_checkpoint(const input::CheckpointHeader& h,
+Status Station::use_checkpoint(const checkpoint::CheckpointHeader& h,
                                const journal::JournalSurvey& survey) {
   using C = JournalRecovery::Checkpoint;
   ports::Storage& file = *files_.checkpoint_in;
-  const input::UndoHistory& history = sculpt_.history();
+  const session::UndoHistory& history = sculpt_.history();
   const mesh::Mesh& m = sculpt_.mesh();
   if (h.base_checksum != base_checksum_ || h.change_capacity != history.change_capacity() ||
       h.entry_capacity != history.entry_capacity() ||
@@ -171,12 +171,12 @@ Status Station::use_checkpoint(const input::CheckpointHeader& h,
     recovery_.checkpoint = C::other_journal;
     return ok_status();
   }
-  if (!input::verify_checkpoint(file, h, sculpt_).ok()) {
+  if (!checkpoint::verify_checkpoint(file, h, sculpt_).ok()) {
     recovery_.checkpoint = C::damaged;
     return ok_status();
   }
   // Verified: from here a failure leaves the model half written, so start-up fails.
-  TWISTER_TRY(input::restore_checkpoint(file, h, sculpt_));
+  TWISTER_TRY(checkpoint::restore_checkpoint(file, h, sculpt_));
   recovery_.checkpoint = C::used;
   recovery_.checkpoint_records = h.journal_records;
   return ok_status();

@@ -20,7 +20,7 @@
 namespace twister::link {
 namespace {
 
-using input::test_support::Station;
+using session::test_support::Station;
 
 // A listening transport: the admitted peer's wire and a newcomer's wire.
 class FakeListener final : public ports::LinkPort, public ports::LinkNewcomers {

@@ -11,8 +11,8 @@
 namespace twister::link {
 namespace {
 
-using input::test_support::kGrab0;
-using input::test_support::Station;
+using session::test_support::kGrab0;
+using session::test_support::Station;
 using station::StationLink;
 using station::StationLinkConfig;
 using station::StationLinkStorage;
@@ -97,7 +97,7 @@ TEST(StationLink, FullMeshOnHelloThenCommitWithChecksumAndNoHeapInPoll) {
   (void)s.tick();
   std::size_t live = 0;
   for (int k = 1; k <= 5; ++k) {
-    s.hand(0, input::test_support::z_turn({0, 0, 0.05 * k}, 0.1 * k));
+    s.hand(0, session::test_support::z_turn({0, 0, 0.05 * k}, 0.1 * k));
     (void)s.tick();
     EXPECT_NO_ALLOCATIONS(r.poll());
     live += count(r.bridge_receive(), MessageType::hands);
@@ -156,7 +156,7 @@ TEST(StationLink, SlowPeerDropsLiveFramesButNeverHalfACommit) {
   s.button(kGrab0, true);
   (void)s.tick();
   for (int k = 1; k <= 2000; ++k) {
-    s.hand(0, input::test_support::z_turn({0, 0, 0.0002 * k}, 0.0002 * k));
+    s.hand(0, session::test_support::z_turn({0, 0, 0.0002 * k}, 0.0002 * k));
     (void)s.tick();
     r.poll();
   }

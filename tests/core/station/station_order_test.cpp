@@ -23,7 +23,7 @@ namespace twister::station {
 namespace {
 
 using Mesh = mesh::MeshWithStorage<64, 128>;
-using Work = input::SculptStorageArrays<64, 64, 256, 8>;
+using Work = session::SculptStorageArrays<64, 64, 256, 8>;
 using Bytes = std::vector<std::byte>;
 
 journal::JournalRecord move(std::uint32_t sequence) {

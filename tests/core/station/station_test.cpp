@@ -124,7 +124,7 @@ void make_grid(mesh::Mesh& m) {
 }
 
 using TestMesh = mesh::MeshWithStorage<kGridN * kGridN, 2 * kGridN * kGridN>;
-using TestWork = input::SculptStorageArrays<kGridN * kGridN, kGridN * kGridN, 8192, 16>;
+using TestWork = session::SculptStorageArrays<kGridN * kGridN, kGridN * kGridN, 8192, 16>;
 
 class StationTest : public ::testing::Test {
  protected:

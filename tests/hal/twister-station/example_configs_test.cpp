@@ -93,7 +93,7 @@ std::string describe(const Binding& b) {
 // 21 x 21 vertices around the simulator's resting hands (station frame, metres).
 constexpr std::size_t kGridN = 21;
 using TestMesh = mesh::MeshWithStorage<kGridN * kGridN, 2 * kGridN * kGridN>;
-using TestWork = input::SculptStorageArrays<kGridN * kGridN, kGridN * kGridN, 8192, 16>;
+using TestWork = session::SculptStorageArrays<kGridN * kGridN, kGridN * kGridN, 8192, 16>;
 
 void make_grid(mesh::Mesh& m) {
   for (std::size_t j = 0; j < kGridN; ++j) {
@@ -172,7 +172,7 @@ class SimStation {
     }
   }
   void run(double until_s) {
-    run(until_s, [](double, const input::SessionState&) {});
+    run(until_s, [](double, const session::SessionState&) {});
   }
   double seconds() const { return static_cast<double>(backends_.clock->now_us()) / 1e6 - 1.0; }
   // Events of `kind` (of `hand`) between `from_s` and `to_s` scenario time.
@@ -250,7 +250,7 @@ void check_example(const std::string& name) {
   }
   SimStation s(parsed.config, presses, t);
   std::map<std::pair<std::size_t, std::string>, bool> seen;  // slot, state flag
-  s.run(t, [&](double now, const input::SessionState& st) {
+  s.run(t, [&](double now, const session::SessionState& st) {
     for (std::size_t i = 0; i < slots.size(); ++i) {
       const double at = slots[i].second;
       if (now < at + 0.5 || now > at + 0.8) continue;
@@ -332,7 +332,7 @@ TEST(ExampleConfigs, TheStationHoldsAtTheTurnLimitAndSaysSo) {
   SimStation s(parsed.config, {{3.0, {3}, 3.0}}, 7.0,
                "key 3.3 2 14 4 5 0 0 0\nkey 5.5 2 14 4 5 350 0 0\n");
   double most = 0.0;
-  s.run(7.0, [&](double, const input::SessionState& st) {
+  s.run(7.0, [&](double, const session::SessionState& st) {
     if (st.hands[1].in_stroke) most = std::max(most, st.hands[1].turn_rad);
   });
   ASSERT_EQ(s.count(StationEventKind::turn_limit_reached, 1, 3, 7), 1u);

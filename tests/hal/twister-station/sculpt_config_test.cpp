@@ -257,14 +257,14 @@ redo = [4, 5, 3]
   ASSERT_TRUE(r.ok()) << messages(r);
   const auto setup = make_station_setup(r.config);
   ASSERT_TRUE(setup) << setup.error().message;
-  const input::SculptSessionConfig& c = setup->sculpt;
+  const session::SculptSessionConfig& c = setup->sculpt;
   EXPECT_EQ(c.method, math::WarpMethod::rottran);
   EXPECT_FLOAT_EQ(c.interaction.initial_radius_m, 0.4f);
   EXPECT_FLOAT_EQ(c.interaction.radius_min_m, 0.1f);
   EXPECT_FLOAT_EQ(c.interaction.radius_max_m, 0.9f);
   EXPECT_FALSE(c.interaction.radius_gesture);
   EXPECT_EQ(c.interaction.lost_timeout_us, 800'000);
-  EXPECT_EQ(c.turns.tracking, input::TurnTracking::minimal);
+  EXPECT_EQ(c.turns.tracking, session::TurnTracking::minimal);
   EXPECT_NEAR(c.turns.limit_rad, 270.0 * std::acos(-1.0) / 180.0, 1e-12);
   EXPECT_EQ(c.buttons.binding(0).role, input::ButtonRole::grab);
   EXPECT_EQ(c.buttons.binding(1).role, input::ButtonRole::method_cycle);

@@ -13,7 +13,7 @@
 
 #include "twister/hal/logger.hpp"
 #include "twister/input/interaction_machine.hpp"
-#include "twister/input/session_command.hpp"
+#include "twister/session/session_command.hpp"
 
 namespace twister::station_app {
 namespace {
@@ -103,7 +103,7 @@ TEST(StationLog, TheSculptorsActions) {
 
   e = {};
   e.kind = StationEventKind::command_refused;
-  e.value = static_cast<std::uint64_t>(input::SessionCommandKind::redo);
+  e.value = static_cast<std::uint64_t>(session::SessionCommandKind::redo);
   e.detail = static_cast<std::uint8_t>(input::Reason::nothing_to_redo);
   l = line_of(e);
   EXPECT_EQ(l.level, LogLevel::notice);

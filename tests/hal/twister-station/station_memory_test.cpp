@@ -24,28 +24,28 @@ namespace fs = std::filesystem;
 
 TEST(StationMemory, TheArenaIsExactlyTheFormula) {
   // The documented sizes of one undo step's parts.
-  EXPECT_EQ(sizeof(input::VertexChange), 28u);
-  EXPECT_EQ(sizeof(input::UndoEntry), 248u);
+  EXPECT_EQ(sizeof(session::VertexChange), 28u);
+  EXPECT_EQ(sizeof(session::UndoEntry), 248u);
   for (const std::size_t v :
        {std::size_t{1}, std::size_t{266}, std::size_t{10'000}, std::size_t{1'000'000}}) {
     const MemoryBudget b = memory_budget(v, 2 * v);
     EXPECT_EQ(b.mesh, 12 * v + 12 * 2 * v);
     EXPECT_EQ(b.live, 12 * v);
     EXPECT_EQ(b.plan, 12 * v);
-    EXPECT_EQ(b.undo, input::kDefaultUndoChanges * 28 + input::kDefaultUndoEntries * 248);
+    EXPECT_EQ(b.undo, session::kDefaultUndoChanges * 28 + session::kDefaultUndoEntries * 248);
     WorkMemory work(v);
     EXPECT_EQ(b.normals, 12 * v);
     EXPECT_EQ(b.refine, 0u);  // refinement off
     EXPECT_EQ(
-        memory_budget(v, 2 * v, input::kDefaultUndoChanges, input::kDefaultUndoEntries, false, true)
+        memory_budget(v, 2 * v, session::kDefaultUndoChanges, session::kDefaultUndoEntries, false, true)
             .refine,
-        32 * v + 32 * 2 * v + input::kDefaultUndoTriangleChanges * 28);
+        32 * v + 32 * 2 * v + session::kDefaultUndoTriangleChanges * 28);
     EXPECT_EQ(work.arena_bytes(), b.live + b.plan + b.undo + b.normals);
-    const input::SculptStorage s = work.storage();
+    const session::SculptStorage s = work.storage();
     EXPECT_EQ(s.live_x.size(), v);
     EXPECT_EQ(s.plan.indices.size(), v);
-    EXPECT_EQ(s.undo_changes.size(), input::kDefaultUndoChanges);
-    EXPECT_EQ(s.undo_entries.size(), input::kDefaultUndoEntries);
+    EXPECT_EQ(s.undo_changes.size(), session::kDefaultUndoChanges);
+    EXPECT_EQ(s.undo_entries.size(), session::kDefaultUndoEntries);
     // The spans lie in the arena, one after the other, without overlap.
     const auto* lo = reinterpret_cast<const std::byte*>(s.undo_entries.data());
     const auto* hi = reinterpret_cast<const std::byte*>(s.normals.z.data() + v);
@@ -105,8 +105,8 @@ TEST(StationMemory, AMillionVerticesPeakWithinTheBudgetAndUnder256MB) {
   const std::size_t v = meshio::sphere_vertices(kRings, kSegments);
   const std::size_t t = meshio::sphere_triangles(kRings, kSegments);
   const double budget = static_cast<double>(memory_budget(v, t).total()) / (1 << 20);
-  const double budget_link = static_cast<double>(memory_budget(v, t, input::kDefaultUndoChanges,
-                                                               input::kDefaultUndoEntries, true)
+  const double budget_link = static_cast<double>(memory_budget(v, t, session::kDefaultUndoChanges,
+                                                               session::kDefaultUndoEntries, true)
                                                      .total()) /
                              (1 << 20);
   // A stroke on all of the model, its journal record and the final checkpoint.

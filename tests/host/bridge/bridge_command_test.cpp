@@ -75,12 +75,12 @@ TEST(BridgeCommand, UndoKeyUndoesTheStrokeOnTheStationAndTheDisplayFollows) {
 }
 
 TEST(BridgeCommand, EachLinkCommandMapsToItsSessionCommand) {
-  using input::SessionCommandKind;
+  using session::SessionCommandKind;
   EXPECT_EQ(station::session_command({link::CommandKind::undo, 0}).kind, SessionCommandKind::undo);
   EXPECT_EQ(station::session_command({link::CommandKind::redo, 0}).kind, SessionCommandKind::redo);
   EXPECT_EQ(station::session_command({link::CommandKind::next_method, 0}).kind,
             SessionCommandKind::next_method);
-  const input::SessionCommand set = station::session_command({link::CommandKind::set_method, 2});
+  const session::SessionCommand set = station::session_command({link::CommandKind::set_method, 2});
   EXPECT_EQ(set.kind, SessionCommandKind::set_method);
   EXPECT_EQ(set.method, math::WarpMethod::scodef);
 }

@@ -20,10 +20,10 @@ namespace {
 
 using test_support::warp_difference;
 
-using input::test_support::kGrab1;
-using input::test_support::kMove0;
-using input::test_support::kRadius0;
-using input::test_support::Station;
+using session::test_support::kGrab1;
+using session::test_support::kMove0;
+using session::test_support::kRadius0;
+using session::test_support::Station;
 
 struct Rig : test_support::BridgeLinkRig {
   Rig() : BridgeLinkRig(null_log) {}
@@ -40,10 +40,10 @@ TEST(BridgeDisplay, StationWarpEqualsBridgeWarpForOneAndTwoHands) {
   Station& s = r.station;
   s.hand(0, math::identity_frame({-0.5, 0, 0}));
   s.hand(1, math::identity_frame({0.5, 0, 0}));
-  s.button(input::test_support::kGrab0, true);
+  s.button(session::test_support::kGrab0, true);
   r.step();
   for (int k = 1; k <= 4; ++k) {
-    s.hand(0, input::test_support::z_turn({-0.5, 0.02 * k, 0.05 * k}, 0.3 * k));
+    s.hand(0, session::test_support::z_turn({-0.5, 0.02 * k, 0.05 * k}, 0.3 * k));
     r.step();
     const double d = warp_difference(r);
     EXPECT_GE(d, 0.0);
@@ -52,8 +52,8 @@ TEST(BridgeDisplay, StationWarpEqualsBridgeWarpForOneAndTwoHands) {
   s.button(kGrab1, true);  // the second hand joins: a two-hand segment
   r.step();
   for (int k = 1; k <= 4; ++k) {
-    s.hand(0, input::test_support::z_turn({-0.5 - 0.03 * k, 0.1, 0.2}, 1.2 + 0.2 * k));
-    s.hand(1, input::test_support::z_turn({0.5 + 0.03 * k, 0.0, -0.05 * k}, -0.25 * k));
+    s.hand(0, session::test_support::z_turn({-0.5 - 0.03 * k, 0.1, 0.2}, 1.2 + 0.2 * k));
+    s.hand(1, session::test_support::z_turn({0.5 + 0.03 * k, 0.0, -0.05 * k}, -0.25 * k));
     r.step();
     const double d = warp_difference(r);
     EXPECT_GE(d, 0.0);
@@ -72,10 +72,10 @@ TEST(BridgeDisplay, StationWarpEqualsBridgeWarpAtAHalfTurnInEitherSense) {
     Station& s = r.station;
     const glm::dvec3 grab(0.0, 0.0, 0.0);
     s.hand(0, math::identity_frame(grab));
-    s.button(input::test_support::kGrab0, true);
+    s.button(session::test_support::kGrab0, true);
     r.step();
     for (const double a : {0.5, 0.9, 0.99, 0.999999, 1.0}) {
-      s.hand(0, input::test_support::z_turn(grab, sense * a * std::numbers::pi));
+      s.hand(0, session::test_support::z_turn(grab, sense * a * std::numbers::pi));
       r.step();
       const double d = warp_difference(r);
       ASSERT_GE(d, 0.0);
@@ -93,7 +93,7 @@ TEST(BridgeDisplay, LiveScrewKeepsTheStationsSenseThroughFloatRounding) {
   for (const double eps : {1e-4, 1e-7, 1e-9, 1e-12, 0.0}) {
     for (const double sense : {1.0, -1.0}) {
       const math::Frame end =
-          input::test_support::z_turn({0.15, 0.25, 0.3}, sense * (std::numbers::pi - eps));
+          session::test_support::z_turn({0.15, 0.25, 0.3}, sense * (std::numbers::pi - eps));
       const math::Screw station = math::compute_screw(start, end, glm::dvec3(0, 0, sense));
       const link::CompactPose sample = link::to_live_compact(start, end, station);
       const math::Frame rebuilt = link::live_end_frame(start, sample);
@@ -110,7 +110,7 @@ TEST(BridgeDisplay, ReplicaShowsHandsButtonsRadiusObjectAndStatusWithoutAGrab) {
   Rig r;
   r.run();
   Station& s = r.station;
-  const math::Frame pose = input::test_support::z_turn({0.3, -0.2, 0.1}, 0.4);
+  const math::Frame pose = session::test_support::z_turn({0.3, -0.2, 0.1}, 0.4);
   s.hand(0, pose);
   s.button(kRadius0, true);
   r.step();
@@ -128,7 +128,7 @@ TEST(BridgeDisplay, ReplicaShowsHandsButtonsRadiusObjectAndStatusWithoutAGrab) {
   // The hand moves without grabbing: updates at the tracker rate.
   const std::uint64_t before = rep.counters().live_frames;
   for (int k = 1; k <= 5; ++k) {
-    s.hand(0, input::test_support::z_turn({0.3, -0.2 + 0.01 * k, 0.1}, 0.4));
+    s.hand(0, session::test_support::z_turn({0.3, -0.2 + 0.01 * k, 0.1}, 0.4));
     r.step();
   }
   EXPECT_EQ(rep.counters().live_frames - before, 5u);
@@ -137,7 +137,7 @@ TEST(BridgeDisplay, ReplicaShowsHandsButtonsRadiusObjectAndStatusWithoutAGrab) {
   s.button(kRadius0, false);
   s.button(kMove0, true);
   r.step();
-  s.hand(0, input::test_support::z_turn({0.35, -0.1, 0.2}, 0.7));
+  s.hand(0, session::test_support::z_turn({0.35, -0.1, 0.2}, 0.7));
   r.step();
   s.button(kMove0, false);
   r.step();

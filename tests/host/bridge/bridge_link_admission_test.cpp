@@ -25,7 +25,7 @@
 namespace twister::bridge {
 namespace {
 
-using input::test_support::Station;
+using session::test_support::Station;
 
 hal::LinkKey key_of(std::uint8_t seed) {
   hal::LinkKey k{};
@@ -133,11 +133,11 @@ TEST(LinkAdmission, UnauthenticatedTcpClientsCannotDisplaceTheDisplay) {
   EXPECT_GE(s.link->counters().newcomers, 10u);
   // The display still gets the station's commits.
   s.station.hand(0, math::identity_frame({0, 0, 0}));
-  s.station.button(input::test_support::kGrab0, true);
+  s.station.button(session::test_support::kGrab0, true);
   (void)s.station.tick();
-  s.station.hand(0, input::test_support::z_turn({0.1, 0, 0.1}, 0.3));
+  s.station.hand(0, session::test_support::z_turn({0.1, 0, 0.1}, 0.3));
   (void)s.station.tick();
-  s.station.button(input::test_support::kGrab0, false);
+  s.station.button(session::test_support::kGrab0, false);
   (void)s.station.tick();
   EXPECT_TRUE(run(s, {&good}, 3000,
                   [&] { return good.app->replica().checksum() == s.station.mesh.checksum(); }));

@@ -16,9 +16,9 @@
 
 namespace twister::bridge::test_support {
 
-using input::test_support::kGrab0;
-using input::test_support::Station;
-using input::test_support::z_turn;
+using session::test_support::kGrab0;
+using session::test_support::Station;
+using session::test_support::z_turn;
 
 struct BridgeLinkRig {
   explicit BridgeLinkRig(ports::LogSink& log)
@@ -68,7 +68,7 @@ struct BridgeLinkRig {
 // Largest distance between the station's live positions and the bridge's CPU warp
 // over the stroke's influenced vertices; -1 when either side has no live stroke.
 inline double warp_difference(const BridgeLinkRig& r) {
-  const input::LiveWarp live = r.station.session->live();
+  const session::LiveWarp live = r.station.session->live();
   const MeshData bridge = r.bridge.replica().cpu_warp();
   if (!live.active || live.plan == nullptr || bridge.vertex_count() == 0) return -1.0;
   double worst = 0.0;

@@ -25,8 +25,8 @@ namespace {
 using test::differing;
 using test_support::warp_difference;
 
-using input::test_support::kGrab0;
-using input::test_support::z_turn;
+using session::test_support::kGrab0;
+using session::test_support::z_turn;
 
 constexpr double kPi = std::numbers::pi;
 

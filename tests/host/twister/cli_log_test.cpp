@@ -8,13 +8,13 @@
 #include <string>
 
 #include "cli_test_support.hpp"
-#include "core/input/session_harness.hpp"
+#include "core/session/session_harness.hpp"
 #include "twister/meshio/obj_file.hpp"
 
 namespace twister {
 namespace {
 
-using namespace input::test_support;
+using namespace session::test_support;
 namespace fs = std::filesystem;
 
 // `twister ARGS`: stdout, and stderr in `err_file`.

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "cli_test_support.hpp"
-#include "core/input/refine_harness.hpp"
+#include "core/session/refine_harness.hpp"
 #include "mesh_checks.hpp"
 #include "twister/meshio/mesh_generator.hpp"
 #include "twister/meshio/obj_file.hpp"
@@ -18,7 +18,7 @@
 namespace twister {
 namespace {
 
-using namespace input::test_support;
+using namespace session::test_support;
 namespace fs = std::filesystem;
 
 host_test::CommandRun run(const std::string& args) {

@@ -8,14 +8,14 @@
 #include <string>
 
 #include "cli_test_support.hpp"
-#include "core/input/session_harness.hpp"
+#include "core/session/session_harness.hpp"
 #include "twister/meshio/mesh_generator.hpp"
 #include "twister/meshio/obj_file.hpp"
 
 namespace twister {
 namespace {
 
-using namespace input::test_support;
+using namespace session::test_support;
 namespace fs = std::filesystem;
 
 // stdout and stderr of `twister ARGS`.

@@ -25,8 +25,8 @@
 #include <cstdint>
 
 #include "twister/base/result.hpp"
-#include "twister/input/sculpt_session.hpp"
-#include "twister/input/session_checkpoint.hpp"
+#include "twister/session/sculpt_session.hpp"
+#include "twister/checkpoint/session_checkpoint.hpp"
 #include "twister/journal/journal_scanner.hpp"
 #include "twister/journal/journal_writer.hpp"
 #include "twister/mesh/mesh.hpp"
@@ -54,7 +54,7 @@ struct StationConfig {
   // like any ButtonSource edge, stamped with the poll time of the record.
   std::array<std::int8_t, tracker::kMaxStations> stylus_line{-1, -1, -1, -1};
   // Debounce, button map, interaction timing, warp method.
-  input::SculptSessionConfig sculpt{};
+  session::SculptSessionConfig sculpt{};
   // A checkpoint is written once this many journal records were added since the last
   // one (and at stop); 0: only at stop. Written a chunk per poll(), while the model
   // stays unchanged (a commit meanwhile starts it over later).
@@ -144,7 +144,7 @@ class Station {
   // model (object frame); the journal's strokes are replayed onto it by start().
   // Nothing happens until start().
   Station(ports::ByteStream& tracker, ports::ButtonSource& buttons, ports::Clock& clock,
-          ports::Storage& storage, mesh::Mesh& mesh, input::SculptStorage work,
+          ports::Storage& storage, mesh::Mesh& mesh, session::SculptStorage work,
           const StationConfig& config, StationFiles files = {});
 
   // Checks and replays the journal onto the mesh, cuts a torn tail (after copying it
@@ -184,11 +184,11 @@ class Station {
 
   const StationCounters& counters() const { return counters_; }
   const tracker::FastrakSession& tracker_session() const { return session_; }
-  const input::SculptSession& sculpt() const { return sculpt_; }
+  const session::SculptSession& sculpt() const { return sculpt_; }
   // Queues a session command (undo, redo, method) for the next poll(): the path
   // of the hands' buttons, also used by the display's keys (StationLink commands).
   // Errors as SculptSession::submit().
-  Status submit(const input::SessionCommand& command) { return sculpt_.submit(command); }
+  Status submit(const session::SessionCommand& command) { return sculpt_.submit(command); }
   const mesh::Mesh& mesh() const { return sculpt_.mesh(); }
   // Records in the journal file: the ones found at start() plus every record
   // appended (and synced) since.
@@ -199,7 +199,7 @@ class Station {
   mesh::NormalColumns normals() const { return sculpt_.normals(); }
   // Refinement: on, threshold, spare capacity, how the last refined commit ended
   // (what a display shows).
-  input::RefineStatus refinement() const { return sculpt_.state().refine; }
+  session::RefineStatus refinement() const { return sculpt_.state().refine; }
   bool hand_valid(std::uint8_t hand, ports::TimestampUs now_us) const;
   // The frame last applied to `hand` (hand < kHandCount); see hand_valid().
   const tracker::TrackedFrame& hand_pose(std::uint8_t hand) const { return hands_[hand].pose; }
@@ -217,7 +217,7 @@ class Station {
   Status replay_journal(journal::JournalReader& reader);
   Status keep_torn_tail();
   // Restores files_.checkpoint_in when it fits the survey's journal and the model.
-  Status use_checkpoint(const input::CheckpointHeader& header,
+  Status use_checkpoint(const checkpoint::CheckpointHeader& header,
                         const journal::JournalSurvey& survey);
   // Checkpoints (station_checkpoint.cpp): one chunk per poll(); the final one at stop().
   void checkpoint_step();
@@ -227,9 +227,9 @@ class Station {
   void checkpoint_failed(Status s);  // counted, event (the previous one stays)
   void drain_tracker(ports::TimestampUs now_us);
   void drain_buttons(ports::TimestampUs now_us);
-  void report(const input::SessionEvent& event, ports::TimestampUs now_us);
+  void report(const session::SessionEvent& event, ports::TimestampUs now_us);
   // The sculptor's other actions (radius, clutch, turn limit, undo/redo, method).
-  void report_sculpt(const input::SessionEvent& event, ports::TimestampUs now_us);
+  void report_sculpt(const session::SessionEvent& event, ports::TimestampUs now_us);
   void push_event(const StationEvent& event);
 
   ports::ButtonSource& buttons_;
@@ -240,7 +240,7 @@ class Station {
   StationConfig config_;
   tracker::FastrakSession session_;
   journal::JournalWriter writer_;  // before sculpt_, which keeps a pointer to it
-  input::SculptSession sculpt_;
+  session::SculptSession sculpt_;
   std::array<Hand, input::kHandCount> hands_{};
   std::array<bool, tracker::kMaxStations> stylus_down_{};
   bool started_ = false;
@@ -248,7 +248,7 @@ class Station {
   std::uint64_t records_at_start_ = 0;
   std::uint64_t base_checksum_ = 0;          // the initial model's, before any record
   std::uint64_t records_at_checkpoint_ = 0;  // records the last checkpoint holds
-  input::CheckpointWriter checkpoint_;
+  checkpoint::CheckpointWriter checkpoint_;
   bool buttons_failed_ = false;
   bool was_streaming_ = false;
   StationCounters counters_{};

@@ -40,7 +40,7 @@ enum class StationEventKind : std::uint8_t {
   undone,               // undo; sequence = its record
   redone,               // redo; sequence = its record
   method_changed,       // value = the math::WarpMethod of strokes from now on
-  command_refused,      // value = input::SessionCommandKind, detail = input::Reason;
+  command_refused,      // value = session::SessionCommandKind, detail = input::Reason;
                         // status io_error: an undo/redo not saved (taken back)
   stroke_refined,       // commit `sequence` refined the mesh: value = vertices added
   refinement_stopped,   // its refinement stopped at a capacity: value = mesh::RefineStop

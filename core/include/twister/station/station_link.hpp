@@ -26,7 +26,7 @@
 #include <cstdint>
 #include <span>
 
-#include "twister/input/sculpt_session.hpp"
+#include "twister/session/sculpt_session.hpp"
 #include "twister/link/link_authenticator.hpp"
 #include "twister/link/link_codec.hpp"
 #include "twister/mesh/mesh.hpp"
@@ -80,7 +80,7 @@ struct StationLinkCounters {
 };
 
 // The session command of a display's command (link message `command`).
-input::SessionCommand session_command(const link::Command& command);
+session::SessionCommand session_command(const link::Command& command);
 
 class StationLink {
  public:
@@ -89,13 +89,13 @@ class StationLink {
 
   // Takes the session's current mesh as version 1. resource_exhausted: the shadow
   // or buffer storage is smaller than the mesh's capacity / link::kMaxFrameBytes * 4.
-  Status start(const input::SculptSession& session);
+  Status start(const session::SculptSession& session);
 
   // One step (never blocks): handshakes, the display's requests, a new commit, a
   // full send in progress, hands / stroke / object / status updates, flush.
-  void poll(const input::SculptSession& session, const StationStatus& status,
+  void poll(const session::SculptSession& session, const StationStatus& status,
             ports::TimestampUs now_us);
-  void poll(const input::SculptSession& session, ports::TimestampUs now_us) {
+  void poll(const session::SculptSession& session, ports::TimestampUs now_us) {
     poll(session, StationStatus{}, now_us);
   }
   // The next command the admitted display sent (keys: undo, redo, method), oldest
@@ -160,12 +160,12 @@ class StationLink {
   void continue_full();
   void start_full();
   // Live (station_link_live.cpp).
-  void send_live(const input::SculptSession& session, const StationStatus& status,
+  void send_live(const session::SculptSession& session, const StationStatus& status,
                  ports::TimestampUs now_us);
-  void send_stroke(const input::LiveWarp& live, ports::TimestampUs now_us);
-  void send_hands(const input::SculptSession& session, const input::LiveWarp& live);
-  void send_object(const input::SculptSession& session);
-  void send_status(const input::SculptSession& session, const StationStatus& status,
+  void send_stroke(const session::LiveWarp& live, ports::TimestampUs now_us);
+  void send_hands(const session::SculptSession& session, const session::LiveWarp& live);
+  void send_object(const session::SculptSession& session);
+  void send_status(const session::SculptSession& session, const StationStatus& status,
                    ports::TimestampUs now_us);
   // Buffers.
   std::size_t room() const { return out_.size() - out_size_; }

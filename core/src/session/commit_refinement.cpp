@@ -1,0 +1,88 @@
+#include "twister/session/commit_refinement.hpp"
+
+#include <cmath>
+
+#include "twister/base/assert.hpp"
+
+namespace twister::session {
+namespace {
+
+// The plan's warp as the refiner evaluates it: double precision, weights from the
+// rest position (chain step 0: exactly the function the plan's weights came from).
+class PlanWarp final : public mesh::PointWarp {
+ public:
+  explicit PlanWarp(const math::WarpPlan& plan) : plan_(plan) {}
+
+ private:
+  glm::dvec3 do_warp(glm::dvec3 rest_m) const override { return plan_.warp_point(rest_m); }
+  const math::WarpPlan& plan_;
+};
+
+// Records each pre-existing triangle in the open undo entry before it changes.
+class UndoTriangles final : public mesh::RefineObserver {
+ public:
+  explicit UndoTriangles(UndoHistory& undo) : undo_(undo) {}
+  bool overflow = false;
+
+ private:
+  void do_triangle_changing(std::uint32_t t, const std::array<std::uint32_t, 3>& before) override {
+    if (!undo_.record_triangle(t, before).ok()) overflow = true;
+  }
+  UndoHistory& undo_;
+};
+
+}  // namespace
+
+CommitRefinement::CommitRefinement(LiveMesh& mesh, mesh::MeshRefinerStorage storage,
+                                   const RefineConfig& config)
+    : mesh_(mesh), refiner_(storage), config_(config) {}
+
+double CommitRefinement::threshold_for(const journal::StrokeRecord& stroke,
+                                       bool plan_goes_on) const {
+  if (!config_.enabled || plan_goes_on || stroke.chain_step != 0) return 0.0;
+  if (!refiner_.fits(mesh_.mesh()) || !(config_.threshold_m > 0.0)) return 0.0;
+  return config_.threshold_m;
+}
+
+RefineReport CommitRefinement::refine(const math::WarpPlan& plan, double threshold_m,
+                                      UndoHistory& undo) {
+  RefineReport report;
+  if (!(threshold_m > 0.0) || !std::isfinite(threshold_m)) return report;
+  mesh::Mesh& m = mesh_.mesh();
+  const auto vertices = static_cast<std::uint32_t>(m.vertex_count());
+  const auto triangles = static_cast<std::uint32_t>(m.triangle_count());
+  UndoTriangles observer(undo);
+  const PlanWarp warp(plan);
+  const Result<mesh::RefineResult> refined = refiner_.refine(m, warp, threshold_m, &observer);
+  TWISTER_ASSERT(refined.ok());  // available() and a valid threshold
+  report.result = *refined;
+  report.ran = true;
+  report.undoable = !observer.overflow;
+  // The new vertices are no plan vertex: from their rest midpoint to S of it.
+  for (std::uint32_t v = vertices; v < m.vertex_count(); ++v) {
+    const glm::vec3 placed(refiner_.warped(v));
+    if (!undo.record(v, m.position(v), placed).ok()) report.undoable = false;
+    m.set_position(v, placed);
+  }
+  if (!undo.record_topology(m, vertices, triangles).ok()) report.undoable = false;
+  ++totals_.refined_commits;
+  totals_.vertices_added += report.result.edges_split;
+  totals_.last_stop = report.result.stop;
+  if (report.result.stop != mesh::RefineStop::done) ++totals_.capacity_stops;
+  totals_.last_vertices_added = report.result.edges_split;
+  totals_.last_blocked = report.result.blocked;
+  return report;
+}
+
+RefineStatus CommitRefinement::status() const {
+  RefineStatus s = totals_;
+  const mesh::Mesh& m = mesh_.mesh();
+  s.enabled = config_.enabled;
+  s.available = refiner_.fits(m);
+  s.threshold_m = config_.threshold_m;
+  s.spare_vertices = m.vertex_capacity() - m.vertex_count();
+  s.spare_triangles = m.triangle_capacity() - m.triangle_count();
+  return s;
+}
+
+}  // namespace twister::session

@@ -1,0 +1,141 @@
+#include "twister/session/session_history.hpp"
+
+#include <glm/vec3.hpp>
+
+#include "twister/base/assert.hpp"
+#include "twister/session/journal_pose.hpp"
+
+namespace twister::session {
+
+namespace {
+
+void report_refinement(const RefineReport& refined, std::uint32_t sequence, SessionEvents& out) {
+  if (!refined.ran) return;
+  out.push({SessionEventKind::refined, 0, input::Reason::none, ok_status(), sequence,
+            static_cast<double>(refined.result.edges_split)});
+  if (refined.result.stop != mesh::RefineStop::done) {
+    out.push({SessionEventKind::refine_stopped, 0, input::Reason::none,
+              Status(StatusCode::resource_exhausted), sequence,
+              static_cast<double>(refined.result.stop)});
+  }
+}
+
+}  // namespace
+
+SessionHistory::SessionHistory(LiveMesh& mesh, SessionPoses& poses, std::span<VertexChange> changes,
+                               std::span<UndoEntry> entries, journal::JournalWriter* journal,
+                               std::span<TriangleChange> triangle_changes)
+    : mesh_(mesh), poses_(poses), history_(changes, entries, triangle_changes), journal_(journal) {}
+
+CommitOutcome SessionHistory::do_commit(const math::WarpPlan& plan,
+                                        const journal::StrokeRecord& stroke, SessionEvents& out,
+                                        bool plan_goes_on) {
+  const std::uint32_t sequence = next_sequence_;
+  const double threshold =
+      refinement_ != nullptr ? refinement_->threshold_for(stroke, plan_goes_on) : 0.0;
+  // The warp into the live columns first (it may fail: nothing is written), then the
+  // record, then the mesh: a stroke whose record is not durable never reaches it.
+  if (const Status s = plan.apply(mesh_.rest(), mesh_.live()); !s.ok()) return {s, sequence};
+  journal::JournalRecord r;
+  r.type = journal::RecordType::stroke;
+  r.stroke = stroke;
+  r.stroke.refine_threshold_m = threshold;
+  if (const Status saved = append(r); !saved.ok()) return {saved, sequence};
+  commit_live(plan, threshold, sequence, &out);
+  return {ok_status(), sequence};
+}
+
+CommitOutcome SessionHistory::commit_move(std::uint8_t hand, const math::Frame& before,
+                                          const math::Frame& after) {
+  journal::JournalRecord r;
+  r.type = journal::RecordType::object_move;
+  r.move.hand = hand;
+  r.move.object_before = to_journal(before);
+  r.move.object_after = to_journal(after);
+  const std::uint32_t sequence = next_sequence_;
+  if (const Status saved = append(r); !saved.ok()) {
+    poses_.set_object(before);  // the last durable pose
+    return {saved, sequence};
+  }
+  apply_move(before, after);
+  return {ok_status(), sequence};
+}
+
+Status SessionHistory::commit_history_step(journal::RecordType type) {
+  TWISTER_TRY(apply_history_step(type));
+  journal::JournalRecord r;
+  r.type = type;
+  const Status saved = append(r);
+  if (saved.ok()) return saved;
+  // Not durable: take the step back (undo and redo restore bit-identically).
+  const auto back =
+      type == journal::RecordType::undo ? journal::RecordType::redo : journal::RecordType::undo;
+  const Status undone = apply_history_step(back);
+  TWISTER_ASSERT(undone.ok());
+  return saved;
+}
+
+Status SessionHistory::apply_stroke(const math::WarpPlan& plan, double refine_threshold_m) {
+  return apply_plan(plan, refine_threshold_m, nullptr);
+}
+
+void SessionHistory::apply_move(const math::Frame& before, const math::Frame& after) {
+  history_.begin_entry();
+  history_.record_object(before, after);
+  history_.end_entry().ignore();  // an object-only entry always fits
+}
+
+Status SessionHistory::apply_history_step(journal::RecordType type) {
+  TWISTER_ASSERT(type == journal::RecordType::undo || type == journal::RecordType::redo);
+  mesh::Mesh& mesh = mesh_.mesh();
+  TWISTER_TRY_ASSIGN(const UndoStep step,
+                     type == journal::RecordType::undo ? history_.undo(mesh) : history_.redo(mesh));
+  if (step.object_move) poses_.set_object(step.object_pose);
+  return ok_status();
+}
+
+Status SessionHistory::apply_plan(const math::WarpPlan& plan, double refine_threshold_m,
+                                  SessionEvents* out) {
+  if (refine_threshold_m > 0.0 && (refinement_ == nullptr || !refinement_->available())) {
+    return StatusCode::failed_precondition;
+  }
+  TWISTER_TRY(plan.apply(mesh_.rest(), mesh_.live()));
+  commit_live(plan, refine_threshold_m, next_sequence_, out);
+  return ok_status();
+}
+
+void SessionHistory::commit_live(const math::WarpPlan& plan, double refine_threshold_m,
+                                 std::uint32_t sequence, SessionEvents* out) {
+  const math::VertexColumns live = mesh_.live();
+  mesh::Mesh& mesh = mesh_.mesh();
+  history_.begin_entry();
+  // Refinement first: it needs the rest positions the plan's vertices still hold.
+  const RefineReport refined = refinement_ != nullptr
+                                   ? refinement_->refine(plan, refine_threshold_m, history_)
+                                   : RefineReport{};
+  bool undoable = refined.undoable;
+  for (const std::uint32_t i : plan.indices()) {
+    const glm::vec3 after{live.x[i], live.y[i], live.z[i]};
+    if (!history_.record(i, mesh.position(i), after).ok()) undoable = false;
+    mesh.set_position(i, after);
+  }
+  if (!history_.end_entry().ok()) undoable = false;
+  if (!undoable && out != nullptr) {
+    out->push({SessionEventKind::history_overflow, 0, input::Reason::none,
+               Status(StatusCode::resource_exhausted), sequence});
+  }
+  if (out != nullptr) report_refinement(refined, sequence, *out);
+}
+
+Status SessionHistory::append(journal::JournalRecord& record) {
+  record.sequence = next_sequence_;
+  if (journal_ != nullptr) {
+    // A failure that left a partial record behind is cut off before anything follows it.
+    if (!journal_->healthy()) TWISTER_TRY(journal_->repair());
+    TWISTER_TRY(journal_->append(record));
+  }
+  ++next_sequence_;
+  return ok_status();
+}
+
+}  // namespace twister::session

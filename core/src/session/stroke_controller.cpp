@@ -1,0 +1,292 @@
+#include "twister/session/stroke_controller.hpp"
+
+#include <span>
+
+#include "twister/session/journal_pose.hpp"
+
+namespace twister::session {
+namespace {
+
+std::uint8_t bit_of(std::uint8_t hand) { return static_cast<std::uint8_t>(1u << hand); }
+
+}  // namespace
+
+StrokeController::StrokeController(math::WarpPlan& plan, LiveMesh& mesh, const SessionPoses& poses,
+                                   StrokeCommitSink& commits, math::WarpMethod method,
+                                   const TurnConfig& turns)
+    : plan_(plan),
+      mesh_(mesh),
+      poses_(poses),
+      commits_(commits),
+      method_(method),
+      drives_{HandDrive(turns), HandDrive(turns)} {}
+
+void StrokeController::begin_step(const input::ActionList& actions, float radius_m) {
+  radius_m_ = radius_m;
+  releasing_mask_ = 0;
+  for (const input::Action& a : actions.items()) {
+    if (a.kind == input::ActionKind::commit) releasing_mask_ |= bit_of(a.hand);
+  }
+}
+
+void StrokeController::apply(const input::Action& action, SessionEvents& out) {
+  const std::uint8_t bit = bit_of(action.hand);
+  switch (action.kind) {
+    case input::ActionKind::grab_begin:
+      grab(action.hand, out);
+      break;
+    case input::ActionKind::freeze:
+      if ((hand_mask_ & bit) == 0 || !drives_[action.hand].engaged()) return;
+      freeze(action.hand, out);
+      break;
+    case input::ActionKind::unfreeze:
+      if ((hand_mask_ & bit) == 0 || drives_[action.hand].engaged()) return;
+      unfreeze(action.hand, out);
+      break;
+    case input::ActionKind::commit:
+    case input::ActionKind::cancel:
+      if ((hand_mask_ & bit) != 0) end_grab(action.hand, action.kind == input::ActionKind::commit, out);
+      break;
+    default:
+      return;
+  }
+  segment_moved_ = false;
+}
+
+void StrokeController::end_step(SessionEvents& out) {
+  if (hand_mask_ == 0) return;
+  update_plan(&out).ignore();  // on error the previous update stays in force
+  segment_moved_ = true;
+}
+
+LiveWarp StrokeController::live() const {
+  LiveWarp w;
+  w.active = hand_mask_ != 0;
+  w.hand_mask = hand_mask_;
+  w.plan = &plan_;
+  w.positions = static_cast<const LiveMesh&>(mesh_).live();
+  return w;
+}
+
+void StrokeController::grab(std::uint8_t hand, SessionEvents& out) {
+  const std::uint8_t bit = bit_of(hand);
+  std::uint8_t mask = bit;
+  drives_[hand].set_engaged(true);
+  if (hand_mask_ != 0) {
+    // A hand joins: what the other hand did so far is committed, then both continue
+    // as one two-hand segment from the current poses. Hands grabbing in the same
+    // step simply start together; a disengaged hand has nothing to commit.
+    mask = static_cast<std::uint8_t>(mask | hand_mask_);
+    if ((segment_moved_ || chain_step_ != 0) && segment_can_change()) {
+      commit_segment(hand, input::Reason::none, out, input::Reason::none);
+    }
+    drop_segment();
+  }
+  const Status s = begin_segment(mask);
+  if (s.ok()) {
+    out.push({SessionEventKind::grab_begin, hand, input::Reason::none, s, 0});
+    return;
+  }
+  out.push({SessionEventKind::refused, hand, input::Reason::none, s, 0});
+  const auto previous = static_cast<std::uint8_t>(mask & ~bit);
+  if (previous != 0) {
+    const Status again = begin_segment(previous);
+    if (!again.ok()) end_hands(previous, again, out);
+  }
+}
+
+void StrokeController::freeze(std::uint8_t hand, SessionEvents& out) {
+  const SessionEvent frozen =
+      commit_segment(hand, input::Reason::none, out, input::Reason::released, /*plan_goes_on=*/true);
+  if (!frozen.status.ok()) return end_not_saved(hand, frozen, out);
+  // Restarted while still engaged: its start pose is where the hand is now, the point
+  // its grabbed material went to; disengaged, it stays there (its anchor).
+  restart_segment(true, out);
+  if ((hand_mask_ & bit_of(hand)) == 0) return;
+  drives_[hand].set_engaged(false);
+  out.push({SessionEventKind::disengaged, hand, input::Reason::none, ok_status(), last_sequence_});
+}
+
+void StrokeController::unfreeze(std::uint8_t hand, SessionEvents& out) {
+  // Since the last commit only another engaged hand can have warped anything. A
+  // segment built while this hand was disengaged (chain step 0) is committed anyway:
+  // its record keeps the poses its weights were built from, and the rebase below
+  // becomes the next chain step, as a replay needs it.
+  const bool commit = chain_step_ == 0 || (segment_can_change() && segment_moved_);
+  if (commit) {
+    const SessionEvent done =
+        commit_segment(hand, input::Reason::none, out, input::Reason::released, /*plan_goes_on=*/true);
+    if (!done.status.ok()) return end_not_saved(hand, done, out);
+  }
+  drives_[hand].set_engaged(true);
+  restart_segment(commit, out);
+  if ((hand_mask_ & bit_of(hand)) != 0) {
+    out.push({SessionEventKind::engaged, hand, input::Reason::none, ok_status(), 0});
+  }
+}
+
+void StrokeController::end_not_saved(std::uint8_t hand, const SessionEvent& failed,
+                                     SessionEvents& out) {
+  // Not saved: the model is back at the last saved commit, so the chain cannot go on
+  // (its next step would rebase a warp the model does not hold): the stroke ends for
+  // every hand of the segment, each off the clutch. One commit was not made, however
+  // many hands it ends (the others' events are repeats).
+  const auto others = static_cast<std::uint8_t>(hand_mask_ & ~bit_of(hand));
+  drop_segment();
+  SessionEvent e = failed;
+  e.repeat = true;
+  for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
+    drives_[h].set_engaged(true);
+    if ((others & bit_of(h)) == 0) continue;
+    e.hand = h;
+    out.push(e);
+  }
+}
+
+void StrokeController::restart_segment(bool committed, SessionEvents& out) {
+  std::array<math::Frame, 2> frames{};
+  const std::size_t n = start_drives(frames);
+  const Status rebased = plan_.rebase(std::span(frames).first(n));
+  if (rebased.ok()) {
+    if (committed) ++chain_step_;
+    return;
+  }
+  // Cannot continue with the same weights: end the stroke cleanly.
+  const std::uint8_t mask = hand_mask_;
+  drop_segment();
+  end_hands(mask, rebased, out);
+}
+
+void StrokeController::end_grab(std::uint8_t hand, bool commit, SessionEvents& out) {
+  auto remaining = static_cast<std::uint8_t>(hand_mask_ & ~bit_of(hand));
+  if (commit) {
+    SessionEvent committed{SessionEventKind::committed, hand, input::Reason::released, ok_status(),
+                           last_sequence_};
+    if (segment_can_change()) {
+      committed = commit_segment(hand, input::Reason::released, out, input::Reason::released);
+    } else {
+      // Every hand is on the clutch: the freeze step before was the last commit.
+      committed.repeat = true;
+      out.push(committed);
+    }
+    // The other hands of this segment released in the same step end with this very
+    // commit (their own commit actions then find nothing open).
+    const auto together = static_cast<std::uint8_t>(remaining & releasing_mask_);
+    committed.repeat = true;
+    for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
+      if ((together & bit_of(h)) == 0) continue;
+      committed.hand = h;
+      drives_[h].set_engaged(true);
+      out.push(committed);
+    }
+    remaining = static_cast<std::uint8_t>(remaining & ~together);
+  } else {
+    out.push({SessionEventKind::cancelled, hand, input::Reason::tracking_timeout, ok_status(), 0});
+  }
+  drives_[hand].set_engaged(true);
+  drop_segment();
+  if (remaining == 0) return;
+  const Status s = begin_segment(remaining);
+  if (!s.ok()) end_hands(remaining, s, out);
+}
+
+Status StrokeController::begin_segment(std::uint8_t mask) {
+  hand_mask_ = mask;
+  std::array<math::Frame, 2> frames{};
+  const std::size_t n = start_drives(frames);
+  segment_radius_m_ = static_cast<double>(radius_m_);
+  const Status s =
+      plan_.build(mesh_.rest(), std::span(frames).first(n), segment_radius_m_, method_);
+  if (!s.ok()) {
+    drop_segment();
+    return s;
+  }
+  chain_step_ = 0;
+  return plan_.apply(mesh_.rest(), mesh_.live());
+}
+
+SessionEvent StrokeController::commit_segment(std::uint8_t hand, input::Reason reason, SessionEvents& out,
+                                              input::Reason reason_if_not_saved, bool plan_goes_on) {
+  update_plan(&out).ignore();  // on error the previous update stays in force
+  journal::StrokeRecord r;
+  r.method = static_cast<std::uint8_t>(plan_.method());
+  r.hand_mask = hand_mask_;
+  r.chain_step = chain_step_;
+  r.radius_m = segment_radius_m_;
+  std::size_t i = 0;
+  for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
+    if ((hand_mask_ & bit_of(h)) == 0) continue;
+    r.start[h] = to_journal(plan_.start_frame(i));
+    r.end[h] = to_journal(plan_.end_frame(i));
+    if ((plan_.long_turns() & (1u << i)) != 0) r.long_turns |= bit_of(h);
+    ++i;
+  }
+  const CommitOutcome done = commits_.commit(plan_, r, out, plan_goes_on);
+  if (done.status.ok()) last_sequence_ = done.sequence;
+  // A commit that did not happen (journal failure, plan error) is `not_saved`.
+  const SessionEvent committed =
+      done.status.ok()
+          ? SessionEvent{SessionEventKind::committed, hand, reason, done.status, done.sequence}
+          : SessionEvent{SessionEventKind::not_saved, hand, reason_if_not_saved, done.status,
+                         done.sequence};
+  out.push(committed);
+  return committed;
+}
+
+bool StrokeController::segment_can_change() const {
+  for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
+    if ((hand_mask_ & bit_of(h)) != 0 && drives_[h].engaged()) return true;
+  }
+  return false;
+}
+
+void StrokeController::end_hands(std::uint8_t mask, Status status, SessionEvents& out) {
+  for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
+    if ((mask & bit_of(h)) == 0) continue;
+    drives_[h].set_engaged(true);
+    out.push({SessionEventKind::cancelled, h, input::Reason::none, status, 0});
+  }
+}
+
+void StrokeController::drop_segment() {
+  hand_mask_ = 0;
+  plan_.reset();
+}
+
+Status StrokeController::update_plan(SessionEvents* out) {
+  std::array<math::Frame, 2> ends{};
+  std::uint8_t long_turns = 0;
+  std::size_t n = 0;
+  for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
+    if ((hand_mask_ & bit_of(h)) == 0) continue;
+    HandDrive& drive = drives_[h];
+    const TurnLimitChange change = drive.follow(poses_.hand_in_object(h));
+    if (change != TurnLimitChange::none && out != nullptr) {
+      const auto kind = change == TurnLimitChange::reached ? SessionEventKind::turn_limit_reached
+                                                           : SessionEventKind::turn_limit_left;
+      out->push({kind, h, input::Reason::none, ok_status(), 0, drive.limit_rad()});
+    }
+    if (drive.long_turn()) long_turns = static_cast<std::uint8_t>(long_turns | (1u << n));
+    ends[n++] = drive.end_pose();
+  }
+  const std::span<const math::Frame> end = std::span(ends).first(n);
+  // Minimal: today's update, which keeps the stroke's axis sense at a half turn.
+  TWISTER_TRY(drives_[0].config().tracking == TurnTracking::minimal
+                  ? plan_.update(end)
+                  : plan_.update_turns(end, long_turns));
+  return plan_.apply(mesh_.rest(), mesh_.live());
+}
+
+std::size_t StrokeController::start_drives(std::array<math::Frame, 2>& frames) {
+  std::size_t n = 0;
+  for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
+    if ((hand_mask_ & bit_of(h)) == 0) continue;
+    // A disengaged hand keeps its anchor: its weights and its (identity) warp stay
+    // where its material is, wherever the hand has gone on the clutch.
+    if (drives_[h].engaged()) drives_[h].start(poses_.hand_in_object(h));
+    frames[n++] = drives_[h].start_pose();
+  }
+  return n;
+}
+
+}  // namespace twister::session
