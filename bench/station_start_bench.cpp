@@ -71,8 +71,8 @@ std::vector<std::byte> journal_bytes(std::uint32_t records, double threshold) {
     r.stroke.radius_m = 0.1;
     r.stroke.refine_threshold_m = threshold;
     const glm::dvec3 p{at(rng), at(rng), 0.0};
-    r.stroke.start[0].origin_m = p;
-    r.stroke.end[0].origin_m = p + glm::dvec3(0.01, 0.0, 0.02);
+    r.stroke.start[0].origin = p;
+    r.stroke.end[0].origin = p + glm::dvec3(0.01, 0.0, 0.02);
     r.stroke.end[0].u = {std::cos(0.2), std::sin(0.2), 0.0};
     r.stroke.end[0].v = {-std::sin(0.2), std::cos(0.2), 0.0};
     const auto n = journal::encode_record(r, buf, kFormat);
@@ -81,7 +81,7 @@ std::vector<std::byte> journal_bytes(std::uint32_t records, double threshold) {
   return out;
 }
 
-station_app::StationConfig config_for(const std::string& journal, bool refine = false) {
+station_app::StationFileConfig config_for(const std::string& journal, bool refine = false) {
   const std::string text =
       "[station]\njournal = \"" + journal + "\"\nmesh = \"" + (folder() / "grid.obj").string() +
       "\"\n" + (refine ? "spare_vertices = 40000\n" : "") +
@@ -131,7 +131,7 @@ void prepare() {
 
 void start(benchmark::State& state, const char* journal, bool refine = false) {
   prepare();
-  const station_app::StationConfig config = config_for((folder() / journal).string(), refine);
+  const station_app::StationFileConfig config = config_for((folder() / journal).string(), refine);
   std::uint64_t records = 0;
   std::uint64_t replayed = 0;
   std::size_t vertices = 0;

@@ -32,7 +32,7 @@ namespace {
 
 namespace app = twister::station_app;
 namespace hal = twister::hal;
-using app::StationConfig;
+using app::StationFileConfig;
 
 constexpr int kExitOk = 0;
 constexpr int kExitFailure = 1;
@@ -62,7 +62,7 @@ hal::Logger& configure_logs(const Options& opt, hal::Logger& results) {
   return log;
 }
 
-int check_config(hal::Logger& log, const Options& opt, const StationConfig& cfg) {
+int check_config(hal::Logger& log, const Options& opt, const StationFileConfig& cfg) {
   int errors = 0;
   const auto dir = std::filesystem::path(opt.config_path).parent_path();
   for (const std::string& problem : app::referenced_file_problems(cfg, dir)) {
@@ -142,7 +142,7 @@ void log_link_summary(hal::Logger& results, const app::DisplayLink& display) {
       static_cast<unsigned long long>(l->full_sends), static_cast<unsigned long long>(refused));
 }
 
-int run(const Options& opt, const StationConfig& cfg, hal::Logger& log, hal::Logger& results) {
+int run(const Options& opt, const StationFileConfig& cfg, hal::Logger& log, hal::Logger& results) {
   auto assembled = app::assemble_station(
       cfg, {std::filesystem::path(opt.config_path).parent_path(), opt.link_address});
   if (!assembled) {

@@ -140,7 +140,7 @@ hal::Expected<std::unique_ptr<meshio::MeshBuffer>> load_station_mesh(
   return std::move(loaded->buffer);
 }
 
-hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationConfig& config,
+hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationFileConfig& config,
                                                               const AssemblyOptions& options) {
   auto setup = make_station_setup(config);
   if (!setup) return setup.error();

@@ -61,7 +61,7 @@ struct StationParts {
 // a Twister journal, or does not fit this mesh (left untouched)"; "journal PATH: damaged
 // record at offset X ...; N valid records follow it ..."), the mesh's ("mesh PATH:
 // ..."), the link's ("link ADDRESS: ...").
-hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationConfig& config,
+hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationFileConfig& config,
                                                               const AssemblyOptions& options);
 
 // station.toml's model as a mesh with the configured spare capacity (spare_vertices

@@ -11,7 +11,6 @@
 
 #include <CLI/CLI.hpp>
 #include <array>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -24,6 +23,7 @@
 #include "scene_view.hpp"
 #include "twister/hal/expected.hpp"
 #include "twister/hal/logger.hpp"
+#include "twister/hal/monotonic_clock.hpp"
 #include "twister/hal/serial_link.hpp"
 #include "twister/hal/socket_link.hpp"
 #include "twister/hal/sodium_authenticator.hpp"
@@ -81,9 +81,10 @@ Expected<Size> parse_size(const std::string& text) {
 
 // The GL context and the renderer drawing into it (destroyed before the context).
 struct Display {
+  explicit Display(twister::ports::Clock& clock) : view(renderer, clock) {}
   std::unique_ptr<twister::bridge::GlContext> context;
   twister::bridge::MeshRenderer renderer;
-  twister::bridge::SceneView view{renderer};
+  twister::bridge::SceneView view;
 };
 
 Expected<void> open_display(const Options& opt, Size size, Display& display) {
@@ -105,8 +106,9 @@ Expected<void> open_display(const Options& opt, Size size, Display& display) {
 
 // Steps the app until the window closes, the awaited commits or disconnect came, or
 // the timeout; returns the exit code.
-int run_loop(const Options& opt, BridgeApp& app, Display& display, const int link_fd) {
-  const auto start = std::chrono::steady_clock::now();
+int run_loop(const Options& opt, BridgeApp& app, Display& display, const int link_fd,
+             twister::ports::Clock& clock) {
+  const twister::ports::TimestampUs start_us = clock.now_us();
   twister::bridge::GlContext& context = *display.context;
   for (;;) {
     app.step();
@@ -129,8 +131,7 @@ int run_loop(const Options& opt, BridgeApp& app, Display& display, const int lin
       return kExitOk;
     }
     if (opt.exit_after_commits > 0 && commits >= opt.exit_after_commits) return kExitOk;
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double elapsed = 1e-6 * static_cast<double>(clock.now_us() - start_us);
     if (opt.timeout_s > 0.0 && elapsed > opt.timeout_s) {
       // A timeout is the planned end of a run unless commits were awaited.
       const bool failed = opt.exit_after_commits > 0;
@@ -232,7 +233,9 @@ int run(const Options& opt) {
     options.view = camera->view;
     options.fixed_camera = camera->fixed;
   }
-  Display display;
+  // The one clock of the display: link timing, frame times, the HUD, the timeout.
+  twister::hal::MonotonicClock clock;
+  Display display(clock);
   if (const Expected<void> opened = open_display(options, *size, display); !opened) {
     logger().error("display", "%s", opened.error().message.c_str());
     return kExitFailure;
@@ -258,11 +261,11 @@ int run(const Options& opt) {
   bridge_options.snapshot_dir = opt.snapshots;
   bridge_options.authenticator = auth.get();
   bridge_options.limits = opt.limits;
-  BridgeApp app(*transport.port, &display.renderer, bridge_options, logger());
+  BridgeApp app(*transport.port, clock, &display.renderer, bridge_options, logger());
   app.set_view(&display.view);
   twister::bridge::WindowInput input(app, display.view, options.fixed_camera);
   input.attach(display.context->window());
-  int rc = run_loop(opt, app, display, transport.poll_fd());
+  int rc = run_loop(opt, app, display, transport.poll_fd(), clock);
   if (!opt.export_path.empty()) {
     if (const int exported = export_final_mesh(opt.export_path, app); exported != kExitOk) {
       return exported;

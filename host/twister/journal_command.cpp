@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "cli_exit.hpp"
+#include "cli_exit_code.hpp"
 #include "cli_log.hpp"
 #include "model_session.hpp"
 #include "twister/hal/posix_file_sink.hpp"
@@ -26,16 +26,15 @@ struct Options {
   std::string mesh;  // optional: check that the records replay onto this model
 };
 
-[[noreturn]] void fail(int code, const std::string& message) {
-  cli_log().error("", "%s", message.c_str());
-  throw Exit{code};
+// The journal, read only (no lock: a running station may hold it).
+bool open_journal(hal::PosixFileStorage& storage, const std::string& path) {
+  return storage.open({.path = path, .create_if_missing = false, .read_only = true}).ok();
 }
 
-// The journal, read only (no lock: a running station may hold it).
-void open_journal(hal::PosixFileStorage& storage, const std::string& path) {
-  if (!storage.open({.path = path, .create_if_missing = false, .read_only = true}).ok()) {
-    fail(kExitBadInput, "cannot open journal " + path);
-  }
+// The model to replay onto (--mesh), or none without --mesh.
+hal::Expected<std::unique_ptr<ModelSession>> open_model(const std::string& path) {
+  if (path.empty()) return std::unique_ptr<ModelSession>();
+  return ModelSession::open(path);
 }
 
 const char* type_name(journal::RecordType t) {
@@ -146,16 +145,20 @@ void print_verdict(const Findings& f, const journal::JournalSurvey& s) {
   }
 }
 
-void run_check(const Options& o) {
+int run_check(const Options& o) {
   hal::PosixFileStorage storage;
-  open_journal(storage, o.journal);
-  std::unique_ptr<ModelSession> model;
-  if (!o.mesh.empty()) model = std::make_unique<ModelSession>(o.mesh);
+  if (!open_journal(storage, o.journal)) {
+    return fail(kExitBadInput, "cannot open journal " + o.journal);
+  }
+  auto opened = open_model(o.mesh);
+  if (!opened) return fail(kExitBadInput, opened.error().message);
+  const std::unique_ptr<ModelSession> model = std::move(*opened);
   journal::JournalScanner scanner(storage);
-  if (const Status opened = scanner.open(); !opened.ok()) {
-    fail(kExitBadInput, o.journal + (opened.code() == StatusCode::not_supported
-                                         ? " is a journal of a newer format than this twister reads"
-                                         : " is not a Twister journal (or its header is damaged)"));
+  if (const Status scanned = scanner.open(); !scanned.ok()) {
+    return fail(kExitBadInput,
+                o.journal + (scanned.code() == StatusCode::not_supported
+                                 ? " is a journal of a newer format than this twister reads"
+                                 : " is not a Twister journal (or its header is damaged)"));
   }
   std::printf("journal %s: %llu bytes\n", o.journal.c_str(),
               static_cast<unsigned long long>(scanner.file_size()));
@@ -168,15 +171,16 @@ void run_check(const Options& o) {
     note_record(f, *item, model.get());
   }
   const auto survey = journal::survey_journal(storage);
-  if (!survey.ok())
-    fail(kExitFailure, std::string("reading the journal: ") + survey.status().name());
+  if (!survey.ok()) {
+    return fail(kExitFailure, std::string("reading the journal: ") + survey.status().name());
+  }
   print_verdict(f, *survey);
   if (model) {
     std::printf("model %s: %s; mesh checksum %016llx\n", o.mesh.c_str(),
                 f.not_applied == 0 ? "every record applies" : "some records do not apply",
                 static_cast<unsigned long long>(model->mesh().checksum()));
   }
-  if (!survey->clean() || f.gaps > 0 || f.not_applied > 0) throw Exit{kExitFailure};
+  return survey->clean() && f.gaps == 0 && f.not_applied == 0 ? kExitOk : kExitFailure;
 }
 
 const char* why_text(journal::SalvageObserver::Drop why) {
@@ -222,19 +226,20 @@ class AppliesToModel final : public journal::RecordFilter {
   ModelSession& model_;
 };
 
-void run_salvage(const Options& o) {
+int run_salvage(const Options& o) {
   struct stat st {};
   if (::lstat(o.out.c_str(), &st) == 0) {
-    fail(kExitBadInput, o.out + " exists; salvage writes a new file and never replaces one");
+    return fail(kExitBadInput, o.out + " exists; salvage writes a new file and never replaces one");
   }
   hal::PosixFileStorage storage;
-  open_journal(storage, o.journal);
-  std::unique_ptr<ModelSession> model;
-  std::unique_ptr<AppliesToModel> filter;
-  if (!o.mesh.empty()) {
-    model = std::make_unique<ModelSession>(o.mesh);
-    filter = std::make_unique<AppliesToModel>(*model);
+  if (!open_journal(storage, o.journal)) {
+    return fail(kExitBadInput, "cannot open journal " + o.journal);
   }
+  auto opened = open_model(o.mesh);
+  if (!opened) return fail(kExitBadInput, opened.error().message);
+  const std::unique_ptr<ModelSession> model = std::move(*opened);
+  std::unique_ptr<AppliesToModel> filter;
+  if (model) filter = std::make_unique<AppliesToModel>(*model);
   hal::PosixFileSinkConfig config;
   config.path = o.out;
   config.replace = hal::PosixFileSinkConfig::Replace::never;
@@ -243,12 +248,14 @@ void run_salvage(const Options& o) {
   const auto report = journal::salvage_journal(storage, sink, &log, filter.get());
   if (!report.ok()) {
     if (report.status().code() == StatusCode::data_loss) {
-      fail(kExitBadInput, o.journal + " is not a Twister journal (or its header is damaged)");
+      return fail(kExitBadInput,
+                  o.journal + " is not a Twister journal (or its header is damaged)");
     }
     if (report.status().code() == StatusCode::not_supported) {
-      fail(kExitBadInput, o.journal + " is a journal of a newer format than this twister reads");
+      return fail(kExitBadInput,
+                  o.journal + " is a journal of a newer format than this twister reads");
     }
-    fail(kExitFailure, "cannot write " + o.out + ": " + sink.last_error());
+    return fail(kExitFailure, "cannot write " + o.out + ": " + sink.last_error());
   }
   const journal::SalvageReport& r = *report;
   std::printf(
@@ -262,11 +269,12 @@ void run_salvage(const Options& o) {
       static_cast<unsigned long long>(r.broken_chain), static_cast<unsigned long long>(r.refused),
       static_cast<unsigned long long>(r.out_of_order),
       static_cast<unsigned long long>(r.after_gap));
+  return kExitOk;
 }
 
 }  // namespace
 
-void add_journal_command(CLI::App& app) {
+void add_journal_command(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("journal", "Inspect or repair a station's stroke journal");
   cmd->require_subcommand(1);
@@ -274,9 +282,9 @@ void add_journal_command(CLI::App& app) {
       "check", "Report what a journal holds: records, damage, torn tail or corruption");
   check->add_option("journal", options->journal, "Journal file")->required();
   check->add_option("--mesh", options->mesh, "Also replay every record onto this model (OBJ)");
-  check->callback([options] {
+  check->callback([options, &exit_code] {
     start_command_log("journal check");
-    run_check(*options);
+    exit_code = run_check(*options);
   });
   CLI::App* salvage = cmd->add_subcommand(
       "salvage", "Write a repaired copy that keeps every valid record, saying what was lost");
@@ -284,9 +292,9 @@ void add_journal_command(CLI::App& app) {
   salvage->add_option("out", options->out, "New journal to write (must not exist)")->required();
   salvage->add_option("--mesh", options->mesh,
                       "Keep only records that apply to this model (so the copy replays)");
-  salvage->callback([options] {
+  salvage->callback([options, &exit_code] {
     start_command_log("journal salvage");
-    run_salvage(*options);
+    exit_code = run_salvage(*options);
   });
 }
 

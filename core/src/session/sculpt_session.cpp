@@ -121,17 +121,15 @@ SessionEvents SculptSession::step(ports::TimestampUs now_us) {
   for (const input::ButtonCommand& c : buttons_.commands()) {
     run_command({command_for(c.role), c.hand, math::WarpMethod::twister}, out);
   }
-  for (std::size_t i = 0; i < queued_count_; ++i) run_command(queued_[i], out);
-  queued_count_ = 0;
+  for (std::size_t i = 0; i < queued_.size(); ++i) run_command(queued_[i], out);
+  queued_.clear();
   refresh_normals();
   return out;
 }
 
 Status SculptSession::submit(const SessionCommand& command) {
   if (command.hand >= input::kHandCount) return StatusCode::invalid_argument;
-  if (queued_count_ == queued_.size()) return StatusCode::resource_exhausted;
-  queued_[queued_count_++] = command;
-  return ok_status();
+  return queued_.push_back(command);  // resource_exhausted: kMaxQueuedCommands queued
 }
 
 input::InteractionInputs SculptSession::inputs() const {

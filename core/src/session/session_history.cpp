@@ -3,7 +3,6 @@
 #include <glm/vec3.hpp>
 
 #include "twister/base/assert.hpp"
-#include "twister/session/journal_pose.hpp"
 
 namespace twister::session {
 
@@ -50,8 +49,8 @@ CommitOutcome SessionHistory::commit_move(std::uint8_t hand, const math::Frame& 
   journal::JournalRecord r;
   r.type = journal::RecordType::object_move;
   r.move.hand = hand;
-  r.move.object_before = to_journal(before);
-  r.move.object_after = to_journal(after);
+  r.move.object_before = journal::as_stored(before);
+  r.move.object_after = journal::as_stored(after);
   const std::uint32_t sequence = next_sequence_;
   if (const Status saved = append(r); !saved.ok()) {
     poses_.set_object(before);  // the last durable pose

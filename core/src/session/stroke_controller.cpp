@@ -2,7 +2,6 @@
 
 #include <span>
 
-#include "twister/session/journal_pose.hpp"
 
 namespace twister::session {
 namespace {
@@ -144,9 +143,8 @@ void StrokeController::end_not_saved(std::uint8_t hand, const SessionEvent& fail
 }
 
 void StrokeController::restart_segment(bool committed, SessionEvents& out) {
-  std::array<math::Frame, 2> frames{};
-  const std::size_t n = start_drives(frames);
-  const Status rebased = plan_.rebase(std::span(frames).first(n));
+  const math::PlanFrames frames = start_drives();
+  const Status rebased = plan_.rebase(frames);
   if (rebased.ok()) {
     if (committed) ++chain_step_;
     return;
@@ -192,11 +190,9 @@ void StrokeController::end_grab(std::uint8_t hand, bool commit, SessionEvents& o
 
 Status StrokeController::begin_segment(std::uint8_t mask) {
   hand_mask_ = mask;
-  std::array<math::Frame, 2> frames{};
-  const std::size_t n = start_drives(frames);
+  const math::PlanFrames frames = start_drives();
   segment_radius_m_ = static_cast<double>(radius_m_);
-  const Status s =
-      plan_.build(mesh_.rest(), std::span(frames).first(n), segment_radius_m_, method_);
+  const Status s = plan_.build(mesh_.rest(), frames, segment_radius_m_, method_);
   if (!s.ok()) {
     drop_segment();
     return s;
@@ -216,8 +212,8 @@ SessionEvent StrokeController::commit_segment(std::uint8_t hand, input::Reason r
   std::size_t i = 0;
   for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
     if ((hand_mask_ & bit_of(h)) == 0) continue;
-    r.start[h] = to_journal(plan_.start_frame(i));
-    r.end[h] = to_journal(plan_.end_frame(i));
+    r.start[h] = journal::as_stored(plan_.start_frame(i));
+    r.end[h] = journal::as_stored(plan_.end_frame(i));
     if ((plan_.long_turns() & (1u << i)) != 0) r.long_turns |= bit_of(h);
     ++i;
   }
@@ -254,9 +250,8 @@ void StrokeController::drop_segment() {
 }
 
 Status StrokeController::update_plan(SessionEvents* out) {
-  std::array<math::Frame, 2> ends{};
+  math::PlanFrames ends;
   std::uint8_t long_turns = 0;
-  std::size_t n = 0;
   for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
     if ((hand_mask_ & bit_of(h)) == 0) continue;
     HandDrive& drive = drives_[h];
@@ -266,10 +261,12 @@ Status StrokeController::update_plan(SessionEvents* out) {
                                                            : SessionEventKind::turn_limit_left;
       out->push({kind, h, input::Reason::none, ok_status(), 0, drive.limit_rad()});
     }
-    if (drive.long_turn()) long_turns = static_cast<std::uint8_t>(long_turns | (1u << n));
-    ends[n++] = drive.end_pose();
+    if (drive.long_turn()) {
+      long_turns = static_cast<std::uint8_t>(long_turns | (1u << ends.size()));
+    }
+    ends.push_back(drive.end_pose()).ignore();  // one per hand: cannot be full
   }
-  const std::span<const math::Frame> end = std::span(ends).first(n);
+  const std::span<const math::Frame> end = ends;
   // Minimal: today's update, which keeps the stroke's axis sense at a half turn.
   TWISTER_TRY(drives_[0].config().tracking == TurnTracking::minimal
                   ? plan_.update(end)
@@ -277,16 +274,16 @@ Status StrokeController::update_plan(SessionEvents* out) {
   return plan_.apply(mesh_.rest(), mesh_.live());
 }
 
-std::size_t StrokeController::start_drives(std::array<math::Frame, 2>& frames) {
-  std::size_t n = 0;
+math::PlanFrames StrokeController::start_drives() {
+  math::PlanFrames frames;
   for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
     if ((hand_mask_ & bit_of(h)) == 0) continue;
     // A disengaged hand keeps its anchor: its weights and its (identity) warp stay
     // where its material is, wherever the hand has gone on the clutch.
     if (drives_[h].engaged()) drives_[h].start(poses_.hand_in_object(h));
-    frames[n++] = drives_[h].start_pose();
+    frames.push_back(drives_[h].start_pose()).ignore();  // one per hand: cannot be full
   }
-  return n;
+  return frames;
 }
 
 }  // namespace twister::session

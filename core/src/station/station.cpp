@@ -10,10 +10,6 @@ namespace {
 constexpr int kMaxPosesPerPoll = 64;
 constexpr int kMaxEdgesPerPoll = 32;
 
-math::Frame to_frame(const tracker::TrackedFrame& f) {
-  return math::Frame{f.origin, f.u, f.v, f.w};
-}
-
 }  // namespace
 
 Station::Station(ports::ByteStream& tracker, ports::ButtonSource& buttons, ports::Clock& clock,
@@ -109,7 +105,7 @@ Status Station::poll() {
   for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
     const bool valid = hand_valid(h, now_us);
     // invalid_argument: not orthonormal; the session then treats the hand as lost.
-    if (!sculpt_.set_hand(h, valid, to_frame(hands_[h].pose)).ok()) ++counters_.pose_errors;
+    if (!sculpt_.set_hand(h, valid, hands_[h].pose).ok()) ++counters_.pose_errors;
   }
   const session::SessionEvents events = sculpt_.step(now_us);
   counters_.session_events_dropped += events.dropped();

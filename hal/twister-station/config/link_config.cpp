@@ -50,7 +50,7 @@ std::string check_link_address(const std::string& address, bool& loopback) {
   return "unix:PATH, tcp:A.B.C.D:PORT or serial:DEVICE";
 }
 
-void read_link(ConfigReader& root, StationConfig& cfg) {
+void read_link(ConfigReader& root, StationFileConfig& cfg) {
   ConfigReader l = root.table("link", false);
   LinkSection& lc = cfg.link;
   bool loopback = true;

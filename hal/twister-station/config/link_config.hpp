@@ -11,7 +11,7 @@ namespace twister::station_app::internal {
 // Reads and checks [link]: every key's type and range, the address form, and the
 // rules across keys (a non-loopback TCP address needs listen = "network", which
 // needs psk_file).
-void read_link(ConfigReader& root, StationConfig& cfg);
+void read_link(ConfigReader& root, StationFileConfig& cfg);
 
 // The address form alone: "" when `address` is unix:PATH, tcp:A.B.C.D:PORT or
 // serial:DEVICE, else what is wrong. `loopback` tells whether a tcp: host is on

@@ -16,7 +16,7 @@ JournalRecord stroke(std::uint32_t seq) {
   r.sequence = seq;
   r.stroke.hand_mask = 1;
   r.stroke.radius_m = 0.5;
-  r.stroke.end[0].origin_m = {0.01 * seq, 0.0, 0.0};
+  r.stroke.end[0].origin = {0.01 * seq, 0.0, 0.0};
   return r;
 }
 

@@ -24,7 +24,7 @@ JournalRecord stroke(std::uint32_t sequence, std::uint16_t chain_step = 0) {
   r.stroke.hand_mask = 2;
   r.stroke.chain_step = chain_step;
   r.stroke.radius_m = 0.25;
-  r.stroke.end[1].origin_m = {0.01 * sequence, 0, 0};
+  r.stroke.end[1].origin = {0.01 * sequence, 0, 0};
   return r;
 }
 

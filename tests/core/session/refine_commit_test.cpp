@@ -14,7 +14,6 @@
 #include "allocation_counter.hpp"
 #include "mesh_checks.hpp"
 #include "refine_harness.hpp"
-#include "twister/session/journal_pose.hpp"
 #include "twister/mesh/mesh_refiner.hpp"
 #include "twister/mesh/vertex_normals.hpp"
 
@@ -51,8 +50,8 @@ void build_plan(math::WarpPlan& plan, const mesh::Mesh& rest, const journal::Str
   std::uint8_t turns = 0;
   for (std::uint8_t h = 0; h < 2; ++h) {
     if ((s.hand_mask & (1u << h)) == 0) continue;
-    start[n] = from_journal(s.start[h]);
-    end[n] = from_journal(s.end[h]);
+    start[n] = s.start[h];
+    end[n] = s.end[h];
     if ((s.long_turns & (1u << h)) != 0) turns = static_cast<std::uint8_t>(turns | (1u << n));
     ++n;
   }

@@ -24,7 +24,7 @@ journal::StrokeRecord one_hand_stroke() {
   journal::StrokeRecord s;
   s.hand_mask = 1;
   s.radius_m = 0.5;
-  s.end[0].origin_m = {0, 0, 0.25};
+  s.end[0].origin = {0, 0, 0.25};
   return s;
 }
 
@@ -85,7 +85,7 @@ TEST(SessionHistory, AMoveIsRecordedAndUndoPutsTheObjectBack) {
   ASSERT_EQ(r->read_records(records), 1u);
   EXPECT_EQ(records[0].type, journal::RecordType::object_move);
   EXPECT_EQ(records[0].move.hand, 1);
-  EXPECT_EQ(records[0].move.object_after.origin_m, after.origin);
+  EXPECT_EQ(records[0].move.object_after.origin, after.origin);
   ASSERT_TRUE(r->history.commit_history_step(journal::RecordType::undo).ok());
   EXPECT_EQ(r->poses.object().origin, before.origin);
   ASSERT_TRUE(r->history.commit_history_step(journal::RecordType::redo).ok());

@@ -89,8 +89,8 @@ TEST(StrokeController, GrabFollowReleaseCommitsOneSegment) {
   EXPECT_EQ(r.hand_mask, 1);
   EXPECT_EQ(r.chain_step, 0);
   EXPECT_EQ(r.radius_m, 0.5);
-  EXPECT_EQ(r.start[0].origin_m, glm::dvec3(0, 0, 0));
-  EXPECT_EQ(r.end[0].origin_m, glm::dvec3(0, 0, 0.3));
+  EXPECT_EQ(r.start[0].origin, glm::dvec3(0, 0, 0));
+  EXPECT_EQ(r.end[0].origin, glm::dvec3(0, 0, 0.3));
   EXPECT_FALSE(s->strokes.active());
   EXPECT_FALSE(s->rig.plan.built());
 }
@@ -250,8 +250,8 @@ TEST(StrokeController, HandPosesAreTakenInTheObjectFrame) {
   (void)s->step({});
   (void)s->step({release(0)});
   ASSERT_EQ(s->sink.count, 1u);
-  EXPECT_EQ(s->sink.records[0].start[0].origin_m, glm::dvec3(0, 0, 0));
-  EXPECT_EQ(s->sink.records[0].end[0].origin_m, glm::dvec3(0, 0, 0.2));
+  EXPECT_EQ(s->sink.records[0].start[0].origin, glm::dvec3(0, 0, 0));
+  EXPECT_EQ(s->sink.records[0].end[0].origin, glm::dvec3(0, 0, 0.2));
 }
 
 // Issue 11 changed this: a commit that did not happen is `not_saved`, never `committed`.

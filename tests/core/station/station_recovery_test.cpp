@@ -34,7 +34,7 @@ struct Rig {
       journal::JournalRecord r;
       r.type = journal::RecordType::object_move;
       r.sequence = i;
-      r.move.object_after.origin_m = {0.1 * i, 0, 0};
+      r.move.object_after.origin = {0.1 * i, 0, 0};
       EXPECT_TRUE(writer.append(r).ok());
     }
     at.push_back(storage.bytes().size());
@@ -151,7 +151,7 @@ TEST(StationRecovery, ACheckpointIsUsedOnlyForItsJournalAndModel) {
       journal::JournalRecord r;
       r.type = journal::RecordType::object_move;
       r.sequence = i;
-      r.move.object_after.origin_m = {0.0, 0.2 * i, 0};
+      r.move.object_after.origin = {0.0, 0.2 * i, 0};
       ASSERT_TRUE(w.append(r).ok());
     }
   }

@@ -211,9 +211,9 @@ TEST_F(StationTest, StrokeIsCommittedToTheJournalWithItsPoses) {
   EXPECT_EQ(records[0].type, journal::RecordType::stroke);
   EXPECT_EQ(records[0].sequence, 0u);
   EXPECT_EQ(s.hand_mask, 2);
-  EXPECT_NEAR(s.start[1].origin_m.x, 10.0 * kInch, 1e-6);
-  EXPECT_NEAR(s.end[1].origin_m.x, 12.0 * kInch, 1e-6);
-  EXPECT_NEAR(s.end[1].origin_m.y, 1.0 * kInch, 1e-6);
+  EXPECT_NEAR(s.start[1].origin.x, 10.0 * kInch, 1e-6);
+  EXPECT_NEAR(s.end[1].origin.x, 12.0 * kInch, 1e-6);
+  EXPECT_NEAR(s.end[1].origin.y, 1.0 * kInch, 1e-6);
   bool saw_commit = false;
   for (const auto& e : events()) {
     saw_commit |= e.kind == StationEventKind::stroke_committed && e.hand == 1;
@@ -287,10 +287,10 @@ TEST_F(StationTest, UnplugMidStrokeCancelsItAndReplugContinues) {
   const auto records = journal_records();
   ASSERT_EQ(records.size(), 2u);
   EXPECT_EQ(records[1].sequence, 1u);
-  EXPECT_NEAR(records[1].stroke.start[1].origin_m.x, 20.0 * kInch, 1e-6);
-  EXPECT_NEAR(records[1].stroke.end[1].origin_m.y, 2.0 * kInch, 1e-6);
+  EXPECT_NEAR(records[1].stroke.start[1].origin.x, 20.0 * kInch, 1e-6);
+  EXPECT_NEAR(records[1].stroke.end[1].origin.y, 2.0 * kInch, 1e-6);
   for (const auto& r : records) {  // no record carries the untracked position
-    EXPECT_LT(r.stroke.end[1].origin_m.z, 10.0 * kInch);
+    EXPECT_LT(r.stroke.end[1].origin.z, 10.0 * kInch);
   }
   int lost = 0;
   int streaming = 0;
@@ -332,8 +332,8 @@ TEST_F(StationTest, StylusSwitchDrivesItsConfiguredButtonLine) {
   const auto records = journal_records();
   ASSERT_EQ(records.size(), 1u);
   EXPECT_EQ(records[0].stroke.hand_mask, 1);
-  EXPECT_NEAR(records[0].stroke.start[0].origin_m.x, -10.0 * kInch, 1e-6);
-  EXPECT_NEAR(records[0].stroke.end[0].origin_m.x, -8.0 * kInch, 1e-6);
+  EXPECT_NEAR(records[0].stroke.start[0].origin.x, -10.0 * kInch, 1e-6);
+  EXPECT_NEAR(records[0].stroke.end[0].origin.x, -8.0 * kInch, 1e-6);
 }
 
 TEST_F(StationTest, RestartContinuesTheJournalAfterATornTail) {

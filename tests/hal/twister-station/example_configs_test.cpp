@@ -75,7 +75,7 @@ std::set<Binding> documented(const std::string& text) {
   return out;
 }
 
-std::set<Binding> configured(const StationConfig& c) {
+std::set<Binding> configured(const StationFileConfig& c) {
   std::set<Binding> out;
   for (const ButtonBindingConfig& b : c.sculpt.buttons) {
     out.insert({b.lines, b.hand, to_string(b.action)});
@@ -118,7 +118,7 @@ struct Press {
 class SimStation {
  public:
   // `keys`: more key frames (scenario text), e.g. a hand turning.
-  SimStation(StationConfig config, const std::vector<Press>& presses, double duration_s,
+  SimStation(StationFileConfig config, const std::vector<Press>& presses, double duration_s,
              const std::string& keys = "") {
     const bool stylus = config.buttons.backend == ButtonBackend::stylus;
     std::string scn = "receivers 2\nduration " + std::to_string(duration_s) + "\n";

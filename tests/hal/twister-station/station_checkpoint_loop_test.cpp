@@ -23,7 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-StationConfig loop_config(const std::string& journal, const std::string& scenario,
+StationFileConfig loop_config(const std::string& journal, const std::string& scenario,
                           const std::string& station_keys = "", const std::string& tail = "") {
   std::string text = station_test::sim_config(journal, scenario) + tail;
   text.insert(text.find("[tracker]"), "checkpoint_interval = 1\n" + station_keys);  // [station]
@@ -38,7 +38,7 @@ TEST(StationCheckpointLoop, TheLoopWritesCheckpointsWithoutAllocatingAndRestartM
   const std::string journal = (dir / "j.twj").string();
   const std::string scenario = (dir / "chains.scn").string();
   station_test::write_file(scenario, station_test::chain_scenario(4, 3));
-  const StationConfig config = loop_config(journal, scenario);
+  const StationFileConfig config = loop_config(journal, scenario);
   std::uint64_t final_checksum = 0;
   {
     auto assembled = assemble_station(config, {TWISTER_DEPLOY_DIR, ""});
@@ -92,7 +92,7 @@ struct Restart {
   std::uint64_t checksum = 0;
 };
 
-Restart restart(const StationConfig& config, const std::string& checkpoint) {
+Restart restart(const StationFileConfig& config, const std::string& checkpoint) {
   const std::string ckpt = config.station.journal + ".ckpt";
   fs::remove(ckpt);
   if (!checkpoint.empty()) fs::copy_file(checkpoint, ckpt);
@@ -109,7 +109,7 @@ TEST(StationCheckpointLoop, WithRefinementOnRefinedCommitsAreCheckpointedAndRest
   const std::string journal = (dir / "j.twj").string();
   const std::string scenario = (dir / "strokes.scn").string();
   station_test::write_file(scenario, station_test::chain_scenario(4, 0));  // plain strokes
-  const StationConfig config =
+  const StationFileConfig config =
       loop_config(journal, scenario, "spare_vertices = 20000\n",
                   "[sculpt]\nrefine = true\nrefine_threshold_m = 0.0005\n");
   const std::string middle = (dir / "middle.ckpt").string();

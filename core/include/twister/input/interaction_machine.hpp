@@ -20,6 +20,7 @@
 #include <glm/vec3.hpp>
 #include <span>
 
+#include "twister/base/inline_vector.hpp"
 #include "twister/input/button_map.hpp"
 #include "twister/ports/clock.hpp"
 
@@ -75,12 +76,11 @@ inline constexpr std::size_t kMaxActionsPerStep = 8;
 class ActionList {
  public:
   void push(const Action& action);
-  std::span<const Action> items() const { return {items_.data(), count_}; }
-  std::size_t size() const { return count_; }
+  std::span<const Action> items() const { return items_; }
+  std::size_t size() const { return items_.size(); }
 
  private:
-  std::array<Action, kMaxActionsPerStep> items_{};
-  std::size_t count_ = 0;
+  InlineVector<Action, kMaxActionsPerStep> items_;
 };
 
 struct HandInput {

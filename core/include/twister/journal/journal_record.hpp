@@ -21,9 +21,11 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 #include <span>
 
+#include "twister/base/pose.hpp"
 #include "twister/base/result.hpp"
 
 namespace twister::journal {
@@ -50,12 +52,10 @@ enum class RecordType : std::uint8_t {
   redo = 4,
 };
 
-struct JournalPose {
-  glm::dvec3 origin_m{0.0};
-  glm::dvec3 u{1.0, 0.0, 0.0};
-  glm::dvec3 v{0.0, 1.0, 0.0};
-  friend bool operator==(const JournalPose&, const JournalPose&) = default;
-};
+// A record's poses are twister::Pose (origin in metres). The journal stores origin, U
+// and V; W is rebuilt as U x V when a record is read, so a record round-trips exactly
+// when its poses are as_stored() ones.
+inline Pose as_stored(const Pose& p) { return {p.origin, p.u, p.v, glm::cross(p.u, p.v)}; }
 
 struct StrokeRecord {
   std::uint8_t method = 0;       // math::WarpMethod as a number
@@ -68,15 +68,15 @@ struct StrokeRecord {
   // > 0: the commit refined the mesh until every edge's midpoint error under the warp
   // was at most this (metres; version 3). 0: not refined (versions 1 and 2).
   double refine_threshold_m = 0.0;
-  std::array<JournalPose, 2> start{};  // per hand, meaningful where hand_mask says
-  std::array<JournalPose, 2> end{};
+  std::array<Pose, 2> start{};  // per hand, meaningful where hand_mask says
+  std::array<Pose, 2> end{};
   friend bool operator==(const StrokeRecord&, const StrokeRecord&) = default;
 };
 
 struct ObjectMoveRecord {
   std::uint8_t hand = 0;
-  JournalPose object_before{};  // object pose in the world before and after the move
-  JournalPose object_after{};
+  Pose object_before{};  // object pose in the world before and after the move
+  Pose object_after{};
   friend bool operator==(const ObjectMoveRecord&, const ObjectMoveRecord&) = default;
 };
 

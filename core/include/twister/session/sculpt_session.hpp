@@ -39,6 +39,7 @@
 #include <cstdint>
 #include <span>
 
+#include "twister/base/inline_vector.hpp"
 #include "twister/base/result.hpp"
 #include "twister/input/button_debouncer.hpp"
 #include "twister/input/button_front_end.hpp"
@@ -205,8 +206,7 @@ class SculptSession {
   StrokeController strokes_;
   ObjectMover mover_;
   JournalReplay replay_;
-  std::array<SessionCommand, kMaxQueuedCommands> queued_{};
-  std::size_t queued_count_ = 0;
+  InlineVector<SessionCommand, kMaxQueuedCommands> queued_;
   mesh::NormalColumns normals_{};
   std::uint32_t normals_sequence_ = 0;  // next_sequence() when they were computed
 };

@@ -113,7 +113,7 @@ class StrokeController {
   // The start poses of a (re)started segment, in the object frame, in plan order: an
   // engaged hand's drive starts at its current pose, a disengaged hand keeps its
   // anchor (the pose it disengaged at).
-  std::size_t start_drives(std::array<math::Frame, 2>& frames);
+  math::PlanFrames start_drives();
 
   math::WarpPlan& plan_;
   LiveMesh& mesh_;

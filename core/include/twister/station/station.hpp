@@ -202,13 +202,13 @@ class Station {
   session::RefineStatus refinement() const { return sculpt_.state().refine; }
   bool hand_valid(std::uint8_t hand, ports::TimestampUs now_us) const;
   // The frame last applied to `hand` (hand < kHandCount); see hand_valid().
-  const tracker::TrackedFrame& hand_pose(std::uint8_t hand) const { return hands_[hand].pose; }
+  const Pose& hand_pose(std::uint8_t hand) const { return hands_[hand].pose; }
   // What the display link reports about the station (as of the last poll()).
   StationStatus status() const;
 
  private:
   struct Hand {
-    tracker::TrackedFrame pose{};
+    Pose pose{};
     ports::TimestampUs pose_time_us = 0;
     bool has_pose = false;
   };
