@@ -30,7 +30,7 @@ JournalRecord stroke(std::uint32_t sequence) {
   r.sequence = sequence;
   r.stroke.hand_mask = 1;
   r.stroke.radius_m = 0.25;
-  r.stroke.end[0].origin_m = {0.01 * sequence, 0, 0};
+  r.stroke.end[0].origin = {0.01 * sequence, 0, 0};
   return r;
 }
 

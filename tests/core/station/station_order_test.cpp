@@ -30,7 +30,7 @@ journal::JournalRecord move(std::uint32_t sequence) {
   journal::JournalRecord r;
   r.type = journal::RecordType::object_move;
   r.sequence = sequence;
-  r.move.object_after.origin_m = {0.1 * sequence, 0, 0};
+  r.move.object_after.origin = {0.1 * sequence, 0, 0};
   return r;
 }
 

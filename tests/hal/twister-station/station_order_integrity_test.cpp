@@ -54,8 +54,8 @@ class StationOrderIntegrity : public ::testing::Test {
       r.sequence = k;
       r.stroke.hand_mask = 1;
       r.stroke.radius_m = 0.06;
-      r.stroke.start[0].origin_m = {0.30, -0.18, 0.15};
-      r.stroke.end[0].origin_m = {0.30 + 0.002 * k, -0.18, 0.16};
+      r.stroke.start[0].origin = {0.30, -0.18, 0.15};
+      r.stroke.end[0].origin = {0.30 + 0.002 * k, -0.18, 0.16};
       EXPECT_TRUE(writer.append(r).ok());
     }
     at.push_back(static_cast<std::size_t>(writer.size()));
