@@ -28,6 +28,7 @@
 
 #include "config/station_config.hpp"
 #include "station_assembly.hpp"
+#include "twister/journal/journal_format.hpp"
 #include "twister/journal/journal_record.hpp"
 #include "twister/meshio/mesh_generator.hpp"
 #include "twister/meshio/obj_file.hpp"
@@ -50,8 +51,16 @@ const fs::path& folder() {
 
 // `records` one-hand strokes with a twist, at random grid points (radius 0.1 m: ~80
 // vertices each), refined at commit to `threshold` (0: not), encoded back to back.
+// The format new journals get (version 2, its identity in each record).
+constexpr journal::JournalFormat kFormat = journal::version2_format(1);
+
+std::vector<std::byte> journal_header() {
+  const auto header = journal::file_header(kFormat);
+  return {header.begin(), header.begin() + static_cast<std::ptrdiff_t>(kFormat.header_bytes())};
+}
+
 std::vector<std::byte> journal_bytes(std::uint32_t records, double threshold) {
-  std::vector<std::byte> out(journal::kFileHeader.begin(), journal::kFileHeader.end());
+  std::vector<std::byte> out = journal_header();
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> at(-0.9, 0.9);
   std::array<std::byte, journal::kMaxRecordBytes> buf{};
@@ -66,7 +75,7 @@ std::vector<std::byte> journal_bytes(std::uint32_t records, double threshold) {
     r.stroke.end[0].origin = p + glm::dvec3(0.01, 0.0, 0.02);
     r.stroke.end[0].u = {std::cos(0.2), std::sin(0.2), 0.0};
     r.stroke.end[0].v = {-std::sin(0.2), std::cos(0.2), 0.0};
-    const auto n = journal::encode_record(r, buf);
+    const auto n = journal::encode_record(r, buf, kFormat);
     out.insert(out.end(), buf.begin(), buf.begin() + static_cast<std::ptrdiff_t>(*n));
   }
   return out;
@@ -115,8 +124,7 @@ void prepare() {
   const std::vector<std::byte> refined = journal_bytes(kRefinedRecords, kRefineThreshold);
   write_bytes(folder() / "refined_full.twj", refined);
   write_bytes(folder() / "refined_checkpointed.twj", refined);
-  write_bytes(folder() / "empty.twj",
-              std::vector<std::byte>(journal::kFileHeader.begin(), journal::kFileHeader.end()));
+  write_bytes(folder() / "empty.twj", journal_header());
   write_checkpoint("checkpointed.twj", false);
   write_checkpoint("refined_checkpointed.twj", true);
 }

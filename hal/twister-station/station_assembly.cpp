@@ -1,9 +1,14 @@
 #include "station_assembly.hpp"
 
+#include <sys/random.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cstdio>
 
+#include "station_log.hpp"
 #include "station_setup.hpp"
 #include "twister/base/checksum.hpp"
 #include "twister/checkpoint/session_checkpoint.hpp"
@@ -28,33 +33,49 @@ hal::Expected<void> open_journal(hal::PosixFileStorage& journal, const std::stri
                              "refusing to start"};
   }
   if (!s.ok()) {
-    return hal::Error{s, "cannot open journal " + path + " (" + s.name() + ", errno " +
-                             std::to_string(journal.last_errno()) + ")"};
+    return hal::Error{s, "cannot open journal " + path + ": " +
+                             storage_error_text(journal.last_errno()) + " (" + s.name() +
+                             ", errno " + std::to_string(journal.last_errno()) + ")"};
   }
   return {};
 }
 
 std::string corrupt_message(const station::JournalRecovery& r) {
   const journal::JournalSurvey& v = r.survey;
+  const std::string advice =
+      "; refusing to start; the file is left untouched. `twister journal check` lists the "
+      "damage, `twister journal salvage` writes a copy that keeps the longest ordered valid "
+      "prefix";
+  // A complete, CRC-valid record that is refused comes first when it is the first trouble.
+  if (v.refused_records > 0 && (v.later_records == 0 || v.first_refused_offset <= v.good_end)) {
+    return "record at offset " + std::to_string(v.first_refused_offset) + " is " +
+           journal::tail_problem_text(v.first_refused) + " (" +
+           journal::tail_problem_name(v.first_refused) + "), so it is not a torn tail" +
+           (v.refused_records > 1
+                ? " (" + std::to_string(v.refused_records) + " such records in all)"
+                : std::string()) +
+           advice;
+  }
   return "damaged record at offset " + std::to_string(v.good_end) + " (" +
          journal::tail_problem_name(v.problem) + "); " + std::to_string(v.later_records) +
          " valid record(s) follow it (the first at offset " + std::to_string(v.first_later_offset) +
-         "), so it is not a torn tail: refusing to start; the file is left untouched. "
-         "`twister journal check` lists the damage, `twister journal salvage` writes a copy "
-         "that keeps every valid record";
+         "), so it is not a torn tail" + advice;
 }
 
-hal::Expected<void> start_core(station::Station& core, const std::string& journal_path,
-                               const hal::PosixFileSink& archive) {
-  const Status s = core.start();
-  if (s.ok()) return {};
+hal::Error start_error(Status s, const station::JournalRecovery& r, const std::string& journal_path,
+                       const hal::PosixFileStorage& journal, const hal::PosixFileSink& archive) {
   using O = station::JournalRecovery::Outcome;
-  const station::JournalRecovery& r = core.recovery();
   std::string why = s.name();
   if (r.outcome == O::corrupt) {
     why = corrupt_message(r);
   } else if (r.outcome == O::not_a_journal) {
-    why = "is not a Twister journal, or does not fit this mesh (left untouched): not a journal";
+    why =
+        "is not a Twister journal, or does not fit this mesh (left untouched): not a journal "
+        "(or its header is damaged)";
+  } else if (r.outcome == O::too_new) {
+    why =
+        "is a journal of a newer format than this twister-station reads (left untouched); "
+        "use the twister-station that wrote it";
   } else if (r.outcome == O::does_not_fit) {
     why = "is not a Twister journal, or does not fit this mesh (left untouched): record " +
           std::to_string(r.record_index) + " (sequence " + std::to_string(r.record_sequence) +
@@ -64,8 +85,19 @@ hal::Expected<void> start_core(station::Station& core, const std::string& journa
           " bytes at offset " + std::to_string(r.survey.good_end) + " could not be kept in " +
           archive.path() + " (" + archive.last_error() +
           "); refusing to cut it (the file is left untouched)";
+  } else if (r.outcome == O::io_error && s.code() == StatusCode::io_error) {
+    why = std::string("cannot write it: ") + storage_error_text(journal.last_errno()) + " (" +
+          s.name() + ")";
   }
   return hal::Error{s, "journal " + journal_path + ": " + why};
+}
+
+// A new journal's identity: random, so records of two journals never pass for each other.
+std::uint32_t random_journal_id() {
+  std::uint32_t id = 0;
+  if (::getrandom(&id, sizeof id, GRND_NONBLOCK) == static_cast<ssize_t>(sizeof id)) return id;
+  const auto now = std::chrono::system_clock::now().time_since_epoch().count();
+  return static_cast<std::uint32_t>(now) ^ (static_cast<std::uint32_t>(::getpid()) << 16);
 }
 
 std::vector<StationParts::Note> recovery_notes(const station::JournalRecovery& r,
@@ -230,28 +262,35 @@ hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationFileC
   files.tail_archive = parts->tail_archive.get();
   files.checkpoint_in = parts->checkpoint_in.get();
   files.checkpoint_out = parts->checkpoint_out.get();
+  files.new_journal_id = random_journal_id();
   parts->core = std::make_unique<station::Station>(*b.tracker, *b.buttons, *b.clock, parts->journal,
                                                    mesh, storage, *setup, files);
-  if (auto started = start_core(*parts->core, config.station.journal, *parts->tail_archive);
-      !started) {
-    return started.error();
+  // Nothing is written to the journal (no torn tail cut, no new header) until every
+  // other start-up step has succeeded: a start-up that fails leaves it byte-identical.
+  station::Station& core = *parts->core;
+  if (const Status s = core.recover(); !s.ok()) {
+    return start_error(s, core.recovery(), config.station.journal, parts->journal,
+                       *parts->tail_archive);
   }
-  parts->recovery_notes = recovery_notes(parts->core->recovery(), *parts);
+  if (auto stop = stop_requested("journal replayed"); !stop) return stop.error();
+  LinkSection link = config.link;
+  if (!options.link_address.empty()) link.address = options.link_address;  // --link wins
+  if (!link.address.empty()) {
+    if (auto opened = parts->display.open(link, core.sculpt(), hal::process_log()); !opened) {
+      return opened.error();
+    }
+  }
+  if (const Status s = core.begin_appending(); !s.ok()) {
+    return start_error(s, core.recovery(), config.station.journal, parts->journal,
+                       *parts->tail_archive);
+  }
+  parts->recovery_notes = recovery_notes(core.recovery(), *parts);
   if (parts->stale_temporaries > 0) {
     parts->recovery_notes.push_back(
         {false, "removed " + std::to_string(parts->stale_temporaries) +
                     " temporary file(s) a stopped checkpoint or tail writer left"});
   }
   parts->checkpoint_in.reset();  // read: the next checkpoint replaces it
-  if (auto stop = stop_requested("journal replayed"); !stop) return stop.error();
-  LinkSection link = config.link;
-  if (!options.link_address.empty()) link.address = options.link_address;  // --link wins
-  if (!link.address.empty()) {
-    if (auto opened = parts->display.open(link, parts->core->sculpt(), hal::process_log());
-        !opened) {
-      return opened.error();
-    }
-  }
   return parts;
 }
 

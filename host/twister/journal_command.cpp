@@ -13,6 +13,7 @@
 #include "model_session.hpp"
 #include "twister/hal/posix_file_sink.hpp"
 #include "twister/hal/posix_file_storage.hpp"
+#include "twister/journal/journal_format.hpp"
 #include "twister/journal/journal_salvage.hpp"
 #include "twister/journal/journal_scanner.hpp"
 
@@ -55,7 +56,8 @@ struct Findings {
   std::array<std::uint64_t, 5> by_type{};  // indexed by RecordType
   std::uint64_t records = 0;
   std::uint64_t damaged = 0;
-  std::uint64_t gaps = 0;
+  std::uint64_t gaps = 0;     // version 1: sequences out of order (not proven by the format)
+  std::uint64_t refused = 0;  // complete records refused (version, type, values, order)
   std::optional<std::uint32_t> first_sequence, last_sequence;
   std::uint64_t not_applied = 0;  // with --mesh
 };
@@ -66,7 +68,8 @@ void note_record(Findings& f, const journal::ScanItem& item, ModelSession* model
   ++f.by_type[static_cast<std::size_t>(r.type)];
   if (f.last_sequence && r.sequence != *f.last_sequence + 1) {
     ++f.gaps;
-    std::printf("sequence gap at offset %llu: %u follows %u\n",
+    std::printf("sequence %s at offset %llu: %u follows %u\n",
+                r.sequence > *f.last_sequence ? "gap" : "out of order",
                 static_cast<unsigned long long>(item.offset), r.sequence, *f.last_sequence);
   }
   if (!f.first_sequence) f.first_sequence = r.sequence;
@@ -80,6 +83,25 @@ void note_record(Findings& f, const journal::ScanItem& item, ModelSession* model
   }
 }
 
+void print_damage(Findings& f, const journal::ScanItem& item) {
+  if (journal::may_be_torn(item.problem)) {
+    ++f.damaged;
+    std::printf(
+        "damage at offset %llu: %llu bytes (%s)\n", static_cast<unsigned long long>(item.offset),
+        static_cast<unsigned long long>(item.bytes), journal::tail_problem_name(item.problem));
+    return;
+  }
+  ++f.refused;
+  std::printf("refused: record at offset %llu (%llu bytes",
+              static_cast<unsigned long long>(item.offset),
+              static_cast<unsigned long long>(item.bytes));
+  if (journal::is_order_problem(item.problem)) {
+    std::printf(", sequence %u, %s", item.record.sequence, type_name(item.record.type));
+  }
+  std::printf("): %s (%s)\n", journal::tail_problem_text(item.problem),
+              journal::tail_problem_name(item.problem));
+}
+
 void print_verdict(const Findings& f, const journal::JournalSurvey& s) {
   std::printf(
       "%llu records (strokes %llu, moves %llu, undos %llu, redos %llu)",
@@ -88,8 +110,25 @@ void print_verdict(const Findings& f, const journal::JournalSurvey& s) {
       static_cast<unsigned long long>(f.by_type[4]));
   if (f.first_sequence) std::printf(", sequences %u..%u", *f.first_sequence, *f.last_sequence);
   std::printf("\n");
-  if (s.clean()) {
+  std::printf("format version %u%s\n", s.format.version,
+              s.format.proves_order() ? " (identity and sequences checked)"
+                                      : " (order not proven by the format)");
+  if (s.clean() && f.gaps > 0) {
+    std::printf(
+        "verdict: suspect order: %llu sequence(s) out of order in a version 1 journal; "
+        "twister-station replays it as it is\n",
+        static_cast<unsigned long long>(f.gaps));
+  } else if (s.clean()) {
     std::printf("verdict: clean\n");
+  } else if (s.refused_records > 0 &&
+             (s.later_records == 0 || s.first_refused_offset <= s.good_end)) {
+    std::printf(
+        "verdict: corrupt: record at offset %llu is %s (%s), %llu refused record(s) in all; "
+        "twister-station refuses this journal; `twister journal salvage` writes a copy "
+        "that keeps the longest ordered valid prefix\n",
+        static_cast<unsigned long long>(s.first_refused_offset),
+        journal::tail_problem_text(s.first_refused), journal::tail_problem_name(s.first_refused),
+        static_cast<unsigned long long>(s.refused_records));
   } else if (s.torn_tail()) {
     std::printf(
         "verdict: torn tail of %llu bytes at offset %llu (%s): twister-station cuts it "
@@ -115,16 +154,18 @@ int run_check(const Options& o) {
   if (!opened) return fail(kExitBadInput, opened.error().message);
   const std::unique_ptr<ModelSession> model = std::move(*opened);
   journal::JournalScanner scanner(storage);
-  if (!scanner.open().ok()) return fail(kExitBadInput, o.journal + " is not a Twister journal");
+  if (const Status scanned = scanner.open(); !scanned.ok()) {
+    return fail(kExitBadInput,
+                o.journal + (scanned.code() == StatusCode::not_supported
+                                 ? " is a journal of a newer format than this twister reads"
+                                 : " is not a Twister journal (or its header is damaged)"));
+  }
   std::printf("journal %s: %llu bytes\n", o.journal.c_str(),
               static_cast<unsigned long long>(scanner.file_size()));
   Findings f;
   for (auto item = scanner.next(); item.ok(); item = scanner.next()) {
     if (item->kind == journal::ScanItem::Kind::damage) {
-      ++f.damaged;
-      std::printf(
-          "damage at offset %llu: %llu bytes (%s)\n", static_cast<unsigned long long>(item->offset),
-          static_cast<unsigned long long>(item->bytes), journal::tail_problem_name(item->problem));
+      print_damage(f, *item);
       continue;
     }
     note_record(f, *item, model.get());
@@ -139,23 +180,37 @@ int run_check(const Options& o) {
                 f.not_applied == 0 ? "every record applies" : "some records do not apply",
                 static_cast<unsigned long long>(model->mesh().checksum()));
   }
-  return survey->clean() && f.not_applied == 0 ? kExitOk : kExitFailure;
+  return survey->clean() && f.gaps == 0 && f.not_applied == 0 ? kExitOk : kExitFailure;
+}
+
+const char* why_text(journal::SalvageObserver::Drop why) {
+  using Drop = journal::SalvageObserver::Drop;
+  switch (why) {
+    case Drop::broken_chain:
+      return "a freeze step whose earlier step was lost";
+    case Drop::refused:
+      return "it does not apply to the model";
+    case Drop::out_of_order:
+      return "a duplicate, or a sequence the copy already has";
+    case Drop::after_gap:
+      return "a record before it is missing (the copy ends at the gap)";
+  }
+  return "?";
 }
 
 // Prints what salvage skips.
 class SalvageLog final : public journal::SalvageObserver {
  public:
   void damaged(std::uint64_t offset, std::uint64_t bytes, journal::TailProblem problem) override {
-    std::printf("lost: %llu damaged bytes at offset %llu (%s)\n",
-                static_cast<unsigned long long>(bytes), static_cast<unsigned long long>(offset),
+    std::printf("lost: %llu %s at offset %llu: %s (%s)\n", static_cast<unsigned long long>(bytes),
+                journal::may_be_torn(problem) ? "damaged bytes" : "bytes of a refused record",
+                static_cast<unsigned long long>(offset), journal::tail_problem_text(problem),
                 journal::tail_problem_name(problem));
   }
   void dropped(const journal::ScanItem& item, Drop why) override {
     std::printf("dropped: record at offset %llu (sequence %u, %s): %s\n",
                 static_cast<unsigned long long>(item.offset), item.record.sequence,
-                type_name(item.record.type),
-                why == Drop::broken_chain ? "a freeze step whose earlier step was lost"
-                                          : "it does not apply to the model");
+                type_name(item.record.type), why_text(why));
   }
 };
 
@@ -193,19 +248,27 @@ int run_salvage(const Options& o) {
   const auto report = journal::salvage_journal(storage, sink, &log, filter.get());
   if (!report.ok()) {
     if (report.status().code() == StatusCode::data_loss) {
-      return fail(kExitBadInput, o.journal + " is not a Twister journal");
+      return fail(kExitBadInput,
+                  o.journal + " is not a Twister journal (or its header is damaged)");
+    }
+    if (report.status().code() == StatusCode::not_supported) {
+      return fail(kExitBadInput,
+                  o.journal + " is a journal of a newer format than this twister reads");
     }
     return fail(kExitFailure, "cannot write " + o.out + ": " + sink.last_error());
   }
   const journal::SalvageReport& r = *report;
   std::printf(
       "salvaged %llu of %llu valid records into %s; lost %llu damaged range(s) (%llu "
-      "bytes), dropped %llu broken-chain and %llu non-applying record(s)\n",
+      "bytes), dropped %llu broken-chain, %llu non-applying, %llu duplicate or out-of-order and "
+      "%llu after-a-gap record(s)\n",
       static_cast<unsigned long long>(r.records_kept),
       static_cast<unsigned long long>(r.records_found), sink.committed_path(),
       static_cast<unsigned long long>(r.damaged_ranges),
       static_cast<unsigned long long>(r.damaged_bytes),
-      static_cast<unsigned long long>(r.broken_chain), static_cast<unsigned long long>(r.refused));
+      static_cast<unsigned long long>(r.broken_chain), static_cast<unsigned long long>(r.refused),
+      static_cast<unsigned long long>(r.out_of_order),
+      static_cast<unsigned long long>(r.after_gap));
   return kExitOk;
 }
 

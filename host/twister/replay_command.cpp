@@ -16,10 +16,12 @@
 #include "cli_log.hpp"
 #include "model_session.hpp"
 #include "twister/hal/output_file.hpp"
+#include "twister/journal/journal_format.hpp"
 #include "twister/session/sculpt_session.hpp"
 #include "twister/journal/journal_reader.hpp"
 #include "twister/journal/journal_scanner.hpp"
 #include "twister/meshio/obj_file.hpp"
+#include "twister/session/sculpt_session.hpp"
 
 namespace twister::cli {
 namespace {
@@ -107,6 +109,24 @@ int check_output(const Options& o) {
   return kExitOk;
 }
 
+// A damaged record with valid records after it, or a complete record that is refused
+// (unknown version or type, invalid values, another journal's, out of order), is
+// corruption, not a torn tail: replaying up to it would silently drop later strokes,
+// and twister-station refuses the same journal. "" when there is none.
+std::string corruption(ports::Storage& storage) {
+  const auto survey = journal::survey_journal(storage);
+  if (!survey.ok() || !survey->corrupt()) return "";
+  const bool refused =
+      survey->refused_records > 0 &&
+      (survey->later_records == 0 || survey->first_refused_offset <= survey->good_end);
+  const std::uint64_t at = refused ? survey->first_refused_offset : survey->good_end;
+  const journal::TailProblem what = refused ? survey->first_refused : survey->problem;
+  return "record at offset " + std::to_string(at) + ": " + journal::tail_problem_text(what) + " (" +
+         journal::tail_problem_name(what) + "); " + std::to_string(survey->later_records) +
+         " valid record(s) after the first damage; nothing written (`twister journal salvage` "
+         "makes a copy of what can be kept)";
+}
+
 int run_replay(const Options& o) {
   if (const int refused = check_output(o); refused != kExitOk) return refused;
   auto model = ModelSession::open(o.mesh_in, o.spare_vertices, o.undo_changes, o.undo_entries);
@@ -118,19 +138,15 @@ int run_replay(const Options& o) {
   if (!bytes) return fail(kExitBadInput, "cannot open journal '" + o.journal + "'");
   ReadOnlyStorage storage(std::move(*bytes));
   journal::JournalReader reader(storage);
-  if (!reader.open().ok()) {
-    return fail(kExitBadInput, "'" + o.journal + "' is not a Twister journal");
+  if (const Status opened = reader.open(); !opened.ok()) {
+    return fail(kExitBadInput, "'" + o.journal +
+                                   (opened.code() == StatusCode::not_supported
+                                        ? "' is a journal of a newer format than this twister reads"
+                                        : "' is not a Twister journal"));
   }
   const std::uint64_t total_bytes = storage.size().value_or(0);
-  // A damaged record with valid records after it is corruption, not a torn tail:
-  // replaying up to it would silently drop the later strokes.
-  if (const auto survey = journal::survey_journal(storage); survey.ok() && survey->corrupt()) {
-    return fail(kExitBadInput, o.journal + ": damaged record at offset " +
-                                   std::to_string(survey->good_end) + " (" +
-                                   journal::tail_problem_name(survey->problem) + ") with " +
-                                   std::to_string(survey->later_records) +
-                                   " valid record(s) after it; nothing written "
-                                   "(`twister journal salvage` makes a copy that keeps them)");
+  if (const std::string why = corruption(storage); !why.empty()) {
+    return fail(kExitBadInput, o.journal + ": " + why);
   }
 
   // Progress for long journals: a line per 10% of the file, on stderr (notice).

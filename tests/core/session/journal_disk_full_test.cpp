@@ -149,7 +149,7 @@ TEST(JournalDiskFull, AtEveryByteOfASessionNothingReportedSavedIsLostAndRestartW
   const std::size_t total = full_session_bytes();
   ASSERT_GT(total, 1000u);
   std::size_t runs_with_losses = 0;
-  for (std::size_t limit = journal::kFileHeaderBytes; limit <= total; ++limit) {
+  for (std::size_t limit = journal::kMaxFileHeaderBytes; limit <= total; ++limit) {
     SCOPED_TRACE(limit);
     auto s = std::make_unique<Station>();
     s->storage.fill_disk_at(limit);

@@ -47,7 +47,7 @@ TEST(SculptSession, GrabDragReleaseCommitsAndJournals) {
   EXPECT_NE(s.mesh.checksum(), original);
   EXPECT_FALSE(s.session->busy());
   EXPECT_EQ(s.session->next_sequence(), 1u);
-  EXPECT_GT(s.storage.bytes().size(), journal::kFileHeaderBytes);
+  EXPECT_GT(s.storage.bytes().size(), journal::kMaxFileHeaderBytes);
   EXPECT_EQ(s.storage.synced_size(), s.storage.bytes().size());
 }
 

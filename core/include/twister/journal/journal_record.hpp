@@ -1,6 +1,8 @@
 // JournalRecord: one entry of the stroke journal, and its byte encoding.
 //
-// File: an 8-byte header ("TWJL", u32 format version), then records. Each record:
+// File: a header ("TWJL", u32 format version, ...), then records; the file formats
+// (version 1, and version 2 whose records carry the journal's identity and whose
+// sequences are checked) are in journal_format.hpp. A version 1 record:
 //   u32 payload_length | u8 record_version | u8 type | u16 reserved (0)
 //   payload (payload_length bytes) | u32 CRC-32 over header and payload
 // All integers little-endian; reals are IEEE float64 bit patterns, so replay sees
@@ -30,17 +32,6 @@ namespace twister::journal {
 
 inline constexpr std::array<std::byte, 4> kFileMagic{std::byte{'T'}, std::byte{'W'}, std::byte{'J'},
                                                      std::byte{'L'}};
-inline constexpr std::uint32_t kFileVersion = 1;
-inline constexpr std::size_t kFileHeaderBytes = 8;
-// What every journal file starts with: the magic, then kFileVersion little-endian.
-inline constexpr std::array<std::byte, kFileHeaderBytes> kFileHeader = [] {
-  std::array<std::byte, kFileHeaderBytes> header{};
-  for (std::size_t i = 0; i < 4; ++i) {
-    header[i] = kFileMagic[i];
-    header[4 + i] = static_cast<std::byte>((kFileVersion >> (8 * i)) & 0xffu);
-  }
-  return header;
-}();
 inline constexpr std::uint8_t kRecordVersion = 1;
 // A stroke record with long_turns != 0 (and no refinement).
 inline constexpr std::uint8_t kRecordVersionLongTurns = 2;
@@ -49,8 +40,10 @@ inline constexpr std::uint8_t kRecordVersionRefined = 3;
 inline constexpr std::size_t kRecordHeaderBytes = 8;
 inline constexpr std::size_t kRecordCrcBytes = 4;
 inline constexpr std::size_t kMaxPayloadBytes = 512;
+// Version 2 records carry the journal's identity after the record header.
+inline constexpr std::size_t kRecordIdBytes = 4;
 inline constexpr std::size_t kMaxRecordBytes =
-    kRecordHeaderBytes + kMaxPayloadBytes + kRecordCrcBytes;
+    kRecordHeaderBytes + kRecordIdBytes + kMaxPayloadBytes + kRecordCrcBytes;
 
 enum class RecordType : std::uint8_t {
   stroke = 1,       // a committed warp (release, freeze step, or hand-set change)
@@ -95,7 +88,8 @@ struct JournalRecord {
   friend bool operator==(const JournalRecord&, const JournalRecord&) = default;
 };
 
-// Writes the whole record (header, payload, CRC) into out; returns its size.
+// Writes the whole record (header, payload, CRC) into out in the version 1 layout;
+// returns its size (encode_record(record, out, format) in journal_format.hpp: any format).
 // invalid_argument: the record breaks the rules above (hand_mask 0, method > 2,
 // long_turns outside hand_mask, refine_threshold_m negative or not finite).
 // resource_exhausted: out is smaller than the encoded record.

@@ -16,7 +16,10 @@
 // record with valid records after it: the file is left untouched), restores the last
 // checkpoint when one fits, replays the records after it into the mesh (the same code
 // path as live commits), cuts a torn tail (keeping its bytes through a FileSink) and
-// opens the journal for appending.
+// opens the journal for appending. A composition root with more start-up steps that can
+// fail calls recover() (which changes no file), then its steps, then begin_appending()
+// (which cuts the torn tail and writes a new journal's header), so a start-up that
+// fails leaves the journal byte-identical.
 // No heap; all working memory is given at construction. Not thread-safe.
 #pragma once
 
@@ -55,15 +58,21 @@ struct StationFiles {
   ports::Storage* checkpoint_in = nullptr;
   // Where checkpoints go (null: none are written).
   ports::FileSink* checkpoint_out = nullptr;
+  // The identity a new journal gets (journal_format.hpp; the program picks a random one).
+  std::uint32_t new_journal_id = 0;
 };
 
 // What start() found in the journal (for the start-up log and its error messages).
 struct JournalRecovery {
   enum class Outcome : std::uint8_t {
     not_started,
+    recovered,      // recover() replayed it; begin_appending() has not run yet
     ok,             // replayed (a torn tail, if any, was cut: tail_cut bytes)
     not_a_journal,  // foreign file: left alone
-    corrupt,        // damage followed by valid records: refused, left untouched
+    corrupt,        // damage followed by valid records, or a complete record that is
+                    // refused (unknown version or type, invalid values, another
+                    // journal's, out of order): refused, left untouched
+    too_new,        // a journal of a newer format version: refused, left untouched
     does_not_fit,   // a record cannot be applied to this mesh (record_index, status)
     tail_not_kept,  // the torn tail could not be copied aside: refused, left untouched
     io_error,       // storage failed
@@ -106,6 +115,13 @@ class Station {
   // by the warp plan; io_error: storage failed or the torn tail could not be kept;
   // failed_precondition: hand_station out of 1..4 or both hands on one receiver.
   Status start();
+  // start() in two steps. recover(): every check and the replay, nothing written (the
+  // same errors as start(), except those of cutting and opening).
+  // begin_appending(): keeps and cuts a torn tail and opens the journal for appending
+  // (io_error: storage failed, e.g. a full disk for a new journal's header, or the
+  // tail could not be kept; failed_precondition: recover() did not succeed).
+  Status recover();
+  Status begin_appending();
   const JournalRecovery& recovery() const { return recovery_; }
 
   // One loop iteration (never blocks). failed_precondition: start() did not succeed.
