@@ -1,6 +1,6 @@
 // EGL surfaceless is selected explicitly: without DISPLAY the default EGL display
 // fails on Mesa, and eglGetPlatformDisplayEXT (not the 1.5 entry point) is what
-// works through libepoxy (docs: testing-without-hardware.md).
+// works through libepoxy (docs/bridge.md "Software GL").
 #include "gl_context.hpp"
 
 #include <epoxy/egl.h>

@@ -66,11 +66,11 @@ void check_written(const hal::Expected<void>& written) {
 }
 
 void run_figure8(const Figure8Options& opt) {
-  // Both experiments of spec §9: the paper-like one and the small displacement.
+  // Both experiments of docs/math.md §9: the paper-like one and the small displacement.
   const Figure8Setup paper_like{};
   const Figure8Setup small{2001, 1.0, 0.3};
   Figure8Picture picture{
-      "Figure 8: a straight line bent by two hands, three warp methods (spec \u00a79)",
+      "Figure 8: a straight line bent by two hands, three warp methods (docs/math.md \u00a79)",
       "2001 points from x = \u22121 to 1, grabbed at x = \u22120.5 and +0.5; hand 1 turns by "
       "+angle about z, hand 2 by \u2212angle. Cell: self-intersections, sharpest turn between "
       "segments. One scale per panel.",
@@ -88,8 +88,8 @@ void run_figure8(const Figure8Options& opt) {
 }  // namespace
 
 void add_figure8_command(CLI::App& app) {
-  auto* cmd =
-      app.add_subcommand("figure8", "Run the Figure 8 comparison of the warp methods (spec §9)");
+  auto* cmd = app.add_subcommand(
+      "figure8", "Run the Figure 8 comparison of the warp methods (docs/math.md §9)");
   auto opt = std::make_shared<Figure8Options>();
   cmd->add_option("--svg", opt->svg, "write the grid of curves as SVG");
   cmd->add_option("--png", opt->png, "write the grid of curves as PNG");

@@ -1,4 +1,4 @@
-// `twister figure8 [--svg FILE] [--png FILE]`: the spec's Figure 8 experiment (§9):
+// `twister figure8 [--svg FILE] [--png FILE]`: the Figure 8 experiment (docs/math.md §9):
 // prints self-intersections and sharpest turns per angle and method, draws the grid.
 #pragma once
 

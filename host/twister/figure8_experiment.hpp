@@ -1,4 +1,4 @@
-// The Figure 8 experiment of the spec (§9): a straight polyline bent by two hands
+// The Figure 8 experiment (docs/math.md §9): a straight polyline bent by two hands
 // through -180..135 degrees with each warp method; counts self-intersections and the
 // sharpest turn. Host code; the warp itself is the station's WarpPlan.
 #pragma once

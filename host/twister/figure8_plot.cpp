@@ -222,7 +222,7 @@ void draw_cell(Painter& pt, const PanelScale& panel_scale, const Figure8Panel& p
   }
   cairo_stroke(cr);
 
-  // The grabs sit at x = -0.5 and +0.5; both hands move by (0, lift, 0) (spec §9).
+  // The grabs sit at x = -0.5 and +0.5; both hands move by (0, lift, 0) (docs/math.md §9).
   for (const double gx : {-0.5, 0.5}) {
     const glm::dvec2 rest = panel_scale.map({gx, 0.0}, x0, y0);
     const glm::dvec2 held = panel_scale.map({gx, panel.setup.lift}, x0, y0);

@@ -1,4 +1,4 @@
-// The case file of `twister warp` (spec §10): parsing and validation, no warping.
+// The case file of `twister warp` (docs/math.md §10): parsing and validation, no warping.
 // Host code (std::string/vector allowed); errors name the offending line.
 #pragma once
 

@@ -79,7 +79,7 @@ void run_warp(const std::string& path) {
 }  // namespace
 
 void add_warp_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("warp", "Warp the points of a case file (spec §10)");
+  auto* cmd = app.add_subcommand("warp", "Warp the points of a case file (docs/math.md §10)");
   auto path = std::make_shared<std::string>();
   cmd->add_option("case", *path, "case file, or - for stdin")->required();
   cmd->callback([path] {

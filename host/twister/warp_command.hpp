@@ -1,5 +1,5 @@
 // `twister warp CASE|-`: warps the points of a case file with the station's kernel
-// and prints them (spec §10).
+// and prints them (docs/math.md §10).
 #pragma once
 
 #include <CLI/CLI.hpp>

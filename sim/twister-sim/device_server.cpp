@@ -1,4 +1,4 @@
-// PTY facts used here: shared/design/testing-without-hardware.md (raw mode, hang-up
+// PTY facts used here: docs/fastrak.md "Pseudo-terminal facts" (raw mode, hang-up
 // seen as POLLHUP by the reader, the /dev/pts node vanishing, symlink via rename()).
 #include "device_server.hpp"
 

@@ -85,7 +85,8 @@ Seed raw(std::span<const std::byte> bytes) {
 
 std::map<std::string, Seed> seeds(std::span<const std::byte> file, const checkpoint::CheckpointHeader& h,
                                   const session::UndoHistory& history) {
-  using namespace input;
+  using namespace checkpoint;
+  using session::UndoEntry;
   const std::size_t positions = kCheckpointHeaderBytes;
   const std::size_t triangles = positions + std::size_t{12} * h.vertex_count;
   const std::size_t entries = triangles + kCheckpointTriangleBytes * h.triangle_count;

@@ -20,7 +20,7 @@ glm::dvec3 Screw::axis_point() const { return mid + glm::cross(axis, chord) * (0
 
 glm::dquat relative_rotation(const Frame& start, const Frame& end) {
   // R from the frames rather than the axis sum of the paper: the sum has the wrong
-  // sign or vanishes for some axes (spec §2).
+  // sign or vanishes for some axes (docs/math.md §2).
   const glm::dmat3 from(start.u, start.v, start.w);
   const glm::dmat3 to(end.u, end.v, end.w);
   return glm::quat_cast(to * glm::transpose(from));

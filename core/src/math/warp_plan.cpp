@@ -20,7 +20,7 @@ void put(double (&d)[3], glm::dvec3 v) {
   d[2] = v.z;
 }
 
-// Two grabs this close leave the squash undefined (§5).
+// Two grabs this close leave the squash undefined (docs/math.md §5).
 bool coincident_grabs(std::span<const Frame> start, double radius) {
   return start.size() == 2 &&
          glm::length(start[1].origin - start[0].origin) <= kCoincidentGrabFraction * radius;

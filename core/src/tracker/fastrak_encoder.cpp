@@ -100,8 +100,9 @@ Result<std::size_t> encode_record(const FastrakPose& pose, const FastrakConfig& 
 Result<std::size_t> encode_status(const FastrakStatus& status, std::span<std::byte> out) {
   if (out.size() < kStatusReplyBytes) return StatusCode::resource_exhausted;
   static constexpr char kHex[] = "0123456789ABCDEF";
-  // Bytes 1-based per §3.6: '2', station, 'S', 3 hex flags, 3-char BIT code, blank,
-  // ID tag, sensor map, blanks, 6-char firmware, 32-char system id, CR LF.
+  // Bytes 1-based per docs/fastrak-protocol.md §3.6: '2', station, 'S', 3 hex flags,
+  // 3-char BIT code, blank, ID tag, sensor map, blanks, 6-char firmware, 32-char system
+  // id, CR LF.
   char text[kStatusReplyBytes + 1] = "21S3F0    013    3.00Twister simulated FASTRAK       \r\n";
   text[1] =
       static_cast<char>('0' + (status.station >= 1 && status.station <= 4 ? status.station : 1));

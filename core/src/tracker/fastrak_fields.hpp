@@ -1,6 +1,6 @@
 // Private helpers shared by the parser and the encoder: fixed-width ASCII number
-// fields (spec §3.2). Binary float32 fields (§3.3) go through the byte cursor of
-// twister/base/internal/byte_cursor.hpp.
+// fields (docs/fastrak-protocol.md §3.2). Binary float32 fields (§3.3) go through the byte cursor
+// of twister/base/internal/byte_cursor.hpp.
 #pragma once
 
 #include <cstddef>

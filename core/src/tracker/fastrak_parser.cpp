@@ -1,6 +1,6 @@
-// Byte-wise hunting parser (spec §3.7/§3.8). Candidates are examined in place in the
-// caller's buffer when they fit; only a candidate cut by the end of a read is copied
-// into pending_, so the common case costs no copy.
+// Byte-wise hunting parser (docs/fastrak-protocol.md §3.7/§3.8). Candidates are examined in place
+// in the caller's buffer when they fit; only a candidate cut by the end of a read is copied into
+// pending_, so the common case costs no copy.
 #include "twister/tracker/fastrak_parser.hpp"
 
 #include <algorithm>

@@ -1,5 +1,5 @@
-// The parser's '2'-led replies (spec §3.6): the 55-byte status record and every other
-// reply line (read-backs, command errors with their EC code).
+// The parser's '2'-led replies (docs/fastrak-protocol.md §3.6): the 55-byte status record and every
+// other reply line (read-backs, command errors with their EC code).
 #include <algorithm>
 
 #include "fastrak_fields.hpp"

@@ -1,4 +1,4 @@
-// Plausibility checks (spec §3.8): non-finite values, position range (400 in /
+// Plausibility checks (docs/fastrak-protocol.md §3.8): non-finite values, position range (400 in /
 // 1016 cm), angle range, direction-cosine frame, quaternion norm.
 #include "fastrak_plausibility.hpp"
 

@@ -1,4 +1,4 @@
-// Private: the value checks of a framed record (spec §3.8), in the order of the
+// Private: the value checks of a framed record (docs/fastrak-protocol.md §3.8), in the order of the
 // reasons' list. Pure; no heap.
 #pragma once
 

@@ -108,7 +108,7 @@ void FastrakSession::build_commands() {
   }
   ok = ok && append_filter('x', config_.position_filter, len);
   ok = ok && append_filter('v', config_.attitude_filter, len);
-  // e1,0: the stylus must never toggle the stream off (spec pitfall 4).
+  // e1,0: the stylus must never toggle the stream off (docs/fastrak-protocol.md §6 pitfall 4).
   ok = ok && append(commands_, len, "e1,0\r");
   end_cmd();
   ok = ok && append(commands_, len, config_.protocol.units == Units::inches ? "U" : "u");

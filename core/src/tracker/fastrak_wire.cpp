@@ -1,4 +1,4 @@
-// Item widths and configuration checks (spec §2.1, §3.2, §3.3).
+// Item widths and configuration checks (docs/fastrak-protocol.md §2.1, §3.2, §3.3).
 #include "twister/tracker/fastrak_wire.hpp"
 
 namespace twister::tracker {

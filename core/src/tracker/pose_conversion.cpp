@@ -1,4 +1,4 @@
-// Orientation from each item (spec §4) and the station-frame conversion.
+// Orientation from each item (docs/fastrak-protocol.md §4) and the station-frame conversion.
 #include "twister/tracker/pose_conversion.hpp"
 
 #include <cmath>

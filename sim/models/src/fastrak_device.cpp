@@ -193,7 +193,7 @@ char FastrakDevice::status_code(int station, ports::TimestampUs at,
   for (const StatusEvent& e : scenario_.status) {
     if (e.station == station && t >= e.t_s && t < e.t_s + e.duration_s) return e.code;
   }
-  // Outside the `Q` angular envelope the record is flagged 'y' (spec §2).
+  // Outside the `Q` angular envelope the record is flagged 'y' (docs/fastrak-protocol.md §2).
   const auto& q = envelope_[static_cast<std::size_t>(station - 1)];
   for (std::size_t k = 0; k < 3; ++k) {
     if (euler[k] > q[k] || euler[k] < q[k + 3]) return 'y';

@@ -1,4 +1,4 @@
-// The device model's command interpreter (spec §2): mode letters, parameter
+// The device model's command interpreter (docs/fastrak-protocol.md §2): mode letters, parameter
 // commands with their read-backs, and the command-error record for bad input.
 #include <cstdio>
 #include <cstdlib>

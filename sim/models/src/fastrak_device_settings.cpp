@@ -1,4 +1,4 @@
-// The device model's setting commands beyond the output lists (spec §2): the
+// The device model's setting commands beyond the output lists (docs/fastrak-protocol.md §2): the
 // adaptive filters `x` / `v` (parameters, macros, read-back record), the angular
 // envelope `Q` and the serial port `o`.
 #include <cmath>

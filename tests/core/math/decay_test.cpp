@@ -39,7 +39,7 @@ TEST(DecayTest, SquashStretchesTowardsOtherHand) {
             glm::dvec3(1.0, 0.0, 0.0));
 }
 
-// §5: on the segment between the hands the two squashed weights sum to one.
+// docs/math.md §5: on the segment between the hands the two squashed weights sum to one.
 RC_GTEST_PROP(DecayTest, PartitionOfUnityOnSegment, ()) {
   const glm::dvec3 o = *gen_point(2.0);
   const double radius = *gen_real(0.1, 3.0);

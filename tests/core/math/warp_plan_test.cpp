@@ -44,7 +44,7 @@ rc::Gen<WarpMethod> gen_method(bool with_scodef) {
              : rc::gen::element(WarpMethod::twister, WarpMethod::rottran);
 }
 
-// §4: for one hand the grab point and its frame follow the hand exactly.
+// docs/math.md §4: for one hand the grab point and its frame follow the hand exactly.
 RC_GTEST_PROP(WarpPlanTest, OneHandGrabPointAndFrameFollowTheHand, ()) {
   const double radius = *gen_real(0.2, 2.0);
   const std::array<Frame, 1> start{*gen_frame(1.0)};
@@ -70,7 +70,7 @@ RC_GTEST_PROP(WarpPlanTest, OneHandGrabPointAndFrameFollowTheHand, ()) {
   RC_ASSERT(distance(out.at(0), end[0].origin) < 1e-5 * 4.0);
 }
 
-// §5: with |OQ| < r both grab points reach their targets.
+// docs/math.md §5: with |OQ| < r both grab points reach their targets.
 RC_GTEST_PROP(WarpPlanTest, TwoHandsInsideEachOthersBallReachTargets, ()) {
   const double radius = *gen_real(0.2, 2.0);
   const Frame first = *gen_frame(1.0);
@@ -235,7 +235,7 @@ TEST(WarpPlanTest, RebaseKeepsSelectionAndRestartsFromNewPoses) {
   EXPECT_NEAR(g_plan.screw(0).angle, 1.5, 1e-12);
 }
 
-// §2: at exactly a half turn the stroke keeps the sense of the previous update.
+// docs/math.md §2.3: at exactly a half turn the stroke keeps the sense of the previous update.
 TEST(WarpPlanTest, HalfTurnKeepsTheStrokeSense) {
   Cloud cloud;
   cloud.add(glm::dvec3(0.0));

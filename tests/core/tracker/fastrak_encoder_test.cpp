@@ -1,6 +1,6 @@
-// Encoder: spec layouts byte for byte, and the round-trip property: any sequence of
-// valid records, encoded in either format and fed in arbitrary splits, decodes to the
-// same records.
+// Encoder: the layouts of docs/fastrak-protocol.md §3 byte for byte, and the round-trip
+// property: any sequence of valid records, encoded in either format and fed in arbitrary
+// splits, decodes to the same records.
 #include "twister/tracker/fastrak_encoder.hpp"
 
 #include <gtest/gtest.h>
@@ -265,8 +265,9 @@ RC_GTEST_PROP(FastrakRoundTrip, ExtendedItemsRoundTripByteForByte, ()) {
   RC_ASSERT(again == stream);
 }
 
-// 16-bit packed records (§3.4): any records in any split decode to the sent values
-// within one count, and re-encoding a decoded record gives back its bytes.
+// 16-bit packed records (docs/fastrak-protocol.md §3.4): any records in any split decode
+// to the sent values within one count, and re-encoding a decoded record gives back its
+// bytes.
 RC_GTEST_PROP(FastrakRoundTrip, Packed16RecordsDecodeWithinOneCountAndReencodeExactly, ()) {
   const FastrakConfig c = gen_config(true);
   const int count = *rc::gen::inRange(1, 40);

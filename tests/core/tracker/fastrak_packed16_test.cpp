@@ -1,7 +1,7 @@
-// The 16-bit packed format (spec §3.4, Isotrak II / 3SPACE heritage) against byte
-// streams built here from the spec's description, independently of pack16(): 7
-// logical bytes per group with bit 7 stripped, then one byte of the stripped bits
-// (bit 0 = first byte), the record's first wire byte marked by bit 7.
+// The 16-bit packed format (docs/fastrak-protocol.md §3.4, Isotrak II / 3SPACE heritage)
+// against byte streams built here from that description, independently of pack16(): 7
+// logical bytes per group with bit 7 stripped, then one byte of the stripped bits (bit 0 =
+// first byte), the record's first wire byte marked by bit 7.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -22,7 +22,7 @@ std::string le16(int v) {
   return {static_cast<char>(u & 0xFF), static_cast<char>(u >> 8)};
 }
 
-// The spec's packing, written out long-hand for the tests.
+// The packing of docs/fastrak-protocol.md §3.4, written out long-hand for the tests.
 std::string pack_by_hand(const std::string& logical) {
   std::string wire;
   for (std::size_t g = 0; g < logical.size(); g += 7) {

@@ -1,5 +1,6 @@
-// FastrakParser on faulty streams (§3.7, §3.8, §5): garbage, torn and truncated
-// records, bad headers, implausible values, interleaved stations, resync.
+// FastrakParser on faulty streams (docs/fastrak-protocol.md §3.7, §3.8, §5): garbage,
+// torn and truncated records, bad headers, implausible values, interleaved stations,
+// resync.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,5 +1,5 @@
-// FastrakParser against byte streams written from the spec (§3.2, §3.3, §3.6, §3.7,
-// §3.8, §5): record layouts, replies, and every documented fault case.
+// FastrakParser against byte streams written from docs/fastrak-protocol.md (§3.2, §3.3,
+// §3.6, §3.7, §3.8, §5): record layouts, replies, and every documented fault case.
 #include "twister/tracker/fastrak_parser.hpp"
 
 #include <gtest/gtest.h>
@@ -40,8 +40,9 @@ TEST(FastrakParser, RecordLengthsMatchSpecTables) {
                           Format::binary),
             31u);
   EXPECT_EQ(record_length(kDefaultList, Format::binary), 29u);
-  // The spec's table says 41 (= 3 + 36 + 2) for 2,5,6,7,1, which leaves out the 12
-  // position bytes; 41 is the length of 5,6,7,1 and 2,5,6,7,1 is 53 (docs/fastrak.md).
+  // Our source material said 41 (= 3 + 36 + 2) for 2,5,6,7,1, which leaves out the 12
+  // position bytes; 41 is the length of 5,6,7,1 and 2,5,6,7,1 is 53
+  // (docs/fastrak-protocol.md §3.3).
   EXPECT_EQ(record_length(OutputList::of({Item::dcm_x, Item::dcm_y, Item::dcm_z, Item::crlf}),
                           Format::binary),
             41u);

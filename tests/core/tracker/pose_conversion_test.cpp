@@ -1,5 +1,5 @@
-// Pose conversion (spec §4): Euler, direction cosines and quaternion agree; units,
-// tool offset, hemisphere, boresight and world alignment.
+// Pose conversion (docs/fastrak-protocol.md §4): Euler, direction cosines and quaternion agree;
+// units, tool offset, hemisphere, boresight and world alignment.
 #include "twister/tracker/pose_conversion.hpp"
 
 #include <gtest/gtest.h>

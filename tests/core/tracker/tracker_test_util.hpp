@@ -1,4 +1,5 @@
 // Helpers for the tracker tests: byte strings, whole-stream parsing, common configs.
+// Sections (§N) are those of docs/fastrak-protocol.md.
 #pragma once
 
 #include <cstring>

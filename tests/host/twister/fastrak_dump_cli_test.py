@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""`twister fastrak-dump --file`: streams written from the spec, exact output lines,
-error lines for rejected stretches, stdin, and exit codes (0 read, 1 unreadable,
+"""`twister fastrak-dump --file`: streams written from docs/fastrak-protocol.md, exact
+output lines, error lines for rejected stretches, stdin, and exit codes (0 read, 1 unreadable,
 2 bad options). Usage: fastrak_dump_cli_test.py TWISTER_BINARY"""
 import math
 import struct
@@ -28,7 +28,7 @@ def f32(*vals):
 
 
 def axes_line(station, pos, az, el, roll):
-    """Independent Rz*Ry*Rx (spec section 4); columns are the receiver axes."""
+    """Independent Rz*Ry*Rx (docs/fastrak-protocol.md §4); columns are the receiver axes."""
     cp, sp = math.cos(math.radians(az)), math.sin(math.radians(az))
     ct, st = math.cos(math.radians(el)), math.sin(math.radians(el))
     cf, sf = math.cos(math.radians(roll)), math.sin(math.radians(roll))
@@ -86,8 +86,9 @@ with tempfile.NamedTemporaryFile(suffix=".bin") as tmp:
         check("binary resync", out[3] == "error resync 10 bytes", out[3])
         check("binary last", out[4].startswith("2 1.5 2.5 3.5"), out[4])
 
-# 16-bit packed format (spec 3.4): 7 logical bytes per group with bit 7 stripped, then
-# one byte of the stripped bits; the record's first byte carries bit 7 (sync).
+# 16-bit packed format (docs/fastrak-protocol.md §3.4): 7 logical bytes per group with
+# bit 7 stripped, then one byte of the stripped bits; the record's first byte carries
+# bit 7 (sync).
 def pack16(logical):
     wire = bytearray()
     for g in range(0, len(logical), 7):

@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""Independent reference of the Twister warp (spec twister-math.md §2-§6, §10).
+"""Independent reference of the Twister warp (docs/math.md §2-§6, §10).
 
-Python 3 standard library only, double precision, written from the spec and not
-from the C++ code: the screw comes from the skew/symmetric parts of the rotation
-matrix (not a quaternion), and S(t) uses the axis point A directly except for tiny
-angles. Used by warp_cli_test.py to check `twister warp`.
+Python 3 standard library only, double precision, written from the warp math
+(docs/math.md) and not from the C++ code: the screw comes from the skew/symmetric
+parts of the rotation matrix (not a quaternion), and S(t) uses the axis point A
+directly except for tiny angles. Used by warp_cli_test.py to check `twister warp`.
 
 scodef gets the same squash as the other methods: the basis of a constraint of
 hand h at P is phi(sigma_h(P) - C_j) with sigma_h hand h's squash map (§5).
@@ -12,7 +12,7 @@ hand h at P is phi(sigma_h(P) - C_j) with sigma_h hand h's squash map (§5).
 import math
 
 EPS_PURE = 1e-12     # below this angle: pure translation
-SMALL_ANGLE = 1e-3   # below this angle A is far away: use the spec's stable form
+SMALL_ANGLE = 1e-3   # below this angle A is far away: use the stable form (§3)
 HALF_TURN = 1e-9     # within this of pi the axis sense is ambiguous
 
 

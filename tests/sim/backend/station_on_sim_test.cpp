@@ -4,8 +4,8 @@
 // hands valid again at the end) and never applies a pose that failed validation.
 // Every applied hand pose is checked against the scenario's truth after every poll:
 // exactly on it for framing faults; for in-record corruption within the continuity
-// limits (a corrupted value that stays within them cannot be told from noise, spec
-// pitfall 14). Counters are printed per fault kind.
+// limits (a corrupted value that stays within them cannot be told from noise,
+// docs/fastrak-protocol.md §6 pitfall 14). Counters are printed per fault kind.
 #include <gtest/gtest.h>
 
 #include <array>

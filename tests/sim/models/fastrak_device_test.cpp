@@ -103,7 +103,8 @@ TEST(FastrakDevice, AsciiAtLowBaudDropsWholeSolutions) {
   SimRig rig(scenario("receivers 1\n"), cfg, dev);
   rig.run(5.0);
   ASSERT_TRUE(rig.session.streaming());
-  // 47 bytes at 960 bytes/s: about 20 records per second reach the host (spec §1).
+  // 47 bytes at 960 bytes/s: about 20 records per second reach the host
+  // (docs/fastrak-protocol.md §1).
   const double rate = static_cast<double>(rig.count(1, 3.0, 5.0)) / 2.0;
   EXPECT_GT(rate, 15.0);
   EXPECT_LT(rate, 25.0);

@@ -1,5 +1,5 @@
 // InteractionMachine: the one explicit state machine of the sculpting interaction
-// (spec twister-math.md section 8; diagram in docs/interaction.md).
+// (docs/math.md §8; diagram in docs/interaction.md).
 // Per hand: idle -> dragging (grab pressed: start pose recorded, warp plan built)
 // -> idle (grab released: commit). Freeze is a clutch inside a drag (the paper's
 // freeze): pressing it commits the warp and disengages the hand (its motion no longer

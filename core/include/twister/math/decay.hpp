@@ -1,4 +1,4 @@
-// Decay weights and the two-hand squash rule (spec §4-§5). Double precision,
+// Decay weights and the two-hand squash rule (docs/math.md §4-§5). Double precision,
 // world frame, scene units.
 #pragma once
 

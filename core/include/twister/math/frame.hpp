@@ -6,7 +6,7 @@
 
 namespace twister::math {
 
-// Tolerance of the orthonormality check (spec §10: unit and orthogonal within 1e-6).
+// Tolerance of the orthonormality check (docs/math.md §10: unit and orthogonal within 1e-6).
 inline constexpr double kFrameTolerance = 1e-6;
 
 struct Frame {

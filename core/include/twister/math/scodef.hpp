@@ -1,4 +1,4 @@
-// ScodefSystem: the `scodef` alternative (spec §6, Borrel and Rappoport 1994) for
+// ScodefSystem: the `scodef` alternative (docs/math.md §6, Borrel and Rappoport 1994) for
 // one or two hands. Per hand three constraint points O + eU, O + eV, O + eW
 // (e = 0.1 r) move to O' + eU', O' + eV', O' + eW'; the basis of a constraint of
 // hand h at point P is phi(sigma_h(P) - O_j), phi(X) = cos^2((pi/2)|X|/r) for

@@ -1,5 +1,5 @@
 // The minimal screw from a start pose to an end pose and its interpolation S(t)
-// (spec §2-§3). Double precision, world frame, scene units; angles in radians.
+// (docs/math.md §2-§3). Double precision, world frame, scene units; angles in radians.
 #pragma once
 
 #include <glm/gtc/quaternion.hpp>

@@ -1,6 +1,6 @@
 // TurnTracker: how far a hand has turned since its start pose, followed continuously
 // across tracker samples (docs/unwrap.md). A single pair of poses only gives the
-// rotation modulo a full turn, and the minimal screw of spec §2 folds it into
+// rotation modulo a full turn, and the minimal screw of docs/math.md §2 folds it into
 // [0, pi]; a hand turned by 240 degrees then reads as -120. The tracker instead
 // keeps, sample after sample,
 //   - the rotation as a unit quaternion whose sign follows the previous sample's

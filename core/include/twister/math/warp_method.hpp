@@ -1,4 +1,4 @@
-// WarpMethod: which space warp a grab applies (spec §4-§6).
+// WarpMethod: which space warp a grab applies (docs/math.md §4-§6).
 #pragma once
 
 #include <cstdint>

@@ -1,5 +1,5 @@
 // WarpPlan: one grab's warp of a vertex set, built once per grab into caller-owned
-// fixed storage (spec §4-§6, §8).
+// fixed storage (docs/math.md §4-§6, §8).
 //
 //   build(rest, start frames, radius, method)  once per grab: selects the influenced
 //                                              vertices and their decay weights

@@ -1,4 +1,4 @@
-// MeshRefiner: adaptive refinement of a Mesh under a warp (spec §7, the paper's §6
+// MeshRefiner: adaptive refinement of a Mesh under a warp (docs/math.md §7, the paper's §6
 // "adaptive surface subdivision"): an edge (A, B) is split while its midpoint error
 // |(S(A) + S(B))/2 - S((A + B)/2)| exceeds the threshold (S evaluated in double by
 // a PointWarp on rest positions), recursively, until every edge is within it.

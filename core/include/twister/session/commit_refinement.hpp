@@ -1,4 +1,4 @@
-// CommitRefinement: adaptive refinement at commit (spec §7, the paper's §6). When a
+// CommitRefinement: adaptive refinement at commit (docs/math.md §7, the paper's §6). When a
 // stroke's warp becomes part of the model, edges whose midpoint error under the warp
 // |(S(A) + S(B))/2 - S((A + B)/2)| exceeds the threshold are split (mesh::MeshRefiner:
 // longest-edge bisection, conforming after every split) with S the plan's own warp

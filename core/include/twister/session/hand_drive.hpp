@@ -7,7 +7,7 @@
 //     way round once it has turned past a half turn (long_turn()), and past the limit
 //     the end pose holds (the last pose within the limit) until the hand turns back;
 //     with TurnTracking::minimal the end pose is always the hand's pose (the minimal
-//     screw of spec §2: at most a half turn, a 240-degree turn warps as -120).
+//     screw of docs/math.md §2: at most a half turn, a 240-degree turn warps as -120).
 // Poses in the object frame (the stroke's frame). No allocation; not thread-safe.
 #pragma once
 

@@ -1,5 +1,6 @@
 // Fastrak record encoder: the inverse of FastrakParser, used by the device model and
-// the round-trip tests. Writes into a caller span; no heap.
+// the round-trip tests (layouts: docs/fastrak-protocol.md §3). Writes into a caller
+// span; no heap.
 #pragma once
 
 #include <cstddef>

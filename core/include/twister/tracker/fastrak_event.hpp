@@ -1,4 +1,4 @@
-// Events the Fastrak parser produces (spec §3.8): validated poses, plausibility
+// Events the Fastrak parser produces (docs/fastrak-protocol.md §3.8): validated poses, plausibility
 // errors of framed records, one resync per run of dropped bytes, status replies and
 // other '2'-led replies. Values are as sent: tracker frame, tracker units (inches or
 // cm per the configuration), degrees; conversion happens in pose_conversion.hpp.

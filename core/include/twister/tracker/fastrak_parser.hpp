@@ -1,7 +1,7 @@
 // FastrakParser: incremental byte-in, event-out parser of the Fastrak record stream
-// (spec §3.7/§3.8). Pure: no I/O, clock or log; fed any split of the stream (one byte
-// at a time included) it yields the same events. Fixed storage (one pending candidate,
-// at most kMaxReplyBytes/kMaxRecordBytes), no heap, no exceptions. Not thread-safe.
+// (docs/fastrak-protocol.md §3.7/§3.8). Pure: no I/O, clock or log; fed any split of the stream
+// (one byte at a time included) it yields the same events. Fixed storage (one pending candidate, at
+// most kMaxReplyBytes/kMaxRecordBytes), no heap, no exceptions. Not thread-safe.
 #pragma once
 
 #include <array>

@@ -1,5 +1,5 @@
 // FastrakSession: owns the command side of a Fastrak over a ByteStream port and
-// emits validated poses only. Start-up: reset ladder (spec §1.2), status check,
+// emits validated poses only. Start-up: reset ladder (docs/fastrak-protocol.md §1.2), status check,
 // station enables, output lists, hemispheres, e1,0, units, format, status re-check
 // of format/units, continuous mode. Faults (I/O error/unplug, silence, endless
 // garbage, missing or wrong replies) lead to automatic re-initialisation with
@@ -21,9 +21,9 @@
 
 namespace twister::tracker {
 
-// The unit's adaptive filter (`x` position, `v` attitude; spec §2): left as the unit
-// has it (EEPROM), switched off (`x,1`: FLOW = 1 disables it), or set to the four
-// parameters (the manual's "medium" is 0.2, 0.2, 0.8, 0.95). Each value 0..1.
+// The unit's adaptive filter (`x` position, `v` attitude; docs/fastrak-protocol.md §2): left as the
+// unit has it (EEPROM), switched off (`x,1`: FLOW = 1 disables it), or set to the four parameters
+// (the manual's "medium" is 0.2, 0.2, 0.8, 0.95). Each value 0..1.
 struct FilterSetting {
   enum class Mode : std::uint8_t { leave, off, set };
   Mode mode = Mode::leave;

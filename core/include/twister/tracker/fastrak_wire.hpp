@@ -1,4 +1,4 @@
-// Fastrak wire facts (spec: shared/spec/fastrak-protocol.md §2-§3) and the protocol
+// Fastrak wire facts (docs/fastrak-protocol.md §2-§3) and the protocol
 // configuration the parser and encoder share: format, units and each station's output
 // list. Records carry no length, so (station, list, format) fully determines a record.
 #pragma once
@@ -16,7 +16,7 @@ inline constexpr char kRecordType = '0';  // data record, byte 0
 inline constexpr char kReplyType = '2';   // replies (status, read-backs, errors)
 inline constexpr char kCr = '\r';
 inline constexpr char kLf = '\n';
-// Control-byte commands (spec §2).
+// Control-byte commands (docs/fastrak-protocol.md §2).
 inline constexpr char kCtrlY = 0x19;            // re-initialise as at power-up
 inline constexpr char kCtrlK = 0x0B;            // save the configuration to EEPROM
 inline constexpr char kCtrlS = 0x13;            // suspend output (XOFF)
@@ -52,9 +52,9 @@ enum class Item : std::uint8_t {
 bool is_supported_item(std::uint8_t code);
 
 // `F` / `f`. binary = IEEE-754 LE float32 (Fastrak); binary16 = the 16-bit packed
-// format of the protocol family (Isotrak II / 3SPACE, spec §3.4): 16-bit LE integers,
-// sent in groups of 7 bytes with bit 7 stripped plus one byte of high bits, the
-// record's first byte marked by bit 7 (sync).
+// format of the protocol family (Isotrak II / 3SPACE, docs/fastrak-protocol.md §3.4): 16-bit LE
+// integers, sent in groups of 7 bytes with bit 7 stripped plus one byte of high bits, the record's
+// first byte marked by bit 7 (sync).
 enum class Format : std::uint8_t { ascii, binary, binary16 };
 enum class Units : std::uint8_t { inches, centimetres };  // `U` / `u`
 
@@ -91,7 +91,7 @@ struct FastrakConfig {
   Format format = Format::ascii;
   Units units = Units::inches;
   std::array<StationConfig, kMaxStations> stations{};  // index = station number - 1
-  // ASCII width of the stylus item 16: the spec leaves 1 or 2 unconfirmed (§3.5).
+  // ASCII width of the stylus item 16: 1 or 2, unconfirmed (docs/fastrak-protocol.md §3.5).
   std::uint8_t ascii_stylus_width = 1;
 };
 
@@ -117,8 +117,8 @@ std::size_t pack16(const std::byte* logical, std::size_t n, std::byte* wire);
 // first byte lacks the sync bit or another byte has bit 7 set (lost sync).
 bool unpack16(const std::byte* wire, std::size_t wire_n, std::byte* logical);
 
-// Orthonormality tolerance of a decoded orientation in `format` (spec §3.8, §4):
-// 0.01 for ASCII (4 decimals), 1e-3 for 16-bit counts, 1e-4 for IEEE floats.
+// Orthonormality tolerance of a decoded orientation in `format` (docs/fastrak-protocol.md §3.8,
+// §4): 0.01 for ASCII (4 decimals), 1e-3 for 16-bit counts, 1e-4 for IEEE floats.
 double orthonormal_tolerance(Format format);
 
 // Checks a configuration: every list non-empty, supported items only (binary16: no

@@ -1,12 +1,13 @@
 // PoseContinuity: the last plausibility check of a Fastrak pose, across records. A
-// record carries no checksum (spec §3.8, pitfall 14): a flipped digit, sign or float
-// bit that keeps the record's syntax and value ranges is only visible as a jump. A
-// pose farther from its station's last accepted pose than the limits allow for the
-// time between them is held back; when the following poses agree with it (a chain of
-// `confirmations` more, each consistent with the one before) the hand really moved
-// (e.g. a hemisphere flip) and the chain's last pose is accepted, so a corrupted
-// record cannot lock a station out and a corrupted first record is replaced within a
-// few records. Identical corruption in that many successive records would pass.
+// record carries no checksum (docs/fastrak-protocol.md §3.8, §6 pitfall 14): a flipped
+// digit, sign or float bit that keeps the record's syntax and value ranges is only
+// visible as a jump. A pose farther from its station's last accepted pose than the
+// limits allow for the time between them is held back; when the following poses agree
+// with it (a chain of `confirmations` more, each consistent with the one before) the
+// hand really moved (e.g. a hemisphere flip) and the chain's last pose is accepted, so
+// a corrupted record cannot lock a station out and a corrupted first record is replaced
+// within a few records. Identical corruption in that many successive records would
+// pass.
 // Pure: time comes in with each pose. Fixed storage, no heap.
 #pragma once
 

@@ -1,6 +1,6 @@
-// Conversion of a parsed Fastrak pose to the station's frame (O, U, V, W) (spec §4;
-// twister-math.md §1): O in metres, U, V, W = the receiver's x, y, z axes as unit
-// vectors, all in world coordinates. Pure functions; no heap.
+// Conversion of a parsed Fastrak pose to the station's frame (O, U, V, W) (docs/fastrak-protocol.md
+// §4; docs/math.md §1): O in metres, U, V, W = the receiver's x, y, z axes as unit vectors, all in
+// world coordinates. Pure functions; no heap.
 #pragma once
 
 #include <array>

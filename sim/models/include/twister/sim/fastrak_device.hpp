@@ -1,12 +1,12 @@
-// FastrakDevice: a model of a Polhemus FASTRAK as seen from its serial port (spec
-// shared/spec/fastrak-protocol.md; what is modelled and what is assumed:
+// FastrakDevice: a model of a Polhemus FASTRAK as seen from its serial port
+// (docs/fastrak-protocol.md; what is modelled and what is assumed:
 // docs/fastrak.md). It answers the command set a host uses (§2), taking time to
 // process each command (input meanwhile is lost), streams records at 120 Hz shared
 // by the active stations (§1 cycle) through its adaptive position / attitude filters,
 // in ASCII, binary or 16-bit packed via the core encoder, limited to baud/10 bytes
 // per second (whole solutions are dropped when the line is busy), sets the header's
 // status letter ('y' outside the `Q` envelope, scripted letters), models the stylus
-// e-mode toggle (pitfall 4), the slow ^Y reset and a host at the wrong baud, and
+// e-mode toggle (§6 pitfall 4), the slow ^Y reset and a host at the wrong baud, and
 // injects the scenario's faults. Time is passed in by the caller (microseconds, any
 // epoch fixed at construction), so it runs in virtual or real time. Steady state
 // (record generation, filters, corruption, the line, advance) uses no heap: the line

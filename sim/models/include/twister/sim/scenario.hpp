@@ -63,8 +63,8 @@ struct ButtonEvent {
   bool pressed = false;
 };
 
-// A scripted header status byte (spec §3.1): records of `station` carry `code` (a
-// letter: a warning the host must accept) from t_s for duration_s.
+// A scripted header status byte (docs/fastrak-protocol.md §3.1): records of `station` carry `code`
+// (a letter: a warning the host must accept) from t_s for duration_s.
 struct StatusEvent {
   double t_s = 0.0;
   int station = 1;
