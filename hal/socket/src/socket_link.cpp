@@ -253,6 +253,7 @@ void SocketLink::accept_newcomers() {
     if (fd < 0) break;
     // The station sends the hands updates: its side needs TCP_NODELAY most.
     tune(fd, address_.ss_family);
+    ++accepted_;
     add_pending(fd, now);
   }
   promote_newcomer();

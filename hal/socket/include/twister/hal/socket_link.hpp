@@ -79,6 +79,7 @@ class SocketLink final : public ports::LinkPort, public ports::LinkNewcomers, pu
   // Kept for twister-bridge's loop; the station uses poll_fds().
   int poll_fd() const { return peer_fd_ >= 0 ? peer_fd_ : listen_fd_; }
   std::uint64_t connects() const { return connects_; }
+  std::uint64_t accepted() const { return accepted_; }  // server: connections accepted
   int last_errno() const { return last_errno_; }
 
  private:
@@ -121,6 +122,7 @@ class SocketLink final : public ports::LinkPort, public ports::LinkNewcomers, pu
   std::size_t pending_count_ = 0;
   std::uint64_t newcomer_id_ = 0;
   std::uint64_t connects_ = 0;
+  std::uint64_t accepted_ = 0;
   std::int64_t next_attempt_ms_ = 0;
   int last_errno_ = 0;
   // The socket file this server made (removed at close if it is still that file).
