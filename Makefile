@@ -59,7 +59,7 @@ lint: build
 	.ci/lint.sh
 
 format:
-	git ls-files '*.cpp' '*.hpp' | xargs clang-format -i
+	.ci/source-files.sh '*.cpp' '*.hpp' | xargs clang-format -i
 
 clean:
 	rm -rf build build-debug build-asan build-fuzz

@@ -37,7 +37,7 @@ bridge::LiveMessages live_messages(std::uint8_t mask) {
   return bridge::make_live_messages(1, 1, math::WarpMethod::twister, 0.12, mask, start, end);
 }
 
-link::LinkMessage live_message(std::uint8_t mask) { return live_messages(mask).hands; }
+link::Hands live_message(std::uint8_t mask) { return live_messages(mask).hands; }
 
 void BM_LiveFrameEncodeDecode(benchmark::State& state) {
   const auto m = live_message(static_cast<std::uint8_t>(state.range(0)));
@@ -89,33 +89,28 @@ GlFixture& gl() {
   d.y.assign(sphere.y().begin(), sphere.y().end());
   d.z.assign(sphere.z().begin(), sphere.z().end());
   d.indices.assign(sphere.triangle_indices().begin(), sphere.triangle_indices().end());
-  link::LinkMessage b;
-  b.type = link::MessageType::mesh_begin;
-  b.mesh_begin = {true, 0, 1, static_cast<std::uint32_t>(d.vertex_count()),
-                  static_cast<std::uint32_t>(d.triangle_count())};
+  link::MeshBegin b;
+  b = {true, 0, 1, static_cast<std::uint32_t>(d.vertex_count()),
+       static_cast<std::uint32_t>(d.triangle_count())};
   (void)f.replica.apply(b);
-  link::LinkMessage v;
-  v.type = link::MessageType::vertices;
+  link::Vertices v;
   for (std::uint32_t i = 0; i < d.vertex_count(); ++i) {
-    v.vertices.items[v.vertices.count++] = {i, d.x[i], d.y[i], d.z[i]};
-    if (v.vertices.count == link::kMaxVerticesPerChunk || i + 1 == d.vertex_count()) {
+    v.items[v.count++] = {i, d.x[i], d.y[i], d.z[i]};
+    if (v.count == link::kMaxVerticesPerChunk || i + 1 == d.vertex_count()) {
       (void)f.replica.apply(v);
-      v.vertices.count = 0;
+      v.count = 0;
     }
   }
-  link::LinkMessage t;
-  t.type = link::MessageType::triangles;
+  link::Triangles t;
   for (std::uint32_t k = 0; k < d.triangle_count(); k += link::kMaxTrianglesPerChunk) {
     const auto n = std::min<std::size_t>(link::kMaxTrianglesPerChunk, d.triangle_count() - k);
-    t.triangles.first = k;
-    t.triangles.count = static_cast<std::uint16_t>(n);
-    std::copy_n(d.indices.begin() + 3 * static_cast<std::ptrdiff_t>(k), 3 * n,
-                t.triangles.indices.begin());
+    t.first = k;
+    t.count = static_cast<std::uint16_t>(n);
+    std::copy_n(d.indices.begin() + 3 * static_cast<std::ptrdiff_t>(k), 3 * n, t.indices.begin());
     (void)f.replica.apply(t);
   }
-  link::LinkMessage e;
-  e.type = link::MessageType::mesh_end;
-  e.mesh_end = {1, *bridge::mesh_checksum(d)};
+  link::MeshEnd e;
+  e = {1, *bridge::mesh_checksum(d)};
   (void)f.replica.apply(e);
   (void)f.replica.apply(live_messages(3).stroke);
   (void)f.replica.apply(live_messages(3).hands);

@@ -20,6 +20,7 @@
 #include "bridge_app.hpp"
 #include "gl_context.hpp"
 #include "scene_view.hpp"
+#include "twister/hal/monotonic_clock.hpp"
 #include "twister/link/math_conversion.hpp"
 #include "twister/mesh/mesh.hpp"
 #include "twister/meshio/mesh_generator.hpp"
@@ -41,6 +42,7 @@ class QuietLink final : public ports::LinkPort {
 struct Display {
   std::unique_ptr<bridge::GlContext> context;
   bridge::MeshRenderer renderer;
+  hal::MonotonicClock clock;
   std::unique_ptr<bridge::SceneView> view;
   QuietLink link;
   ports::NullLogSink log;
@@ -55,46 +57,41 @@ std::unique_ptr<Display> make_display(long n) {
   if (!context) return nullptr;
   d->context = std::move(*context);
   if (!d->renderer.init(800, 600, true, {})) return nullptr;
-  d->view = std::make_unique<bridge::SceneView>(d->renderer);
+  d->view = std::make_unique<bridge::SceneView>(d->renderer, d->clock);
   if (!d->view->init()) return nullptr;
-  d->app =
-      std::make_unique<bridge::BridgeApp>(d->link, &d->renderer, bridge::BridgeOptions{}, d->log);
+  d->app = std::make_unique<bridge::BridgeApp>(d->link, d->clock, &d->renderer,
+                                               bridge::BridgeOptions{}, d->log);
   d->app->set_view(d->view.get());
   static mesh::MeshWithStorage<110000, 220000> sphere;
   sphere.clear();
   const std::size_t rings = n > 50000 ? 256 : 150;
   (void)meshio::make_sphere(sphere, rings, n > 50000 ? 400 : 200, 0.1F);
-  link::LinkMessage m;
-  m.type = link::MessageType::mesh_begin;
   const auto nv = static_cast<std::uint32_t>(sphere.vertex_count());
   const auto nt = static_cast<std::uint32_t>(sphere.triangle_count());
-  m.mesh_begin = {true, 0, 1, nv, nt};
-  (void)d->app->replica().apply(m);
-  m.type = link::MessageType::vertices;
+  (void)d->app->replica().apply(link::MeshBegin{true, 0, 1, nv, nt});
+  static link::Vertices v;
+  v.count = 0;
   for (std::uint32_t i = 0; i < nv; ++i) {
-    m.vertices.items[m.vertices.count++] = {i, sphere.x()[i], sphere.y()[i], sphere.z()[i]};
-    if (m.vertices.count == link::kMaxVerticesPerChunk || i + 1 == nv) {
-      (void)d->app->replica().apply(m);
-      m.vertices.count = 0;
+    v.items[v.count++] = {i, sphere.x()[i], sphere.y()[i], sphere.z()[i]};
+    if (v.count == link::kMaxVerticesPerChunk || i + 1 == nv) {
+      (void)d->app->replica().apply(v);
+      v.count = 0;
     }
   }
-  m.type = link::MessageType::triangles;
+  static link::Triangles t;
   const auto idx = sphere.triangle_indices();
   for (std::uint32_t k = 0; k < nt; k += link::kMaxTrianglesPerChunk) {
-    m.triangles.first = k;
-    m.triangles.count =
+    t.first = k;
+    t.count =
         static_cast<std::uint16_t>(std::min<std::size_t>(link::kMaxTrianglesPerChunk, nt - k));
-    std::copy_n(idx.begin() + 3 * static_cast<std::ptrdiff_t>(k), 3 * m.triangles.count,
-                m.triangles.indices.begin());
-    (void)d->app->replica().apply(m);
+    std::copy_n(idx.begin() + 3 * static_cast<std::ptrdiff_t>(k), 3 * t.count, t.indices.begin());
+    (void)d->app->replica().apply(t);
   }
-  m.type = link::MessageType::mesh_end;
-  m.mesh_end = {1, sphere.checksum()};
-  (void)d->app->replica().apply(m);
-  m.type = link::MessageType::status;
-  m.status.tracker_state = 1;
-  m.status.tracker_rate_hz = 120.0F;
-  (void)d->app->replica().apply(m);
+  (void)d->app->replica().apply(link::MeshEnd{1, sphere.checksum()});
+  link::StatusReport status;
+  status.tracker_state = 1;
+  status.tracker_rate_hz = 120.0F;
+  (void)d->app->replica().apply(status);
   d->app->step();
   return d;
 }
@@ -138,19 +135,16 @@ void BM_CuesHud(benchmark::State& state) {
 void BM_CuesHudMoving(benchmark::State& state) {
   auto d = make_display(state.range(0));
   if (!d) return state.SkipWithError("no offscreen GL context");
-  link::LinkMessage m;
-  m.type = link::MessageType::hands;
-  m.hands.radius_m = 0.08F;
-  m.hands.flags =
-      link::kHandSample0 | link::kHandSample1 | link::kHandTracked0 | link::kHandTracked1;
+  link::Hands m;
+  m.radius_m = 0.08F;
+  m.flags = link::kHandSample0 | link::kHandSample1 | link::kHandTracked0 | link::kHandTracked1;
   double phase = 0.0;
   const auto t0 = std::chrono::steady_clock::now();
   for (auto _ : state) {
     phase += 0.01;  // 1 mm per frame: every frame rebuilds the preview
-    m.hands.hands[0] =
-        link::to_compact(math::identity_frame({0.0, -0.1 - 0.01 * std::sin(phase), 0.0}));
-    m.hands.hands[1] = link::to_compact(math::identity_frame({0.0, 0.1, 0.01 * std::sin(phase)}));
-    ++m.hands.sequence;
+    m.hands[0] = link::to_compact(math::identity_frame({0.0, -0.1 - 0.01 * std::sin(phase), 0.0}));
+    m.hands[1] = link::to_compact(math::identity_frame({0.0, 0.1, 0.01 * std::sin(phase)}));
+    ++m.sequence;
     (void)d->app->replica().apply(m);
     d->app->step();
     d->app->draw();

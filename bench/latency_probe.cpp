@@ -143,7 +143,7 @@ bool measure(bench::LatencyRig& rig, bridge::MeshRenderer& renderer, int iterati
     if (!ev.ok() || ev->kind != tracker::EventKind::pose) break;
     auto hand = tracker::to_station_frame(ev->pose, conv);
     if (!hand.ok()) break;
-    const link::LinkMessage msg = rig.step(*hand);
+    const link::Hands msg = rig.step(*hand);
     const auto fn = link::encode_frame(msg, frame);
     ok = ok && fn.ok() && ::write(sock[0], frame.data(), *fn) == static_cast<ssize_t>(*fn);
     const auto t2 = Clock::now();

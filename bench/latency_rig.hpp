@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "scene_replica.hpp"
-#include "twister/session/sculpt_session.hpp"
 #include "twister/link/link_codec.hpp"
 #include "twister/meshio/mesh_buffer.hpp"
 #include "twister/meshio/mesh_generator.hpp"
+#include "twister/session/sculpt_session.hpp"
 #include "twister/tracker/pose_conversion.hpp"
 
 namespace twister::bench {
@@ -36,7 +36,7 @@ class LatencyRig {
     session_ = std::make_unique<session::SculptSession>(
         config, buffer_.mesh(),
         session::SculptStorage{lx_, ly_, lz_, math::WarpPlanStorage{indices_, w1_, w2_}, changes_,
-                             entries_},
+                               entries_},
         nullptr);
     start_ = math::frame_from_uv({0.0, 0.0, 0.5}, {1.0, 0.0, 0.0}, {0.0, 1.0, 0.0});
     (void)session_->set_hand(1, true, start_);
@@ -51,11 +51,10 @@ class LatencyRig {
 
   // The station's work for one pose of hand 1: the session step (live warp on the
   // CPU), then the hands message for the display.
-  link::LinkMessage step(const tracker::TrackedFrame& pose) {
-    const math::Frame end{pose.origin, pose.u, pose.v, pose.w};
-    (void)session_->set_hand(1, true, end);
+  link::Hands step(const Pose& pose) {
+    (void)session_->set_hand(1, true, pose);
     (void)session_->step(++now_);
-    return messages(end).hands;
+    return messages(pose).hands;
   }
 
  private:
@@ -67,29 +66,25 @@ class LatencyRig {
 
   bool load_replica() {
     const mesh::Mesh& m = buffer_.mesh();
-    link::LinkMessage b;
-    b.type = link::MessageType::mesh_begin;
-    b.mesh_begin = {true, 0, 1, static_cast<std::uint32_t>(m.vertex_count()),
-                    static_cast<std::uint32_t>(m.triangle_count())};
+    link::MeshBegin b;
+    b = {true, 0, 1, static_cast<std::uint32_t>(m.vertex_count()),
+         static_cast<std::uint32_t>(m.triangle_count())};
     if (replica_.apply(b).has_value()) return false;
-    link::LinkMessage v;
-    v.type = link::MessageType::vertices;
+    link::Vertices v;
     for (std::uint32_t i = 0; i < m.vertex_count(); ++i) {
-      v.vertices.items[v.vertices.count++] = {i, m.x()[i], m.y()[i], m.z()[i]};
-      if (v.vertices.count == link::kMaxVerticesPerChunk || i + 1 == m.vertex_count()) {
+      v.items[v.count++] = {i, m.x()[i], m.y()[i], m.z()[i]};
+      if (v.count == link::kMaxVerticesPerChunk || i + 1 == m.vertex_count()) {
         (void)replica_.apply(v);
-        v.vertices.count = 0;
+        v.count = 0;
       }
     }
     const auto idx = m.triangle_indices();
-    link::LinkMessage t;
-    t.type = link::MessageType::triangles;
+    link::Triangles t;
     for (std::size_t k = 0; k < m.triangle_count(); k += link::kMaxTrianglesPerChunk) {
       const auto n = std::min<std::size_t>(link::kMaxTrianglesPerChunk, m.triangle_count() - k);
-      t.triangles.first = static_cast<std::uint32_t>(k);
-      t.triangles.count = static_cast<std::uint16_t>(n);
-      std::copy_n(idx.begin() + 3 * static_cast<std::ptrdiff_t>(k), 3 * n,
-                  t.triangles.indices.begin());
+      t.first = static_cast<std::uint32_t>(k);
+      t.count = static_cast<std::uint16_t>(n);
+      std::copy_n(idx.begin() + 3 * static_cast<std::ptrdiff_t>(k), 3 * n, t.indices.begin());
       (void)replica_.apply(t);
     }
     bridge::MeshData d;
@@ -97,9 +92,8 @@ class LatencyRig {
     d.y.assign(m.y().begin(), m.y().end());
     d.z.assign(m.z().begin(), m.z().end());
     d.indices.assign(idx.begin(), idx.end());
-    link::LinkMessage e;
-    e.type = link::MessageType::mesh_end;
-    e.mesh_end = {1, *bridge::mesh_checksum(d)};
+    link::MeshEnd e;
+    e = {1, *bridge::mesh_checksum(d)};
     if (replica_.apply(e).has_value()) return false;
     const auto live = messages(start_);
     return !replica_.apply(live.stroke).has_value() && !replica_.apply(live.hands).has_value();

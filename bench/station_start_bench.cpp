@@ -28,6 +28,7 @@
 
 #include "config/station_config.hpp"
 #include "station_assembly.hpp"
+#include "twister/journal/journal_format.hpp"
 #include "twister/journal/journal_record.hpp"
 #include "twister/meshio/mesh_generator.hpp"
 #include "twister/meshio/obj_file.hpp"
@@ -50,8 +51,16 @@ const fs::path& folder() {
 
 // `records` one-hand strokes with a twist, at random grid points (radius 0.1 m: ~80
 // vertices each), refined at commit to `threshold` (0: not), encoded back to back.
+// The format new journals get (version 2, its identity in each record).
+constexpr journal::JournalFormat kFormat = journal::version2_format(1);
+
+std::vector<std::byte> journal_header() {
+  const auto header = journal::file_header(kFormat);
+  return {header.begin(), header.begin() + static_cast<std::ptrdiff_t>(kFormat.header_bytes())};
+}
+
 std::vector<std::byte> journal_bytes(std::uint32_t records, double threshold) {
-  std::vector<std::byte> out(journal::kFileHeader.begin(), journal::kFileHeader.end());
+  std::vector<std::byte> out = journal_header();
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> at(-0.9, 0.9);
   std::array<std::byte, journal::kMaxRecordBytes> buf{};
@@ -62,17 +71,17 @@ std::vector<std::byte> journal_bytes(std::uint32_t records, double threshold) {
     r.stroke.radius_m = 0.1;
     r.stroke.refine_threshold_m = threshold;
     const glm::dvec3 p{at(rng), at(rng), 0.0};
-    r.stroke.start[0].origin_m = p;
-    r.stroke.end[0].origin_m = p + glm::dvec3(0.01, 0.0, 0.02);
+    r.stroke.start[0].origin = p;
+    r.stroke.end[0].origin = p + glm::dvec3(0.01, 0.0, 0.02);
     r.stroke.end[0].u = {std::cos(0.2), std::sin(0.2), 0.0};
     r.stroke.end[0].v = {-std::sin(0.2), std::cos(0.2), 0.0};
-    const auto n = journal::encode_record(r, buf);
+    const auto n = journal::encode_record(r, buf, kFormat);
     out.insert(out.end(), buf.begin(), buf.begin() + static_cast<std::ptrdiff_t>(*n));
   }
   return out;
 }
 
-station_app::StationConfig config_for(const std::string& journal, bool refine = false) {
+station_app::StationFileConfig config_for(const std::string& journal, bool refine = false) {
   const std::string text =
       "[station]\njournal = \"" + journal + "\"\nmesh = \"" + (folder() / "grid.obj").string() +
       "\"\n" + (refine ? "spare_vertices = 40000\n" : "") +
@@ -108,22 +117,21 @@ void prepare() {
   fs::create_directories(folder());
   meshio::MeshBuffer grid(meshio::grid_vertices(kGrid), meshio::grid_triangles(kGrid));
   (void)meshio::make_grid(grid.mesh(), kGrid, 1.0f);
-  (void)meshio::save_obj(folder() / "grid.obj", grid.mesh());
+  (void)meshio::save_obj(folder() / "grid.obj", grid.mesh(), true);
   const std::vector<std::byte> bytes = journal_bytes(kRecords, 0.0);
   write_bytes(folder() / "full.twj", bytes);
   write_bytes(folder() / "checkpointed.twj", bytes);
   const std::vector<std::byte> refined = journal_bytes(kRefinedRecords, kRefineThreshold);
   write_bytes(folder() / "refined_full.twj", refined);
   write_bytes(folder() / "refined_checkpointed.twj", refined);
-  write_bytes(folder() / "empty.twj",
-              std::vector<std::byte>(journal::kFileHeader.begin(), journal::kFileHeader.end()));
+  write_bytes(folder() / "empty.twj", journal_header());
   write_checkpoint("checkpointed.twj", false);
   write_checkpoint("refined_checkpointed.twj", true);
 }
 
 void start(benchmark::State& state, const char* journal, bool refine = false) {
   prepare();
-  const station_app::StationConfig config = config_for((folder() / journal).string(), refine);
+  const station_app::StationFileConfig config = config_for((folder() / journal).string(), refine);
   std::uint64_t records = 0;
   std::uint64_t replayed = 0;
   std::size_t vertices = 0;

@@ -51,10 +51,12 @@ std::string obj_text(const mesh::Mesh& mesh) {
   return out;
 }
 
-hal::Expected<void> save_obj(const std::filesystem::path& path, const mesh::Mesh& mesh) {
+hal::Expected<void> save_obj(const std::filesystem::path& path, const mesh::Mesh& mesh,
+                             bool force) {
   hal::PosixFileSinkConfig config;
   config.path = path.string();
-  config.replace = hal::PosixFileSinkConfig::Replace::regular;
+  config.replace = hal::PosixFileSinkConfig::Replace::output;
+  config.output = {hal::OutputKind::obj, force};
   hal::PosixFileSink sink(config);
   Status s = sink.begin();
   if (s.ok()) {

@@ -39,7 +39,7 @@ void adopt(std::unique_ptr<Device> device, std::unique_ptr<Port>& port, hal::Pol
   port = std::move(device);
 }
 
-hal::Expected<void> make_sim_tracker(const StationConfig& config, Backends& out) {
+hal::Expected<void> make_sim_tracker(const StationFileConfig& config, Backends& out) {
   const SimTrackerConfig& s = config.tracker.sim;
   auto loaded = s.scenario_file.empty() ? sim::load_builtin_scenario(s.scenario)
                                         : sim::load_scenario_file(s.scenario_file);
@@ -145,7 +145,7 @@ hal::Expected<void> make_hidapi_buttons(const HidapiButtonsConfig& config, Backe
 }
 #endif
 
-hal::Expected<void> make_tracker(const StationConfig& config, Backends& out) {
+hal::Expected<void> make_tracker(const StationFileConfig& config, Backends& out) {
   switch (config.tracker.backend) {
     case TrackerBackend::sim:
       return make_sim_tracker(config, out);
@@ -163,7 +163,7 @@ hal::Expected<void> make_tracker(const StationConfig& config, Backends& out) {
   return {};
 }
 
-hal::Expected<void> make_buttons(const StationConfig& config, Backends& out) {
+hal::Expected<void> make_buttons(const StationFileConfig& config, Backends& out) {
   switch (config.buttons.backend) {
     case ButtonBackend::sim:
       // Built with the simulated tracker (same scenario, same clock).
@@ -227,7 +227,7 @@ bool button_backend_built(ButtonBackend b) {
   }
 }
 
-hal::Expected<Backends> make_backends(const StationConfig& config) {
+hal::Expected<Backends> make_backends(const StationFileConfig& config) {
   if (!tracker_backend_built(config.tracker.backend)) {
     return hal::make_error(StatusCode::not_supported, std::string("tracker backend \"") +
                                                           to_string(config.tracker.backend) +

@@ -33,7 +33,7 @@ struct Backends {
 // Builds every backend. Errors name the backend: not_supported ("tracker backend
 // \"usb\" is not built into this binary"), invalid_argument (a combination or
 // scenario that cannot run), or the status of the device that failed to open.
-hal::Expected<Backends> make_backends(const StationConfig& config);
+hal::Expected<Backends> make_backends(const StationFileConfig& config);
 
 // Which backends this binary was built with (for --check and --help).
 bool tracker_backend_built(TrackerBackend b);

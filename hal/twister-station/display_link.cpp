@@ -5,6 +5,7 @@
 #include <chrono>
 
 #include "config/link_config.hpp"
+#include "twister/hal/startup_signals.hpp"
 
 namespace twister::station_app {
 namespace {
@@ -80,26 +81,10 @@ hal::Expected<void> DisplayLink::open(const LinkSection& settings,
   return {};
 }
 
-void DisplayLink::poll(const station::Station& core, ports::TimestampUs now_us) {
+void DisplayLink::poll(station::Station& core, ports::TimestampUs now_us) {
   if (!link_) return;
-  link_->poll(core.sculpt(), core.status(), now_us);
+  link_->poll(core, now_us);
   log_changes();
-}
-
-std::size_t DisplayLink::route_commands(station::Station& core) {
-  if (!link_) return 0;
-  std::size_t n = 0;
-  link::Command command;
-  while (link_->take_command(command)) {
-    const session::SessionCommand c = station::session_command(command);
-    log_->info("link", "display command: %s", session::session_command_name(c.kind));
-    if (const Status s = core.submit(c); !s.ok()) {
-      log_->warning("link", "display command %s not queued: %s",
-                    session::session_command_name(c.kind), s.name());
-    }
-    ++n;
-  }
-  return n;
 }
 
 void DisplayLink::log_changes() {
@@ -107,6 +92,13 @@ void DisplayLink::log_changes() {
   if (c.connects != logged_.connects) log_->notice("link", "display admitted");
   if (c.displaced != logged_.displaced) {
     log_->notice("link", "a newly admitted display took over; the previous one was told so");
+  }
+  if (c.commands != logged_.commands) {
+    log_->info("link", "display commands passed to the session: %llu",
+               static_cast<unsigned long long>(c.commands - logged_.commands));
+  }
+  if (c.commands_refused != logged_.commands_refused) {
+    log_->warning("link", "display command refused (not admitted, or the command queue is full)");
   }
   // Refusals: at most one line per 10 s (a stranger may retry every 100 ms).
   const std::uint64_t refused =
@@ -137,11 +129,11 @@ void DisplayLink::wait_ready(int timeout_ms) const {
   ::poll(fds.data(), n, timeout_ms);
 }
 
-bool DisplayLink::wait_for_peer(const station::Station& core, double seconds) {
+bool DisplayLink::wait_for_peer(station::Station& core, double seconds) {
   if (!link_) return false;
   const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                         std::chrono::duration<double>(seconds));
-  while (Clock::now() < until) {
+  while (Clock::now() < until && hal::startup_stop_signal() == 0) {
     poll(core, 0);
     if (link_->peer_synced()) return true;
     wait_ready(ms_left(until));
@@ -149,7 +141,7 @@ bool DisplayLink::wait_for_peer(const station::Station& core, double seconds) {
   return false;
 }
 
-void DisplayLink::drain(const station::Station& core, ports::TimestampUs now_us, double seconds) {
+void DisplayLink::drain(station::Station& core, ports::TimestampUs now_us, double seconds) {
   if (!link_) return;
   const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                         std::chrono::duration<double>(seconds));

@@ -41,17 +41,16 @@ class DisplayLink {
   hal::Expected<void> open(const LinkSection& settings, const session::SculptSession& session,
                            hal::Logger& log);
   bool is_open() const { return link_ != nullptr; }
-  void poll(const station::Station& core, ports::TimestampUs now_us);
-  // Hands the admitted display's commands (its undo/redo/method keys) to the
-  // session's command path (Station::submit); their results come as the next
-  // step's session events, logged like the buttons'. Returns how many.
-  std::size_t route_commands(station::Station& core);
+  // One link step; the admitted display's commands (its undo/redo/method keys) go
+  // to the session's command path inside core (StationLink -> Station::submit);
+  // their results come as the next step's session events, logged like the buttons'.
+  void poll(station::Station& core, ports::TimestampUs now_us);
   // The link's descriptors for the loop's poll set (none without a link).
   std::size_t poll_fds(std::span<pollfd> out) const { return poll_ ? poll_->poll_fds(out) : 0; }
   // Real-time wait: true when a display holds our mesh within `seconds`.
-  bool wait_for_peer(const station::Station& core, double seconds);
+  bool wait_for_peer(station::Station& core, double seconds);
   // Hands everything queued to the display (up to `seconds`), then says goodbye.
-  void drain(const station::Station& core, ports::TimestampUs now_us, double seconds);
+  void drain(station::Station& core, ports::TimestampUs now_us, double seconds);
   const station::StationLinkCounters* counters() const {
     return link_ ? &link_->counters() : nullptr;
   }

@@ -11,8 +11,6 @@
 // Exit codes: 0 clean stop with every stroke saved, 1 runtime failure or a stroke not
 // saved, 2 invalid config or options, or a missing file the config names (all checked
 // before the journal is opened).
-#include <pthread.h>
-
 #include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdio>
@@ -27,12 +25,13 @@
 #include "station_setup.hpp"
 #include "twister/hal/logger.hpp"
 #include "twister/hal/sodium_authenticator.hpp"
+#include "twister/hal/startup_signals.hpp"
 
 namespace {
 
 namespace app = twister::station_app;
 namespace hal = twister::hal;
-using app::StationConfig;
+using app::StationFileConfig;
 
 constexpr int kExitOk = 0;
 constexpr int kExitFailure = 1;
@@ -62,7 +61,7 @@ hal::Logger& configure_logs(const Options& opt, hal::Logger& results) {
   return log;
 }
 
-int check_config(hal::Logger& log, const Options& opt, const StationConfig& cfg) {
+int check_config(hal::Logger& log, const Options& opt, const StationFileConfig& cfg) {
   int errors = 0;
   const auto dir = std::filesystem::path(opt.config_path).parent_path();
   for (const std::string& problem : app::referenced_file_problems(cfg, dir)) {
@@ -109,21 +108,21 @@ void log_summary(hal::Logger& results, const twister::station::Station& core,
                  "stopped (%s); journal %s (%u records); strokes committed %llu, cancelled %llu, "
                  "not saved %llu; tracker start-ups %llu, poses %llu, io errors %llu",
                  app::stop_reason_name(loop.stop_reason()), flushed.ok() ? "synced" : "SYNC FAILED",
-                 core.journal_records(), static_cast<unsigned long long>(c.strokes_committed),
-                 static_cast<unsigned long long>(c.strokes_cancelled),
-                 static_cast<unsigned long long>(c.strokes_not_saved),
+                 core.journal_records(), static_cast<unsigned long long>(c.events.strokes_committed),
+                 static_cast<unsigned long long>(c.events.strokes_cancelled),
+                 static_cast<unsigned long long>(c.events.strokes_not_saved),
                  static_cast<unsigned long long>(tc.streams_started),
-                 static_cast<unsigned long long>(c.poses),
+                 static_cast<unsigned long long>(c.input.poses),
                  static_cast<unsigned long long>(tc.io_errors));
   // Poses the faults spoiled, none of which reached a hand (scripts parse this line).
   results.notice("", "poses: applied %llu, conversion errors %llu, rejected %llu, held back %llu",
-                 static_cast<unsigned long long>(c.poses),
-                 static_cast<unsigned long long>(c.pose_errors),
+                 static_cast<unsigned long long>(c.input.poses),
+                 static_cast<unsigned long long>(c.input.pose_errors),
                  static_cast<unsigned long long>(tc.rejected_poses),
                  static_cast<unsigned long long>(tc.jump_rejects));
-  if (c.strokes_not_saved > 0) {
+  if (c.events.strokes_not_saved > 0) {
     results.error("", "%llu stroke(s) were not saved (see the errors above); exit status 1",
-                  static_cast<unsigned long long>(c.strokes_not_saved));
+                  static_cast<unsigned long long>(c.events.strokes_not_saved));
   }
 }
 
@@ -142,11 +141,16 @@ void log_link_summary(hal::Logger& results, const app::DisplayLink& display) {
       static_cast<unsigned long long>(l->full_sends), static_cast<unsigned long long>(refused));
 }
 
-int run(const Options& opt, const StationConfig& cfg, hal::Logger& log, hal::Logger& results) {
+int run(const Options& opt, const StationFileConfig& cfg, hal::Logger& log, hal::Logger& results,
+        hal::StartupSignals& startup_signals) {
   auto assembled = app::assemble_station(
       cfg, {std::filesystem::path(opt.config_path).parent_path(), opt.link_address});
   if (!assembled) {
     log.error("", "%s", assembled.error().message.c_str());
+    return kExitFailure;
+  }
+  if (const int sig = hal::startup_stop_signal(); sig != 0) {
+    log.notice("", "stopped by signal %d during start-up", sig);
     return kExitFailure;
   }
   app::StationParts& parts = **assembled;
@@ -166,10 +170,14 @@ int run(const Options& opt, const StationConfig& cfg, hal::Logger& log, hal::Log
                refine.threshold_m, refine.spare_vertices);
   }
   if (parts.display.is_open() && opt.link_wait_s > 0.0 &&
-      !parts.display.wait_for_peer(*parts.core, opt.link_wait_s)) {
+      !parts.display.wait_for_peer(*parts.core, opt.link_wait_s) &&
+      hal::startup_stop_signal() == 0) {
     log.warning("", "no bridge on %s after %.1f s; running without", opt.link_address.c_str(),
                 opt.link_wait_s);
   }
+  // From here the loop's signalfd takes the stop signals (one that came during
+  // start-up stops the first pass).
+  startup_signals.end();
   app::StationLoop loop(*parts.core, parts.backends, parts.display, log,
                         app::make_loop_config(cfg, opt.duration_s, parts.backends));
   results.notice("", "running (tracker %s, buttons %s, journal %s)",
@@ -180,7 +188,7 @@ int run(const Options& opt, const StationConfig& cfg, hal::Logger& log, hal::Log
   log_summary(results, *parts.core, loop, flushed);
   log_link_summary(results, parts.display);
   // A run that lost a stroke did not succeed, whatever else went well.
-  const bool all_saved = parts.core->counters().strokes_not_saved == 0;
+  const bool all_saved = parts.core->counters().events.strokes_not_saved == 0;
   return flushed.ok() && all_saved ? kExitOk : kExitFailure;
 }
 
@@ -214,12 +222,10 @@ int station_main(int argc, char** argv) {
   // A file size limit (RLIMIT_FSIZE) must fail the write (EFBIG: "stroke not saved"),
   // not kill the station with SIGXFSZ.
   std::signal(SIGXFSZ, SIG_IGN);
-  // A stop signal during start-up waits for the loop's first pass (then the stop
-  // policy and the summary run) instead of killing the station half-started.
-  sigset_t stop_signals;
-  sigemptyset(&stop_signals);
-  for (const int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&stop_signals, sig);
-  pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
+  // A stop signal during start-up ends it cleanly at its next step (the journal's
+  // lock released), within a second whatever it waits on; after start-up the loop's
+  // signalfd takes over (hal/startup_signals.hpp).
+  hal::StartupSignals startup_signals;
   CLI::App cli{
       "twister-station: the Twister sculpting station (tracker + buttons -> strokes -> journal)"};
   Options opt;
@@ -251,7 +257,7 @@ int station_main(int argc, char** argv) {
                 app::to_string(parsed.config.buttons.backend));
     return kExitOk;
   }
-  return run(opt, parsed.config, log, results);
+  return run(opt, parsed.config, log, results, startup_signals);
 }
 
 }  // namespace

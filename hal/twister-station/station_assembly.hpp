@@ -17,6 +17,7 @@
 #include "display_link.hpp"
 #include "station_memory.hpp"
 #include "twister/hal/expected.hpp"
+#include "twister/hal/output_file.hpp"
 #include "twister/hal/posix_file_sink.hpp"
 #include "twister/hal/posix_file_storage.hpp"
 #include "twister/session/sculpt_session.hpp"
@@ -48,6 +49,10 @@ struct StationParts {
   };
   std::vector<Note> recovery_notes;
   std::filesystem::path mesh_path;  // as opened (resolved against config_dir)
+  // A shared lock on station.mesh while the station runs: the tools (twister replay,
+  // mesh, export) refuse to write over a locked file (hal/output_file.hpp).
+  hal::FileReadLock base_lock;
+  int stale_temporaries = 0;  // JOURNAL.ckpt.tmp-* / .torn-tail.tmp-* removed at start
   std::unique_ptr<meshio::MeshBuffer> model;
   std::unique_ptr<WorkMemory> work;
   std::unique_ptr<RefineMemory> refine;    // [sculpt] refine on
@@ -61,7 +66,7 @@ struct StationParts {
 // a Twister journal, or does not fit this mesh (left untouched)"; "journal PATH: damaged
 // record at offset X ...; N valid records follow it ..."), the mesh's ("mesh PATH:
 // ..."), the link's ("link ADDRESS: ...").
-hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationConfig& config,
+hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationFileConfig& config,
                                                               const AssemblyOptions& options);
 
 // station.toml's model as a mesh with the configured spare capacity (spare_vertices

@@ -17,7 +17,7 @@ std::string regular_file_problem(const std::filesystem::path& path) {
 
 }  // namespace
 
-std::vector<std::string> referenced_file_problems(const StationConfig& config,
+std::vector<std::string> referenced_file_problems(const StationFileConfig& config,
                                                   const std::filesystem::path& config_dir) {
   std::vector<std::string> out;
   std::filesystem::path mesh = config.station.mesh;

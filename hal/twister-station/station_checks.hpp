@@ -16,7 +16,7 @@ namespace twister::station_app {
 // the simulator plays one; a regular file), the journal's folder (the journal itself
 // may be new; if it exists it must be a regular file). One message per problem,
 // "KEY: PATH: what is wrong".
-std::vector<std::string> referenced_file_problems(const StationConfig& config,
+std::vector<std::string> referenced_file_problems(const StationFileConfig& config,
                                                   const std::filesystem::path& config_dir);
 
 // "" when `address` has the form --link takes (as [link] address: unix:PATH,

@@ -5,35 +5,22 @@
 #include <numbers>
 
 #include "twister/input/interaction_machine.hpp"
-#include "twister/session/session_command.hpp"
 #include "twister/math/warp_method.hpp"
 #include "twister/mesh/mesh_refiner.hpp"
+#include "twister/session/session_command.hpp"
 
 namespace twister::station_app {
 namespace {
 
 using ports::LogLevel;
-using station::StationEvent;
-using station::StationEventKind;
-
-const char* reason_text(std::uint64_t value) {
-  return input::reason_name(static_cast<input::Reason>(value));
-}
+using session::SessionEvent;
+using K = session::SessionEventKind;
 
 double degrees(double rad) { return rad * 180.0 / std::numbers::pi; }
 
-// Station::stop() cancels an open stroke with reason none and no error.
-bool station_stopping(const StationEvent& e) {
-  return e.status.ok() && static_cast<input::Reason>(e.value) == input::Reason::none;
-}
-
-const char* method_text(std::uint64_t value) {
-  return value < 3 ? math::warp_method_name(static_cast<math::WarpMethod>(value)).data() : "?";
-}
-
 // Which capacity stopped a refinement, in station.toml's words.
-const char* capacity_text(std::uint64_t value) {
-  switch (static_cast<mesh::RefineStop>(value)) {
+const char* capacity_text(mesh::RefineStop stop) {
+  switch (stop) {
     case mesh::RefineStop::vertex_capacity:
       return "vertex capacity";
     case mesh::RefineStop::triangle_capacity:
@@ -44,152 +31,201 @@ const char* capacity_text(std::uint64_t value) {
   return "capacity";
 }
 
-const char* command_text(std::uint64_t value) {
-  return value < session::kSessionCommandKindCount
-             ? session::session_command_name(static_cast<session::SessionCommandKind>(value))
-             : "?";
-}
-
-// The journal: recovery, checkpoints, commits that were not saved, failures.
-bool log_journal(const StationEvent& e, ports::LogSink& log, int storage_errno) {
+// The journal: recovery, checkpoints, commits and history steps that were not saved.
+bool log_journal(const SessionEvent& e, ports::LogSink& log, int storage_errno) {
   const LogLevel level = station_event_level(e);
+  const char* c = station_event_component(e);
   switch (e.kind) {
-    case StationEventKind::journal_recovered:
-      if (e.value == 0) {
-        log.write(level, "journal", "%u good records", {e.sequence});
+    case K::journal_recovered: {
+      const auto& r = e.journal_recovered();
+      if (r.torn_tail_bytes == 0) {
+        log.write(level, c, "%u good records", {r.records});
       } else {
-        log.write(level, "journal", "%u good records, cut a torn tail of %u bytes",
-                  {e.sequence, e.value});
+        log.write(level, c, "%u good records, cut a torn tail of %u bytes",
+                  {r.records, r.torn_tail_bytes});
       }
       return true;
-    case StationEventKind::checkpoint_written:
-      log.write(level, "journal", "checkpoint of %u records written (%u bytes)",
-                {e.sequence, e.value});
+    }
+    case K::checkpoint_written:
+      log.write(level, c, "checkpoint of %u records written (%u bytes)",
+                {e.checkpoint_written().records, e.checkpoint_written().bytes});
       return true;
-    case StationEventKind::checkpoint_failed:
-      log.write(level, "journal", "checkpoint not written (%s); the previous one stays",
-                {e.status.name()});
+    case K::checkpoint_failed:
+      log.write(level, c, "checkpoint not written (%s); the previous one stays", {e.status.name()});
       return true;
-    case StationEventKind::journal_error:
-      log.write(level, "journal", "%s (%s)", {e.status.name(), storage_error_text(storage_errno)});
-      return true;
-    case StationEventKind::stroke_not_saved:
-      log.write(level, "stroke",
+    case K::not_saved:
+      log.write(level, c,
                 "hand %u: stroke not saved: %s (%s); the model is back at the last saved stroke",
                 {static_cast<unsigned>(e.hand),
                  e.status.code() == StatusCode::io_error ? storage_error_text(storage_errno)
                                                          : "the warp could not be applied",
                  e.status.name()});
       return true;
+    case K::history_overflow:
+      log.write(level, c,
+                "journal record %u is committed but too large to undo (the undo memory is full)",
+                {e.record().sequence});
+      return true;
     default:
       return false;
   }
 }
 
-// Trouble and the station's own life (tracker, buttons).
-bool log_station_side(const StationEvent& e, ports::LogSink& log) {
+// The station's own devices and the refinement's capacity.
+bool log_station_side(const SessionEvent& e, ports::LogSink& log) {
   const LogLevel level = station_event_level(e);
+  const char* c = station_event_component(e);
   switch (e.kind) {
-    case StationEventKind::tracker_streaming:
-      log.write(level, "tracker", "streaming (start-up #%u)", {e.value});
+    case K::tracker_streaming:
+      log.write(level, c, "streaming (start-up #%u)", {e.tracker_streaming().start_ups});
       return true;
-    case StationEventKind::tracker_lost:
-      log.write(level, "tracker",
-                "lost (unplugged, silent or garbled); waiting and re-initialising");
+    case K::tracker_lost:
+      log.write(level, c, "lost (unplugged, silent or garbled); waiting and re-initialising");
       return true;
-    case StationEventKind::button_source_error:
-      log.write(level, "buttons", "device failed (%s); reopening", {e.status.name()});
+    case K::button_source_error:
+      log.write(level, c, "device failed (%s); reopening", {e.status.name()});
       return true;
-    case StationEventKind::refinement_stopped:
-      log.write(level, "refine",
+    case K::refine_stopped:
+      log.write(level, c,
                 "journal record %u: refinement stopped, the mesh's %s is used up "
                 "(station.spare_vertices); the stroke is committed and the mesh conforming, "
                 "some edges stay coarser than sculpt.refine_threshold_m",
-                {e.sequence, capacity_text(e.value)});
+                {e.refinement_stop().sequence, capacity_text(e.refinement_stop().stop)});
+      return true;
+    case K::refined:
+      log.write(level, c, "journal record %u refined: %u vertices added",
+                {e.refinement().sequence, e.refinement().vertices_added});
       return true;
     default:
       return false;
   }
 }
 
-void log_strokes(const StationEvent& e, ports::LogSink& log) {
+void log_cancelled(const SessionEvent& e, ports::LogSink& log) {
+  const LogLevel level = station_event_level(e);
+  const unsigned hand = e.hand;
+  if (!e.status.ok()) {
+    log.write(level, station_event_component(e),
+              "hand %u cancelled (%s); model as at the last commit", {hand, e.status.name()});
+  } else if (e.stroke_end().reason == input::Reason::stopped) {
+    log.write(level, station_event_component(e),
+              "hand %u cancelled (station stopping); model unchanged", {hand});
+  } else {
+    log.write(level, station_event_component(e),
+              "hand %u cancelled (tracking lost too long); model unchanged", {hand});
+  }
+}
+
+bool log_strokes(const SessionEvent& e, ports::LogSink& log) {
   const LogLevel level = station_event_level(e);
   const unsigned hand = e.hand;
   switch (e.kind) {
-    case StationEventKind::stroke_begin:
-      log.write(level, "stroke", "hand %u grabbed", {hand});
-      return;
-    case StationEventKind::stroke_committed:
-      log.write(level, "stroke", "hand %u committed as journal record %u", {hand, e.sequence});
-      return;
-    case StationEventKind::stroke_cancelled:
-      if (station_stopping(e)) {
-        log.write(level, "stroke", "hand %u cancelled (station stopping); model unchanged", {hand});
-      } else if (e.status.ok()) {
-        log.write(level, "stroke", "hand %u cancelled (tracking lost too long); model unchanged",
-                  {hand});
-      } else {
-        log.write(level, "stroke", "hand %u cancelled (%s); model as at the last commit",
-                  {hand, e.status.name()});
-      }
-      return;
-    case StationEventKind::refused:
-      log.write(level, "stroke", "press refused: hand %u (%s)", {hand, reason_text(e.value)});
-      return;
-    case StationEventKind::hand_disengaged:
+    case K::grab_begin:
+      log.write(level, station_event_component(e), "hand %u grabbed", {hand});
+      return true;
+    case K::committed:
+      log.write(level, station_event_component(e), "hand %u committed as journal record %u",
+                {hand, e.stroke_end().sequence});
+      return true;
+    case K::cancelled:
+      log_cancelled(e, log);
+      return true;
+    case K::refused:
+      log.write(level, station_event_component(e), "press refused: hand %u (%s)",
+                {hand, e.status.ok() ? input::reason_name(e.reasoned().reason) : e.status.name()});
+      return true;
+    case K::tracking_lost:
+      log.write(level, station_event_component(e),
+                "hand %u lost tracking; the warp holds at its last pose", {hand});
+      return true;
+    case K::tracking_resumed:
+      log.write(level, station_event_component(e), "hand %u tracked again; the warp follows",
+                {hand});
+      return true;
+    case K::disengaged:
       log.write(level, "stroke",
                 "hand %u on the clutch (freeze held): committed as journal record %u; the hand "
                 "moves freely",
-                {hand, e.sequence});
-      return;
-    case StationEventKind::hand_engaged:
-      log.write(level, "stroke", "hand %u off the clutch: warping again from where it is", {hand});
-      return;
-    case StationEventKind::turn_limit_reached:
+                {hand, e.record().sequence});
+      return true;
+    case K::engaged:
+      log.write(level, station_event_component(e),
+                "hand %u off the clutch: warping again from where it is", {hand});
+      return true;
+    case K::turn_limit_reached:
       log.write(level, "stroke",
                 "hand %u turned past the %.0f-degree limit; the warp holds until the hand "
                 "turns back",
-                {hand, degrees(e.real)});
+                {hand, degrees(e.turn_limit().limit_rad)});
+      return true;
+    case K::turn_limit_left:
+      log.write(level, station_event_component(e),
+                "hand %u back within the turn limit; the warp follows again", {hand});
+      return true;
+    default:
+      return false;
+  }
+}
+
+void log_object(const SessionEvent& e, ports::LogSink& log) {
+  const LogLevel level = station_event_level(e);
+  const unsigned hand = e.hand;
+  switch (e.kind) {
+    case K::move_begin:
+      log.write(level, station_event_component(e), "hand %u moves the object", {hand});
       return;
-    case StationEventKind::turn_limit_left:
-      log.write(level, "stroke", "hand %u back within the turn limit; the warp follows again",
-                {hand});
+    case K::move_committed:
+      log.write(level, station_event_component(e), "hand %u moved the object (journal record %u)",
+                {hand, e.record().sequence});
       return;
-    case StationEventKind::stroke_refined:
-      log.write(level, "refine", "journal record %u refined: %u vertices added",
-                {e.sequence, e.value});
+    case K::move_cancelled:
+      log.write(level, station_event_component(e),
+                "hand %u: object move cancelled (%s); the object is back",
+                {hand, e.reasoned().reason == input::Reason::stopped ? "station stopping"
+                                                                     : "tracking lost too long"});
       return;
     default:
       return;
   }
 }
 
-void log_session(const StationEvent& e, ports::LogSink& log, int storage_errno) {
+bool log_session(const SessionEvent& e, ports::LogSink& log, int storage_errno) {
   const LogLevel level = station_event_level(e);
   switch (e.kind) {
-    case StationEventKind::radius_set:
-      log.write(level, "sculpt", "radius %.3f m", {e.real});
-      return;
-    case StationEventKind::method_changed:
-      log.write(level, "sculpt", "warp method %s for the next strokes", {method_text(e.value)});
-      return;
-    case StationEventKind::undone:
-      log.write(level, "history", "undo (journal record %u)", {e.sequence});
-      return;
-    case StationEventKind::redone:
-      log.write(level, "history", "redo (journal record %u)", {e.sequence});
-      return;
-    case StationEventKind::command_refused:
+    case K::radius_set:
+      log.write(level, station_event_component(e), "radius %.3f m", {e.radius().radius_m});
+      return true;
+    case K::radius_changed:
+      log.write(level, station_event_component(e), "radius %.3f m (gesture)",
+                {e.radius().radius_m});
+      return true;
+    case K::method_changed:
+      log.write(level, station_event_component(e), "warp method %s for the next strokes",
+                {math::warp_method_name(e.method().method).data()});
+      return true;
+    case K::undone:
+      log.write(level, station_event_component(e), "undo (journal record %u)",
+                {e.record().sequence});
+      return true;
+    case K::redone:
+      log.write(level, station_event_component(e), "redo (journal record %u)",
+                {e.record().sequence});
+      return true;
+    case K::command_refused: {
+      const auto& r = e.command_refusal();
       if (e.status.code() == StatusCode::io_error) {
-        log.write(level, "history", "%s not saved: %s (%s); the model is unchanged",
-                  {command_text(e.value), storage_error_text(storage_errno), e.status.name()});
+        log.write(level, station_event_component(e),
+                  "%s not saved: %s (%s); the model is unchanged",
+                  {session::session_command_name(r.command), storage_error_text(storage_errno),
+                   e.status.name()});
       } else {
-        log.write(level, "history", "%s refused (%s)",
-                  {command_text(e.value), reason_text(e.detail)});
+        log.write(level, station_event_component(e), "%s refused (%s)",
+                  {session::session_command_name(r.command), input::reason_name(r.reason)});
       }
-      return;
+      return true;
+    }
     default:
-      return;
+      return false;
   }
 }
 
@@ -210,45 +246,88 @@ const char* storage_error_text(int storage_errno) {
   }
 }
 
-LogLevel station_event_level(const StationEvent& e) {
+const char* station_event_component(const SessionEvent& e) {
   switch (e.kind) {
-    case StationEventKind::journal_error:
-    case StationEventKind::stroke_not_saved:  // the sculptor's work was lost
+    case K::journal_recovered:
+    case K::checkpoint_written:
+    case K::checkpoint_failed:
+    case K::history_overflow:
+      return "journal";
+    case K::tracker_streaming:
+    case K::tracker_lost:
+      return "tracker";
+    case K::button_source_error:
+      return "buttons";
+    case K::refined:
+    case K::refine_stopped:
+      return "refine";
+    case K::move_begin:
+    case K::move_committed:
+    case K::move_cancelled:
+      return "object";
+    case K::radius_set:
+    case K::radius_changed:
+    case K::method_changed:
+      return "sculpt";
+    case K::undone:
+    case K::redone:
+    case K::command_refused:
+      return "history";
+    default:
+      return "stroke";
+  }
+}
+
+LogLevel station_event_level(const SessionEvent& e) {
+  switch (e.kind) {
+    case K::not_saved:  // the sculptor's work was lost
       return LogLevel::error;
-    case StationEventKind::button_source_error:  // reopened by the loop: trouble, not failure
-    case StationEventKind::tracker_lost:
-    case StationEventKind::checkpoint_failed:  // the previous one stays; start-up replays more
-    case StationEventKind::refinement_stopped:
+    case K::button_source_error:  // reopened by the loop: trouble, not failure
+    case K::tracker_lost:
+    case K::checkpoint_failed:  // the previous one stays; start-up replays more
+    case K::refine_stopped:
       return LogLevel::warning;
-    case StationEventKind::stroke_cancelled:  // the stop policy is no trouble
-      return station_stopping(e) ? LogLevel::notice : LogLevel::warning;
-    case StationEventKind::command_refused:  // io_error: an undo/redo not saved
+    case K::cancelled:  // the stop policy is no trouble
+      return e.status.ok() && e.stroke_end().reason == input::Reason::stopped ? LogLevel::notice
+                                                                              : LogLevel::warning;
+    case K::move_cancelled:
+      return e.reasoned().reason == input::Reason::stopped ? LogLevel::notice : LogLevel::warning;
+    case K::command_refused:  // io_error: an undo/redo not saved
       return e.status.code() == StatusCode::io_error ? LogLevel::error : LogLevel::notice;
-    case StationEventKind::journal_recovered:
-    case StationEventKind::tracker_streaming:
-    case StationEventKind::refused:
-    case StationEventKind::radius_set:
-    case StationEventKind::turn_limit_reached:
-    case StationEventKind::undone:
-    case StationEventKind::redone:
-    case StationEventKind::method_changed:
+    case K::journal_recovered:
+    case K::tracker_streaming:
+    case K::refused:
+    case K::radius_set:
+    case K::turn_limit_reached:
+    case K::undone:
+    case K::redone:
+    case K::method_changed:
+    case K::history_overflow:
       return LogLevel::notice;
-    case StationEventKind::stroke_begin:
-    case StationEventKind::stroke_committed:
-    case StationEventKind::checkpoint_written:
-    case StationEventKind::hand_disengaged:
-    case StationEventKind::hand_engaged:
-    case StationEventKind::turn_limit_left:
-    case StationEventKind::stroke_refined:
+    case K::radius_changed:  // every step of the gesture
+      return LogLevel::debug;
+    case K::grab_begin:
+    case K::committed:
+    case K::checkpoint_written:
+    case K::disengaged:
+    case K::engaged:
+    case K::turn_limit_left:
+    case K::refined:
+    case K::tracking_lost:
+    case K::tracking_resumed:
+    case K::move_begin:
+    case K::move_committed:
       return LogLevel::info;
   }
   return LogLevel::notice;
 }
 
-void log_station_event(const StationEvent& e, ports::LogSink& log, int storage_errno) {
-  if (log_journal(e, log, storage_errno) || log_station_side(e, log)) return;
-  log_strokes(e, log);
-  log_session(e, log, storage_errno);
+void log_station_event(const SessionEvent& e, ports::LogSink& log, int storage_errno) {
+  if (log_journal(e, log, storage_errno) || log_station_side(e, log) || log_strokes(e, log) ||
+      log_session(e, log, storage_errno)) {
+    return;
+  }
+  log_object(e, log);
 }
 
 }  // namespace twister::station_app

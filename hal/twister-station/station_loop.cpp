@@ -13,7 +13,7 @@
 
 namespace twister::station_app {
 
-StationLoopConfig make_loop_config(const StationConfig& config, double duration_s,
+StationLoopConfig make_loop_config(const StationFileConfig& config, double duration_s,
                                    const Backends& backends) {
   StationLoopConfig c;
   c.timeout_ms = static_cast<int>(config.station.loop_timeout_ms);
@@ -105,8 +105,7 @@ bool StationLoop::step() {
     stop_reason_ = StopReason::station_failed;
     return false;
   }
-  display_.poll(core_, now_us);
-  display_.route_commands(core_);  // run by the next core_.poll()
+  display_.poll(core_, now_us);  // the display's commands run at the next core_.poll()
   log_events();
   retry_buttons(now_us);
   pet_watchdog(now_us);
@@ -119,7 +118,7 @@ bool StationLoop::step() {
 
 void StationLoop::log_events() {
   for (auto e = core_.next_event(); e.ok(); e = core_.next_event()) {
-    if (e->kind == station::StationEventKind::button_source_error) buttons_broken_ = true;
+    if (e->kind == session::SessionEventKind::button_source_error) buttons_broken_ = true;
     log_station_event(*e, log_, journal_ != nullptr ? journal_->last_errno() : 0);
   }
 }

@@ -41,7 +41,7 @@ struct StationLoopConfig {
 
 // The loop's settings from the config: `duration_s` (--duration) wins over the
 // simulator scenario's length; 0 for both runs until signalled.
-StationLoopConfig make_loop_config(const StationConfig& config, double duration_s,
+StationLoopConfig make_loop_config(const StationFileConfig& config, double duration_s,
                                    const Backends& backends);
 
 enum class StopReason : std::uint8_t { end_of_run, sigint, sigterm, sighup, station_failed };

@@ -39,7 +39,7 @@ math::WarpMethod method_of(SculptMethod m) {
 
 // [sculpt]: method, radius, turns, lost-tracking timeout and the button map (the
 // paper's map unless [sculpt.buttons] is given).
-void set_sculpt(const StationConfig& config, session::SculptSessionConfig& s, std::string& error) {
+void set_sculpt(const StationFileConfig& config, session::SculptSessionConfig& s, std::string& error) {
   const SculptConfig& sc = config.sculpt;
   s.method = method_of(sc.method);
   s.interaction.initial_radius_m = static_cast<float>(sc.radius_m);
@@ -67,7 +67,7 @@ void set_sculpt(const StationConfig& config, session::SculptSessionConfig& s, st
 }
 
 // The line a hand's grab is on (-1: none): the stylus drives it.
-int grab_line(const StationConfig& config, std::uint8_t hand) {
+int grab_line(const StationFileConfig& config, std::uint8_t hand) {
   if (!config.sculpt.buttons_configured) return hand == 0 ? 0 : 3;  // the paper's map
   for (const ButtonBindingConfig& b : config.sculpt.buttons) {
     if (b.action == SculptAction::grab && b.hand == hand && b.lines.size() == 1) return b.lines[0];
@@ -76,7 +76,7 @@ int grab_line(const StationConfig& config, std::uint8_t hand) {
 }
 
 // [tracker]: receivers, output lists (the stylus item where it exists), timings.
-void set_tracker(const StationConfig& config, station::StationConfig& c) {
+void set_tracker(const StationFileConfig& config, station::StationConfig& c) {
   using tracker::Item;
   const TrackerConfig& t = config.tracker;
   auto& proto = c.session.protocol;
@@ -103,7 +103,7 @@ void set_tracker(const StationConfig& config, station::StationConfig& c) {
 }
 
 // The stylus is the grab of the hand that holds receiver 1; "" or the problem.
-std::string set_stylus(const StationConfig& config, station::StationConfig& c) {
+std::string set_stylus(const StationFileConfig& config, station::StationConfig& c) {
   const TrackerConfig& t = config.tracker;
   const int hand = t.left_station == 1 ? 0 : t.right_station == 1 ? 1 : -1;
   if (hand < 0) {
@@ -123,7 +123,7 @@ std::string set_stylus(const StationConfig& config, station::StationConfig& c) {
 
 }  // namespace
 
-hal::Expected<station::StationConfig> make_station_setup(const StationConfig& config) {
+hal::Expected<station::StationConfig> make_station_setup(const StationFileConfig& config) {
   station::StationConfig c;
   set_tracker(config, c);
   c.checkpoint_interval = config.station.checkpoint_interval;

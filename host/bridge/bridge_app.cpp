@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 
 #include "scene_view.hpp"
 
@@ -10,9 +9,10 @@ namespace twister::bridge {
 
 using ports::LogLevel;
 
-BridgeApp::BridgeApp(ports::LinkPort& port, MeshRenderer* renderer, BridgeOptions options,
-                     ports::LogSink& log)
+BridgeApp::BridgeApp(ports::LinkPort& port, ports::Clock& clock, MeshRenderer* renderer,
+                     BridgeOptions options, ports::LogSink& log)
     : port_(port),
+      clock_(clock),
       renderer_(renderer),
       log_(log),
       options_(std::move(options)),
@@ -57,10 +57,8 @@ std::size_t BridgeApp::step() {
 }
 
 void BridgeApp::handle(const link::LinkMessage& m) {
-  last_frame_ms_ = std::chrono::duration_cast<std::chrono::milliseconds>(
-                       std::chrono::steady_clock::now().time_since_epoch())
-                       .count();
-  if (m.type == link::MessageType::hands) {
+  last_frame_ms_ = now_ms();
+  if (std::holds_alternative<link::Hands>(m)) {
     const std::int64_t second = last_frame_ms_ / 1000;
     if (second != hands_second_) {
       hands_last_second_ = second == hands_second_ + 1 ? hands_in_second_ : 0;
@@ -69,18 +67,17 @@ void BridgeApp::handle(const link::LinkMessage& m) {
     }
     counters_.hands_busiest_second = std::max(counters_.hands_busiest_second, ++hands_in_second_);
   }
-  switch (m.type) {
-    case link::MessageType::hello:
-      on_station_hello(m.hello);
-      return;
-    case link::MessageType::auth:
-      on_station_auth(m.auth);
-      return;
-    case link::MessageType::bye:
-      on_bye(m.bye);
-      return;
-    default:
-      break;
+  if (const auto* hello = std::get_if<link::Hello>(&m)) {
+    on_station_hello(*hello);
+    return;
+  }
+  if (const auto* auth = std::get_if<link::Auth>(&m)) {
+    on_station_auth(*auth);
+    return;
+  }
+  if (const auto* bye = std::get_if<link::Bye>(&m)) {
+    on_bye(*bye);
+    return;
   }
   if (!ready_) {
     ++counters_.ignored;  // not trusted before the handshake completes
@@ -93,10 +90,12 @@ void BridgeApp::handle_scene(const link::LinkMessage& m) {
   // The live warp as the stroke ends (the hands leave it, or its commit arrives) is
   // the stroke's final preview: picture it before the message ends it.
   const LiveState& live = replica_.live();
-  const bool ends_live = (m.type == link::MessageType::mesh_begin && !m.mesh_begin.full) ||
-                         (m.type == link::MessageType::hands &&
-                          ((m.hands.flags & link::kStrokeActive) == 0 ||
-                           m.hands.stroke != static_cast<std::uint16_t>(live.stroke)));
+  const auto* begin = std::get_if<link::MeshBegin>(&m);
+  const auto* hands = std::get_if<link::Hands>(&m);
+  const bool ends_live =
+      (begin != nullptr && !begin->full) ||
+      (hands != nullptr && ((hands->flags & link::kStrokeActive) == 0 ||
+                            hands->stroke != static_cast<std::uint16_t>(live.stroke)));
   if (ends_live && live.active && live.stroke != live_pictured_ && !options_.snapshot_dir.empty()) {
     refresh_display();
     snapshot("live-" + std::to_string(replica_.version() + 1));
@@ -105,19 +104,17 @@ void BridgeApp::handle_scene(const link::LinkMessage& m) {
   const std::uint64_t commits = replica_.counters().commits;
   const std::uint64_t fulls = replica_.counters().full_meshes;
   if (const auto request = replica_.apply(m)) {
-    link::LinkMessage r;
-    r.type = link::MessageType::resend_request;
-    r.resend_request = *request;
-    send(r);
+    send(*request);
     log_.write(LogLevel::warning, "replica",
                "mesh change set rejected (checksum/version); asked for a full resend");
   }
   if (replica_.counters().over_capacity != over_capacity_logged_) {
     over_capacity_logged_ = replica_.counters().over_capacity;
-    log_.write(LogLevel::error, "replica",
-               "mesh of %u vertices, %u triangles refused: above the limits (%u, %u)",
-               {m.mesh_begin.vertex_count, m.mesh_begin.triangle_count,
-                replica_.limits().max_vertices, replica_.limits().max_triangles});
+    log_.write(
+        LogLevel::error, "replica",
+        "mesh of %u vertices, %u triangles refused: above the limits (%u, %u)",
+        {begin != nullptr ? begin->vertex_count : 0U, begin != nullptr ? begin->triangle_count : 0U,
+         replica_.limits().max_vertices, replica_.limits().max_triangles});
   }
   if (replica_.counters().full_meshes != fulls) {
     log_.write(
@@ -142,20 +139,10 @@ void BridgeApp::handle_scene(const link::LinkMessage& m) {
 
 bool BridgeApp::send_command(const link::Command& command) {
   if (!ready()) return false;
-  link::LinkMessage m;
-  m.type = link::MessageType::command;
-  m.command = command;
-  send(m);
+  send(command);
   flush();
   ++counters_.commands_sent;
   return true;
-}
-
-void BridgeApp::send(const link::LinkMessage& m) {
-  std::array<std::byte, link::kMaxFrameBytes> frame{};
-  const auto n = link::encode_frame(m, frame);
-  if (n.ok())
-    out_.insert(out_.end(), frame.begin(), frame.begin() + static_cast<std::ptrdiff_t>(*n));
 }
 
 void BridgeApp::flush() {
@@ -207,9 +194,10 @@ void BridgeApp::refresh_weights(bool mesh_uploaded) {
     // The stroke's weights (plan order) in the colours of its session hands.
     if (mesh_uploaded || !showing_live_weights_ || live.weights_changed ||
         live.stroke != shown_stroke_) {
-      renderer_->set_weights(live.weight1, live.weight2,
-                             {live.hands[0].session_hand,
-                              live.hand_count > 1 ? live.hands[1].session_hand : std::uint8_t{1}});
+      renderer_->set_weights(
+          live.weight1, live.weight2,
+          {live.hands.empty() ? std::uint8_t{0} : live.hands[0].session_hand,
+           live.hands.size() > 1 ? live.hands[1].session_hand : std::uint8_t{1}});
       renderer_->set_gradients(live.gradient1, live.gradient2);
       live.weights_changed = false;
       shown_stroke_ = live.stroke;
@@ -245,9 +233,7 @@ HudInput BridgeApp::hud_input() const {
   HudInput in;
   in.link = link_view();
   in.ready = ready();
-  const std::int64_t now_s = std::chrono::duration_cast<std::chrono::seconds>(
-                                 std::chrono::steady_clock::now().time_since_epoch())
-                                 .count();
+  const std::int64_t now_s = now_ms() / 1000;
   in.hands_rate_hz = static_cast<double>(now_s == hands_second_       ? hands_last_second_
                                          : now_s == hands_second_ + 1 ? hands_in_second_
                                                                       : 0);

@@ -10,11 +10,15 @@
 // I/O for good (stopped() says why): two displays never fight over the link.
 // Snapshots (offscreen): the rest mesh when the first mesh arrives, the live warp
 // as each stroke segment ends (live-<next version>.png), and the committed mesh.
+// Time (hello retry, silence, the hands rate) comes from the ports::Clock the
+// program hands in (hal::MonotonicClock; tests drive a fake).
 // Messages go to the LogSink it is given (components "link", "replica",
 // "snapshot"): link loss and rejected change sets are warnings, being displaced a
 // warning, refusals errors, connects, meshes and commits notices, pictures info.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -24,6 +28,7 @@
 #include "scene_replica.hpp"
 #include "twister/link/link_authenticator.hpp"
 #include "twister/link/link_codec.hpp"
+#include "twister/ports/clock.hpp"
 #include "twister/ports/link_port.hpp"
 #include "twister/ports/log_sink.hpp"
 #include "weight_preview.hpp"
@@ -53,10 +58,10 @@ enum class BridgeStop : std::uint8_t { none, displaced, unauthorised, version };
 
 class BridgeApp {
  public:
-  // `renderer` may be null (headless replica, tests). `port`, `log` and the
+  // `renderer` may be null (headless replica, tests). `port`, `clock`, `log` and the
   // authenticator must outlive the app.
-  BridgeApp(ports::LinkPort& port, MeshRenderer* renderer, BridgeOptions options,
-            ports::LogSink& log);
+  BridgeApp(ports::LinkPort& port, ports::Clock& clock, MeshRenderer* renderer,
+            BridgeOptions options, ports::LogSink& log);
   // One step: link I/O and replica updates (never blocks). Returns frames decoded.
   std::size_t step();
   // Sends a sculptor's command (keys: undo, redo, method) to the station, which
@@ -95,12 +100,21 @@ class BridgeApp {
   // Display (bridge_app.cpp).
   void handle(const link::LinkMessage& m);
   void handle_scene(const link::LinkMessage& m);
-  void send(const link::LinkMessage& m);
+  // Queues one message (each type encoded directly, no LinkMessage built).
+  template <link::LinkBody M>
+  void send(const M& m) {
+    std::array<std::byte, link::kMaxFrameBytes> frame{};
+    const auto n = link::encode_frame(m, frame);
+    if (n.ok())
+      out_.insert(out_.end(), frame.begin(), frame.begin() + static_cast<std::ptrdiff_t>(*n));
+  }
   void flush();
   void refresh_display();
   void refresh_weights(bool mesh_uploaded);
+  std::int64_t now_ms() const { return clock_.now_us() / 1000; }
 
   ports::LinkPort& port_;
+  ports::Clock& clock_;
   MeshRenderer* renderer_;
   class SceneView* view_ = nullptr;
   ports::LogSink& log_;

@@ -2,22 +2,11 @@
 // hello on every connection and again while the station is silent, the
 // challenge-response with a pre-shared key, and backing off for good when the
 // station says displaced or unauthorised, or speaks another protocol version.
-#include <chrono>
-
 #include "bridge_app.hpp"
 
 namespace twister::bridge {
-namespace {
 
 using ports::LogLevel;
-
-std::int64_t now_ms() {
-  return std::chrono::duration_cast<std::chrono::milliseconds>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
-
-}  // namespace
 
 void BridgeApp::on_connect() {
   connected_ = true;
@@ -33,13 +22,10 @@ void BridgeApp::send_hello() {
   ready_ = false;
   bridge_nonce_ =
       options_.authenticator != nullptr ? options_.authenticator->make_nonce() : link::Nonce{};
-  link::LinkMessage hello;
-  hello.type = link::MessageType::hello;
   const link::Hello mine{link::Role::bridge,
                          options_.authenticator != nullptr ? link::kHelloAuth : std::uint8_t{0},
                          replica_.version(), replica_.checksum(), bridge_nonce_};
-  hello.hello = mine;
-  send(hello);
+  send(mine);
   ++counters_.hellos_sent;
   hello_sent_ms_ = now_ms();
   last_frame_ms_ = hello_sent_ms_;
@@ -79,10 +65,7 @@ void BridgeApp::on_station_hello(const link::Hello& hello) {
     ready_ = true;
     return;
   }
-  link::LinkMessage auth;
-  auth.type = link::MessageType::auth;
-  auth.auth.tag = options_.authenticator->tag(link::Role::bridge, station_nonce_, bridge_nonce_);
-  send(auth);
+  send(link::Auth{options_.authenticator->tag(link::Role::bridge, station_nonce_, bridge_nonce_)});
 }
 
 void BridgeApp::on_station_auth(const link::Auth& auth) {

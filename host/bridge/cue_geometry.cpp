@@ -81,7 +81,7 @@ void add_stroke(const SceneReplica& r, const glm::mat4& model, float scale,
                 const CueOptions& options, CueScene& out) {
   const LiveState& live = r.live();
   if (!live.active) return;
-  for (std::size_t k = 0; k < live.hand_count; ++k) {
+  for (std::size_t k = 0; k < live.hands.size(); ++k) {
     const LiveHand& hand = live.hands[k];
     if (options.screw_axes) {
       if (const auto axis = screw_axis_segment(hand, live.method, kAxisHalfLength * scale)) {

@@ -55,8 +55,7 @@ double turned_rad(const SceneReplica& r, const link::StatusReport& s) {
   const LiveState& live = r.live();
   if (!live.active) return s.turned_rad;
   double most = 0.0;
-  for (std::size_t k = 0; k < live.hand_count; ++k)
-    most = std::max(most, live.hands[k].screw.angle);
+  for (const LiveHand& hand : live.hands) most = std::max(most, hand.screw.angle);
   return most;
 }
 

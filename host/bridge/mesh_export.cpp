@@ -8,6 +8,7 @@
 #include <string>
 
 #include "gltf_export.hpp"
+#include "twister/hal/output_file.hpp"
 #include "twister/hal/posix_file_sink.hpp"
 #include "twister/meshio/obj_file.hpp"
 #include "vertex_normals.hpp"
@@ -15,22 +16,17 @@
 namespace twister::bridge {
 namespace {
 
-// Bytes through PosixFileSink: atomic, and never over anything but a regular file.
-hal::Expected<void> write_file(const std::string& path, const std::string& out) {
-  hal::PosixFileSinkConfig config;
-  config.path = path;
-  config.replace = hal::PosixFileSinkConfig::Replace::regular;
-  hal::PosixFileSink sink(config);
-  Status s = sink.begin();
-  if (s.ok()) s = sink.write(std::as_bytes(std::span(out.data(), out.size())));
-  if (s.ok()) s = sink.commit();
-  if (s.ok()) return {};
-  sink.abort();
-  return hal::Error{s, "cannot write " + path + ": " + sink.last_error()};
+// Bytes through PosixFileSink: atomic, under the programs' output rule.
+hal::Expected<void> write_file(const std::string& path, const std::string& out, bool force) {
+  hal::OutputRule rule{hal::OutputKind::obj, force};
+  if (!hal::output_kind_of(path, rule.kind)) {
+    return hal::make_error(StatusCode::invalid_argument, "unknown file kind: " + path);
+  }
+  return hal::write_output_file(path, out, rule);
 }
 
 // Binary PLY.
-hal::Expected<void> export_ply(const std::string& path, const MeshData& m) {
+hal::Expected<void> export_ply(const std::string& path, const MeshData& m, bool force) {
   std::string out;
   char header[512];
   const int n =
@@ -52,12 +48,12 @@ hal::Expected<void> export_ply(const std::string& path, const MeshData& m) {
     put(&three, 1);
     put(&m.indices[3 * t], 3 * sizeof(std::uint32_t));
   }
-  return write_file(path, out);
+  return write_file(path, out, force);
 }
 
 }  // namespace
 
-hal::Expected<void> check_export_path(const std::string& path) {
+hal::Expected<void> check_export_path(const std::string& path, bool force) {
   if (!path.ends_with(".obj") && !path.ends_with(".ply") && !path.ends_with(".glb") &&
       !path.ends_with(".gltf")) {
     return hal::make_error(StatusCode::invalid_argument,
@@ -77,19 +73,21 @@ hal::Expected<void> check_export_path(const std::string& path) {
     return hal::make_error(StatusCode::io_error,
                            "export folder is not writable: " + folder.string());
   }
-  return {};
+  hal::OutputRule rule{hal::OutputKind::obj, force};
+  hal::output_kind_of(path, rule.kind);
+  return hal::check_output_path(path, rule);
 }
 
 hal::Expected<void> export_mesh(const std::string& path, const MeshData& m,
-                                const std::vector<float>& normals) {
-  if (path.ends_with(".ply")) return export_ply(path, m);
+                                const std::vector<float>& normals, bool force) {
+  if (path.ends_with(".ply")) return export_ply(path, m, force);
   if (path.ends_with(".glb") || path.ends_with(".gltf")) {
     std::vector<float> computed;
     if (normals.size() != 3 * m.vertex_count()) compute_vertex_normals(m, computed);
     hal::Expected<std::string> bytes = gltf_bytes(
         m, normals.size() == 3 * m.vertex_count() ? normals : computed, path.ends_with(".glb"));
     if (!bytes) return bytes.error();
-    return write_file(path, *bytes);
+    return write_file(path, *bytes, force);
   }
   if (!path.ends_with(".obj")) {
     return hal::make_error(StatusCode::invalid_argument,
@@ -99,7 +97,7 @@ hal::Expected<void> export_mesh(const std::string& path, const MeshData& m,
   if (!core) {
     return hal::make_error(StatusCode::invalid_argument, "triangle index out of range: " + path);
   }
-  return meshio::save_obj(path, core->mesh());
+  return meshio::save_obj(path, core->mesh(), force);
 }
 
 }  // namespace twister::bridge

@@ -14,14 +14,17 @@
 namespace twister::bridge {
 
 // Errors: invalid_argument (unknown extension: names the ones accepted; the path
-// is a directory), io_error (the folder does not exist or is not writable).
-hal::Expected<void> check_export_path(const std::string& path);
+// is a directory), io_error (the folder does not exist or is not writable),
+// failed_precondition (the programs' output rule, twister/hal/output_file.hpp: an
+// existing file is replaced only with `force` and only when it is of the same kind,
+// never a journal, checkpoint or locked file).
+hal::Expected<void> check_export_path(const std::string& path, bool force = false);
 
 // Writes `mesh` to `path`; `normals` (3 per vertex, e.g. SceneReplica::normals())
 // go into glTF, computed when empty. Errors: invalid_argument (unknown extension,
 // triangle index out of range), io_error (cannot open or write); the message names
 // the path.
 hal::Expected<void> export_mesh(const std::string& path, const MeshData& mesh,
-                                const std::vector<float>& normals = {});
+                                const std::vector<float>& normals = {}, bool force = false);
 
 }  // namespace twister::bridge

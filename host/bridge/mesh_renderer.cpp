@@ -194,12 +194,12 @@ void MeshRenderer::set_live(const LiveState* live) {
   if (live == nullptr || !live->active) return;
   if (live->method == math::WarpMethod::scodef) return;  // CPU path (positions uploaded)
   // Plan hands: hand k uses the k-th weight column.
-  hand_mask_ = static_cast<int>((1u << live->hand_count) - 1u);
+  hand_mask_ = static_cast<int>((1u << live->hands.size()) - 1u);
   // The kernels' per-hand constants, rounded to float for the shader uniforms.
   for (std::size_t h = 0; h < link::kLinkHands; ++h) {
     float* k = hands_[h];
     std::fill(k, k + 17, 0.0F);
-    if (h >= live->hand_count) continue;
+    if (h >= live->hands.size()) continue;
     math::KernelHand kh;
     const LiveHand& lh = live->hands[h];
     math::fill_kernel_hand(kh, lh.screw, lh.start, lh.end, live->method);

@@ -3,22 +3,28 @@
 #include <png.h>
 
 #include <csetjmp>
-#include <cstdio>
+
+#include "twister/hal/posix_file_sink.hpp"
 
 namespace twister::bridge {
+namespace {
 
-hal::Expected<void> write_png(const std::string& path, int width, int height,
-                              const std::vector<std::uint8_t>& rgba) {
-  std::FILE* f = std::fopen(path.c_str(), "wb");
-  if (f == nullptr) return hal::make_error(StatusCode::io_error, "cannot write " + path);
+void append_bytes(png_structp png, png_bytep data, png_size_t length) {
+  auto* out = static_cast<std::string*>(png_get_io_ptr(png));
+  out->append(reinterpret_cast<const char*>(data), length);
+}
+
+void flush_nothing(png_structp) {}
+
+// The PNG's bytes in memory (libpng; false on a libpng error).
+bool encode_png(std::string& out, int width, int height, const std::vector<std::uint8_t>& rgba) {
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png_create_info_struct(png);
   if (png == nullptr || info == nullptr || setjmp(png_jmpbuf(png))) {
     png_destroy_write_struct(&png, &info);
-    std::fclose(f);
-    return hal::make_error(StatusCode::io_error, "cannot write " + path + " (libpng)");
+    return false;
   }
-  png_init_io(png, f);
+  png_set_write_fn(png, &out, append_bytes, flush_nothing);
   png_set_compression_level(png, 1);
   png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8,
                PNG_COLOR_TYPE_RGBA, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
@@ -30,8 +36,19 @@ hal::Expected<void> write_png(const std::string& path, int width, int height,
   }
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
-  if (std::fclose(f) != 0) return hal::make_error(StatusCode::io_error, "cannot write " + path);
-  return {};
+  return true;
+}
+
+}  // namespace
+
+hal::Expected<void> write_png(const std::string& path, int width, int height,
+                              const std::vector<std::uint8_t>& rgba) {
+  std::string bytes;
+  if (!encode_png(bytes, width, height, rgba)) {
+    return hal::make_error(StatusCode::io_error, "cannot write " + path + " (libpng)");
+  }
+  // A snapshot may replace a PNG (an earlier run's), nothing else (output_file.hpp).
+  return hal::write_output_file(path, bytes, {hal::OutputKind::png, true});
 }
 
 }  // namespace twister::bridge

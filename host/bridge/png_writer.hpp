@@ -9,8 +9,10 @@
 
 namespace twister::bridge {
 
-// Writes RGBA rows (top to bottom) as PNG. Error io_error naming the path when it
-// cannot be written.
+// Writes RGBA rows (top to bottom) as PNG, atomically (PosixFileSink) and under the
+// programs' output rule: it may replace a PNG (a snapshot of an earlier run), never
+// anything else (twister/hal/output_file.hpp). Errors io_error / failed_precondition
+// naming the path.
 hal::Expected<void> write_png(const std::string& path, int width, int height,
                               const std::vector<std::uint8_t>& rgba);
 

@@ -9,17 +9,16 @@ hal::Expected<void> SceneView::init() {
 }
 
 void SceneView::draw(const SceneReplica& replica, HudInput input) {
-  const auto now = std::chrono::steady_clock::now();
-  const double delta = last_.time_since_epoch().count() == 0
-                           ? 1.0 / 60.0
-                           : std::chrono::duration<double>(now - last_).count();
-  last_ = now;
+  const ports::TimestampUs now_us = clock_.now_us();
+  const double delta = drawn_ ? 1e-6 * static_cast<double>(now_us - last_us_) : 1.0 / 60.0;
+  drawn_ = true;
+  last_us_ = now_us;
   ++frames_in_second_;
-  const double window = std::chrono::duration<double>(now - second_start_).count();
+  const double window = 1e-6 * static_cast<double>(now_us - second_start_us_);
   if (window >= 1.0) {
     fps_ = static_cast<double>(frames_in_second_) / window;
     frames_in_second_ = 0;
-    second_start_ = now;
+    second_start_us_ = now_us;
   }
   renderer_.begin_frame();
   if (replica.has_mesh()) renderer_.draw_mesh();
@@ -29,7 +28,7 @@ void SceneView::draw(const SceneReplica& replica, HudInput input) {
       cues_, camera.projection(renderer_.width(), renderer_.height()) * camera.view_matrix());
   if (options_.hud) {
     input.fps = fps_;
-    input.now_s = std::chrono::duration<double>(now.time_since_epoch()).count();
+    input.now_s = 1e-6 * static_cast<double>(now_us);
     text_ = hud_model_.update(replica, input);
     hud_.draw(text_, renderer_.width(), renderer_.height(), delta);
   }

@@ -2,16 +2,18 @@
 // live warp, smooth shading, at the object pose), the paper's cues over it
 // (cue_geometry.hpp, CueRenderer) and the heads-up text (HudModel, HudRenderer).
 // BridgeApp draws through it in every mode (window, kiosk, offscreen snapshots).
-// Needs a current context.
+// Needs a current context. Frame times and the HUD's clock come from the
+// ports::Clock it is given.
 #pragma once
 
-#include <chrono>
+#include <cstdint>
 
 #include "cue_geometry.hpp"
 #include "cue_renderer.hpp"
 #include "hud_model.hpp"
 #include "hud_renderer.hpp"
 #include "mesh_renderer.hpp"
+#include "twister/ports/clock.hpp"
 
 namespace twister::bridge {
 
@@ -22,8 +24,9 @@ struct SceneViewOptions {
 
 class SceneView {
  public:
-  explicit SceneView(MeshRenderer& renderer, SceneViewOptions options = {})
-      : renderer_(renderer), options_(options) {}
+  // `renderer` and `clock` must outlive the view.
+  SceneView(MeshRenderer& renderer, ports::Clock& clock, SceneViewOptions options = {})
+      : renderer_(renderer), clock_(clock), options_(options) {}
   // Error not_supported: a shader or the HUD's back end did not start.
   hal::Expected<void> init();
   // One frame of `replica` (already uploaded to the renderer by BridgeApp).
@@ -38,14 +41,16 @@ class SceneView {
 
  private:
   MeshRenderer& renderer_;
+  ports::Clock& clock_;
   SceneViewOptions options_;
   CueRenderer cue_renderer_;
   HudRenderer hud_;
   HudModel hud_model_;
   CueScene cues_;
   HudText text_;
-  std::chrono::steady_clock::time_point last_{};
-  std::chrono::steady_clock::time_point second_start_{};
+  bool drawn_ = false;              // a frame was drawn (last_us_ holds its time)
+  ports::TimestampUs last_us_ = 0;  // the last frame's time
+  ports::TimestampUs second_start_us_ = 0;
   int frames_in_second_ = 0;
   double fps_ = 0.0;
 };

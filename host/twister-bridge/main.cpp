@@ -11,7 +11,6 @@
 
 #include <CLI/CLI.hpp>
 #include <array>
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -24,6 +23,7 @@
 #include "scene_view.hpp"
 #include "twister/hal/expected.hpp"
 #include "twister/hal/logger.hpp"
+#include "twister/hal/monotonic_clock.hpp"
 #include "twister/hal/serial_link.hpp"
 #include "twister/hal/socket_link.hpp"
 #include "twister/hal/sodium_authenticator.hpp"
@@ -47,6 +47,7 @@ struct Options {
   std::string size = "800x600";
   std::string snapshots;
   std::string export_path;
+  bool force = false;  // --force: --export may replace a file of the same kind
   unsigned exit_after_commits = 0;
   double timeout_s = 0.0;
   twister::bridge::ViewConfig view;  // --azimuth, --elevation, or --camera FILE
@@ -81,9 +82,10 @@ Expected<Size> parse_size(const std::string& text) {
 
 // The GL context and the renderer drawing into it (destroyed before the context).
 struct Display {
+  explicit Display(twister::ports::Clock& clock) : view(renderer, clock) {}
   std::unique_ptr<twister::bridge::GlContext> context;
   twister::bridge::MeshRenderer renderer;
-  twister::bridge::SceneView view{renderer};
+  twister::bridge::SceneView view;
 };
 
 Expected<void> open_display(const Options& opt, Size size, Display& display) {
@@ -105,8 +107,9 @@ Expected<void> open_display(const Options& opt, Size size, Display& display) {
 
 // Steps the app until the window closes, the awaited commits or disconnect came, or
 // the timeout; returns the exit code.
-int run_loop(const Options& opt, BridgeApp& app, Display& display, const int link_fd) {
-  const auto start = std::chrono::steady_clock::now();
+int run_loop(const Options& opt, BridgeApp& app, Display& display, const int link_fd,
+             twister::ports::Clock& clock) {
+  const twister::ports::TimestampUs start_us = clock.now_us();
   twister::bridge::GlContext& context = *display.context;
   for (;;) {
     app.step();
@@ -129,8 +132,7 @@ int run_loop(const Options& opt, BridgeApp& app, Display& display, const int lin
       return kExitOk;
     }
     if (opt.exit_after_commits > 0 && commits >= opt.exit_after_commits) return kExitOk;
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double elapsed = 1e-6 * static_cast<double>(clock.now_us() - start_us);
     if (opt.timeout_s > 0.0 && elapsed > opt.timeout_s) {
       // A timeout is the planned end of a run unless commits were awaited.
       const bool failed = opt.exit_after_commits > 0;
@@ -176,13 +178,13 @@ Expected<void> open_transport(const Options& opt, Transport& t) {
   return {};
 }
 
-int export_final_mesh(const std::string& path, const BridgeApp& app) {
+int export_final_mesh(const std::string& path, bool force, const BridgeApp& app) {
   if (!app.replica().has_mesh()) {
     logger().error("export", "no mesh received; nothing exported");
     return kExitFailure;
   }
   if (const Expected<void> done =
-          twister::bridge::export_mesh(path, app.replica().mesh(), app.replica().normals());
+          twister::bridge::export_mesh(path, app.replica().mesh(), app.replica().normals(), force);
       !done) {
     logger().error("export", "%s", done.error().message.c_str());
     return kExitFailure;
@@ -215,7 +217,8 @@ int run(const Options& opt) {
   }
   // The export path is checked now, not after the session's work.
   if (!opt.export_path.empty()) {
-    if (const Expected<void> ok = twister::bridge::check_export_path(opt.export_path); !ok) {
+    if (const Expected<void> ok = twister::bridge::check_export_path(opt.export_path, opt.force);
+        !ok) {
       logger().error("options", "--export: %s", ok.error().message.c_str());
       return kExitBadOptions;
     }
@@ -232,7 +235,9 @@ int run(const Options& opt) {
     options.view = camera->view;
     options.fixed_camera = camera->fixed;
   }
-  Display display;
+  // The one clock of the display: link timing, frame times, the HUD, the timeout.
+  twister::hal::MonotonicClock clock;
+  Display display(clock);
   if (const Expected<void> opened = open_display(options, *size, display); !opened) {
     logger().error("display", "%s", opened.error().message.c_str());
     return kExitFailure;
@@ -258,13 +263,14 @@ int run(const Options& opt) {
   bridge_options.snapshot_dir = opt.snapshots;
   bridge_options.authenticator = auth.get();
   bridge_options.limits = opt.limits;
-  BridgeApp app(*transport.port, &display.renderer, bridge_options, logger());
+  BridgeApp app(*transport.port, clock, &display.renderer, bridge_options, logger());
   app.set_view(&display.view);
   twister::bridge::WindowInput input(app, display.view, options.fixed_camera);
   input.attach(display.context->window());
-  int rc = run_loop(opt, app, display, transport.poll_fd());
+  int rc = run_loop(opt, app, display, transport.poll_fd(), clock);
   if (!opt.export_path.empty()) {
-    if (const int exported = export_final_mesh(opt.export_path, app); exported != kExitOk) {
+    if (const int exported = export_final_mesh(opt.export_path, opt.force, app);
+        exported != kExitOk) {
       return exported;
     }
   }
@@ -295,6 +301,9 @@ void add_options(CLI::App& cli, Options& opt) {
                  "directory for PNGs: rest.png, live-<version>.png, commit-<version>.png");
   cli.add_option("--export", opt.export_path,
                  "write the final mesh at exit: .obj, .ply, .glb or .gltf (checked at start)");
+  cli.add_flag("--force", opt.force,
+               "--export may replace an existing file of the same kind (never a journal, "
+               "checkpoint, a file a running station holds, or another kind of file)");
   cli.add_option("--exit-after-commits", opt.exit_after_commits,
                  "exit once this many commits were applied and verified");
   cli.add_flag("--exit-on-disconnect", opt.exit_on_disconnect,

@@ -24,7 +24,7 @@ work="$build/refine-figure"
 mkdir -p "$out" "$work"
 out="$(cd "$out" && pwd)"
 work="$(cd "$work" && pwd)"
-"$twister" mesh box -n 3 --size 0.20 --center 0.55 0 0.10 --out "$work/box.obj" > /dev/null
+"$twister" mesh box -n 3 --size 0.20 --center 0.55 0 0.10 --out "$work/box.obj" --force > /dev/null
 export EGL_PLATFORM=surfaceless
 unset DISPLAY WAYLAND_DISPLAY
 

@@ -16,7 +16,7 @@
 #include <thread>
 #include <vector>
 
-#include "cli_exit.hpp"
+#include "cli_exit_code.hpp"
 #include "cli_log.hpp"
 #include "twister/hal/expected.hpp"
 #include "twister/hal/termios_byte_stream.hpp"
@@ -224,9 +224,21 @@ int run_device(const DumpOptions& o, const FastrakConfig& config) {
   return kExitOk;
 }
 
+// Either source, the options checked first.
+int run_dump(const DumpOptions& o) {
+  if (o.device.empty() == o.file.empty()) {
+    return fail(kExitBadInput, "give either DEVICE or --file PATH");
+  }
+  const hal::Expected<FastrakConfig> config = build_config(o);
+  if (!config) return fail(kExitBadInput, config.error().message);
+  const int rc = o.file.empty() ? run_device(o, *config) : run_file(o, *config);
+  std::fflush(stdout);
+  return rc;
+}
+
 }  // namespace
 
-void add_fastrak_dump_command(CLI::App& app) {
+void add_fastrak_dump_command(CLI::App& app, int& exit_code) {
   auto opts = std::make_shared<DumpOptions>();
   CLI::App* cmd = app.add_subcommand(
       "fastrak-dump", "Configure a Fastrak and print decoded records, or decode a recording");
@@ -249,20 +261,9 @@ void add_fastrak_dump_command(CLI::App& app) {
   cmd->add_option("--count", opts->count, "DEVICE mode: stop after this many records")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--quick", opts->quick, "short reset waits, for twister-sim");
-  cmd->callback([opts] {
+  cmd->callback([opts, &exit_code] {
     start_command_log("fastrak-dump");
-    if (opts->device.empty() == opts->file.empty()) {
-      cli_log().error("", "give either DEVICE or --file PATH");
-      throw Exit{kExitBadInput};
-    }
-    const hal::Expected<FastrakConfig> config = build_config(*opts);
-    if (!config) {
-      cli_log().error("", "%s", config.error().message.c_str());
-      throw Exit{kExitBadInput};
-    }
-    const int rc = opts->file.empty() ? run_device(*opts, *config) : run_file(*opts, *config);
-    std::fflush(stdout);
-    if (rc != kExitOk) throw Exit{rc};
+    exit_code = run_dump(*opts);
   });
 }
 

@@ -6,6 +6,6 @@
 
 namespace twister::cli {
 
-void add_fastrak_dump_command(CLI::App& app);
+void add_fastrak_dump_command(CLI::App& app, int& exit_code);
 
 }  // namespace twister::cli

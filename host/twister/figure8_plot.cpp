@@ -6,11 +6,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <memory>
 #include <numbers>
+#include <string>
+
+#include "twister/hal/posix_file_sink.hpp"
 
 namespace twister::cli {
 
@@ -334,7 +336,8 @@ Figure8Size figure8_picture_size(std::size_t panels, std::size_t rows, std::size
           2 * kMargin + kTitleH + p * panel_h + std::max(0, p - 1) * kPanelGap};
 }
 
-hal::Expected<void> write_figure8_svg(const std::string& path, const Figure8Picture& picture) {
+hal::Expected<void> write_figure8_svg(const std::string& path, const Figure8Picture& picture,
+                                      bool force) {
   const Figure8Size size = size_of(picture);
   std::string svg;
   std::vector<std::string> texts;
@@ -359,26 +362,27 @@ hal::Expected<void> write_figure8_svg(const std::string& path, const Figure8Pict
   for (const auto& t : texts) meta += xml_escape(t) + "\n";
   meta += "</desc>";
   svg.insert(end + 1, meta);
-  std::ofstream out(path, std::ios::binary);
-  if (!out) return hal::make_error(StatusCode::io_error, "cannot write '" + path + "'");
-  out << svg;
-  out.close();
-  if (!out) return hal::make_error(StatusCode::io_error, "write to '" + path + "' failed");
-  return {};
+  return hal::write_output_file(path, svg, {hal::OutputKind::svg, force});
 }
 
-hal::Expected<void> write_figure8_png(const std::string& path, const Figure8Picture& picture) {
+hal::Expected<void> write_figure8_png(const std::string& path, const Figure8Picture& picture,
+                                      bool force) {
   const Figure8Size size = size_of(picture);
   const SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, size.width, size.height),
                            &cairo_surface_destroy);
   std::vector<std::string> texts;
   if (auto drawn = render(surface.get(), picture, texts); !drawn) return drawn;
-  if (const cairo_status_t st = cairo_surface_write_to_png(surface.get(), path.c_str());
+  std::string bytes;
+  const auto append = [](void* closure, const unsigned char* data, unsigned int length) {
+    static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+    return CAIRO_STATUS_SUCCESS;
+  };
+  if (const cairo_status_t st = cairo_surface_write_to_png_stream(surface.get(), append, &bytes);
       st != CAIRO_STATUS_SUCCESS) {
     return hal::make_error(StatusCode::io_error,
                            "cannot write '" + path + "': " + cairo_status_to_string(st));
   }
-  return {};
+  return hal::write_output_file(path, bytes, {hal::OutputKind::png, force});
 }
 
 }  // namespace twister::cli

@@ -41,9 +41,13 @@ Figure8Size figure8_picture_size(std::size_t panels, std::size_t rows, std::size
 
 // Writes the picture. The SVG draws the labels as glyph outlines (cairo) and also
 // carries them as text in its <title> and <desc> elements, so it is searchable.
-// Errors: io_error ("cannot write '<path>'", "write to '<path>' failed"),
-// failed_precondition (cairo could not draw).
-hal::Expected<void> write_figure8_svg(const std::string& path, const Figure8Picture& picture);
-hal::Expected<void> write_figure8_png(const std::string& path, const Figure8Picture& picture);
+// Written atomically under the programs' output rule (twister/hal/output_file.hpp:
+// an existing file only with `force` and only an SVG / PNG).
+// Errors: io_error ("cannot write '<path>'"), failed_precondition (cairo could not
+// draw; the output rule refused the path).
+hal::Expected<void> write_figure8_svg(const std::string& path, const Figure8Picture& picture,
+                                      bool force = false);
+hal::Expected<void> write_figure8_png(const std::string& path, const Figure8Picture& picture,
+                                      bool force = false);
 
 }  // namespace twister::cli

@@ -12,6 +12,6 @@
 
 namespace twister::cli {
 
-void add_journal_command(CLI::App& app);
+void add_journal_command(CLI::App& app, int& exit_code);
 
 }  // namespace twister::cli

@@ -3,7 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <exception>
 
-#include "cli_exit.hpp"
+#include "cli_exit_code.hpp"
 #include "cli_log.hpp"
 #include "fastrak_dump_command.hpp"
 #include "figure8_command.hpp"
@@ -18,13 +18,14 @@ int run(int argc, char** argv) {
   CLI::App app{"twister: tools for the Twister sculpting station"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "twister 0.1.0");
-  // Subcommands (one line each):
-  twister::cli::add_warp_command(app);
-  twister::cli::add_figure8_command(app);
-  twister::cli::add_fastrak_dump_command(app);
-  twister::cli::add_replay_command(app);
-  twister::cli::add_mesh_command(app);
-  twister::cli::add_journal_command(app);
+  // Subcommands (one line each); the one that runs leaves its exit code here.
+  int exit_code = twister::cli::kExitOk;
+  twister::cli::add_warp_command(app, exit_code);
+  twister::cli::add_figure8_command(app, exit_code);
+  twister::cli::add_fastrak_dump_command(app, exit_code);
+  twister::cli::add_replay_command(app, exit_code);
+  twister::cli::add_mesh_command(app, exit_code);
+  twister::cli::add_journal_command(app, exit_code);
 
   try {
     app.parse(argc, argv);
@@ -32,10 +33,8 @@ int run(int argc, char** argv) {
     // --help / --version exit 0; every usage error exits 2 (bad options).
     const int rc = app.exit(e);
     return rc == 0 ? twister::cli::kExitOk : twister::cli::kExitBadInput;
-  } catch (const twister::cli::Exit& e) {
-    return e.code;
   }
-  return twister::cli::kExitOk;
+  return exit_code;
 }
 
 }  // namespace

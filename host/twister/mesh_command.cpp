@@ -7,8 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "cli_exit.hpp"
+#include "cli_exit_code.hpp"
 #include "cli_log.hpp"
+#include "twister/hal/output_file.hpp"
 #include "twister/meshio/mesh_generator.hpp"
 #include "twister/meshio/obj_file.hpp"
 
@@ -23,16 +24,14 @@ struct Options {
   float size_m = 1.0f;                            // half size (grid, box) or radius
   float half_height_m = 0.0f;                     // cylinder; 0: the radius
   std::vector<float> center_m{0.0f, 0.0f, 0.0f};  // translation of the whole mesh
+  bool force = false;                             // replace an existing OBJ
 };
 
 // CLI11's number checks let "nan" and "inf" through: every size must be finite.
-void check_finite(const Options& o) {
+bool all_finite(const Options& o) {
   bool finite = std::isfinite(o.size_m) && std::isfinite(o.half_height_m);
   for (const float c : o.center_m) finite = finite && std::isfinite(c);
-  if (!finite) {
-    cli_log().error("", "--size, --half-height and --center must be finite numbers");
-    throw Exit{kExitBadInput};
-  }
+  return finite;
 }
 
 struct Counts {
@@ -62,31 +61,36 @@ Status generate(const Options& o, mesh::Mesh& m) {
   return meshio::make_grid(m, o.n, o.size_m);
 }
 
-void run_mesh(const Options& o) {
-  check_finite(o);
+int run_mesh(const Options& o) {
+  if (!all_finite(o)) {
+    return fail(kExitBadInput, "--size, --half-height and --center must be finite numbers");
+  }
+  // Before any work: the output rule (twister/hal/output_file.hpp).
+  if (auto free = hal::check_output_path(o.out, {hal::OutputKind::obj, o.force}); !free) {
+    return fail(kExitBadInput, free.error().message);
+  }
   const Counts c = counts_of(o);
   meshio::MeshBuffer buffer(c.vertices, c.triangles);
   const Status s = generate(o, buffer.mesh());
   if (!s.ok()) {
-    cli_log().error("", "cannot make that %s: %s", o.shape.c_str(), s.name());
-    throw Exit{kExitBadInput};
+    return fail(kExitBadInput, "cannot make that " + o.shape + ": " + s.name());
   }
   // Placed where a scene needs it (e.g. in front of the simulated transmitter).
   const glm::vec3 center(o.center_m[0], o.center_m[1], o.center_m[2]);
   for (std::uint32_t i = 0; i < buffer.mesh().vertex_count(); ++i) {
     buffer.mesh().set_position(i, buffer.mesh().position(i) + center);
   }
-  if (auto saved = meshio::save_obj(o.out, buffer.mesh()); !saved) {
-    cli_log().error("", "%s", saved.error().message.c_str());
-    throw Exit{kExitFailure};
+  if (auto saved = meshio::save_obj(o.out, buffer.mesh(), o.force); !saved) {
+    return fail(kExitFailure, saved.error().message);
   }
   std::printf("%s: %zu vertices, %zu triangles\n", o.out.c_str(), buffer.mesh().vertex_count(),
               buffer.mesh().triangle_count());
+  return kExitOk;
 }
 
 }  // namespace
 
-void add_mesh_command(CLI::App& app) {
+void add_mesh_command(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
       "mesh", "Write a procedural mesh as OBJ: a plane (grid), box, cylinder or sphere");
@@ -94,6 +98,9 @@ void add_mesh_command(CLI::App& app) {
       ->required()
       ->check(CLI::IsMember({"grid", "plane", "box", "cylinder", "sphere"}));
   cmd->add_option("--out", options->out, "Output OBJ file")->required();
+  cmd->add_flag("--force", options->force,
+                "Replace an existing OBJ at --out (never a journal, checkpoint, a file a "
+                "running station holds, or another kind of file)");
   cmd->add_option("-n", options->n,
                   "resolution: plane vertices per side, box vertices per edge, sphere rings "
                   "(all >= 2); cylinder bands along the height (>= 1)")
@@ -109,9 +116,9 @@ void add_mesh_command(CLI::App& app) {
   cmd->add_option("--center", options->center_m, "centre of the mesh: X Y Z (m, default 0 0 0)")
       ->expected(3)
       ->check(CLI::Number);
-  cmd->callback([options] {
+  cmd->callback([options, &exit_code] {
     start_command_log("mesh");
-    run_mesh(*options);
+    exit_code = run_mesh(*options);
   });
 }
 

@@ -5,6 +5,6 @@
 
 namespace twister::cli {
 
-void add_mesh_command(CLI::App& app);
+void add_mesh_command(CLI::App& app, int& exit_code);
 
 }  // namespace twister::cli

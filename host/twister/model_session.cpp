@@ -2,32 +2,32 @@
 
 #include <algorithm>
 
-#include "cli_exit.hpp"
 #include "cli_log.hpp"
 
 namespace twister::cli {
-namespace {
 
-meshio::ObjMesh load(const std::string& path, std::size_t spare_vertices) {
+hal::Expected<std::unique_ptr<ModelSession>> ModelSession::open(const std::string& obj_path,
+                                                                std::size_t spare_vertices,
+                                                                std::size_t undo_changes,
+                                                                std::size_t undo_entries) {
   meshio::ObjOptions options;
   options.spare_vertices = spare_vertices;
   options.spare_triangles = 2 * spare_vertices;
-  auto loaded = meshio::load_obj(path, options);
+  auto loaded = meshio::load_obj(obj_path, options);
   if (!loaded) {
-    cli_log().error("", "%s: %s", path.c_str(), loaded.error().message.c_str());
-    throw Exit{kExitBadInput};
+    return hal::Error{loaded.error().status, obj_path + ": " + loaded.error().message};
   }
   if (loaded->skipped_lines > 0) {
-    cli_log().warning("", "%s: %zu unsupported lines skipped", path.c_str(), loaded->skipped_lines);
+    cli_log().warning("", "%s: %zu unsupported lines skipped", obj_path.c_str(),
+                      loaded->skipped_lines);
   }
-  return std::move(*loaded);
+  return std::unique_ptr<ModelSession>(
+      new ModelSession(std::move(*loaded), undo_changes, undo_entries));
 }
 
-}  // namespace
-
-ModelSession::ModelSession(const std::string& obj_path, std::size_t spare_vertices,
-                           std::size_t undo_changes, std::size_t undo_entries)
-    : model_(load(obj_path, spare_vertices)),
+ModelSession::ModelSession(meshio::ObjMesh model, std::size_t undo_changes,
+                           std::size_t undo_entries)
+    : model_(std::move(model)),
       refiner_(mesh().vertex_capacity(), mesh().triangle_capacity()),
       triangles_(session::kDefaultUndoTriangleChanges) {
   const std::size_t n = mesh().vertex_capacity();

@@ -2,8 +2,8 @@
 // journal records (`twister replay`, `twister journal check|salvage --mesh`): the mesh,
 // the session's working memory sized from it (refinement included: `spare_vertices`
 // more vertices and twice as many more triangles, as the station sizes its mesh), and
-// the history sizes the station uses unless told otherwise. Loading errors end the
-// command (exit 2, bad input).
+// the history sizes the station uses unless told otherwise. open() returns a loading
+// error as a value ("PATH: why"; the commands exit 2, bad input).
 #pragma once
 
 #include <cstddef>
@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "twister/hal/expected.hpp"
 #include "twister/session/sculpt_session.hpp"
 #include "twister/meshio/obj_file.hpp"
 #include "twister/meshio/refiner_buffer.hpp"
@@ -19,9 +20,10 @@ namespace twister::cli {
 
 class ModelSession {
  public:
-  explicit ModelSession(const std::string& obj_path, std::size_t spare_vertices = 0,
-                        std::size_t undo_changes = session::kDefaultUndoChanges,
-                        std::size_t undo_entries = session::kDefaultUndoEntries);
+  static hal::Expected<std::unique_ptr<ModelSession>> open(
+      const std::string& obj_path, std::size_t spare_vertices = 0,
+      std::size_t undo_changes = session::kDefaultUndoChanges,
+      std::size_t undo_entries = session::kDefaultUndoEntries);
   ModelSession(const ModelSession&) = delete;
   ModelSession& operator=(const ModelSession&) = delete;
 
@@ -29,6 +31,8 @@ class ModelSession {
   session::SculptSession& session() { return *session_; }
 
  private:
+  ModelSession(meshio::ObjMesh model, std::size_t undo_changes, std::size_t undo_entries);
+
   meshio::ObjMesh model_;
   std::vector<float> lx_, ly_, lz_, w1_, w2_;
   std::vector<std::uint32_t> plan_indices_;

@@ -8,16 +8,20 @@
 #include <glm/mat3x3.hpp>
 #include <iterator>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "cli_exit.hpp"
+#include "cli_exit_code.hpp"
 #include "cli_log.hpp"
 #include "model_session.hpp"
+#include "twister/hal/output_file.hpp"
+#include "twister/journal/journal_format.hpp"
 #include "twister/session/sculpt_session.hpp"
 #include "twister/journal/journal_reader.hpp"
 #include "twister/journal/journal_scanner.hpp"
 #include "twister/meshio/obj_file.hpp"
+#include "twister/session/sculpt_session.hpp"
 
 namespace twister::cli {
 namespace {
@@ -53,16 +57,13 @@ struct Options {
   bool world = false;
   bool quiet = false;
   bool progress = false;
+  bool force = false;  // --force: replace an existing OBJ (never anything else)
 };
 
-[[noreturn]] void fail(int code, const std::string& message) {
-  cli_log().error("", "%s", message.c_str());
-  throw Exit{code};
-}
-
-std::vector<std::byte> read_file(const std::string& path) {
+// The whole file, or nothing when it cannot be opened.
+std::optional<std::vector<std::byte>> read_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) fail(kExitBadInput, "cannot open journal '" + path + "'");
+  if (!in) return std::nullopt;
   std::vector<char> chars((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::vector<std::byte> bytes(chars.size());
   std::memcpy(bytes.data(), chars.data(), chars.size());
@@ -93,24 +94,59 @@ void report_refinement(const session::RefineStatus& r, const Options& o) {
   }
 }
 
-void run_replay(const Options& o) {
-  ModelSession model(o.mesh_in, o.spare_vertices, o.undo_changes, o.undo_entries);
-  mesh::Mesh& mesh = model.mesh();
-  session::SculptSession& session = model.session();
+// Before any work: the output may not be an input, and must pass the output rule
+// (never a journal, checkpoint, locked file such as a running station's journal or
+// base model; an existing OBJ only with --force). kExitOk when it may be written.
+int check_output(const Options& o) {
+  for (const std::string* input : {&o.journal, &o.mesh_in}) {
+    if (hal::same_file(o.mesh_out, *input)) {
+      return fail(kExitBadInput, o.mesh_out + " is the input " + *input + "; it is not replaced");
+    }
+  }
+  if (auto free = hal::check_output_path(o.mesh_out, {hal::OutputKind::obj, o.force}); !free) {
+    return fail(kExitBadInput, free.error().message);
+  }
+  return kExitOk;
+}
 
-  ReadOnlyStorage storage(read_file(o.journal));
+// A damaged record with valid records after it, or a complete record that is refused
+// (unknown version or type, invalid values, another journal's, out of order), is
+// corruption, not a torn tail: replaying up to it would silently drop later strokes,
+// and twister-station refuses the same journal. "" when there is none.
+std::string corruption(ports::Storage& storage) {
+  const auto survey = journal::survey_journal(storage);
+  if (!survey.ok() || !survey->corrupt()) return "";
+  const bool refused =
+      survey->refused_records > 0 &&
+      (survey->later_records == 0 || survey->first_refused_offset <= survey->good_end);
+  const std::uint64_t at = refused ? survey->first_refused_offset : survey->good_end;
+  const journal::TailProblem what = refused ? survey->first_refused : survey->problem;
+  return "record at offset " + std::to_string(at) + ": " + journal::tail_problem_text(what) + " (" +
+         journal::tail_problem_name(what) + "); " + std::to_string(survey->later_records) +
+         " valid record(s) after the first damage; nothing written (`twister journal salvage` "
+         "makes a copy of what can be kept)";
+}
+
+int run_replay(const Options& o) {
+  if (const int refused = check_output(o); refused != kExitOk) return refused;
+  auto model = ModelSession::open(o.mesh_in, o.spare_vertices, o.undo_changes, o.undo_entries);
+  if (!model) return fail(kExitBadInput, model.error().message);
+  mesh::Mesh& mesh = (*model)->mesh();
+  session::SculptSession& session = (*model)->session();
+
+  auto bytes = read_file(o.journal);
+  if (!bytes) return fail(kExitBadInput, "cannot open journal '" + o.journal + "'");
+  ReadOnlyStorage storage(std::move(*bytes));
   journal::JournalReader reader(storage);
-  if (!reader.open().ok()) fail(kExitBadInput, "'" + o.journal + "' is not a Twister journal");
+  if (const Status opened = reader.open(); !opened.ok()) {
+    return fail(kExitBadInput, "'" + o.journal +
+                                   (opened.code() == StatusCode::not_supported
+                                        ? "' is a journal of a newer format than this twister reads"
+                                        : "' is not a Twister journal"));
+  }
   const std::uint64_t total_bytes = storage.size().value_or(0);
-  // A damaged record with valid records after it is corruption, not a torn tail:
-  // replaying up to it would silently drop the later strokes.
-  if (const auto survey = journal::survey_journal(storage); survey.ok() && survey->corrupt()) {
-    fail(kExitBadInput, o.journal + ": damaged record at offset " +
-                            std::to_string(survey->good_end) + " (" +
-                            journal::tail_problem_name(survey->problem) + ") with " +
-                            std::to_string(survey->later_records) +
-                            " valid record(s) after it; nothing written "
-                            "(`twister journal salvage` makes a copy that keeps them)");
+  if (const std::string why = corruption(storage); !why.empty()) {
+    return fail(kExitBadInput, o.journal + ": " + why);
   }
 
   // Progress for long journals: a line per 10% of the file, on stderr (notice).
@@ -123,12 +159,13 @@ void run_replay(const Options& o) {
       if (record.status().code() == StatusCode::unavailable ||
           record.status().code() == StatusCode::data_loss)
         break;
-      fail(kExitFailure, "reading '" + o.journal + "': " + record.status().name());
+      return fail(kExitFailure, "reading '" + o.journal + "': " + record.status().name());
     }
     const Status s = session.apply_record(*record);
     if (!s.ok()) {
-      fail(kExitFailure, "record " + std::to_string(applied + 1) + " (sequence " +
-                             std::to_string(record->sequence) + ") cannot be applied: " + s.name());
+      return fail(kExitFailure, "record " + std::to_string(applied + 1) + " (sequence " +
+                                    std::to_string(record->sequence) +
+                                    ") cannot be applied: " + s.name());
     }
     ++applied;
     if (show_progress && total_bytes > 0) {
@@ -145,8 +182,8 @@ void run_replay(const Options& o) {
                       reader.good_end());
   }
   if (o.world) to_world(mesh, session.object_pose());
-  if (auto saved = meshio::save_obj(o.mesh_out, mesh); !saved) {
-    fail(kExitFailure, saved.error().message);
+  if (auto saved = meshio::save_obj(o.mesh_out, mesh, o.force); !saved) {
+    return fail(kExitFailure, saved.error().message);
   }
   const session::ReplayStats& st = session.replay_stats();
   const math::Frame& pose = session.object_pose();
@@ -158,11 +195,12 @@ void run_replay(const Options& o) {
   std::printf("object origin %.9g %.9g %.9g u %.9g %.9g %.9g v %.9g %.9g %.9g\n", pose.origin.x,
               pose.origin.y, pose.origin.z, pose.u.x, pose.u.y, pose.u.z, pose.v.x, pose.v.y,
               pose.v.z);
+  return kExitOk;
 }
 
 }  // namespace
 
-void add_replay_command(CLI::App& app) {
+void add_replay_command(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
       "replay", "Apply a station's stroke journal to a mesh (same or finer) and write the result");
@@ -179,13 +217,16 @@ void add_replay_command(CLI::App& app) {
   cmd->add_option("--spare-vertices", options->spare_vertices,
                   "Room for refinement beyond the OBJ's vertices, and twice as many triangles "
                   "(the station's station.spare_vertices; default 0)");
+  cmd->add_flag("--force", options->force,
+                "Replace an existing OBJ at --out (never a journal, checkpoint, a file a "
+                "running station holds, or another kind of file)");
   cmd->add_flag("--world", options->world, "Write world coordinates (apply the object pose)");
   cmd->add_flag("--progress", options->progress,
                 "Always print progress (default: journals > 64 KiB)");
   cmd->add_flag("-q,--quiet", options->quiet, "Only warnings and errors on stderr (no progress)");
-  cmd->callback([options] {
+  cmd->callback([options, &exit_code] {
     start_command_log("replay", options->quiet ? hal::LogLevel::warning : hal::LogLevel::notice);
-    run_replay(*options);
+    exit_code = run_replay(*options);
   });
 }
 

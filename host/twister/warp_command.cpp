@@ -10,7 +10,7 @@
 #include <variant>
 #include <vector>
 
-#include "cli_exit.hpp"
+#include "cli_exit_code.hpp"
 #include "cli_log.hpp"
 #include "twister/math/warp_plan.hpp"
 #include "warp_case.hpp"
@@ -19,26 +19,26 @@ namespace twister::cli {
 
 namespace {
 
-[[noreturn]] void bad_input(const std::string& source, int line, const std::string& message) {
-  cli_log().error("", "%s:%d: %s", source.c_str(), line, message.c_str());
-  throw Exit{kExitBadInput};
+[[nodiscard]] int bad_input(const std::string& source, int line, const std::string& message) {
+  return fail(kExitBadInput, source + ":" + std::to_string(line) + ": " + message);
 }
 
-void run_warp(const std::string& path) {
+int run_warp(const std::string& path) {
   std::string text;
   if (path == "-") {
     text.assign(std::istreambuf_iterator<char>(std::cin), {});
   } else {
     std::ifstream in(path, std::ios::binary);
     if (!in) {
-      cli_log().error("", "cannot open '%s'", path.c_str());
-      throw Exit{kExitBadInput};
+      return fail(kExitBadInput, "cannot open '" + path + "'");
     }
     text.assign(std::istreambuf_iterator<char>(in), {});
   }
   const std::string source = path == "-" ? "<stdin>" : path;
   auto parsed = parse_warp_case(text);
-  if (auto* err = std::get_if<WarpCaseError>(&parsed)) bad_input(source, err->line, err->message);
+  if (auto* err = std::get_if<WarpCaseError>(&parsed)) {
+    return bad_input(source, err->line, err->message);
+  }
   const WarpCase& c = std::get<WarpCase>(parsed);
 
   // The station's path: float SoA columns, a plan built once, update, apply.
@@ -56,35 +56,37 @@ void run_warp(const std::string& path) {
   const math::ConstVertexColumns rest(x, y, z);
   const Status built = plan.build(rest, c.start, c.radius, c.method);
   if (built.code() == StatusCode::failed_precondition) {
-    bad_input(source, c.hand_lines.back(),
-              "the scodef constraint system is singular (constraint points of the two "
-              "hands coincide)");
+    return bad_input(source, c.hand_lines.back(),
+                     "the scodef constraint system is singular (constraint points of the two "
+                     "hands coincide)");
   }
   if (!built.ok()) {
-    bad_input(source, c.hand_lines.back(), std::string("cannot build the warp: ") + built.name());
+    return bad_input(source, c.hand_lines.back(),
+                     std::string("cannot build the warp: ") + built.name());
   }
   if (const Status s = plan.update(c.end); !s.ok()) {
-    bad_input(source, c.hand_lines.back(), std::string("cannot update the warp: ") + s.name());
+    return bad_input(source, c.hand_lines.back(),
+                     std::string("cannot update the warp: ") + s.name());
   }
   if (const Status s = plan.apply(rest, math::VertexColumns{ox, oy, oz}); !s.ok()) {
-    cli_log().error("", "apply failed: %s", s.name());
-    throw Exit{kExitFailure};
+    return fail(kExitFailure, std::string("apply failed: ") + s.name());
   }
   for (std::size_t i = 0; i < n; ++i) {
     std::printf("%.9g %.9g %.9g\n", static_cast<double>(ox[i]), static_cast<double>(oy[i]),
                 static_cast<double>(oz[i]));
   }
+  return kExitOk;
 }
 
 }  // namespace
 
-void add_warp_command(CLI::App& app) {
+void add_warp_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand("warp", "Warp the points of a case file (docs/math.md §10)");
   auto path = std::make_shared<std::string>();
   cmd->add_option("case", *path, "case file, or - for stdin")->required();
-  cmd->callback([path] {
+  cmd->callback([path, &exit_code] {
     start_command_log("warp");
-    run_warp(*path);
+    exit_code = run_warp(*path);
   });
 }
 

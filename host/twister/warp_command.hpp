@@ -6,6 +6,6 @@
 
 namespace twister::cli {
 
-void add_warp_command(CLI::App& app);
+void add_warp_command(CLI::App& app, int& exit_code);
 
 }  // namespace twister::cli

@@ -5,6 +5,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <stdlib.h>
+#include <sys/stat.h>
 #include <termios.h>
 #include <unistd.h>
 
@@ -31,6 +32,17 @@ int speed_to_baud(speed_t speed) {
     if (hal::baud_to_speed(rate, code) && code == speed) return rate;
   }
   return 0;
+}
+
+bool is_symlink(const std::string& path) {
+  struct stat st {};
+  return ::lstat(path.c_str(), &st) == 0 && S_ISLNK(st.st_mode);
+}
+
+bool absent_or_symlink(const std::string& path) {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0) return errno == ENOENT;
+  return S_ISLNK(st.st_mode);
 }
 }  // namespace
 
@@ -67,8 +79,14 @@ hal::Expected<void> DeviceServer::open_pty() {
   master_ = m;
   ++counters_.ptys_opened;
   if (!options_.link.empty()) {
-    // New name first, then an atomic rename: readers never see a missing link.
+    // Only a symbolic link (ours, from an earlier PTY or run) is ever replaced or
+    // removed at the link path: never a file someone else made (a journal, say).
     const std::string tmp = options_.link + ".tmp";
+    if (!absent_or_symlink(options_.link) || !absent_or_symlink(tmp)) {
+      return io_error("cannot link " + options_.link + ": it (or " + tmp +
+                      ") exists and is not a symbolic link; left untouched");
+    }
+    // New name first, then an atomic rename: readers never see a missing link.
     ::unlink(tmp.c_str());
     if (::symlink(name, tmp.c_str()) != 0 || ::rename(tmp.c_str(), options_.link.c_str()) != 0) {
       return io_error("cannot link " + options_.link + ": " + std::strerror(errno));
@@ -172,7 +190,7 @@ bool DeviceServer::hang_up_pty(int wait_ms) {
     // Unplugged: the link goes first (as udev removes by-id links), because the
     // /dev/pts number is reused by the next PTY anyone opens and a stale link would
     // lead the reader to somebody else's line. Then the reader sees POLLHUP.
-    if (!options_.link.empty()) ::unlink(options_.link.c_str());
+    if (!options_.link.empty() && is_symlink(options_.link)) ::unlink(options_.link.c_str());
     close_pty();
     ++counters_.hangups;
     out_.clear();

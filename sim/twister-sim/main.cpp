@@ -4,6 +4,9 @@
 // [error: ]component: message"); --log-level picks the threshold (default notice:
 // errors and the exit summary).
 // Exit codes: 0 ok, 1 failure (PTY or device), 2 bad options or scenario.
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdio>
@@ -142,7 +145,11 @@ int serve(Options& o, const twister::sim::Scenario& scenario) {
     if (duration_s > 0.0 && static_cast<double>(server.now_us()) / 1e6 >= duration_s) break;
   }
   log_summary(device, server);
-  if (!o.serve.link.empty()) std::remove(o.serve.link.c_str());
+  // Only our symbolic link goes (never a file that took its place meanwhile).
+  struct stat st {};
+  if (!o.serve.link.empty() && ::lstat(o.serve.link.c_str(), &st) == 0 && S_ISLNK(st.st_mode)) {
+    ::unlink(o.serve.link.c_str());
+  }
   return kExitOk;
 }
 

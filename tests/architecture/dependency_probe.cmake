@@ -1,13 +1,27 @@
-# Copies the project's tracked files, plants one wrong edge (core's math library
-# linking hal/posix: core pointing up at the OS side) and checks that configuring
-# that copy fails at the dependency check, naming the edge.
+# Copies the project's CMake files (and empty stand-ins of its sources), plants one
+# wrong edge (core's math library linking hal/posix: core pointing up at the OS
+# side) and checks that configuring that copy fails at the dependency check, naming
+# the edge. The tree is read from the disk, not from git: the test passes in an
+# unpacked source archive (no .git). Build trees (build*/) and dot folders are
+# skipped.
+cmake_minimum_required(VERSION 3.25)
 file(REMOVE_RECURSE ${WORK_DIR})
-execute_process(COMMAND git -C ${SOURCE_DIR} ls-files --cached --others --exclude-standard --cached --others --exclude-standard
-                OUTPUT_VARIABLE listing RESULT_VARIABLE git_rc)
-if(NOT git_rc EQUAL 0)
-  message(FATAL_ERROR "git ls-files failed in ${SOURCE_DIR}")
+file(GLOB tops RELATIVE ${SOURCE_DIR} ${SOURCE_DIR}/*)
+set(files "")
+foreach(top IN LISTS tops)
+  if(top MATCHES "^(build|\\.)")
+    continue()
+  endif()
+  if(IS_DIRECTORY ${SOURCE_DIR}/${top})
+    file(GLOB_RECURSE found RELATIVE ${SOURCE_DIR} ${SOURCE_DIR}/${top}/*)
+    list(APPEND files ${found})
+  else()
+    list(APPEND files ${top})
+  endif()
+endforeach()
+if(NOT "CMakeLists.txt" IN_LIST files OR NOT "docs/architecture.md" IN_LIST files)
+  message(FATAL_ERROR "${SOURCE_DIR} does not look like the project's source tree")
 endif()
-string(REPLACE "\n" ";" files "${listing}")
 foreach(f IN LISTS files)
   if(f MATCHES "CMakeLists.txt$|\\.cmake$|\\.md$|CMakePresets.json$")
     get_filename_component(dir "${f}" DIRECTORY)
@@ -15,7 +29,7 @@ foreach(f IN LISTS files)
   endif()
 endforeach()
 # Configuring needs the CMake files only; sources are not compiled here, so empty
-# stand-ins of every other tracked file are enough.
+# stand-ins of every other source file are enough.
 foreach(f IN LISTS files)
   if(NOT EXISTS ${WORK_DIR}/src/${f} AND f MATCHES "\\.(cpp|hpp|h)$")
     file(WRITE ${WORK_DIR}/src/${f} "")

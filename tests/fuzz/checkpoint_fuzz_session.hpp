@@ -64,8 +64,8 @@ inline journal::JournalRecord stroke(std::uint32_t sequence, glm::dvec3 at, glm:
   r.stroke.hand_mask = 1;
   r.stroke.radius_m = 0.6;
   r.stroke.refine_threshold_m = 0.004;
-  r.stroke.start[0].origin_m = at;
-  r.stroke.end[0].origin_m = at + by;
+  r.stroke.start[0].origin = at;
+  r.stroke.end[0].origin = at + by;
   r.stroke.end[0].u = {std::cos(turn), std::sin(turn), 0.0};
   r.stroke.end[0].v = {-std::sin(turn), std::cos(turn), 0.0};
   return r;
@@ -79,7 +79,7 @@ inline void sculpt(Session& s) {
   journal::JournalRecord move;
   move.type = journal::RecordType::object_move;
   move.sequence = 2;
-  move.move.object_after.origin_m = {0.5, 0, 0};
+  move.move.object_after.origin = {0.5, 0, 0};
   (void)s.apply_record(move);
   (void)s.apply_record(stroke(3, {0.4, -0.4, 0.0}, {0.0, 0.1, 0.15}, 0.5));
   journal::JournalRecord undo;

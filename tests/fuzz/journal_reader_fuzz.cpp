@@ -1,7 +1,8 @@
 // Fuzz target of the journal reader and of journal replay into a SculptSession.
 // Input: a journal file. Properties: never crashes or reads out of bounds; the
-// reader stops at the first torn/corrupt record; after truncate_tail() the file
-// reads back cleanly with the same records; replay never corrupts the mesh (every
+// reader stops at the first torn/corrupt record; truncate_tail() cuts only what an
+// interrupted append can leave (a complete record that is refused is never cut), and
+// after it the file reads back cleanly with the same records; replay never corrupts the mesh (every
 // coordinate stays finite). The same bytes are also decoded as a raw record
 // payload and applied to the session (exercises apply_record with any values).
 #include <cmath>
@@ -12,9 +13,10 @@
 #include <span>
 
 #include "fakes/fake_storage.hpp"
-#include "twister/session/sculpt_session.hpp"
+#include "twister/journal/journal_format.hpp"
 #include "twister/journal/journal_reader.hpp"
 #include "twister/journal/journal_record.hpp"
+#include "twister/session/sculpt_session.hpp"
 
 namespace {
 
@@ -74,7 +76,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     check(finite(mesh));
   }
   check(reader.good_end() <= size);
-  if (reader.truncate_tail().ok()) {
+  const journal::TailProblem problem = reader.problem();
+  const Status cut = reader.truncate_tail();
+  if (!cut.ok()) {
+    check(cut.code() == StatusCode::data_loss && !journal::may_be_torn(problem));
+    check(storage.bytes().size() == size);  // nothing cut
+  } else {
     journal::JournalReader again(storage);
     check(again.open().ok());
     std::size_t second = 0;

@@ -51,7 +51,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const auto n = twister::link::encode_frame(direct, a);
     if (!n.ok()) std::abort();
     const twister::link::LinkMessage* got = decode_all(a, *n);
-    if (got == nullptr || got->type != direct.type) std::abort();
+    if (got == nullptr || got->index() != direct.index()) std::abort();
   }
   return 0;
 }

@@ -39,22 +39,17 @@ void load_grid(bridge::SceneReplica& r) {
       m.indices.insert(m.indices.end(), {a, a + 1, a + 4, a + 1, a + 5, a + 4});
     }
   }
-  link::LinkMessage msg;
-  msg.type = link::MessageType::mesh_begin;
-  msg.mesh_begin = {true, 0, 1, 16, 18};
-  (void)r.apply(msg);
-  msg.type = link::MessageType::vertices;
-  msg.vertices.count = 16;
-  for (std::uint32_t i = 0; i < 16; ++i) msg.vertices.items[i] = {i, m.x[i], m.y[i], m.z[i]};
-  (void)r.apply(msg);
-  msg.type = link::MessageType::triangles;
-  msg.triangles.first = 0;
-  msg.triangles.count = 18;
-  for (std::size_t i = 0; i < m.indices.size(); ++i) msg.triangles.indices[i] = m.indices[i];
-  (void)r.apply(msg);
-  msg.type = link::MessageType::mesh_end;
-  msg.mesh_end = {1, *bridge::mesh_checksum(m)};
-  (void)r.apply(msg);
+  (void)r.apply(link::MeshBegin{true, 0, 1, 16, 18});
+  static link::Vertices vertices;
+  vertices.count = 16;
+  for (std::uint32_t i = 0; i < 16; ++i) vertices.items[i] = {i, m.x[i], m.y[i], m.z[i]};
+  (void)r.apply(vertices);
+  static link::Triangles triangles;
+  triangles.first = 0;
+  triangles.count = 18;
+  for (std::size_t i = 0; i < m.indices.size(); ++i) triangles.indices[i] = m.indices[i];
+  (void)r.apply(triangles);
+  (void)r.apply(link::MeshEnd{1, *bridge::mesh_checksum(m)});
   if (!r.has_mesh()) std::abort();
 }
 

@@ -4,13 +4,12 @@
 
 namespace twister::input {
 
-ButtonDebouncer::ButtonDebouncer(const ButtonDebouncerConfig& config)
-    : config_(config),
-      line_count_(
-          static_cast<std::uint8_t>(std::min<std::size_t>(config.line_count, kMaxButtonLines))) {}
+ButtonDebouncer::ButtonDebouncer(const ButtonDebouncerConfig& config) : config_(config) {
+  lines_.resize(std::min<std::size_t>(config.line_count, kMaxButtonLines));
+}
 
 Status ButtonDebouncer::feed(const ports::ButtonEdge& edge) {
-  if (edge.line >= line_count_) return StatusCode::out_of_range;
+  if (edge.line >= lines_.size()) return StatusCode::out_of_range;
   Line& line = lines_[edge.line];
   // Every edge restarts the stability wait, even a repeat of the same level: a
   // bounce that went down and up between two polls is still a bounce.
@@ -20,7 +19,7 @@ Status ButtonDebouncer::feed(const ports::ButtonEdge& edge) {
 }
 
 Result<ButtonEvent> ButtonDebouncer::poll(ports::TimestampUs now_us) {
-  for (std::uint8_t i = 0; i < line_count_; ++i) {
+  for (std::uint8_t i = 0; i < lines_.size(); ++i) {
     Line& line = lines_[i];
     if (line.raw == line.stable) continue;
     const ports::TimestampUs due_us = line.raw_since_us + config_.interval_us[i];
@@ -32,7 +31,7 @@ Result<ButtonEvent> ButtonDebouncer::poll(ports::TimestampUs now_us) {
 }
 
 bool ButtonDebouncer::pressed(std::uint8_t line) const {
-  return line < line_count_ && lines_[line].stable;
+  return line < lines_.size() && lines_[line].stable;
 }
 
 }  // namespace twister::input

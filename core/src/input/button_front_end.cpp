@@ -8,7 +8,7 @@ ButtonFrontEnd::ButtonFrontEnd(const ButtonDebouncerConfig& debounce, const Butt
 Status ButtonFrontEnd::feed(const ports::ButtonEdge& edge) { return debouncer_.feed(edge); }
 
 void ButtonFrontEnd::poll(ports::TimestampUs now_us) {
-  command_count_ = 0;
+  commands_.clear();
   for (auto e = debouncer_.poll(now_us); e.ok(); e = debouncer_.poll(now_us)) {
     if (e->line >= kMaxButtonLines) continue;
     if (e->pressed) {
@@ -28,11 +28,7 @@ void ButtonFrontEnd::press(std::uint8_t line) {
     ButtonMap::set_level(b, true, levels_);
     return;
   }
-  if (command_count_ == commands_.size()) {
-    ++commands_dropped_;
-    return;
-  }
-  commands_[command_count_++] = ButtonCommand{b.hand, b.role};
+  if (!commands_.push_back(ButtonCommand{b.hand, b.role}).ok()) ++commands_dropped_;
 }
 
 void ButtonFrontEnd::release(std::uint8_t line) {

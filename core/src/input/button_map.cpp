@@ -63,9 +63,7 @@ Status ButtonMap::bind_chord(std::span<const std::uint8_t> lines, std::uint8_t h
   for (const ButtonChord& c : chords()) {
     if (c.held == chord.held && c.trigger == chord.trigger) return StatusCode::invalid_argument;
   }
-  if (chord_count_ == chords_.size()) return StatusCode::resource_exhausted;
-  chords_[chord_count_++] = chord;
-  return ok_status();
+  return chords_.push_back(chord);  // resource_exhausted: kMaxChords chords bound
 }
 
 ButtonBinding ButtonMap::binding(std::uint8_t line) const {

@@ -65,14 +65,16 @@ const char* reason_name(Reason reason) {
       return "nothing_to_undo";
     case Reason::nothing_to_redo:
       return "nothing_to_redo";
+    case Reason::stopped:
+      return "stopped";
   }
   return "unknown";
 }
 
 void ActionList::push(const Action& action) {
   // Two hands produce at most three actions each plus one radius action per step.
-  TWISTER_ASSERT(count_ < items_.size());
-  items_[count_++] = action;
+  const Status pushed = items_.push_back(action);
+  TWISTER_ASSERT(pushed.ok());
 }
 
 InteractionMachine::InteractionMachine(const InteractionConfig& config)

@@ -1,17 +1,9 @@
 #include "twister/journal/journal_reader.hpp"
 
 #include <algorithm>
-#include <cstring>
-
-#include "twister/base/checksum.hpp"
-#include "twister/base/internal/byte_cursor.hpp"
 
 namespace twister::journal {
 namespace {
-
-std::uint32_t load_u32(std::span<const std::byte> bytes) {
-  return twister::internal::ByteReader(bytes).u32();
-}
 
 // Reads exactly dest.size() bytes at offset; a short read is an io_error here
 // because the caller already checked the file size.
@@ -27,52 +19,46 @@ Status read_exact(ports::Storage& storage, std::uint64_t offset, std::span<std::
 
 }  // namespace
 
-const char* tail_problem_name(TailProblem problem) {
-  switch (problem) {
-    case TailProblem::none:
-      return "none";
-    case TailProblem::torn_header:
-      return "torn_header";
-    case TailProblem::torn_record:
-      return "torn_record";
-    case TailProblem::bad_length:
-      return "bad_length";
-    case TailProblem::bad_crc:
-      return "bad_crc";
-    case TailProblem::bad_payload:
-      return "bad_payload";
-  }
-  return "unknown";
-}
-
 Status JournalReader::open() {
   opened_ = false;
   problem_ = TailProblem::none;
   good_end_ = 0;
+  format_ = {};
+  header_ = HeaderCheck::ok;
+  order_ = {};
   TWISTER_TRY_ASSIGN(file_size_, storage_.size());
   if (file_size_ == 0) {
     opened_ = true;
     return ok_status();
   }
   const std::size_t header =
-      static_cast<std::size_t>(std::min<std::uint64_t>(file_size_, kFileHeaderBytes));
+      static_cast<std::size_t>(std::min<std::uint64_t>(file_size_, kMaxFileHeaderBytes));
   TWISTER_TRY(read_exact(storage_, 0, std::span(buffer_).first(header)));
-  // A file that is a prefix of a header is a header torn by a power cut at creation.
-  if (std::memcmp(buffer_.data(), kFileHeader.data(), header) != 0) return StatusCode::data_loss;
-  opened_ = true;
-  if (header < kFileHeaderBytes) {
-    problem_ = TailProblem::torn_header;
-    return ok_status();
+  header_ = check_file_header(std::span<const std::byte>(buffer_).first(header), format_);
+  switch (header_) {
+    case HeaderCheck::ok:
+      break;
+    case HeaderCheck::torn:  // a power cut at creation: cut to zero by truncate_tail()
+      opened_ = true;
+      problem_ = TailProblem::torn_header;
+      return ok_status();
+    case HeaderCheck::too_new:
+      return StatusCode::not_supported;
+    case HeaderCheck::not_a_journal:
+    case HeaderCheck::damaged:
+      return StatusCode::data_loss;
   }
-  good_end_ = kFileHeaderBytes;
+  opened_ = true;
+  good_end_ = format_.header_bytes();
   return ok_status();
 }
 
 Status JournalReader::seek(std::uint64_t offset) {
   if (!opened_) return StatusCode::failed_precondition;
-  if (offset < kFileHeaderBytes || offset > file_size_) return StatusCode::out_of_range;
+  if (offset < format_.header_bytes() || offset > file_size_) return StatusCode::out_of_range;
   good_end_ = offset;
   problem_ = TailProblem::none;
+  order_.resume();
   return ok_status();
 }
 
@@ -86,25 +72,26 @@ Result<JournalRecord> JournalReader::next() {
   if (problem_ != TailProblem::none) return StatusCode::data_loss;
   if (good_end_ == file_size_) return StatusCode::unavailable;
   const std::uint64_t left = file_size_ - good_end_;
-  if (left < kRecordHeaderBytes) return fail(TailProblem::torn_header);
-  TWISTER_TRY(read_exact(storage_, good_end_, std::span(buffer_).first(kRecordHeaderBytes)));
-  const std::uint32_t payload = load_u32(buffer_);
-  if (payload > kMaxPayloadBytes || buffer_[6] != std::byte{0} || buffer_[7] != std::byte{0}) {
-    return fail(TailProblem::bad_length);
+  const std::size_t head = format_.record_header_bytes();
+  if (left < head) return fail(TailProblem::torn_header);
+  TWISTER_TRY(read_exact(storage_, good_end_, std::span(buffer_).first(head)));
+  std::size_t total = 0;
+  if (const TailProblem p = check_record_header(buffer_, format_, total); p != TailProblem::none) {
+    return fail(p);
   }
-  const std::size_t total = kRecordHeaderBytes + payload + kRecordCrcBytes;
   if (left < total) return fail(TailProblem::torn_record);
   TWISTER_TRY(
-      read_exact(storage_, good_end_ + kRecordHeaderBytes,
-                 std::span(buffer_).subspan(kRecordHeaderBytes, payload + kRecordCrcBytes)));
-  const std::size_t body = kRecordHeaderBytes + payload;
-  if (crc32(std::span(buffer_).first(body)) != load_u32(std::span(buffer_).subspan(body))) {
-    return fail(TailProblem::bad_crc);
+      read_exact(storage_, good_end_ + head, std::span(buffer_).subspan(head, total - head)));
+  JournalRecord record;
+  const TailProblem p =
+      check_record(std::span<const std::byte>(buffer_).first(total), format_, record);
+  if (p != TailProblem::none) return fail(p);
+  if (format_.proves_order()) {
+    if (const TailProblem order = order_.check(record.sequence); order != TailProblem::none) {
+      return fail(order);
+    }
+    order_.accept(record.sequence);
   }
-  auto record =
-      decode_payload(static_cast<std::uint8_t>(buffer_[4]), static_cast<std::uint8_t>(buffer_[5]),
-                     std::span<const std::byte>(buffer_).subspan(kRecordHeaderBytes, payload));
-  if (!record.ok()) return fail(TailProblem::bad_payload);
   good_end_ += total;
   return record;
 }
@@ -112,6 +99,8 @@ Result<JournalRecord> JournalReader::next() {
 Status JournalReader::truncate_tail() {
   if (!opened_) return StatusCode::failed_precondition;
   if (problem_ == TailProblem::none) return ok_status();
+  // Only what an interrupted append leaves is cut; a complete record never is.
+  if (!may_be_torn(problem_)) return StatusCode::data_loss;
   TWISTER_TRY(storage_.truncate(good_end_));
   TWISTER_TRY(storage_.sync());
   file_size_ = good_end_;

@@ -20,18 +20,19 @@ static_assert(kStrokeFixedBytes + 4 * kPoseBytes + kRefinedTailBytes <= kMaxPayl
 using twister::internal::ByteReader;
 using twister::internal::ByteWriter;
 
-void write_pose(ByteWriter& w, const JournalPose& p) {
-  w.vec(p.origin_m);
+// The pose's edge: origin, U, V on the wire; W = U x V when read (as_stored).
+void write_pose(ByteWriter& w, const Pose& p) {
+  w.vec(p.origin);
   w.vec(p.u);
   w.vec(p.v);
 }
 
-JournalPose read_pose(ByteReader& r) {
-  JournalPose p;
-  p.origin_m = r.vec();
+Pose read_pose(ByteReader& r) {
+  Pose p;
+  p.origin = r.vec();
   p.u = r.vec();
   p.v = r.vec();
-  return p;
+  return as_stored(p);
 }
 
 // Version 2 strokes end with the long_turns byte, version 3 with it and the threshold.
@@ -64,8 +65,8 @@ std::size_t payload_bytes(const JournalRecord& r) {
   return 0;
 }
 
-bool finite(const JournalPose& p) {
-  for (const glm::dvec3* v : {&p.origin_m, &p.u, &p.v}) {
+bool finite(const Pose& p) {
+  for (const glm::dvec3* v : {&p.origin, &p.u, &p.v}) {
     if (!std::isfinite(v->x) || !std::isfinite(v->y) || !std::isfinite(v->z)) return false;
   }
   return true;

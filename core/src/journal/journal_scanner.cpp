@@ -1,16 +1,12 @@
 #include "twister/journal/journal_scanner.hpp"
 
 #include <algorithm>
-#include <cstring>
 #include <span>
-
-#include "twister/base/checksum.hpp"
-#include "twister/base/internal/byte_cursor.hpp"
 
 namespace twister::journal {
 namespace {
 
-// The smallest record: header, a 4-byte payload (the sequence), CRC.
+// The smallest record: a version 1 header, a 4-byte payload (the sequence), CRC.
 constexpr std::size_t kMinRecordBytes = kRecordHeaderBytes + 4 + kRecordCrcBytes;
 static_assert(kMaxRecordBytes <= 4096);
 
@@ -20,15 +16,22 @@ Status JournalScanner::open() {
   opened_ = false;
   storage_failed_ = false;
   window_bytes_ = 0;
+  format_ = {};
+  header_ = HeaderCheck::ok;
+  order_ = {};
   TWISTER_TRY_ASSIGN(file_size_, storage_.size());
   pos_ = 0;
   if (file_size_ > 0) {
     const auto header =
-        static_cast<std::size_t>(std::min<std::uint64_t>(file_size_, kFileHeaderBytes));
+        static_cast<std::size_t>(std::min<std::uint64_t>(file_size_, kMaxFileHeaderBytes));
     if (!load(0, header)) return StatusCode::io_error;
-    if (std::memcmp(window_.data(), kFileHeader.data(), header) != 0) return StatusCode::data_loss;
+    header_ = check_file_header(std::span<const std::byte>(window_).first(header), format_);
+    if (header_ == HeaderCheck::too_new) return StatusCode::not_supported;
+    if (header_ == HeaderCheck::not_a_journal || header_ == HeaderCheck::damaged) {
+      return StatusCode::data_loss;
+    }
     // A complete header is skipped; a torn one is reported as damage by next().
-    if (header == kFileHeaderBytes) pos_ = kFileHeaderBytes;
+    if (header_ == HeaderCheck::ok) pos_ = format_.header_bytes();
   }
   opened_ = true;
   return ok_status();
@@ -53,28 +56,29 @@ bool JournalScanner::load(std::uint64_t offset, std::size_t bytes) {
 TailProblem JournalScanner::parse_at(std::uint64_t offset, JournalRecord& record,
                                      std::size_t& total) {
   const std::uint64_t left = file_size_ - offset;
-  if (left < kRecordHeaderBytes) return TailProblem::torn_header;
-  if (!load(offset, kRecordHeaderBytes)) return TailProblem::torn_header;
+  const std::size_t head = format_.record_header_bytes();
+  if (left < head) return TailProblem::torn_header;
+  if (!load(offset, head)) return TailProblem::torn_header;
   const std::byte* at = window_.data() + (offset - window_offset_);
-  const std::uint32_t payload =
-      twister::internal::ByteReader(std::span<const std::byte>(at, 4)).u32();
-  if (payload > kMaxPayloadBytes || at[6] != std::byte{0} || at[7] != std::byte{0}) {
-    return TailProblem::bad_length;
-  }
-  total = kRecordHeaderBytes + payload + kRecordCrcBytes;
+  const TailProblem length =
+      check_record_header(std::span<const std::byte>(at, head), format_, total);
+  if (length != TailProblem::none) return length;
   if (left < total) return TailProblem::torn_record;
   if (!load(offset, total)) return TailProblem::torn_record;
   at = window_.data() + (offset - window_offset_);
-  const std::size_t body = kRecordHeaderBytes + payload;
-  const std::span<const std::byte> bytes(at, total);
-  if (crc32(bytes.first(body)) != twister::internal::ByteReader(bytes.subspan(body)).u32()) {
-    return TailProblem::bad_crc;
+  return check_record(std::span<const std::byte>(at, total), format_, record);
+}
+
+Result<std::uint64_t> JournalScanner::resync() {
+  std::uint64_t q = pos_ + 1;
+  std::size_t total = 0;
+  JournalRecord candidate;
+  for (; q + kMinRecordBytes <= file_size_; ++q) {
+    // A complete CRC-valid record ends the damage even when it is refused itself.
+    if (!may_be_torn(parse_at(q, candidate, total))) return q;
+    if (storage_failed_) return StatusCode::io_error;
   }
-  auto decoded = decode_payload(static_cast<std::uint8_t>(at[4]), static_cast<std::uint8_t>(at[5]),
-                                bytes.subspan(kRecordHeaderBytes, payload));
-  if (!decoded.ok()) return TailProblem::bad_payload;
-  record = *decoded;
-  return TailProblem::none;
+  return file_size_;
 }
 
 Result<ScanItem> JournalScanner::next() {
@@ -82,7 +86,7 @@ Result<ScanItem> JournalScanner::next() {
   if (pos_ >= file_size_) return StatusCode::unavailable;
   ScanItem item;
   item.offset = pos_;
-  if (pos_ < kFileHeaderBytes) {  // a torn file header: all of the (short) file
+  if (header_ == HeaderCheck::torn) {  // a torn file header: all of the (short) file
     item.kind = ScanItem::Kind::damage;
     item.problem = TailProblem::torn_header;
     item.bytes = file_size_ - pos_;
@@ -92,38 +96,61 @@ Result<ScanItem> JournalScanner::next() {
   std::size_t total = 0;
   item.problem = parse_at(pos_, item.record, total);
   if (storage_failed_) return StatusCode::io_error;
-  if (item.problem == TailProblem::none) {
-    item.bytes = total;
-    pos_ += total;
+  if (may_be_torn(item.problem)) {
+    item.kind = ScanItem::Kind::damage;
+    order_.damaged();
+    TWISTER_TRY_ASSIGN(const std::uint64_t end, resync());
+    item.bytes = end - pos_;
+    pos_ = end;
     return item;
   }
-  // Resynchronise: the next offset where a whole valid record starts.
-  item.kind = ScanItem::Kind::damage;
-  std::uint64_t q = pos_ + 1;
-  JournalRecord candidate;
-  for (; q + kMinRecordBytes <= file_size_; ++q) {
-    if (parse_at(q, candidate, total) == TailProblem::none) break;
-    if (storage_failed_) return StatusCode::io_error;
+  item.bytes = total;
+  pos_ += total;
+  if (item.problem != TailProblem::none) {  // complete but refused: exactly this record
+    item.kind = ScanItem::Kind::damage;
+    order_.damaged();
+    return item;
   }
-  if (q + kMinRecordBytes > file_size_) q = file_size_;
-  item.bytes = q - pos_;
-  pos_ = q;
+  if (format_.proves_order()) {
+    item.problem = order_.check(item.record.sequence);
+    // A gap is reported once; the order goes on from the record after it.
+    if (item.problem == TailProblem::none || item.problem == TailProblem::sequence_gap) {
+      order_.accept(item.record.sequence);
+    }
+    if (item.problem != TailProblem::none) item.kind = ScanItem::Kind::damage;
+  }
   return item;
 }
+
+namespace {
+
+void note_damage(JournalSurvey& s, const ScanItem& item) {
+  if (s.problem == TailProblem::none) s.problem = item.problem;
+  s.damaged_bytes += item.bytes;
+  if (may_be_torn(item.problem)) return;
+  if (s.refused_records == 0) {
+    s.first_refused_offset = item.offset;
+    s.first_refused = item.problem;
+  }
+  ++s.refused_records;
+}
+
+}  // namespace
 
 Result<JournalSurvey> survey_journal(ports::Storage& storage, std::uint64_t probe) {
   JournalScanner scanner(storage);
   TWISTER_TRY(scanner.open());
   JournalSurvey s;
   s.file_size = scanner.file_size();
-  s.good_end = s.file_size >= kFileHeaderBytes ? kFileHeaderBytes : 0;
+  s.format = scanner.format();
+  s.good_end = scanner.header() == HeaderCheck::ok ? s.format.header_bytes() : 0;
+  if (s.file_size == 0) s.good_end = 0;
   for (;;) {
     auto item = scanner.next();
     if (item.status().code() == StatusCode::unavailable) break;
     TWISTER_TRY(item.status());
     if (item->kind == ScanItem::Kind::damage) {
-      if (s.problem == TailProblem::none) s.problem = item->problem;
-      s.damaged_bytes += item->bytes;
+      note_damage(s, *item);
       continue;
     }
     if (s.problem == TailProblem::none) {
@@ -140,7 +167,7 @@ Result<JournalSurvey> survey_journal(ports::Storage& storage, std::uint64_t prob
       ++s.later_records;
     }
   }
-  if (probe == s.good_end && s.good_end >= kFileHeaderBytes) {
+  if (probe == s.good_end && s.good_end >= s.format.header_bytes() && s.good_end > 0) {
     s.probe_is_boundary = true;
     s.probe_records = s.records;
   }

@@ -1,6 +1,6 @@
 #include "twister/journal/journal_writer.hpp"
 
-#include <cstring>
+#include <algorithm>
 
 #include "twister/base/internal/byte_cursor.hpp"
 
@@ -13,17 +13,29 @@ Status JournalWriter::open() {
   last_crc_ = 0;
   TWISTER_TRY_ASSIGN(size_, storage_.size());
   if (size_ == 0) {
-    TWISTER_TRY(storage_.append(kFileHeader));
-    TWISTER_TRY(storage_.sync());
-    size_ = kFileHeaderBytes;
-  } else {
-    if (size_ < kFileHeaderBytes) return StatusCode::data_loss;
-    std::array<std::byte, 4> magic{};
-    TWISTER_TRY_ASSIGN(const std::size_t n, storage_.read_at(0, magic));
-    if (n != magic.size() || std::memcmp(magic.data(), kFileMagic.data(), magic.size()) != 0) {
-      return StatusCode::data_loss;
+    format_ = version2_format(new_id_);
+    const auto header = file_header(format_);
+    Status s = storage_.append(std::span<const std::byte>(header).first(format_.header_bytes()));
+    if (s.ok()) s = storage_.sync();
+    if (!s.ok()) {
+      (void)storage_.truncate(0);  // no torn header left behind (a full disk)
+      return s;
     }
-    if (size_ >= kFileHeaderBytes + kRecordHeaderBytes + kRecordCrcBytes) {
+    size_ = format_.header_bytes();
+  } else {
+    std::array<std::byte, kMaxFileHeaderBytes> header{};
+    const auto want = static_cast<std::size_t>(std::min<std::uint64_t>(size_, header.size()));
+    TWISTER_TRY_ASSIGN(const std::size_t n, storage_.read_at(0, std::span(header).first(want)));
+    if (n != want) return StatusCode::io_error;
+    switch (check_file_header(std::span<const std::byte>(header).first(want), format_)) {
+      case HeaderCheck::ok:
+        break;
+      case HeaderCheck::too_new:
+        return StatusCode::not_supported;
+      default:
+        return StatusCode::data_loss;
+    }
+    if (size_ >= format_.header_bytes() + format_.record_header_bytes() + kRecordCrcBytes) {
       std::array<std::byte, kRecordCrcBytes> crc{};
       TWISTER_TRY_ASSIGN(const std::size_t got, storage_.read_at(size_ - crc.size(), crc));
       if (got != crc.size()) return StatusCode::io_error;
@@ -36,7 +48,7 @@ Status JournalWriter::open() {
 
 Status JournalWriter::append(const JournalRecord& record) {
   if (!opened_ || broken_) return StatusCode::failed_precondition;
-  TWISTER_TRY_ASSIGN(const std::size_t n, encode_record(record, buffer_));
+  TWISTER_TRY_ASSIGN(const std::size_t n, encode_record(record, buffer_, format_));
   Status status = storage_.append(std::span<const std::byte>(buffer_).first(n));
   if (status.ok()) status = storage_.sync();
   if (status.ok()) {

@@ -3,6 +3,8 @@
 // and both sides can use fixed buffers.
 #include "twister/link/link_codec.hpp"
 
+#include <utility>
+
 #include "link_payload.hpp"
 #include "twister/base/checksum.hpp"
 
@@ -53,11 +55,20 @@ long cobs_decode(std::span<std::byte> buf) {
 
 }  // namespace
 
-Result<std::size_t> encode_frame(const LinkMessage& message, std::span<std::byte> out) {
+// The alternatives are in type order: index + 1 is the type byte.
+template <std::size_t... I>
+constexpr bool alternatives_in_type_order(std::index_sequence<I...>) {
+  return ((static_cast<std::size_t>(std::variant_alternative_t<I, LinkMessage>::kType) == I + 1) &&
+          ...);
+}
+static_assert(alternatives_in_type_order(std::make_index_sequence<kLastMessageType>{}));
+
+template <LinkBody M>
+Result<std::size_t> encode_frame(const M& message, std::span<std::byte> out) {
   std::array<std::byte, kMaxPayload + kCrcBytes> payload{};
   internal::ByteWriter w(std::span<std::byte>(payload).first(kMaxPayload));
   w.u8(kProtocolVersion);
-  w.u8(static_cast<std::uint8_t>(message.type));
+  w.u8(static_cast<std::uint8_t>(M::kType));
   if (!internal::write_body(w, message)) return StatusCode::invalid_argument;
   if (!w.ok()) return StatusCode::invalid_argument;  // cannot happen within the caps
   const std::size_t n = w.size();
@@ -69,6 +80,39 @@ Result<std::size_t> encode_frame(const LinkMessage& message, std::span<std::byte
   return written;
 }
 
+Result<std::size_t> encode_frame(const LinkMessage& message, std::span<std::byte> out) {
+  return std::visit([out](const auto& m) { return encode_frame(m, out); }, message);
+}
+
+template <LinkBody M>
+std::size_t frame_size(const M& message) {
+  std::array<std::byte, kMaxFrameBytes> out{};
+  const Result<std::size_t> n = encode_frame(message, out);
+  return n.ok() ? *n : 0;
+}
+
+std::size_t frame_size(const LinkMessage& message) {
+  return std::visit([](const auto& m) { return frame_size(m); }, message);
+}
+
+#define TWISTER_LINK_INSTANTIATE(M)                                             \
+  template Result<std::size_t> encode_frame<M>(const M&, std::span<std::byte>); \
+  template std::size_t frame_size<M>(const M&);
+TWISTER_LINK_INSTANTIATE(Hello)
+TWISTER_LINK_INSTANTIATE(Auth)
+TWISTER_LINK_INSTANTIATE(Bye)
+TWISTER_LINK_INSTANTIATE(MeshBegin)
+TWISTER_LINK_INSTANTIATE(Vertices)
+TWISTER_LINK_INSTANTIATE(Triangles)
+TWISTER_LINK_INSTANTIATE(MeshEnd)
+TWISTER_LINK_INSTANTIATE(ResendRequest)
+TWISTER_LINK_INSTANTIATE(StrokeBegin)
+TWISTER_LINK_INSTANTIATE(Hands)
+TWISTER_LINK_INSTANTIATE(ObjectPose)
+TWISTER_LINK_INSTANTIATE(StatusReport)
+TWISTER_LINK_INSTANTIATE(Command)
+#undef TWISTER_LINK_INSTANTIATE
+
 Status decode_payload(std::span<const std::byte> payload, LinkMessage& out) {
   internal::ByteReader r(payload);
   const std::uint8_t version = r.u8();
@@ -78,8 +122,9 @@ Status decode_payload(std::span<const std::byte> payload, LinkMessage& out) {
   if (type < 1 || type > kLastMessageType) {
     return StatusCode::invalid_argument;
   }
-  out.type = static_cast<MessageType>(type);
-  if (!internal::read_body(r, out)) return StatusCode::invalid_argument;
+  if (!internal::read_body(r, static_cast<MessageType>(type), out)) {
+    return StatusCode::invalid_argument;
+  }
   return ok_status();
 }
 
@@ -160,12 +205,6 @@ Result<const LinkMessage*> LinkDecoder::process(std::byte byte) {
   }
   ++messages_;
   return &message_;
-}
-
-std::size_t frame_size(const LinkMessage& message) {
-  std::array<std::byte, kMaxFrameBytes> out{};
-  const Result<std::size_t> n = encode_frame(message, out);
-  return n.ok() ? *n : 0;
 }
 
 DecoderCounters LinkDecoder::counters() const {

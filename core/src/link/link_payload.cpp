@@ -161,24 +161,6 @@ bool read_status(ByteReader& r, StatusReport& s) {
          std::isfinite(s.turn_limit_rad);
 }
 
-void write_mesh_chunk(ByteWriter& w, const LinkMessage& m) {
-  if (m.type == MessageType::vertices) {
-    w.u16(m.vertices.count);
-    for (std::size_t i = 0; i < m.vertices.count; ++i) {
-      const VertexEntry& v = m.vertices.items[i];
-      w.u32(v.index);
-      w.f32(v.x);
-      w.f32(v.y);
-      w.f32(v.z);
-    }
-    return;
-  }
-  w.u32(m.triangles.first);
-  w.u16(m.triangles.count);
-  for (std::size_t i = 0; i < std::size_t{3} * m.triangles.count; ++i)
-    w.u32(m.triangles.indices[i]);
-}
-
 bool read_vertices(ByteReader& r, Vertices& v) {
   v.count = r.u16();
   if (v.count > kMaxVerticesPerChunk) return false;
@@ -214,131 +196,182 @@ bool read_hello(ByteReader& r, Hello& h) {
          (h.flags & ~kHelloAuth) == 0;
 }
 
-}  // namespace
-
-bool write_body(ByteWriter& w, const LinkMessage& m) {
-  switch (m.type) {
-    case MessageType::hello:
-      w.u8(static_cast<std::uint8_t>(m.hello.role));
-      w.u8(m.hello.flags);
-      w.u32(m.hello.mesh_version);
-      w.u64(m.hello.mesh_checksum);
-      write_bytes(w, m.hello.nonce);
-      return true;
-    case MessageType::auth:
-      write_bytes(w, m.auth.tag);
-      return true;
-    case MessageType::bye:
-      w.u8(static_cast<std::uint8_t>(m.bye.reason));
-      return true;
-    case MessageType::mesh_begin:
-      w.u8(m.mesh_begin.full ? 1 : 0);
-      w.u32(m.mesh_begin.base_version);
-      w.u32(m.mesh_begin.version);
-      w.u32(m.mesh_begin.vertex_count);
-      w.u32(m.mesh_begin.triangle_count);
-      return true;
-    case MessageType::vertices:
-      if (m.vertices.count > kMaxVerticesPerChunk) return false;
-      write_mesh_chunk(w, m);
-      return true;
-    case MessageType::triangles:
-      if (m.triangles.count > kMaxTrianglesPerChunk) return false;
-      write_mesh_chunk(w, m);
-      return true;
-    case MessageType::mesh_end:
-      w.u32(m.mesh_end.version);
-      w.u64(m.mesh_end.checksum);
-      return true;
-    case MessageType::resend_request:
-      w.u32(m.resend_request.have_version);
-      w.u64(m.resend_request.have_checksum);
-      return true;
-    case MessageType::stroke:
-      if (m.stroke.method > 2 || m.stroke.hand_mask == 0 || m.stroke.hand_mask > 3) return false;
-      write_stroke(w, m.stroke);
-      return true;
-    case MessageType::hands:
-      if ((m.hands.flags & ~kHandsFlagMask) != 0) return false;
-      write_hands(w, m.hands);
-      return true;
-    case MessageType::object:
-      write_compact(w, m.object.pose);
-      return true;
-    case MessageType::status:
-      write_status(w, m.status);
-      return true;
-    case MessageType::command:
-      w.u8(static_cast<std::uint8_t>(m.command.kind));
-      w.u8(m.command.method);
-      return true;
-  }
-  return false;
+template <class T>
+T& reset_as(LinkMessage& m) {
+  // A decoder's message is reused: only a change of type constructs anew.
+  if (T* same = std::get_if<T>(&m)) return *same;
+  return m.emplace<T>();
 }
 
-bool read_body(ByteReader& r, LinkMessage& m) {
-  bool good = true;
-  switch (m.type) {
-    case MessageType::hello:
-      good = read_hello(r, m.hello);
-      break;
+}  // namespace
+
+bool write_body(ByteWriter& w, const Hello& m) {
+  w.u8(static_cast<std::uint8_t>(m.role));
+  w.u8(m.flags);
+  w.u32(m.mesh_version);
+  w.u64(m.mesh_checksum);
+  write_bytes(w, m.nonce);
+  return true;
+}
+
+bool write_body(ByteWriter& w, const Auth& m) {
+  write_bytes(w, m.tag);
+  return true;
+}
+
+bool write_body(ByteWriter& w, const Bye& m) {
+  w.u8(static_cast<std::uint8_t>(m.reason));
+  return true;
+}
+
+bool write_body(ByteWriter& w, const MeshBegin& m) {
+  w.u8(m.full ? 1 : 0);
+  w.u32(m.base_version);
+  w.u32(m.version);
+  w.u32(m.vertex_count);
+  w.u32(m.triangle_count);
+  return true;
+}
+
+bool write_body(ByteWriter& w, const Vertices& m) {
+  if (m.count > kMaxVerticesPerChunk) return false;
+  w.u16(m.count);
+  for (std::size_t i = 0; i < m.count; ++i) {
+    const VertexEntry& v = m.items[i];
+    w.u32(v.index);
+    w.f32(v.x);
+    w.f32(v.y);
+    w.f32(v.z);
+  }
+  return true;
+}
+
+bool write_body(ByteWriter& w, const Triangles& m) {
+  if (m.count > kMaxTrianglesPerChunk) return false;
+  w.u32(m.first);
+  w.u16(m.count);
+  for (std::size_t i = 0; i < std::size_t{3} * m.count; ++i) w.u32(m.indices[i]);
+  return true;
+}
+
+bool write_body(ByteWriter& w, const MeshEnd& m) {
+  w.u32(m.version);
+  w.u64(m.checksum);
+  return true;
+}
+
+bool write_body(ByteWriter& w, const ResendRequest& m) {
+  w.u32(m.have_version);
+  w.u64(m.have_checksum);
+  return true;
+}
+
+bool write_body(ByteWriter& w, const StrokeBegin& m) {
+  if (m.method > 2 || m.hand_mask == 0 || m.hand_mask > 3) return false;
+  write_stroke(w, m);
+  return true;
+}
+
+bool write_body(ByteWriter& w, const Hands& m) {
+  if ((m.flags & ~kHandsFlagMask) != 0) return false;
+  write_hands(w, m);
+  return true;
+}
+
+bool write_body(ByteWriter& w, const ObjectPose& m) {
+  write_compact(w, m.pose);
+  return true;
+}
+
+bool write_body(ByteWriter& w, const StatusReport& m) {
+  write_status(w, m);
+  return true;
+}
+
+bool write_body(ByteWriter& w, const Command& m) {
+  w.u8(static_cast<std::uint8_t>(m.kind));
+  w.u8(m.method);
+  return true;
+}
+
+namespace {
+
+bool read_small(ByteReader& r, MessageType type, LinkMessage& m) {
+  switch (type) {
     case MessageType::auth:
-      read_bytes(r, m.auth.tag);
-      break;
+      read_bytes(r, reset_as<Auth>(m).tag);
+      return true;
     case MessageType::bye: {
       const std::uint8_t reason = r.u8();
-      m.bye.reason = static_cast<ByeReason>(reason);
-      good = reason >= 1 && reason <= kLastByeReason;
-      break;
+      reset_as<Bye>(m).reason = static_cast<ByeReason>(reason);
+      return reason >= 1 && reason <= kLastByeReason;
     }
     case MessageType::mesh_begin: {
       bool bad = false;
-      m.mesh_begin.full = read_bool(r, bad);
-      m.mesh_begin.base_version = r.u32();
-      m.mesh_begin.version = r.u32();
-      m.mesh_begin.vertex_count = r.u32();
-      m.mesh_begin.triangle_count = r.u32();
-      good = !bad;
-      break;
+      MeshBegin& b = reset_as<MeshBegin>(m);
+      b.full = read_bool(r, bad);
+      b.base_version = r.u32();
+      b.version = r.u32();
+      b.vertex_count = r.u32();
+      b.triangle_count = r.u32();
+      return !bad;
     }
+    case MessageType::mesh_end: {
+      MeshEnd& e = reset_as<MeshEnd>(m);
+      e.version = r.u32();
+      e.checksum = r.u64();
+      return true;
+    }
+    case MessageType::resend_request: {
+      ResendRequest& q = reset_as<ResendRequest>(m);
+      q.have_version = r.u32();
+      q.have_checksum = r.u64();
+      return true;
+    }
+    case MessageType::command: {
+      Command& c = reset_as<Command>(m);
+      const std::uint8_t kind = r.u8();
+      c.kind = static_cast<CommandKind>(kind);
+      c.method = r.u8();
+      return kind >= 1 && kind <= kLastCommandKind && c.method <= 2;
+    }
+    default:
+      return false;
+  }
+}
+
+}  // namespace
+
+bool read_body(ByteReader& r, MessageType type, LinkMessage& m) {
+  bool good = true;
+  switch (type) {
+    case MessageType::hello:
+      good = read_hello(r, reset_as<Hello>(m));
+      break;
     case MessageType::vertices:
-      good = read_vertices(r, m.vertices);
+      good = read_vertices(r, reset_as<Vertices>(m));
       break;
     case MessageType::triangles:
-      good = read_triangles(r, m.triangles);
-      break;
-    case MessageType::mesh_end:
-      m.mesh_end.version = r.u32();
-      m.mesh_end.checksum = r.u64();
-      break;
-    case MessageType::resend_request:
-      m.resend_request.have_version = r.u32();
-      m.resend_request.have_checksum = r.u64();
+      good = read_triangles(r, reset_as<Triangles>(m));
       break;
     case MessageType::stroke:
-      good = read_stroke(r, m.stroke);
+      good = read_stroke(r, reset_as<StrokeBegin>(m));
       break;
     case MessageType::hands:
-      good = read_hands(r, m.hands);
+      good = read_hands(r, reset_as<Hands>(m));
       break;
     case MessageType::object: {
       bool bad = false;
-      m.object.pose = read_compact(r, bad);
+      reset_as<ObjectPose>(m).pose = read_compact(r, bad);
       good = !bad;
       break;
     }
     case MessageType::status:
-      good = read_status(r, m.status);
+      good = read_status(r, reset_as<StatusReport>(m));
       break;
-    case MessageType::command: {
-      const std::uint8_t kind = r.u8();
-      m.command.kind = static_cast<CommandKind>(kind);
-      m.command.method = r.u8();
-      good = kind >= 1 && kind <= kLastCommandKind && m.command.method <= 2;
-      break;
-    }
     default:
-      return false;
+      good = read_small(r, type, m);
+      break;
   }
   return good && r.ok() && r.at_end();
 }

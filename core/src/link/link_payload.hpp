@@ -9,9 +9,24 @@ namespace twister::link::internal {
 using twister::internal::ByteReader;
 using twister::internal::ByteWriter;
 
-// false: a count above its capacity or a field out of range.
-bool write_body(ByteWriter& w, const LinkMessage& m);
-// false: unknown type, short/long body or a field out of range.
-bool read_body(ByteReader& r, LinkMessage& m);
+// One writer per message type; false: a count above its capacity or a field out
+// of range.
+bool write_body(ByteWriter& w, const Hello& m);
+bool write_body(ByteWriter& w, const Auth& m);
+bool write_body(ByteWriter& w, const Bye& m);
+bool write_body(ByteWriter& w, const MeshBegin& m);
+bool write_body(ByteWriter& w, const Vertices& m);
+bool write_body(ByteWriter& w, const Triangles& m);
+bool write_body(ByteWriter& w, const MeshEnd& m);
+bool write_body(ByteWriter& w, const ResendRequest& m);
+bool write_body(ByteWriter& w, const StrokeBegin& m);
+bool write_body(ByteWriter& w, const Hands& m);
+bool write_body(ByteWriter& w, const ObjectPose& m);
+bool write_body(ByteWriter& w, const StatusReport& m);
+bool write_body(ByteWriter& w, const Command& m);
+
+// Reads the body of a `type` message into `m` (which then holds that
+// alternative); false: short/long body or a field out of range.
+bool read_body(ByteReader& r, MessageType type, LinkMessage& m);
 
 }  // namespace twister::link::internal

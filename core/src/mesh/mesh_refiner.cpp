@@ -40,7 +40,7 @@ const char* refine_stop_name(RefineStop stop) {
 }
 
 MeshRefiner::MeshRefiner(MeshRefinerStorage storage)
-    : storage_(storage), adjacency_(storage.adjacency) {}
+    : storage_(storage), adjacency_(storage.adjacency), queue_(storage.queue) {}
 
 bool MeshRefiner::fits(const Mesh& mesh) const {
   const std::size_t v = mesh.vertex_capacity();
@@ -63,10 +63,9 @@ Result<RefineResult> MeshRefiner::refine(Mesh& mesh, const PointWarp& warp, doub
   TWISTER_TRY(adjacency_.build(mesh));
   start(mesh, warp, threshold_m, observer);
   const auto vertices_before = static_cast<std::uint32_t>(mesh.vertex_count());
-  while (queue_count_ > 0) {
-    const std::uint32_t t = storage_.queue[queue_head_];
-    queue_head_ = (queue_head_ + 1) % storage_.queue.size();
-    --queue_count_;
+  while (!queue_.empty()) {
+    const std::uint32_t t = queue_.front();
+    queue_.pop_front();
     storage_.triangle_flags[t] &= static_cast<std::uint8_t>(~kQueued);
     if (!has_offending_edge(t)) continue;
     const Split s = bisect(t);
@@ -91,8 +90,7 @@ void MeshRefiner::start(Mesh& mesh, const PointWarp& warp, double threshold_m,
   const std::size_t triangles = mesh.triangle_count();
   triangles_before_ = static_cast<std::uint32_t>(triangles);
   for (std::size_t h = 0; h < 3 * triangles; ++h) storage_.edge_state[h] = kUnknown;
-  queue_head_ = 0;
-  queue_count_ = 0;
+  queue_.clear();
   for (std::uint32_t t = 0; t < triangles; ++t) {
     storage_.triangle_flags[t] = 0;
     push(t);
@@ -260,8 +258,9 @@ void MeshRefiner::changing(std::uint32_t t) {
 void MeshRefiner::push(std::uint32_t t) {
   if ((storage_.triangle_flags[t] & kQueued) != 0) return;
   storage_.triangle_flags[t] |= kQueued;
-  storage_.queue[(queue_head_ + queue_count_) % storage_.queue.size()] = t;
-  ++queue_count_;
+  // At most one entry per triangle (kQueued) and fits() saw room for every triangle.
+  const Status queued = queue_.push(t);
+  TWISTER_DEBUG_ASSERT(queued.ok());
 }
 
 }  // namespace twister::mesh

@@ -4,7 +4,6 @@
 #include <span>
 
 #include "twister/input/button_map.hpp"
-#include "twister/session/journal_pose.hpp"
 #include "twister/math/frame.hpp"
 #include "twister/math/warp_method.hpp"
 
@@ -32,23 +31,23 @@ Status JournalReplay::apply(const journal::JournalRecord& record) {
 }
 
 Status JournalReplay::apply_stroke(const journal::StrokeRecord& s) {
-  std::array<math::Frame, 2> start{};
-  std::array<math::Frame, 2> end{};
-  std::size_t n = 0;
+  math::PlanFrames start;
+  math::PlanFrames end;
   std::uint8_t long_turns = 0;  // by plan hand, as WarpPlan::update_turns wants it
   for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
     if ((s.hand_mask & (1u << h)) == 0) continue;
-    start[n] = from_journal(s.start[h]);
-    end[n] = from_journal(s.end[h]);
     if ((s.long_turns & (1u << h)) != 0)
-      long_turns = static_cast<std::uint8_t>(long_turns | (1u << n));
-    ++n;
+      long_turns = static_cast<std::uint8_t>(long_turns | (1u << start.size()));
+    // One per hand: cannot be full.
+    start.push_back(s.start[h]).ignore();
+    end.push_back(s.end[h]).ignore();
   }
+  const std::size_t n = start.size();
   // Only a fresh plan that ends with its commit is refined (CommitRefinement).
   if (s.refine_threshold_m > 0.0 && s.chain_step != 0) return StatusCode::data_loss;
   if (s.chain_step == 0) {
-    TWISTER_TRY(plan_.build(mesh_.rest(), std::span(start).first(n), s.radius_m,
-                            static_cast<math::WarpMethod>(s.method)));
+    TWISTER_TRY(
+        plan_.build(mesh_.rest(), start, s.radius_m, static_cast<math::WarpMethod>(s.method)));
   } else {
     // A freeze step reuses the weights of its chain: the chain must be the one just
     // replayed, with the same hands, radius and method.
@@ -56,11 +55,11 @@ Status JournalReplay::apply_stroke(const journal::StrokeRecord& s) {
         plan_.radius() != s.radius_m || static_cast<std::uint8_t>(plan_.method()) != s.method) {
       return StatusCode::data_loss;
     }
-    TWISTER_TRY(plan_.rebase(std::span(start).first(n)));
+    TWISTER_TRY(plan_.rebase(start));
   }
   // The screws from the poses alone (and the turn sense the record gives): the same
   // numbers the live stroke computed, minimal or unwrapped.
-  TWISTER_TRY(plan_.update_turns(std::span(end).first(n), long_turns));
+  TWISTER_TRY(plan_.update_turns(end, long_turns));
   TWISTER_TRY(history_.apply_stroke(plan_, s.refine_threshold_m));
   chain_open_ = s.refine_threshold_m == 0.0;  // a refined commit ended its chain
   chain_step_ = s.chain_step;
@@ -69,7 +68,7 @@ Status JournalReplay::apply_stroke(const journal::StrokeRecord& s) {
 }
 
 Status JournalReplay::apply_move(const journal::ObjectMoveRecord& move) {
-  const math::Frame after = from_journal(move.object_after);
+  const math::Frame after = move.object_after;
   if (!math::is_orthonormal(after)) return StatusCode::data_loss;
   history_.apply_move(poses_.object(), after);
   poses_.set_object(after);

@@ -10,21 +10,6 @@
 namespace twister::session {
 namespace {
 
-SessionEventKind event_for(input::ActionKind kind) {
-  switch (kind) {
-    case input::ActionKind::tracking_lost:
-      return SessionEventKind::tracking_lost;
-    case input::ActionKind::tracking_resumed:
-      return SessionEventKind::tracking_resumed;
-    case input::ActionKind::refused:
-      return SessionEventKind::refused;
-    case input::ActionKind::radius_end:
-      return SessionEventKind::radius_set;
-    default:
-      return SessionEventKind::radius_changed;
-  }
-}
-
 SessionCommandKind command_for(input::ButtonRole role) {
   switch (role) {
     case input::ButtonRole::redo:
@@ -121,17 +106,15 @@ SessionEvents SculptSession::step(ports::TimestampUs now_us) {
   for (const input::ButtonCommand& c : buttons_.commands()) {
     run_command({command_for(c.role), c.hand, math::WarpMethod::twister}, out);
   }
-  for (std::size_t i = 0; i < queued_count_; ++i) run_command(queued_[i], out);
-  queued_count_ = 0;
+  for (std::size_t i = 0; i < queued_.size(); ++i) run_command(queued_[i], out);
+  queued_.clear();
   refresh_normals();
   return out;
 }
 
 Status SculptSession::submit(const SessionCommand& command) {
   if (command.hand >= input::kHandCount) return StatusCode::invalid_argument;
-  if (queued_count_ == queued_.size()) return StatusCode::resource_exhausted;
-  queued_[queued_count_++] = command;
-  return ok_status();
+  return queued_.push_back(command);  // resource_exhausted: kMaxQueuedCommands queued
 }
 
 input::InteractionInputs SculptSession::inputs() const {
@@ -155,26 +138,36 @@ void SculptSession::apply_action(const input::Action& a, SessionEvents& out) {
       return;
     case input::ActionKind::move_begin:
       mover_.begin(a.hand);
-      out.push({SessionEventKind::move_begin, a.hand, input::Reason::none, ok_status(), 0});
+      out.push(make_event(SessionEventKind::move_begin, a.hand));
       return;
     case input::ActionKind::move_commit:
       commit_move(a, out);
       return;
     case input::ActionKind::move_cancel:
       if (mover_.cancel()) {
-        out.push({SessionEventKind::move_cancelled, a.hand, a.reason, ok_status(), 0});
+        out.push(make_event(SessionEventKind::move_cancelled, a.hand, payload::Reasoned{a.reason}));
       }
       return;
     case input::ActionKind::radius_begin:
       return;
+    // The machine's other outputs are reported as they are: each becomes its event
+    // here, once.
     case input::ActionKind::radius_change:
+      out.push(make_event(SessionEventKind::radius_changed, a.hand,
+                          payload::Radius{static_cast<double>(a.radius_m)}));
+      return;
     case input::ActionKind::radius_end:
-      out.push({event_for(a.kind), a.hand, a.reason, ok_status(), 0, a.radius_m});
+      out.push(make_event(SessionEventKind::radius_set, a.hand,
+                          payload::Radius{static_cast<double>(a.radius_m)}));
       return;
     case input::ActionKind::tracking_lost:
+      out.push(make_event(SessionEventKind::tracking_lost, a.hand));
+      return;
     case input::ActionKind::tracking_resumed:
+      out.push(make_event(SessionEventKind::tracking_resumed, a.hand));
+      return;
     case input::ActionKind::refused:
-      out.push({event_for(a.kind), a.hand, a.reason, ok_status(), 0});
+      out.push(make_event(SessionEventKind::refused, a.hand, payload::Reasoned{a.reason}));
       return;
   }
 }
@@ -183,29 +176,35 @@ void SculptSession::commit_move(const input::Action& a, SessionEvents& out) {
   const Result<ObjectMove> move = mover_.commit();
   if (!move.ok()) return;  // no move open
   const CommitOutcome done = history_.commit_move(a.hand, move->before, move->after);
-  const auto kind =
-      done.status.ok() ? SessionEventKind::move_committed : SessionEventKind::not_saved;
-  out.push({kind, a.hand, input::Reason::released, done.status, done.sequence});
+  if (done.status.ok()) {
+    out.push(make_event(SessionEventKind::move_committed, a.hand,
+                        payload::RecordRef{done.sequence}));
+  } else {
+    out.push(make_event(SessionEventKind::not_saved, a.hand,
+                        payload::StrokeEnd{input::Reason::released, done.sequence},
+                        done.status));
+  }
 }
 
 SessionEvents SculptSession::cancel_open() {
   SessionEvents out;
   for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
     if ((strokes_.hand_mask() & (1u << h)) != 0) {
-      strokes_.apply({input::ActionKind::cancel, h, input::Reason::none, 0.0f}, out);
+      strokes_.apply({input::ActionKind::cancel, h, input::Reason::stopped, 0.0f}, out);
     }
   }
   const std::uint8_t mover = mover_.hand();
   if (mover_.cancel()) {
-    out.push({SessionEventKind::move_cancelled, mover, input::Reason::none, ok_status(), 0});
+    out.push(make_event(SessionEventKind::move_cancelled, mover,
+                        payload::Reasoned{input::Reason::stopped}));
   }
   return out;
 }
 
 void SculptSession::run_command(const SessionCommand& c, SessionEvents& out) {
   const auto refuse = [&](input::Reason reason, Status status) {
-    out.push({SessionEventKind::command_refused, c.hand, reason, status, 0,
-              static_cast<double>(c.kind)});
+    out.push(make_event(SessionEventKind::command_refused, c.hand,
+                        payload::CommandRefusal{c.kind, reason}, status));
   };
   switch (c.kind) {
     case SessionCommandKind::undo:
@@ -219,8 +218,7 @@ void SculptSession::run_command(const SessionCommand& c, SessionEvents& out) {
       const math::WarpMethod m =
           c.kind == SessionCommandKind::set_method ? c.method : next_method(strokes_.method());
       strokes_.set_method(m);
-      out.push({SessionEventKind::method_changed, c.hand, input::Reason::none, ok_status(), 0,
-                static_cast<double>(m)});
+      out.push(make_event(SessionEventKind::method_changed, c.hand, payload::Method{m}));
       return;
     }
   }
@@ -231,8 +229,8 @@ void SculptSession::run_history_command(const SessionCommand& c, SessionEvents& 
   const std::uint32_t sequence = history_.next_sequence();
   const Status s = step_history(undo ? journal::RecordType::undo : journal::RecordType::redo);
   if (s.ok()) {
-    out.push({undo ? SessionEventKind::undone : SessionEventKind::redone, c.hand, input::Reason::none,
-              ok_status(), sequence});
+    out.push(make_event(undo ? SessionEventKind::undone : SessionEventKind::redone, c.hand,
+                        payload::RecordRef{sequence}));
     return;
   }
   // io_error: its record could not be saved, so the step was taken back (reason none);
@@ -243,7 +241,8 @@ void SculptSession::run_history_command(const SessionCommand& c, SessionEvents& 
   } else if (s.code() == StatusCode::failed_precondition) {
     reason = undo ? input::Reason::nothing_to_undo : input::Reason::nothing_to_redo;
   }
-  out.push({SessionEventKind::command_refused, c.hand, reason, s, 0, static_cast<double>(c.kind)});
+  out.push(make_event(SessionEventKind::command_refused, c.hand,
+                      payload::CommandRefusal{c.kind, reason}, s));
 }
 
 Status SculptSession::undo() { return step_history(journal::RecordType::undo); }

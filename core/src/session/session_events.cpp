@@ -1,57 +1,138 @@
 #include "twister/session/session_events.hpp"
 
 namespace twister::session {
+namespace {
+
+template <class P>
+constexpr std::size_t index_of() {
+  return EventPayload(P{}).index();
+}
+
+}  // namespace
 
 const char* session_event_kind_name(SessionEventKind kind) {
+  using K = SessionEventKind;
   switch (kind) {
-    case SessionEventKind::grab_begin:
+    case K::grab_begin:
       return "grab_begin";
-    case SessionEventKind::committed:
+    case K::committed:
       return "committed";
-    case SessionEventKind::cancelled:
+    case K::cancelled:
       return "cancelled";
-    case SessionEventKind::tracking_lost:
+    case K::tracking_lost:
       return "tracking_lost";
-    case SessionEventKind::tracking_resumed:
+    case K::tracking_resumed:
       return "tracking_resumed";
-    case SessionEventKind::refused:
+    case K::refused:
       return "refused";
-    case SessionEventKind::radius_changed:
+    case K::radius_changed:
       return "radius_changed";
-    case SessionEventKind::move_begin:
+    case K::move_begin:
       return "move_begin";
-    case SessionEventKind::move_committed:
+    case K::move_committed:
       return "move_committed";
-    case SessionEventKind::move_cancelled:
+    case K::move_cancelled:
       return "move_cancelled";
-    case SessionEventKind::undone:
+    case K::undone:
       return "undone";
-    case SessionEventKind::redone:
+    case K::redone:
       return "redone";
-    case SessionEventKind::not_saved:
+    case K::not_saved:
       return "not_saved";
-    case SessionEventKind::history_overflow:
+    case K::history_overflow:
       return "history_overflow";
-    case SessionEventKind::radius_set:
+    case K::radius_set:
       return "radius_set";
-    case SessionEventKind::disengaged:
+    case K::disengaged:
       return "disengaged";
-    case SessionEventKind::engaged:
+    case K::engaged:
       return "engaged";
-    case SessionEventKind::turn_limit_reached:
+    case K::turn_limit_reached:
       return "turn_limit_reached";
-    case SessionEventKind::turn_limit_left:
+    case K::turn_limit_left:
       return "turn_limit_left";
-    case SessionEventKind::method_changed:
+    case K::method_changed:
       return "method_changed";
-    case SessionEventKind::command_refused:
+    case K::command_refused:
       return "command_refused";
-    case SessionEventKind::refined:
+    case K::refined:
       return "refined";
-    case SessionEventKind::refine_stopped:
+    case K::refine_stopped:
       return "refine_stopped";
+    case K::journal_recovered:
+      return "journal_recovered";
+    case K::tracker_streaming:
+      return "tracker_streaming";
+    case K::tracker_lost:
+      return "tracker_lost";
+    case K::button_source_error:
+      return "button_source_error";
+    case K::checkpoint_written:
+      return "checkpoint_written";
+    case K::checkpoint_failed:
+      return "checkpoint_failed";
   }
   return "unknown";
+}
+
+std::size_t payload_index(SessionEventKind kind) {
+  using K = SessionEventKind;
+  switch (kind) {
+    case K::committed:
+    case K::cancelled:
+    case K::not_saved:
+      return index_of<payload::StrokeEnd>();
+    case K::refused:
+    case K::move_cancelled:
+      return index_of<payload::Reasoned>();
+    case K::radius_changed:
+    case K::radius_set:
+      return index_of<payload::Radius>();
+    case K::move_committed:
+    case K::undone:
+    case K::redone:
+    case K::history_overflow:
+    case K::disengaged:
+      return index_of<payload::RecordRef>();
+    case K::turn_limit_reached:
+    case K::turn_limit_left:
+      return index_of<payload::TurnLimit>();
+    case K::method_changed:
+      return index_of<payload::Method>();
+    case K::command_refused:
+      return index_of<payload::CommandRefusal>();
+    case K::refined:
+      return index_of<payload::Refinement>();
+    case K::refine_stopped:
+      return index_of<payload::RefinementStop>();
+    case K::journal_recovered:
+      return index_of<payload::JournalRecovered>();
+    case K::checkpoint_written:
+      return index_of<payload::CheckpointWritten>();
+    case K::tracker_streaming:
+      return index_of<payload::TrackerStreaming>();
+    case K::grab_begin:
+    case K::tracking_lost:
+    case K::tracking_resumed:
+    case K::move_begin:
+    case K::engaged:
+    case K::tracker_lost:
+    case K::button_source_error:
+    case K::checkpoint_failed:
+      break;
+  }
+  return index_of<std::monostate>();
+}
+
+SessionEvent make_event(SessionEventKind kind, std::uint8_t hand, EventPayload payload,
+                        Status status) {
+  TWISTER_ASSERT(payload.index() == payload_index(kind));
+  SessionEvent e;
+  e.kind = kind;
+  e.hand = hand;
+  e.status = status;
+  e.payload = payload;
+  return e;
 }
 
 void SessionEvents::push(const SessionEvent& event) {

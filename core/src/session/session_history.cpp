@@ -3,7 +3,6 @@
 #include <glm/vec3.hpp>
 
 #include "twister/base/assert.hpp"
-#include "twister/session/journal_pose.hpp"
 
 namespace twister::session {
 
@@ -11,12 +10,12 @@ namespace {
 
 void report_refinement(const RefineReport& refined, std::uint32_t sequence, SessionEvents& out) {
   if (!refined.ran) return;
-  out.push({SessionEventKind::refined, 0, input::Reason::none, ok_status(), sequence,
-            static_cast<double>(refined.result.edges_split)});
+  out.push(make_event(SessionEventKind::refined, 0,
+                      payload::Refinement{sequence, refined.result.edges_split}));
   if (refined.result.stop != mesh::RefineStop::done) {
-    out.push({SessionEventKind::refine_stopped, 0, input::Reason::none,
-              Status(StatusCode::resource_exhausted), sequence,
-              static_cast<double>(refined.result.stop)});
+    out.push(make_event(SessionEventKind::refine_stopped, 0,
+                        payload::RefinementStop{sequence, refined.result.stop},
+                        StatusCode::resource_exhausted));
   }
 }
 
@@ -50,8 +49,8 @@ CommitOutcome SessionHistory::commit_move(std::uint8_t hand, const math::Frame& 
   journal::JournalRecord r;
   r.type = journal::RecordType::object_move;
   r.move.hand = hand;
-  r.move.object_before = to_journal(before);
-  r.move.object_after = to_journal(after);
+  r.move.object_before = journal::as_stored(before);
+  r.move.object_after = journal::as_stored(after);
   const std::uint32_t sequence = next_sequence_;
   if (const Status saved = append(r); !saved.ok()) {
     poses_.set_object(before);  // the last durable pose
@@ -121,8 +120,8 @@ void SessionHistory::commit_live(const math::WarpPlan& plan, double refine_thres
   }
   if (!history_.end_entry().ok()) undoable = false;
   if (!undoable && out != nullptr) {
-    out->push({SessionEventKind::history_overflow, 0, input::Reason::none,
-               Status(StatusCode::resource_exhausted), sequence});
+    out->push(make_event(SessionEventKind::history_overflow, 0, payload::RecordRef{sequence},
+                         StatusCode::resource_exhausted));
   }
   if (out != nullptr) report_refinement(refined, sequence, *out);
 }

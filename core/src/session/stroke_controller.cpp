@@ -2,7 +2,6 @@
 
 #include <span>
 
-#include "twister/session/journal_pose.hpp"
 
 namespace twister::session {
 namespace {
@@ -45,7 +44,9 @@ void StrokeController::apply(const input::Action& action, SessionEvents& out) {
       break;
     case input::ActionKind::commit:
     case input::ActionKind::cancel:
-      if ((hand_mask_ & bit) != 0) end_grab(action.hand, action.kind == input::ActionKind::commit, out);
+      if ((hand_mask_ & bit) != 0) {
+        end_grab(action.hand, action.kind == input::ActionKind::commit, action.reason, out);
+      }
       break;
     default:
       return;
@@ -84,10 +85,10 @@ void StrokeController::grab(std::uint8_t hand, SessionEvents& out) {
   }
   const Status s = begin_segment(mask);
   if (s.ok()) {
-    out.push({SessionEventKind::grab_begin, hand, input::Reason::none, s, 0});
+    out.push(make_event(SessionEventKind::grab_begin, hand, {}, s));
     return;
   }
-  out.push({SessionEventKind::refused, hand, input::Reason::none, s, 0});
+  out.push(make_event(SessionEventKind::refused, hand, payload::Reasoned{}, s));
   const auto previous = static_cast<std::uint8_t>(mask & ~bit);
   if (previous != 0) {
     const Status again = begin_segment(previous);
@@ -104,7 +105,7 @@ void StrokeController::freeze(std::uint8_t hand, SessionEvents& out) {
   restart_segment(true, out);
   if ((hand_mask_ & bit_of(hand)) == 0) return;
   drives_[hand].set_engaged(false);
-  out.push({SessionEventKind::disengaged, hand, input::Reason::none, ok_status(), last_sequence_});
+  out.push(make_event(SessionEventKind::disengaged, hand, payload::RecordRef{last_sequence_}));
 }
 
 void StrokeController::unfreeze(std::uint8_t hand, SessionEvents& out) {
@@ -121,7 +122,7 @@ void StrokeController::unfreeze(std::uint8_t hand, SessionEvents& out) {
   drives_[hand].set_engaged(true);
   restart_segment(commit, out);
   if ((hand_mask_ & bit_of(hand)) != 0) {
-    out.push({SessionEventKind::engaged, hand, input::Reason::none, ok_status(), 0});
+    out.push(make_event(SessionEventKind::engaged, hand));
   }
 }
 
@@ -134,7 +135,9 @@ void StrokeController::end_not_saved(std::uint8_t hand, const SessionEvent& fail
   const auto others = static_cast<std::uint8_t>(hand_mask_ & ~bit_of(hand));
   drop_segment();
   SessionEvent e = failed;
-  e.repeat = true;
+  payload::StrokeEnd again = failed.stroke_end();
+  again.repeat = true;
+  e.payload = again;
   for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
     drives_[h].set_engaged(true);
     if ((others & bit_of(h)) == 0) continue;
@@ -144,9 +147,8 @@ void StrokeController::end_not_saved(std::uint8_t hand, const SessionEvent& fail
 }
 
 void StrokeController::restart_segment(bool committed, SessionEvents& out) {
-  std::array<math::Frame, 2> frames{};
-  const std::size_t n = start_drives(frames);
-  const Status rebased = plan_.rebase(std::span(frames).first(n));
+  const math::PlanFrames frames = start_drives();
+  const Status rebased = plan_.rebase(frames);
   if (rebased.ok()) {
     if (committed) ++chain_step_;
     return;
@@ -157,22 +159,25 @@ void StrokeController::restart_segment(bool committed, SessionEvents& out) {
   end_hands(mask, rebased, out);
 }
 
-void StrokeController::end_grab(std::uint8_t hand, bool commit, SessionEvents& out) {
+void StrokeController::end_grab(std::uint8_t hand, bool commit, input::Reason cancel_reason,
+                                SessionEvents& out) {
   auto remaining = static_cast<std::uint8_t>(hand_mask_ & ~bit_of(hand));
   if (commit) {
-    SessionEvent committed{SessionEventKind::committed, hand, input::Reason::released, ok_status(),
-                           last_sequence_};
+    SessionEvent committed;
     if (segment_can_change()) {
       committed = commit_segment(hand, input::Reason::released, out, input::Reason::released);
     } else {
       // Every hand is on the clutch: the freeze step before was the last commit.
-      committed.repeat = true;
+      committed = make_event(SessionEventKind::committed, hand,
+                             payload::StrokeEnd{input::Reason::released, last_sequence_, true});
       out.push(committed);
     }
     // The other hands of this segment released in the same step end with this very
     // commit (their own commit actions then find nothing open).
     const auto together = static_cast<std::uint8_t>(remaining & releasing_mask_);
-    committed.repeat = true;
+    payload::StrokeEnd repeated = committed.stroke_end();
+    repeated.repeat = true;
+    committed.payload = repeated;
     for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
       if ((together & bit_of(h)) == 0) continue;
       committed.hand = h;
@@ -181,7 +186,8 @@ void StrokeController::end_grab(std::uint8_t hand, bool commit, SessionEvents& o
     }
     remaining = static_cast<std::uint8_t>(remaining & ~together);
   } else {
-    out.push({SessionEventKind::cancelled, hand, input::Reason::tracking_timeout, ok_status(), 0});
+    // tracking_timeout from the machine; stopped from cancel_open().
+    out.push(make_event(SessionEventKind::cancelled, hand, payload::StrokeEnd{cancel_reason}));
   }
   drives_[hand].set_engaged(true);
   drop_segment();
@@ -192,11 +198,9 @@ void StrokeController::end_grab(std::uint8_t hand, bool commit, SessionEvents& o
 
 Status StrokeController::begin_segment(std::uint8_t mask) {
   hand_mask_ = mask;
-  std::array<math::Frame, 2> frames{};
-  const std::size_t n = start_drives(frames);
+  const math::PlanFrames frames = start_drives();
   segment_radius_m_ = static_cast<double>(radius_m_);
-  const Status s =
-      plan_.build(mesh_.rest(), std::span(frames).first(n), segment_radius_m_, method_);
+  const Status s = plan_.build(mesh_.rest(), frames, segment_radius_m_, method_);
   if (!s.ok()) {
     drop_segment();
     return s;
@@ -216,8 +220,8 @@ SessionEvent StrokeController::commit_segment(std::uint8_t hand, input::Reason r
   std::size_t i = 0;
   for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
     if ((hand_mask_ & bit_of(h)) == 0) continue;
-    r.start[h] = to_journal(plan_.start_frame(i));
-    r.end[h] = to_journal(plan_.end_frame(i));
+    r.start[h] = journal::as_stored(plan_.start_frame(i));
+    r.end[h] = journal::as_stored(plan_.end_frame(i));
     if ((plan_.long_turns() & (1u << i)) != 0) r.long_turns |= bit_of(h);
     ++i;
   }
@@ -226,9 +230,10 @@ SessionEvent StrokeController::commit_segment(std::uint8_t hand, input::Reason r
   // A commit that did not happen (journal failure, plan error) is `not_saved`.
   const SessionEvent committed =
       done.status.ok()
-          ? SessionEvent{SessionEventKind::committed, hand, reason, done.status, done.sequence}
-          : SessionEvent{SessionEventKind::not_saved, hand, reason_if_not_saved, done.status,
-                         done.sequence};
+          ? make_event(SessionEventKind::committed, hand,
+                       payload::StrokeEnd{reason, done.sequence}, done.status)
+          : make_event(SessionEventKind::not_saved, hand,
+                       payload::StrokeEnd{reason_if_not_saved, done.sequence}, done.status);
   out.push(committed);
   return committed;
 }
@@ -244,7 +249,7 @@ void StrokeController::end_hands(std::uint8_t mask, Status status, SessionEvents
   for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
     if ((mask & bit_of(h)) == 0) continue;
     drives_[h].set_engaged(true);
-    out.push({SessionEventKind::cancelled, h, input::Reason::none, status, 0});
+    out.push(make_event(SessionEventKind::cancelled, h, payload::StrokeEnd{}, status));
   }
 }
 
@@ -254,9 +259,8 @@ void StrokeController::drop_segment() {
 }
 
 Status StrokeController::update_plan(SessionEvents* out) {
-  std::array<math::Frame, 2> ends{};
+  math::PlanFrames ends;
   std::uint8_t long_turns = 0;
-  std::size_t n = 0;
   for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
     if ((hand_mask_ & bit_of(h)) == 0) continue;
     HandDrive& drive = drives_[h];
@@ -264,12 +268,14 @@ Status StrokeController::update_plan(SessionEvents* out) {
     if (change != TurnLimitChange::none && out != nullptr) {
       const auto kind = change == TurnLimitChange::reached ? SessionEventKind::turn_limit_reached
                                                            : SessionEventKind::turn_limit_left;
-      out->push({kind, h, input::Reason::none, ok_status(), 0, drive.limit_rad()});
+      out->push(make_event(kind, h, payload::TurnLimit{drive.limit_rad()}));
     }
-    if (drive.long_turn()) long_turns = static_cast<std::uint8_t>(long_turns | (1u << n));
-    ends[n++] = drive.end_pose();
+    if (drive.long_turn()) {
+      long_turns = static_cast<std::uint8_t>(long_turns | (1u << ends.size()));
+    }
+    ends.push_back(drive.end_pose()).ignore();  // one per hand: cannot be full
   }
-  const std::span<const math::Frame> end = std::span(ends).first(n);
+  const std::span<const math::Frame> end = ends;
   // Minimal: today's update, which keeps the stroke's axis sense at a half turn.
   TWISTER_TRY(drives_[0].config().tracking == TurnTracking::minimal
                   ? plan_.update(end)
@@ -277,16 +283,16 @@ Status StrokeController::update_plan(SessionEvents* out) {
   return plan_.apply(mesh_.rest(), mesh_.live());
 }
 
-std::size_t StrokeController::start_drives(std::array<math::Frame, 2>& frames) {
-  std::size_t n = 0;
+math::PlanFrames StrokeController::start_drives() {
+  math::PlanFrames frames;
   for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
     if ((hand_mask_ & bit_of(h)) == 0) continue;
     // A disengaged hand keeps its anchor: its weights and its (identity) warp stay
     // where its material is, wherever the hand has gone on the clutch.
     if (drives_[h].engaged()) drives_[h].start(poses_.hand_in_object(h));
-    frames[n++] = drives_[h].start_pose();
+    frames.push_back(drives_[h].start_pose()).ignore();  // one per hand: cannot be full
   }
-  return n;
+  return frames;
 }
 
 }  // namespace twister::session

@@ -1,13 +1,7 @@
-// StationLink: the live stream on the urgent queue. `hands` at the tracker rate
-// (when a pose, a button, the radius or the stroke changed; at most one per
-// live_interval_us), `stroke` when a segment starts and about once a second while it
-// lasts, `object` when the object pose changed, `status` once a second and when
-// something in it changed.
-#include <algorithm>
-#include <cstring>
+// LiveStream: hands, stroke, object and status on the urgent queue.
+#include "twister/station/station_link_live.hpp"
 
 #include "twister/link/math_conversion.hpp"
-#include "twister/station/station_link.hpp"
 
 namespace twister::station {
 namespace {
@@ -37,52 +31,59 @@ std::uint8_t button_bits(const input::HandButtons& b) {
 
 }  // namespace
 
-void StationLink::send_live(const session::SculptSession& session, const StationStatus& status,
-                            ports::TimestampUs now_us) {
+void LiveStream::restart() {
+  hands_.sent = false;
+  status_.sent = false;
+  object_.valid = false;
+  stroke_.last_us = 0;
+  stroke_.was_active = false;
+}
+
+void LiveStream::poll(const session::SculptSession& session, const StationStatus& status,
+                      const LinkFacts& facts, ports::TimestampUs now_us) {
   const session::LiveWarp live = session.live();
   const bool active = live.active && live.plan != nullptr && live.plan->built();
   if (active) {
-    bool new_segment = !live_was_active_;
+    bool new_segment = !stroke_.was_active;
     for (std::size_t k = 0; k < live.plan->hand_count() && k < link::kLinkHands; ++k) {
-      new_segment = new_segment || !same_frame(live.plan->start_frame(k), live_start_[k]);
-      live_start_[k] = live.plan->start_frame(k);
+      new_segment = new_segment || !same_frame(live.plan->start_frame(k), stroke_.start[k]);
+      stroke_.start[k] = live.plan->start_frame(k);
     }
-    if (new_segment) ++stroke_;
-    if (new_segment || now_us - last_stroke_us_ >= config_.stroke_repeat_us) {
-      send_stroke(live, now_us);
+    if (new_segment) ++stroke_.id;
+    if (new_segment || now_us - stroke_.last_us >= config_.stroke_repeat_us) {
+      send_stroke(live, facts.mesh_version, now_us);
     }
   }
-  live_was_active_ = active;
+  stroke_.was_active = active;
   send_object(session);
   // At the tracker rate: a new pose changes the update; an unchanged one is not sent.
-  if (!hands_sent_ || now_us - last_live_us_ >= config_.live_interval_us) {
+  if (!hands_.sent || now_us - hands_.last_us >= config_.live_interval_us) {
     send_hands(session, active ? live : session::LiveWarp{});
-    last_live_us_ = now_us;
+    hands_.last_us = now_us;
   }
-  send_status(session, status, now_us);
+  send_status(session, status, facts, now_us);
 }
 
-void StationLink::send_stroke(const session::LiveWarp& live, ports::TimestampUs now_us) {
+void LiveStream::send_stroke(const session::LiveWarp& live, std::uint32_t mesh_version,
+                             ports::TimestampUs now_us) {
   const math::WarpPlan& plan = *live.plan;
-  link::StrokeBegin& s = scratch_.stroke;
-  scratch_.type = link::MessageType::stroke;
-  s = link::StrokeBegin{};
-  s.stroke = stroke_;
-  s.mesh_version = version_;
+  link::StrokeBegin s;
+  s.stroke = stroke_.id;
+  s.mesh_version = mesh_version;
   s.method = static_cast<std::uint8_t>(plan.method());
   s.hand_mask = live.hand_mask;
   s.radius_m = plan.radius();
   std::size_t k = 0;
   for (std::size_t h = 0; h < link::kLinkHands; ++h) {
     if ((live.hand_mask & (1u << h)) == 0 || k >= plan.hand_count()) continue;
-    s.start[h] = link::to_wire(plan.start_frame(k++));
+    s.start[h] = plan.start_frame(k++);
   }
-  if (queue_urgent(scratch_)) last_stroke_us_ = now_us;
+  if (out_.urgent(s)) stroke_.last_us = now_us;
 }
 
-void StationLink::send_hands(const session::SculptSession& session, const session::LiveWarp& live) {
+void LiveStream::send_hands(const session::SculptSession& session, const session::LiveWarp& live) {
   link::Hands l;
-  l.stroke = static_cast<std::uint16_t>(stroke_);
+  l.stroke = static_cast<std::uint16_t>(stroke_.id);
   l.radius_m = session.radius_m();
   if (live.active) l.flags = link::kStrokeActive;
   std::size_t k = 0;  // plan hand of session hand h
@@ -104,35 +105,31 @@ void StationLink::send_hands(const session::SculptSession& session, const sessio
     }
     l.flags = static_cast<std::uint8_t>(l.flags | (link::kHandSample0 << h));
   }
-  if (hands_sent_ && same_hands(l, last_hands_)) return;  // nothing new to show
-  l.sequence = hands_sequence_;
-  scratch_.type = link::MessageType::hands;
-  scratch_.hands = l;
-  if (!queue_urgent(scratch_)) {
+  if (hands_.sent && same_hands(l, hands_.last)) return;  // nothing new to show
+  l.sequence = hands_.sequence;
+  if (!out_.urgent(l)) {
     ++counters_.live_dropped;  // the next update replaces it
     return;
   }
-  ++hands_sequence_;
+  ++hands_.sequence;
   ++counters_.live_sent;
-  last_hands_ = l;
-  hands_sent_ = true;
+  hands_.last = l;
+  hands_.sent = true;
 }
 
-void StationLink::send_object(const session::SculptSession& session) {
+void LiveStream::send_object(const session::SculptSession& session) {
   const math::Frame& pose = session.object_pose();
-  if (object_sent_valid_ && same_frame(pose, object_sent_)) return;
-  scratch_.type = link::MessageType::object;
-  scratch_.object.pose = link::to_compact(pose);
-  if (!queue_urgent(scratch_)) return;  // tried again next poll
-  object_sent_ = pose;
-  object_sent_valid_ = true;
+  if (object_.valid && same_frame(pose, object_.pose)) return;
+  if (!out_.urgent(link::ObjectPose{link::to_compact(pose)})) return;  // tried again next poll
+  object_.pose = pose;
+  object_.valid = true;
 }
 
-void StationLink::send_status(const session::SculptSession& session, const StationStatus& status,
-                              ports::TimestampUs now_us) {
+void LiveStream::send_status(const session::SculptSession& session, const StationStatus& status,
+                             const LinkFacts& facts, ports::TimestampUs now_us) {
   link::StatusReport s;
   const mesh::Mesh& mesh = session.mesh();
-  s.mesh_version = version_;
+  s.mesh_version = facts.mesh_version;
   s.vertex_count = static_cast<std::uint32_t>(mesh.vertex_count());
   s.vertex_capacity = static_cast<std::uint32_t>(mesh.vertex_capacity());
   s.triangle_count = static_cast<std::uint32_t>(mesh.triangle_count());
@@ -146,23 +143,19 @@ void StationLink::send_status(const session::SculptSession& session, const Stati
   s.strokes_committed = status.strokes_committed;
   s.strokes_not_saved = status.strokes_not_saved;
   s.capacity_stops = status.capacity_stops;
-  const bool changed = s.tracker_state != last_status_.tracker_state ||
-                       s.strokes_not_saved != last_status_.strokes_not_saved ||
-                       s.capacity_stops != last_status_.capacity_stops ||
-                       s.turn_limit_rad != last_status_.turn_limit_rad ||
-                       s.method != last_status_.method || s.clutch != last_status_.clutch ||
-                       s.mesh_version != last_status_.mesh_version;
-  if (status_sent_ && !changed && now_us - last_status_us_ < config_.status_interval_us) return;
-  const link::DecoderCounters d = decoder_.counters();
+  const link::StatusReport& last = status_.last;
+  const bool changed =
+      s.tracker_state != last.tracker_state || s.strokes_not_saved != last.strokes_not_saved ||
+      s.capacity_stops != last.capacity_stops || s.turn_limit_rad != last.turn_limit_rad ||
+      s.method != last.method || s.clutch != last.clutch || s.mesh_version != last.mesh_version;
+  if (status_.sent && !changed && now_us - status_.last_us < config_.status_interval_us) return;
   s.live_sent = counters_.live_sent;
   s.live_dropped = counters_.live_dropped;
-  s.frames_rejected = d.bad_crc + d.bad_cobs + d.bad_payload;
-  scratch_.type = link::MessageType::status;
-  scratch_.status = s;
-  if (!queue_urgent(scratch_)) return;
-  status_sent_ = true;
-  last_status_ = s;
-  last_status_us_ = now_us;
+  s.frames_rejected = facts.frames_rejected;
+  if (!out_.urgent(s)) return;
+  status_.sent = true;
+  status_.last = s;
+  status_.last_us = now_us;
 }
 
 }  // namespace twister::station

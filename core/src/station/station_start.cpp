@@ -1,6 +1,7 @@
 // Station::start(): journal recovery. The whole file is scanned first, so nothing is
 // applied or cut before we know whether the damage (if any) is a torn tail or
-// corruption; only a torn tail is ever cut, and only after its bytes are kept.
+// corruption; only a torn tail is ever cut, only after its bytes are kept, and only in
+// begin_appending(), once the program knows the rest of its start-up succeeded.
 #include <algorithm>
 #include <array>
 
@@ -15,12 +16,16 @@ const char* recovery_outcome_name(JournalRecovery::Outcome outcome) {
   switch (outcome) {
     case O::not_started:
       return "not_started";
+    case O::recovered:
+      return "recovered";
     case O::ok:
       return "ok";
     case O::not_a_journal:
       return "not_a_journal";
     case O::corrupt:
       return "corrupt";
+    case O::too_new:
+      return "too_new";
     case O::does_not_fit:
       return "does_not_fit";
     case O::tail_not_kept:
@@ -32,6 +37,11 @@ const char* recovery_outcome_name(JournalRecovery::Outcome outcome) {
 }
 
 Status Station::start() {
+  TWISTER_TRY(recover());
+  return begin_appending();
+}
+
+Status Station::recover() {
   using O = JournalRecovery::Outcome;
   const auto s0 = config_.hand_station[0];
   const auto s1 = config_.hand_station[1];
@@ -39,7 +49,7 @@ Status Station::start() {
     return StatusCode::failed_precondition;
   }
   recovery_ = {};
-  base_checksum_ = sculpt_.mesh().checksum();
+  checkpoints_.reset(sculpt_.mesh().checksum(), 0);
   // The checkpoint's anchor is checked against the journal in the same scan.
   Result<checkpoint::CheckpointHeader> header = StatusCode::unavailable;
   if (files_.checkpoint_in != nullptr)
@@ -49,13 +59,16 @@ Status Station::start() {
   }
   auto survey = journal::survey_journal(storage_, header.ok() ? header->journal_offset : 0);
   if (!survey.ok()) {
-    recovery_.outcome =
-        survey.status().code() == StatusCode::data_loss ? O::not_a_journal : O::io_error;
+    const StatusCode code = survey.status().code();
+    recovery_.outcome = code == StatusCode::data_loss       ? O::not_a_journal
+                        : code == StatusCode::not_supported ? O::too_new
+                                                            : O::io_error;
     return survey.status();
   }
   recovery_.survey = *survey;
-  // Valid records after a damaged one: not an interrupted append. Cutting would
-  // delete them; the file stays as it is and the operator decides (salvage).
+  // Valid records after a damaged one, or a complete record that is refused: not an
+  // interrupted append. Cutting would delete them; the file stays as it is and the
+  // operator decides (salvage).
   if (survey->corrupt()) {
     recovery_.outcome = O::corrupt;
     return StatusCode::data_loss;
@@ -77,28 +90,41 @@ Status Station::start() {
     }
   }
   TWISTER_TRY(replay_journal(reader));
+  recovery_.outcome = O::recovered;
+  return ok_status();
+}
+
+Status Station::begin_appending() {
+  using O = JournalRecovery::Outcome;
+  if (recovery_.outcome != O::recovered || started_) return StatusCode::failed_precondition;
+  const journal::JournalSurvey& survey = recovery_.survey;
   // A torn tail (power cut mid-append) is cut so new records follow the last good one.
-  if (survey->torn_tail()) {
+  if (survey.torn_tail()) {
     if (const Status kept = keep_torn_tail(); !kept.ok()) {
       recovery_.outcome = O::tail_not_kept;
       return kept;
     }
-    if (const Status cut = reader.truncate_tail(); !cut.ok()) {
+    Status cut = storage_.truncate(survey.good_end);
+    if (cut.ok()) cut = storage_.sync();
+    if (!cut.ok()) {
       recovery_.outcome = O::io_error;
       return cut;
     }
-    recovery_.tail_cut = survey->file_size - survey->good_end;
+    recovery_.tail_cut = survey.file_size - survey.good_end;
   }
+  writer_.set_new_journal_id(files_.new_journal_id);
   if (const Status opened = writer_.open(); !opened.ok()) {
     recovery_.outcome = O::io_error;
     return opened;
   }
-  records_at_start_ = survey->records;
-  records_at_checkpoint_ = recovery_.checkpoint_records;
+  records_at_start_ = survey.records;
+  checkpoints_.reset(checkpoints_.base_checksum(), recovery_.checkpoint_records);
   recovery_.outcome = O::ok;
   started_ = true;
-  push_event({StationEventKind::journal_recovered, 0, static_cast<std::uint32_t>(survey->records),
-              recovery_.tail_cut, ok_status(), clock_.now_us()});
+  emit(session::make_event(session::SessionEventKind::journal_recovered, 0,
+                           session::payload::JournalRecovered{
+                               static_cast<std::uint32_t>(survey.records), recovery_.tail_cut}),
+       clock_.now_us());
   return ok_status();
 }
 
@@ -125,7 +151,7 @@ Status Station::use_checkpoint(const checkpoint::CheckpointHeader& h,
   ports::Storage& file = *files_.checkpoint_in;
   const session::UndoHistory& history = sculpt_.history();
   const mesh::Mesh& m = sculpt_.mesh();
-  if (h.base_checksum != base_checksum_ || h.change_capacity != history.change_capacity() ||
+  if (h.base_checksum != checkpoints_.base_checksum() || h.change_capacity != history.change_capacity() ||
       h.entry_capacity != history.entry_capacity() ||
       h.triangle_change_capacity != history.triangle_change_capacity() ||
       h.vertex_capacity != m.vertex_capacity() || h.triangle_capacity != m.triangle_capacity()) {

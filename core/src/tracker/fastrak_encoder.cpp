@@ -40,7 +40,7 @@ Result<std::size_t> encode_record(const FastrakPose& pose, const FastrakConfig& 
   if (!validate(config).ok() || pose.station < 1 || pose.station > kMaxStations) {
     return StatusCode::invalid_argument;
   }
-  const StationConfig& st = config.stations[pose.station - 1u];
+  const ReceiverConfig& st = config.stations[pose.station - 1u];
   if (!st.enabled) return StatusCode::invalid_argument;
   const Format fmt = config.format;
   const std::size_t len = record_length(st.list, fmt, config.ascii_stylus_width);

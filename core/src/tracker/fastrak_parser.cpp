@@ -71,7 +71,7 @@ Status FastrakParser::configure(const FastrakConfig& config) {
   const Status s = validate(config);
   config_ok_ = s.ok();
   for (std::size_t i = 0; i < record_len_.size(); ++i) {
-    const StationConfig& st = config.stations[i];
+    const ReceiverConfig& st = config.stations[i];
     record_len_[i] = (config_ok_ && st.enabled)
                          ? record_length(st.list, config.format, config.ascii_stylus_width)
                          : 0;
@@ -124,7 +124,7 @@ FastrakParser::Candidate FastrakParser::examine_record(const std::byte* p, std::
 FastrakParser::Candidate FastrakParser::decode_record(const std::byte* rec, std::size_t station,
                                                       std::size_t consumed,
                                                       FastrakEvent& out) const {
-  const StationConfig& st = config_.stations[station];
+  const ReceiverConfig& st = config_.stations[station];
   FastrakPose pose{};
   pose.station = static_cast<std::uint8_t>(station + 1);
   pose.status = ch(rec[2]);

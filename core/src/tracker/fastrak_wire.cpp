@@ -125,7 +125,7 @@ Status validate(const FastrakConfig& config) {
     return StatusCode::invalid_argument;
   }
   bool any = false;
-  for (const StationConfig& st : config.stations) {
+  for (const ReceiverConfig& st : config.stations) {
     if (!st.enabled) continue;
     any = true;
     if (st.list.count == 0 || st.list.count > kMaxItems) return StatusCode::invalid_argument;

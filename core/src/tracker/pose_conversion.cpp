@@ -77,7 +77,7 @@ Result<glm::dmat3> tracker_rotation(const FastrakPose& pose, Format format) {
   return StatusCode::failed_precondition;
 }
 
-Result<TrackedFrame> to_station_frame(const FastrakPose& pose, const PoseConversion& conv) {
+Result<Pose> to_station_frame(const FastrakPose& pose, const PoseConversion& conv) {
   if (pose.station < 1 || pose.station > kMaxStations) return StatusCode::invalid_argument;
   if (!pose.has_position) return StatusCode::failed_precondition;
   const std::size_t s = pose.station - 1u;
@@ -93,7 +93,7 @@ Result<TrackedFrame> to_station_frame(const FastrakPose& pose, const PoseConvers
   }
   const glm::dvec3 tool = p + r * conv.tool_offset_m[s];
   const glm::dmat3 world_r = conv.world_rotation * r;
-  TrackedFrame f;
+  Pose f;
   f.origin = conv.world_rotation * tool + conv.world_translation_m;
   f.u = world_r[0];
   f.v = world_r[1];

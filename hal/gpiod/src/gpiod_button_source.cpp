@@ -13,11 +13,10 @@ constexpr const char* kConsumer = "twister-station";
 GpiodButtonSource::~GpiodButtonSource() { close(); }
 
 void GpiodButtonSource::close() {
-  for (std::size_t i = 0; i < line_count_; ++i) {
-    if (lines_[i] != nullptr) gpiod_line_release(lines_[i]);
-    lines_[i] = nullptr;
+  for (const RequestedLine& l : lines_) {
+    if (l.line != nullptr) gpiod_line_release(l.line);
   }
-  line_count_ = 0;
+  lines_.clear();
   if (chip_ != nullptr) gpiod_chip_close(chip_);
   chip_ = nullptr;
 }
@@ -60,9 +59,8 @@ Status GpiodButtonSource::open(const GpiodButtonConfig& config) {
       close();
       return StatusCode::io_error;
     }
-    lines_[line_count_] = line;
-    fds_[line_count_] = gpiod_line_event_get_fd(line);
-    ++line_count_;
+    // Fits: config.lines.size() <= kMaxLines was checked above.
+    lines_.push_back({line, gpiod_line_event_get_fd(line)}).ignore();
   }
   next_line_ = 0;
   last_errno_ = 0;
@@ -71,7 +69,7 @@ Status GpiodButtonSource::open(const GpiodButtonConfig& config) {
 
 std::size_t GpiodButtonSource::do_poll_fds(std::span<pollfd> out) const {
   std::size_t n = 0;
-  for (; n < line_count_ && n < out.size(); ++n) out[n] = {fds_[n], POLLIN, 0};
+  for (; n < lines_.size() && n < out.size(); ++n) out[n] = {lines_[n].fd, POLLIN, 0};
   return n;
 }
 
@@ -81,16 +79,17 @@ Status GpiodButtonSource::do_reopen() {
 }
 
 Result<ports::ButtonEdge> GpiodButtonSource::do_poll() {
-  if (line_count_ == 0) return StatusCode::failed_precondition;
+  const std::size_t count = lines_.size();
+  if (count == 0) return StatusCode::failed_precondition;
   std::array<pollfd, kMaxLines> pfds{};
-  for (std::size_t i = 0; i < line_count_; ++i) pfds[i] = {fds_[i], POLLIN, 0};
-  const int n = ::poll(pfds.data(), line_count_, 0);
+  for (std::size_t i = 0; i < count; ++i) pfds[i] = {lines_[i].fd, POLLIN, 0};
+  const int n = ::poll(pfds.data(), count, 0);
   if (n < 0) {
     last_errno_ = errno;
     return errno == EINTR ? StatusCode::unavailable : StatusCode::io_error;
   }
-  for (std::size_t k = 0; k < line_count_; ++k) {
-    const std::size_t i = (next_line_ + k) % line_count_;
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::size_t i = (next_line_ + k) % count;
     if ((pfds[i].revents & (POLLERR | POLLHUP | POLLNVAL)) != 0 &&
         (pfds[i].revents & POLLIN) == 0) {
       last_errno_ = ENODEV;
@@ -98,11 +97,11 @@ Result<ports::ButtonEdge> GpiodButtonSource::do_poll() {
     }
     if ((pfds[i].revents & POLLIN) == 0) continue;
     gpiod_line_event event{};
-    if (gpiod_line_event_read_fd(fds_[i], &event) != 0) {
+    if (gpiod_line_event_read_fd(lines_[i].fd, &event) != 0) {
       last_errno_ = errno;
       return StatusCode::io_error;
     }
-    next_line_ = (i + 1) % line_count_;
+    next_line_ = (i + 1) % count;
     ports::ButtonEdge edge;
     edge.line = static_cast<std::uint8_t>(i);
     edge.pressed = event.event_type == GPIOD_LINE_EVENT_RISING_EDGE;

@@ -9,7 +9,7 @@ HidapiButtonSource::~HidapiButtonSource() { close(); }
 void HidapiButtonSource::close() {
   if (device_ != nullptr) hid_close(device_);
   device_ = nullptr;
-  pending_count_ = pending_pos_ = 0;
+  pending_.clear();
 }
 
 Status HidapiButtonSource::open(const HidapiButtonConfig& config) {
@@ -43,18 +43,26 @@ Status HidapiButtonSource::do_reopen() {
 }
 
 Result<ports::ButtonEdge> HidapiButtonSource::do_poll() {
-  if (pending_pos_ < pending_count_) return pending_[pending_pos_++];
+  if (!pending_.empty()) return take_pending();
   if (device_ == nullptr) return StatusCode::failed_precondition;
   // Drain queued reports until one changes a button (or none is left).
   for (;;) {
     const int n = hid_read(device_, report_.data(), report_.size());
     if (n < 0) return StatusCode::io_error;  // unplugged or read error
     if (n == 0) return StatusCode::unavailable;
-    pending_count_ = decoder_.decode(std::span(report_.data(), static_cast<std::size_t>(n)),
-                                     clock_.now_us(), pending_);
-    pending_pos_ = 0;
-    if (pending_count_ > 0) return pending_[pending_pos_++];
+    const auto report = std::span(report_.data(), static_cast<std::size_t>(n));
+    // pending_ is empty here and holds one edge per button: every edge fits.
+    for (const ports::ButtonEdge& e : decoder_.decode(report, clock_.now_us())) {
+      pending_.push(e).ignore();
+    }
+    if (!pending_.empty()) return take_pending();
   }
+}
+
+ports::ButtonEdge HidapiButtonSource::take_pending() {
+  const ports::ButtonEdge e = pending_.front();
+  pending_.pop_front();
+  return e;
 }
 
 }  // namespace twister::hal

@@ -74,13 +74,10 @@ void LibusbCallbacks::on_in_transfer(libusb_transfer* transfer) {
       transfer->status == LIBUSB_TRANSFER_TIMED_OUT) {
     const auto n = static_cast<std::size_t>(std::max(transfer->actual_length, 0));
     for (std::size_t i = 0; i < n; ++i) {
-      if (s->rx_count_ == LibusbByteStream::kRxBytes) {
+      if (!s->rx_.push(static_cast<std::byte>(s->in_buffer_[i])).ok()) {
         s->rx_dropped_ += n - i;
         break;
       }
-      s->rx_[(s->rx_head_ + s->rx_count_) % LibusbByteStream::kRxBytes] =
-          static_cast<std::byte>(s->in_buffer_[i]);
-      ++s->rx_count_;
     }
     if (s->handle_ != nullptr && libusb_submit_transfer(transfer) == 0) s->in_flight_ = true;
     return;
@@ -99,19 +96,20 @@ void LibusbByteStream::pump_events() {
 }
 
 void LibusbByteStream::add_fd(int fd, short events) {
-  for (std::size_t i = 0; i < usb_fd_count_; ++i) {
-    if (usb_fds_[i].fd == fd) {
-      usb_fds_[i].events = events;
+  for (pollfd& p : usb_fds_) {
+    if (p.fd == fd) {
+      p.events = events;
       return;
     }
   }
-  if (usb_fd_count_ < usb_fds_.size()) usb_fds_[usb_fd_count_++] = {fd, events, 0};
+  usb_fds_.push_back({fd, events, 0}).ignore();  // more than kMaxFds: not polled
 }
 
 void LibusbByteStream::remove_fd(int fd) {
-  for (std::size_t i = 0; i < usb_fd_count_; ++i) {
-    if (usb_fds_[i].fd == fd) {
-      usb_fds_[i] = usb_fds_[--usb_fd_count_];
+  for (pollfd& p : usb_fds_) {
+    if (p.fd == fd) {
+      p = usb_fds_.back();  // order does not matter: the last one takes its place
+      usb_fds_.pop_back();
       return;
     }
   }
@@ -119,7 +117,7 @@ void LibusbByteStream::remove_fd(int fd) {
 
 std::size_t LibusbByteStream::do_poll_fds(std::span<pollfd> out) const {
   if (handle_ == nullptr) return 0;
-  const std::size_t n = std::min(usb_fd_count_, out.size());
+  const std::size_t n = std::min(usb_fds_.size(), out.size());
   std::copy_n(usb_fds_.begin(), n, out.begin());
   return n;
 }
@@ -152,7 +150,7 @@ Status LibusbByteStream::do_reopen() {
   if (ctx_ == nullptr) return StatusCode::failed_precondition;
   close();
   arrived_ = false;
-  rx_head_ = rx_count_ = 0;
+  rx_.clear();
   handle_ = libusb_open_device_with_vid_pid(ctx_, config_.vendor_id, config_.product_id);
   if (handle_ == nullptr) return StatusCode::unavailable;
   libusb_set_auto_detach_kernel_driver(handle_, 1);
@@ -178,11 +176,7 @@ Result<std::size_t> LibusbByteStream::do_read(std::span<std::byte> dest) {
     if (const int rc = libusb_submit_transfer(in_transfer_); rc != 0) return gone(rc);
     in_flight_ = true;
   }
-  const std::size_t n = std::min(dest.size(), rx_count_);
-  for (std::size_t i = 0; i < n; ++i) dest[i] = rx_[(rx_head_ + i) % kRxBytes];
-  rx_head_ = (rx_head_ + n) % kRxBytes;
-  rx_count_ -= n;
-  return n;
+  return rx_.pop_front_into(dest);
 }
 
 Result<std::size_t> LibusbByteStream::do_write(std::span<const std::byte> src) {
@@ -204,7 +198,7 @@ Result<std::size_t> LibusbByteStream::do_write(std::span<const std::byte> src) {
 
 void LibusbByteStream::do_discard_input() {
   pump_events();
-  rx_head_ = rx_count_ = 0;
+  rx_.clear();
 }
 
 }  // namespace twister::hal

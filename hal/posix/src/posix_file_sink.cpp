@@ -1,6 +1,7 @@
 // PosixFileSink: errno is translated to StatusCode here, at the boundary.
 #include "twister/hal/posix_file_sink.hpp"
 
+#include <dirent.h>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -10,6 +11,8 @@
 #include <cstdio>
 #include <cstring>
 #include <utility>
+
+#include "twister/hal/output_file.hpp"
 
 namespace twister::hal {
 namespace {
@@ -38,6 +41,46 @@ const char* kind_of(mode_t mode) {
 }
 
 }  // namespace
+
+namespace {
+
+// "DIGITS-DIGITS" and nothing else.
+bool is_temp_suffix(const char* s) {
+  int groups = 0;
+  for (;;) {
+    if (*s < '0' || *s > '9') return false;
+    while (*s >= '0' && *s <= '9') ++s;
+    ++groups;
+    if (*s == '\0') return groups == 2;
+    if (*s != '-' || groups == 2) return false;
+    ++s;
+  }
+}
+
+}  // namespace
+
+int PosixFileSink::remove_stale_temporaries(const std::string& path) {
+  const std::string dir = directory_of(path);
+  const auto slash = path.rfind('/');
+  const std::string prefix = (slash == std::string::npos ? path : path.substr(slash + 1)) + ".tmp-";
+  DIR* d = ::opendir(dir.c_str());
+  if (d == nullptr) return 0;
+  int removed = 0;
+  while (const dirent* e = ::readdir(d)) {
+    if (std::strncmp(e->d_name, prefix.c_str(), prefix.size()) != 0 ||
+        !is_temp_suffix(e->d_name + prefix.size())) {
+      continue;
+    }
+    struct stat st {};
+    if (::fstatat(::dirfd(d), e->d_name, &st, AT_SYMLINK_NOFOLLOW) != 0 || !S_ISREG(st.st_mode)) {
+      continue;
+    }
+    if (::unlinkat(::dirfd(d), e->d_name, 0) == 0) ++removed;
+  }
+  ::closedir(d);
+  if (removed > 0) sync_directory(dir.c_str());
+  return removed;
+}
 
 PosixFileSink::PosixFileSink(PosixFileSinkConfig config)
     : config_(std::move(config)), directory_(directory_of(config_.path)) {}
@@ -109,10 +152,19 @@ Status PosixFileSink::check_target() {
     last_errno_ = 0;
     return StatusCode::failed_precondition;
   }
+  if (config_.replace == PosixFileSinkConfig::Replace::output) {
+    last_errno_ = 0;
+    const Status s = inspect_output_target(config_.path.c_str(), config_.output, last_error_.data(),
+                                           last_error_.size());
+    if (s.code() == StatusCode::io_error) last_errno_ = errno;
+    return s;
+  }
   if (config_.replace != PosixFileSinkConfig::Replace::own_magic) return ok_status();
+  // An empty file holds nothing (a checkpoint whose writer died before it wrote).
+  if (st.st_size == 0) return ok_status();
   std::array<std::byte, 16> head{};
   const std::size_t want = std::min(head.size(), config_.magic.size());
-  const int fd = ::open(config_.path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+  const int fd = ::open(config_.path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
   const ssize_t n = fd >= 0 ? ::read(fd, head.data(), want) : -1;
   if (fd >= 0) ::close(fd);
   if (n != static_cast<ssize_t>(want) ||
@@ -201,6 +253,20 @@ void PosixFileSink::do_abort() {
     ::unlink(temp_path_.data());
     temp_path_[0] = '\0';
   }
+}
+
+Expected<void> write_output_file(const std::string& path, std::string_view bytes, OutputRule rule) {
+  PosixFileSinkConfig config;
+  config.path = path;
+  config.replace = PosixFileSinkConfig::Replace::output;
+  config.output = rule;
+  PosixFileSink sink(config);
+  Status s = sink.begin();
+  if (s.ok()) s = sink.write(std::as_bytes(std::span(bytes.data(), bytes.size())));
+  if (s.ok()) s = sink.commit();
+  if (s.ok()) return {};
+  sink.abort();
+  return Error{s, "cannot write " + path + ": " + sink.last_error()};
 }
 
 }  // namespace twister::hal

@@ -42,9 +42,23 @@ Status PosixFileStorage::open(const PosixFileStorageConfig& config) {
     return StatusCode::unavailable;
   }
   const int access = config.read_only ? O_RDONLY : O_RDWR | O_APPEND;
-  const int flags = access | O_CLOEXEC | (config.create_if_missing ? O_CREAT : 0);
+  // O_NONBLOCK: a FIFO or device at the path never blocks the open; only a regular
+  // file is used (a journal or checkpoint is nothing else).
+  const int flags = access | O_CLOEXEC | O_NONBLOCK | (config.create_if_missing ? O_CREAT : 0);
   const int fd = ::open(config.path.c_str(), flags, 0644);
+  if (fd < 0 && errno == EISDIR) {
+    last_errno_ = EISDIR;
+    return StatusCode::invalid_argument;
+  }
   if (fd < 0) return fail(errno);
+  struct stat opened {};
+  if (::fstat(fd, &opened) != 0 || !S_ISREG(opened.st_mode)) {
+    const int err = S_ISDIR(opened.st_mode) ? EISDIR : EINVAL;
+    ::close(fd);
+    last_errno_ = err;
+    return StatusCode::invalid_argument;
+  }
+  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
   fd_ = fd;
   last_errno_ = 0;
   lock_holder_pid_ = 0;

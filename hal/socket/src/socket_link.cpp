@@ -5,6 +5,7 @@
 #include <grp.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
+#include <poll.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/un.h>
@@ -135,13 +136,15 @@ Expected<void> SocketLink::prepare_unix_path() {
     return make_error(StatusCode::failed_precondition,
                       std::string(path) + " exists and is not a socket; left untouched");
   }
-  // A socket file: stale (nobody listens: connect is refused) or a live station's.
-  const int probe = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  // A socket file: stale (nobody listens: connect is refused) or a live program's.
+  // Non-blocking: a listener whose backlog is full answers EAGAIN at once instead
+  // of holding start-up (and the journal's lock) until it accepts.
+  const int probe = ::socket(AF_UNIX, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
   if (probe < 0) return make_error(StatusCode::io_error, "socket: " + errno_text(errno));
   const int rc = ::connect(probe, reinterpret_cast<const sockaddr*>(&address_), address_length_);
   const int err = errno;
   ::close(probe);
-  if (rc == 0) {
+  if (rc == 0 || err == EAGAIN || err == EINPROGRESS) {
     return make_error(StatusCode::failed_precondition,
                       std::string(path) +
                           ": another process (a running station?) listens on it; refusing to "
@@ -326,25 +329,44 @@ void SocketLink::do_admit_newcomer() {
 
 void SocketLink::do_refuse_newcomer() { close_fd(newcomer_fd_); }
 
+bool SocketLink::connect_within(int fd, int timeout_ms) {
+  if (::connect(fd, reinterpret_cast<const sockaddr*>(&address_), address_length_) == 0) {
+    return true;
+  }
+  if (errno != EINPROGRESS) {
+    last_errno_ = errno;
+    return false;
+  }
+  pollfd p{fd, POLLOUT, 0};
+  int n = 0;
+  do {
+    n = ::poll(&p, 1, timeout_ms);
+  } while (n < 0 && errno == EINTR);
+  int err = n == 0 ? ETIMEDOUT : 0;
+  socklen_t len = sizeof err;
+  if (n > 0) ::getsockopt(fd, SOL_SOCKET, SO_ERROR, &err, &len);
+  if (n < 0) err = errno;
+  last_errno_ = err;
+  return err == 0;
+}
+
 bool SocketLink::ensure_client() {
   if (peer_fd_ >= 0) return true;
   const std::int64_t now = now_ms();
   if (now < next_attempt_ms_) return false;
   next_attempt_ms_ = now + config_.reconnect_interval_ms;
   if (!address_ok_) return false;
-  const int fd = ::socket(address_.ss_family, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  const int fd = ::socket(address_.ss_family, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
   if (fd < 0) {
     last_errno_ = errno;
     return false;
   }
-  // A blocking connect is immediate on loopback/Unix sockets (refused or accepted).
-  if (::connect(fd, reinterpret_cast<const sockaddr*>(&address_), address_length_) != 0) {
-    last_errno_ = errno;
+  // Non-blocking, with a deadline: a Unix listener with a full backlog answers
+  // EAGAIN (try again later); a TCP connect gets kConnectTimeoutMs to complete.
+  if (!connect_within(fd, kConnectTimeoutMs)) {
     ::close(fd);
     return false;
   }
-  const int flags = fcntl(fd, F_GETFL);
-  fcntl(fd, F_SETFL, flags | O_NONBLOCK);
   tune(fd, address_.ss_family);
   peer_fd_ = fd;
   ++connects_;

@@ -102,6 +102,12 @@ bool ConfigReader::string(std::string_view key, bool required, std::string& out,
     error(node, key, "expected a non-empty string, got \"\"");
     return false;
   }
+  // A NUL would cut a path short where the system reads it (station.journal = "a\u0000b"
+  // opens "a"): no key takes one.
+  if (v.find('\0') != std::string::npos) {
+    error(node, key, "expected a string without NUL characters (\\u0000), got one");
+    return false;
+  }
   out = v;
   return true;
 }

@@ -61,7 +61,7 @@ std::string unauthenticated_tcp_problem(const LinkSection& link) {
          "got \"" + link.address + "\"";
 }
 
-void read_link(ConfigReader& root, StationConfig& cfg) {
+void read_link(ConfigReader& root, StationFileConfig& cfg) {
   ConfigReader l = root.table("link", false);
   LinkSection& lc = cfg.link;
   bool loopback = true;

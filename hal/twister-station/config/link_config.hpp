@@ -11,7 +11,7 @@ namespace twister::station_app::internal {
 // Reads and checks [link]: every key's type and range, the address form, and the
 // rules across keys (a non-loopback TCP address needs listen = "network", which
 // needs psk_file).
-void read_link(ConfigReader& root, StationConfig& cfg);
+void read_link(ConfigReader& root, StationFileConfig& cfg);
 
 // "" unless `link` is a TCP address without psk_file and without
 // allow_unauthenticated_tcp; then what is wrong and how to fix it.

@@ -30,7 +30,7 @@ const char* to_string(SculptAction a) {
   return "?";
 }
 
-std::size_t button_line_count(const StationConfig& config) {
+std::size_t button_line_count(const StationFileConfig& config) {
   switch (config.buttons.backend) {
     case ButtonBackend::gpiod:
       return config.buttons.gpiod.lines.size();
@@ -98,7 +98,7 @@ std::string lines_text(const std::vector<std::uint8_t>& lines) {
 }
 
 // The lines the backend has; with the stylus only its hand's grab exists.
-void check_lines_exist(ConfigReader& s, const StationConfig& cfg, const ButtonBindingConfig& b) {
+void check_lines_exist(ConfigReader& s, const StationFileConfig& cfg, const ButtonBindingConfig& b) {
   const std::size_t count = button_line_count(cfg);
   if (cfg.buttons.backend == ButtonBackend::stylus) {
     const std::uint8_t stylus_hand = cfg.tracker.left_station == 1 ? 0 : 1;
@@ -126,7 +126,7 @@ void check_lines_exist(ConfigReader& s, const StationConfig& cfg, const ButtonBi
 }
 
 // One own action per line; chords distinct and at most kMaxSculptChords.
-void check_map(ConfigReader& s, const StationConfig& cfg) {
+void check_map(ConfigReader& s, const StationFileConfig& cfg) {
   const std::vector<ButtonBindingConfig>& all = cfg.sculpt.buttons;
   std::size_t chords = 0;
   for (std::size_t i = 0; i < all.size(); ++i) {
@@ -146,7 +146,7 @@ void check_map(ConfigReader& s, const StationConfig& cfg) {
   }
 }
 
-void read_buttons_of(ConfigReader& buttons, std::uint8_t hand, StationConfig& cfg) {
+void read_buttons_of(ConfigReader& buttons, std::uint8_t hand, StationFileConfig& cfg) {
   ConfigReader h = buttons.table(kHandNames[hand], false);
   for (const SculptAction action : kActions) {
     const toml::node* node = h.value(to_string(action));
@@ -182,7 +182,7 @@ void read_radius(ConfigReader& s, SculptConfig& sc) {
 
 }  // namespace
 
-void read_sculpt(ConfigReader& root, StationConfig& cfg) {
+void read_sculpt(ConfigReader& root, StationFileConfig& cfg) {
   ConfigReader s = root.table("sculpt", false);
   SculptConfig& sc = cfg.sculpt;
   std::string text;

@@ -11,6 +11,6 @@
 
 namespace twister::station_app::internal {
 
-void read_sculpt(ConfigReader& root, StationConfig& cfg);
+void read_sculpt(ConfigReader& root, StationFileConfig& cfg);
 
 }  // namespace twister::station_app::internal

@@ -28,7 +28,7 @@ void read_u(ConfigReader& r, std::string_view key, bool required, std::int64_t m
   if (r.integer(key, required, min, max, v)) out = static_cast<T>(v);
 }
 
-void read_tracker(ConfigReader& root, StationConfig& cfg) {
+void read_tracker(ConfigReader& root, StationFileConfig& cfg) {
   ConfigReader t = root.table("tracker", true);
   TrackerConfig& tc = cfg.tracker;
   std::string backend;
@@ -160,7 +160,7 @@ void read_hidapi(ConfigReader& b, ButtonsConfig& bc, bool required) {
   h.finish();
 }
 
-void read_buttons(ConfigReader& root, StationConfig& cfg) {
+void read_buttons(ConfigReader& root, StationFileConfig& cfg) {
   ConfigReader b = root.table("buttons", true);
   ButtonsConfig& bc = cfg.buttons;
   std::string backend;
@@ -182,7 +182,7 @@ void read_buttons(ConfigReader& root, StationConfig& cfg) {
   b.finish();
 }
 
-void read_station(ConfigReader& root, StationConfig& cfg) {
+void read_station(ConfigReader& root, StationFileConfig& cfg) {
   ConfigReader s = root.table("station", true);
   s.string("journal", s.present(), cfg.station.journal);
   s.string("mesh", s.present(), cfg.station.mesh);
@@ -192,7 +192,7 @@ void read_station(ConfigReader& root, StationConfig& cfg) {
   s.finish();
 }
 
-void read_systemd(ConfigReader& root, StationConfig& cfg) {
+void read_systemd(ConfigReader& root, StationFileConfig& cfg) {
   ConfigReader d = root.table("systemd", false);
   d.boolean("notify", cfg.systemd.notify);
   d.boolean("watchdog", cfg.systemd.watchdog);

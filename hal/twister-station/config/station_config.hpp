@@ -1,4 +1,4 @@
-// StationConfig: everything twister-station reads from its TOML file, already
+// StationFileConfig: everything twister-station reads from its TOML file, already
 // validated. parse_station_config() checks every key, type and value and reports
 // each problem with file, line, the key's dotted name and the expected form; a
 // config with any error is refused as a whole (the station never guesses).
@@ -160,7 +160,7 @@ struct SystemdConfig {
   bool watchdog = true;  // WATCHDOG=1 at half of WATCHDOG_USEC when the unit sets it
 };
 
-struct StationConfig {
+struct StationFileConfig {
   StationSection station;
   TrackerConfig tracker;
   ButtonsConfig buttons;
@@ -179,7 +179,7 @@ struct ConfigError {
 };
 
 struct ConfigParseResult {
-  StationConfig config;
+  StationFileConfig config;
   std::vector<ConfigError> errors;  // empty = valid
   bool ok() const { return errors.empty(); }
 };
@@ -196,7 +196,7 @@ ConfigParseResult load_station_config(const std::string& path);
 
 // How many button lines the configured button backend provides: gpiod lines, hidapi
 // buttons, 16 scripted simulator lines, 1 for the stylus.
-std::size_t button_line_count(const StationConfig& config);
+std::size_t button_line_count(const StationFileConfig& config);
 
 // Short names used in logs and messages ("serial", "gpiod", ...).
 const char* to_string(TrackerBackend b);

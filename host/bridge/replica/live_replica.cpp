@@ -45,7 +45,7 @@ bool SceneReplica::ensure_plan() {
   std::array<math::Frame, 2> start{};
   std::size_t hands = 0;
   for (std::size_t h = 0; h < link::kLinkHands; ++h) {
-    if ((stroke_.hand_mask & (1u << h)) != 0) start[hands++] = link::to_frame(stroke_.start[h]);
+    if ((stroke_.hand_mask & (1u << h)) != 0) start[hands++] = stroke_.start[h];
   }
   live_.weight1.assign(n, 0.0F);
   live_.weight2.assign(n, 0.0F);
@@ -115,7 +115,7 @@ void SceneReplica::on_hands(const link::Hands& h) {
     if (stroke_on && !stroke_ok) {
       v.present = false;  // relative to a start frame we do not hold yet
     } else if (v.in_stroke) {
-      v.pose = link::live_end_frame(link::to_frame(stroke_.start[k]), h.hands[k]);
+      v.pose = link::live_end_frame(stroke_.start[k], h.hands[k]);
     } else {
       v.pose = link::from_compact(h.hands[k]);
     }
@@ -139,13 +139,14 @@ void SceneReplica::update_live(const link::Hands& h) {
   live_.method = static_cast<math::WarpMethod>(stroke_.method);
   live_.hand_mask = stroke_.hand_mask;
   live_.radius_m = stroke_.radius_m;
-  live_.hand_count = 0;
+  live_.hands.clear();
   for (std::size_t k = 0; k < link::kLinkHands; ++k) {
     if ((stroke_.hand_mask & (1u << k)) == 0) continue;
     if (!hands_[k].present) return;  // a stroke hand without its sample: not drawn
-    LiveHand& lh = live_.hands[live_.hand_count++];
+    live_.hands.push_back({}).ignore();  // one per link hand: fits
+    LiveHand& lh = live_.hands.back();
     lh.session_hand = static_cast<std::uint8_t>(k);
-    lh.start = link::to_frame(stroke_.start[k]);
+    lh.start = stroke_.start[k];
     lh.end = hands_[k].pose;
     lh.screw = link::live_screw(lh.start, lh.end, h.hands[k]);
   }
@@ -162,15 +163,15 @@ MeshData SceneReplica::cpu_warp() const {
   if (live_.method == math::WarpMethod::scodef) {
     // scodef has no screw: the plan's own update from the end frames.
     math::WarpPlan copy = plan;
-    std::array<math::Frame, 2> end{};
-    for (std::size_t k = 0; k < live_.hand_count; ++k) end[k] = live_.hands[k].end;
-    if (!copy.update(std::span<const math::Frame>(end.data(), live_.hand_count)).ok()) return {};
+    math::PlanFrames end;
+    for (const LiveHand& lh : live_.hands) end.push_back(lh.end).ignore();  // as many: fits
+    if (!copy.update(end).ok()) return {};
     (void)copy.apply(rest, math::VertexColumns{out.x, out.y, out.z});
     return out;
   }
   std::array<math::KernelHand, 2> k{};
   bool long_way = false;
-  for (std::size_t i = 0; i < live_.hand_count; ++i) {
+  for (std::size_t i = 0; i < live_.hands.size(); ++i) {
     const LiveHand& lh = live_.hands[i];
     math::fill_kernel_hand(k[i], lh.screw, lh.start, lh.end, live_.method);
     long_way = long_way || lh.screw.angle > 3.141592653589793;
@@ -178,7 +179,7 @@ MeshData SceneReplica::cpu_warp() const {
   const auto idx = plan.indices();
   const auto w1 = plan.weights(0);
   std::vector<float> zeros(idx.size(), 0.0F);
-  const auto w2 = live_.hand_count == 2 ? plan.weights(1) : std::span<const float>(zeros);
+  const auto w2 = live_.hands.size() == 2 ? plan.weights(1) : std::span<const float>(zeros);
   std::vector<float> gx(idx.size()), gy(idx.size()), gz(idx.size());
   std::vector<float> rx(idx.size()), ry(idx.size()), rz(idx.size());
   for (std::size_t i = 0; i < idx.size(); ++i) {
@@ -190,7 +191,7 @@ MeshData SceneReplica::cpu_warp() const {
                            rx.data(), ry.data(), rz.data(), idx.size()};
   // The station's simd kernel; the scalar one past a half turn (the simd sin/cos
   // covers half angles up to pi/2 only on this core).
-  if (live_.hand_count == 2) {
+  if (live_.hands.size() == 2) {
     long_way ? math::warp_two_scalar(k[0], k[1], s) : math::warp_two_simd(k[0], k[1], s);
   } else {
     long_way ? math::warp_one_scalar(k[0], s) : math::warp_one_simd(k[0], s);
@@ -209,21 +210,19 @@ LiveMessages make_live_messages(std::uint32_t mesh_version, std::uint32_t stroke
                                 const std::array<math::Frame, 2>& end,
                                 const std::array<math::Screw, 2>* screws) {
   LiveMessages out;
-  out.stroke.type = link::MessageType::stroke;
-  out.stroke.stroke = link::StrokeBegin{stroke,    mesh_version, static_cast<std::uint8_t>(method),
-                                        hand_mask, radius_m,     {}};
-  out.hands.type = link::MessageType::hands;
-  out.hands.hands.stroke = static_cast<std::uint16_t>(stroke);
-  out.hands.hands.flags = link::kStrokeActive;
-  out.hands.hands.radius_m = static_cast<float>(radius_m);
+  out.stroke = link::StrokeBegin{stroke,    mesh_version, static_cast<std::uint8_t>(method),
+                                 hand_mask, radius_m,     {}};
+  out.hands.stroke = static_cast<std::uint16_t>(stroke);
+  out.hands.flags = link::kStrokeActive;
+  out.hands.radius_m = static_cast<float>(radius_m);
   std::size_t k = 0;
   for (std::size_t h = 0; h < link::kLinkHands; ++h) {
     if ((hand_mask & (1u << h)) == 0) continue;
     const math::Screw s = screws != nullptr ? (*screws)[k] : math::compute_screw(start[k], end[k]);
-    out.stroke.stroke.start[h] = link::to_wire(start[k]);
-    out.hands.hands.hands[h] = link::to_live_compact(start[k], end[k], s);
-    out.hands.hands.flags = static_cast<std::uint8_t>(
-        out.hands.hands.flags | (link::kHandSample0 << h) | (link::kHandTracked0 << h));
+    out.stroke.start[h] = start[k];
+    out.hands.hands[h] = link::to_live_compact(start[k], end[k], s);
+    out.hands.flags = static_cast<std::uint8_t>(out.hands.flags | (link::kHandSample0 << h) |
+                                                (link::kHandTracked0 << h));
     ++k;
   }
   return out;

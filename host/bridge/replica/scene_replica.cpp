@@ -47,41 +47,30 @@ std::optional<link::ResendRequest> SceneReplica::request() {
 
 std::optional<link::ResendRequest> SceneReplica::apply(const link::LinkMessage& m) {
   std::optional<link::ResendRequest> out;
-  switch (m.type) {
-    case link::MessageType::mesh_begin:
-      begin(m.mesh_begin);
-      if (!m.mesh_begin.full && !staging_ && m.mesh_begin.base_version != version_ &&
-          m.mesh_begin.vertex_count <= limits_.max_vertices &&
-          m.mesh_begin.triangle_count <= limits_.max_triangles) {
-        ++counters_.version_gaps;  // we missed a commit (link loss): start over
-        out = request();
-      }
-      break;
-    case link::MessageType::vertices:
-      on_vertices(m.vertices);
-      break;
-    case link::MessageType::triangles:
-      on_triangles(m.triangles);
-      break;
-    case link::MessageType::mesh_end:
-      end(m.mesh_end, out);
-      break;
-    case link::MessageType::stroke:
-      on_stroke(m.stroke);
-      break;
-    case link::MessageType::hands:
-      on_hands(m.hands);
-      break;
-    case link::MessageType::object:
-      object_pose_ = link::from_compact(m.object.pose);
-      break;
-    case link::MessageType::status:
-      status_ = m.status;
-      has_status_ = true;
-      break;
-    default:
-      break;  // handshake messages belong to BridgeApp; resend_request to the station
+  if (const auto* b = std::get_if<link::MeshBegin>(&m)) {
+    begin(*b);
+    if (!b->full && !staging_ && b->base_version != version_ &&
+        b->vertex_count <= limits_.max_vertices && b->triangle_count <= limits_.max_triangles) {
+      ++counters_.version_gaps;  // we missed a commit (link loss): start over
+      out = request();
+    }
+  } else if (const auto* v = std::get_if<link::Vertices>(&m)) {
+    on_vertices(*v);
+  } else if (const auto* t = std::get_if<link::Triangles>(&m)) {
+    on_triangles(*t);
+  } else if (const auto* e = std::get_if<link::MeshEnd>(&m)) {
+    end(*e, out);
+  } else if (const auto* stroke = std::get_if<link::StrokeBegin>(&m)) {
+    on_stroke(*stroke);
+  } else if (const auto* hands = std::get_if<link::Hands>(&m)) {
+    on_hands(*hands);
+  } else if (const auto* object = std::get_if<link::ObjectPose>(&m)) {
+    object_pose_ = link::from_compact(object->pose);
+  } else if (const auto* status = std::get_if<link::StatusReport>(&m)) {
+    status_ = *status;
+    has_status_ = true;
   }
+  // Handshake messages belong to BridgeApp; resend_request to the station.
   return out;
 }
 

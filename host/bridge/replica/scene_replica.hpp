@@ -22,6 +22,7 @@
 #include <optional>
 #include <vector>
 
+#include "twister/base/inline_vector.hpp"
 #include "twister/link/link_message.hpp"
 #include "twister/math/frame.hpp"
 #include "twister/math/screw.hpp"
@@ -89,10 +90,9 @@ struct LiveState {
   bool active = false;
   math::WarpMethod method = math::WarpMethod::twister;
   std::uint8_t hand_mask = 0;  // session hands in the stroke (bit h)
-  std::size_t hand_count = 0;  // plan hands (entries of `hands`)
   std::uint32_t stroke = 0;
   double radius_m = 0.0;
-  std::array<LiveHand, link::kLinkHands> hands{};
+  InlineVector<LiveHand, link::kLinkHands> hands;  // the plan's hands, in plan order
   std::vector<float> weight1, weight2;  // per vertex, plan hands 0 and 1 (0 = not influenced)
   // Per vertex (x y z each), the gradient of weight1 / weight2 at the rest position
   // (core's decay with the squash, by central differences): with the screw's own
@@ -181,8 +181,8 @@ class SceneReplica {
 // a stroke of the session hands in `hand_mask` from `start` to `end` (plan order),
 // with the screws math::compute_screw gives (previous axes as given).
 struct LiveMessages {
-  link::LinkMessage stroke;
-  link::LinkMessage hands;
+  link::StrokeBegin stroke;
+  link::Hands hands;
 };
 LiveMessages make_live_messages(std::uint32_t mesh_version, std::uint32_t stroke,
                                 math::WarpMethod method, double radius_m, std::uint8_t hand_mask,

@@ -4,6 +4,7 @@
 #include <glm/geometric.hpp>
 #include <memory>
 
+#include "twister/base/inline_vector.hpp"
 #include "twister/math/warp_plan.hpp"
 
 namespace twister::bridge {
@@ -51,13 +52,13 @@ void WeightPreview::rebuild(const MeshData& mesh, const std::array<glm::dvec3, 2
   p2_.resize(n);
   auto plan = std::make_unique<math::WarpPlan>(math::WarpPlanStorage{indices_, p1_, p2_});
   const math::ConstVertexColumns rest{mesh.x, mesh.y, mesh.z};
-  std::array<math::Frame, 2> start{};
-  std::array<std::size_t, 2> session{};
-  std::size_t count = 0;
+  math::PlanFrames start;  // weights depend on the grab point only
+  InlineVector<std::size_t, math::kMaxHands> session;
+  static_assert(link::kLinkHands == math::kMaxHands);  // one entry per hand: fits
   for (std::size_t h = 0; h < link::kLinkHands; ++h) {
     if ((mask & (1u << h)) == 0) continue;
-    session[count] = h;
-    start[count++] = math::identity_frame(at[h]);  // weights depend on the grab point only
+    session.push_back(h).ignore();
+    start.push_back(math::identity_frame(at[h])).ignore();
   }
   const auto copy_out = [this, &plan, &session](std::size_t first) {
     const auto idx = plan->indices();
@@ -67,19 +68,16 @@ void WeightPreview::rebuild(const MeshData& mesh, const std::array<glm::dvec3, 2
       for (std::size_t i = 0; i < idx.size(); ++i) column[idx[i]] = w[i];
     }
   };
-  const Status both = plan->build(rest, std::span<const math::Frame>(start.data(), count), radius_m,
-                                  math::WarpMethod::twister);
+  const Status both = plan->build(rest, start, radius_m, math::WarpMethod::twister);
   if (both.ok()) {
     copy_out(0);
     return;
   }
-  if (count < 2) return;
+  if (start.size() < 2) return;
   // Both hands at one point: the squash is undefined (the station refuses such a
   // grab too); show each hand's own ball.
-  for (std::size_t k = 0; k < count; ++k) {
-    if (plan->build(rest, std::span<const math::Frame>(&start[k], 1), radius_m,
-                    math::WarpMethod::twister)
-            .ok()) {
+  for (std::size_t k = 0; k < start.size(); ++k) {
+    if (plan->build(rest, start.span().subspan(k, 1), radius_m, math::WarpMethod::twister).ok()) {
       copy_out(k);
     }
   }

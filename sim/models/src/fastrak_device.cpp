@@ -20,10 +20,8 @@
 namespace twister::sim {
 namespace {
 
-using tracker::kCtrlK;
-using tracker::kCtrlQ;
-using tracker::kCtrlS;
-using tracker::kCtrlY;
+using tracker::Format;
+using tracker::ModeCommand;
 using tracker::Units;
 
 // Cycle k starts at k * 1e6 / 120 us (8333.33 us).
@@ -33,13 +31,8 @@ ports::TimestampUs cycle_time(std::int64_t k) { return (k * 25'000) / 3; }
 
 FastrakDevice::FastrakDevice(const FastrakDeviceConfig& config, Scenario scenario,
                              ports::TimestampUs start_us)
-    : config_(config),
-      scenario_(std::move(scenario)),
-      start_us_(start_us),
-      rng_(scenario_.seed),
-      baud_(config.baud) {
-  windows_.reserve(scenario_.faults.size());
-  pending_cmd_.reserve(96);
+    : config_(config), scenario_(std::move(scenario)), start_us_(start_us), rng_(scenario_.seed) {
+  settings_.baud = config.baud;
   power_up(start_us);
 }
 
@@ -49,94 +42,139 @@ double FastrakDevice::scenario_time_s(ports::TimestampUs now) const {
 
 void FastrakDevice::power_up(ports::TimestampUs now) {
   ++counters_.resets;
-  proto_ = {};
-  proto_.format = config_.start_format;
-  for (int s = 0; s < 4; ++s) {
-    proto_.stations[static_cast<std::size_t>(s)].enabled = s < scenario_.receivers;
-  }
-  continuous_ = config_.start_continuous;
-  output_on_ = true;
-  e_mode_ = 1;
-  for (auto& h : hemisphere_) h = {1.0, 0.0, 0.0};
-  for (auto& e : envelope_) e = {180.0, 90.0, 180.0, -180.0, -90.0, -180.0};
-  filter_params_ = {config_.start_position_filter, config_.start_attitude_filter};
-  for (auto& f : filter_) {
-    for (auto& one : f) one.reset();
-  }
-  solution_ = {};
-  baud_ = config_.baud;  // `o` is not saved: power-up uses the switches' rate
+  settings_.power_up({config_.baud, config_.start_continuous, config_.start_format,
+                      scenario_.receivers, config_.start_position_filter,
+                      config_.start_attitude_filter});
+  solver_.reset();
   // A line hit's budget belongs to the stream it hit, not to the next one.
-  counters_.drop_expired += drop_left_;
-  drop_left_ = 0;
-  deaf_until_ = 0;
+  counters_.drop_expired += faults_.expire_drop();
   busy_until_ = now + config_.reset_time_us;
-  line_.clear();
-  line_free_at_ = now;
-  pending_cmd_.clear();
-  in_param_cmd_ = false;
-  next_cycle_ = 0;
-  while (start_us_ + cycle_time(next_cycle_) < busy_until_) ++next_cycle_;
-}
-
-bool FastrakDevice::in_window(ports::TimestampUs now, FaultKind kind) const {
-  for (const Window& w : windows_) {
-    if (w.kind == kind && now >= w.from && now < w.to) return true;
-  }
-  return false;
+  line_.clear(now);
+  input_.reset();
+  cycle_.next = 0;
+  while (start_us_ + cycle_time(cycle_.next) < busy_until_) ++cycle_.next;
 }
 
 bool FastrakDevice::hung_up(ports::TimestampUs now) {
   apply_faults(now);
-  if (in_window(now, FaultKind::hangup)) {
-    was_hung_up_ = true;
-    return true;
-  }
-  if (was_hung_up_) {
-    // Plugged back in: the unit powers up from its defaults.
-    was_hung_up_ = false;
-    power_up(now);
-  }
-  return false;
+  const bool down = faults_.in_window(now, FaultKind::hangup);
+  // Plugged back in: the unit powers up from its defaults.
+  if (faults_.replugged(down)) power_up(now);
+  return down;
 }
 
 void FastrakDevice::apply_faults(ports::TimestampUs now) {
-  while (next_fault_ < scenario_.faults.size()) {
-    const Fault& f = scenario_.faults[next_fault_];
-    const auto at = start_us_ + static_cast<ports::TimestampUs>(f.t_s * 1e6);
-    if (at > now) break;
-    ++next_fault_;
-    ++counters_.faults[static_cast<std::size_t>(f.kind)];
-    const auto amount = static_cast<std::uint64_t>(f.amount);
-    switch (f.kind) {
-      case FaultKind::noise:
-        queue_noise(amount, at);
+  faults_.apply(now, settings_.baud, counters_.faults,
+                [this](std::uint64_t bytes, ports::TimestampUs at) { queue_noise(bytes, at); });
+}
+
+void FastrakDevice::receive(const std::byte* data, std::size_t size, ports::TimestampUs now) {
+  apply_faults(now);
+  // A resetting, stalled or hung-up unit understands nothing.
+  if (now < busy_until_ || faults_.in_window(now, FaultKind::stall) ||
+      faults_.in_window(now, FaultKind::hangup)) {
+    return;
+  }
+  const bool misclock = misclocked(now);
+  for (std::size_t i = 0; i < size; ++i) {
+    std::byte b = data[i];
+    if (misclock && !misclock_byte(b)) continue;
+    if (now < busy_until_) return;  // a ^Y earlier in this chunk
+    switch (input_.take(static_cast<char>(b), now)) {
+      case CommandInput::Heard::nothing:
         break;
-      case FaultKind::drop:
-        // A line hit: the budget is spent on the bytes sent next, and expires a second
-        // after their transmission time (assumed) or when the stream stops.
-        drop_left_ += amount;
-        drop_until_ = at + 1'000'000 +
-                      static_cast<ports::TimestampUs>(static_cast<double>(amount) * 1e7 / baud_);
+      case CommandInput::Heard::lost:
+        ++counters_.input_lost;
         break;
-      case FaultKind::corrupt:
-        corrupt_left_ += amount;
+      case CommandInput::Heard::error:
+        error(input_.echo(), input_.error_code(), now);
         break;
-      case FaultKind::truncate:
-        truncate_left_ += amount;
-        break;
-      case FaultKind::stall:
-      case FaultKind::hangup:
-      case FaultKind::wrong_baud:
-        windows_.push_back({f.kind, at, at + static_cast<ports::TimestampUs>(f.amount * 1e6)});
+      case CommandInput::Heard::command:
+        execute(input_.command(), input_.echo(), input_.done());
+        input_.hold_until(input_.done());
         break;
     }
   }
 }
 
+void FastrakDevice::execute(const tracker::FastrakCommand& command, std::string_view echo,
+                            ports::TimestampUs now) {
+  ++counters_.commands;
+  if (const auto* mode = std::get_if<tracker::Mode>(&command)) {
+    execute_mode(mode->command, now);
+  } else {
+    parameters_.execute(std::get<tracker::Parameters>(command), echo, now);
+  }
+}
+
+void FastrakDevice::execute_mode(ModeCommand command, ports::TimestampUs now) {
+  switch (command) {
+    case ModeCommand::poll:
+      for (const int station : active_stations()) queue_record(station, now);
+      return;
+    case ModeCommand::continuous:
+      settings_.continuous = true;
+      settings_.output_on = true;
+      return;
+    case ModeCommand::polled:
+      settings_.continuous = false;
+      // The stream stopped: what was left of a line hit's budget has nothing to eat.
+      counters_.drop_expired += faults_.expire_drop();
+      return;
+    case ModeCommand::ascii:
+    case ModeCommand::binary: {
+      const Format binary = config_.packed16 ? Format::binary16 : Format::binary;
+      settings_.protocol.format = command == ModeCommand::ascii ? Format::ascii : binary;
+      return;
+    }
+    case ModeCommand::inches:
+    case ModeCommand::centimetres:
+      settings_.protocol.units =
+          command == ModeCommand::inches ? Units::inches : Units::centimetres;
+      return;
+    case ModeCommand::status:
+      send_status(now);
+      return;
+    case ModeCommand::factory_defaults: {
+      const bool cont = settings_.continuous;
+      const ports::TimestampUs busy = busy_until_;
+      power_up(now);
+      --counters_.resets;
+      settings_.continuous = cont;
+      busy_until_ = busy;
+      return;
+    }
+    case ModeCommand::reinitialise:
+      power_up(now);
+      return;
+    case ModeCommand::built_in_test:  // accepted, no effect on the model
+    case ModeCommand::metal_compensation_on:
+    case ModeCommand::metal_compensation_off:
+    case ModeCommand::save:
+    case ModeCommand::suspend:
+    case ModeCommand::resume:
+      return;
+  }
+}
+
+void FastrakDevice::send_status(ports::TimestampUs now) {
+  tracker::FastrakStatus st;
+  const ActiveStations act = active_stations();
+  st.station = static_cast<std::uint8_t>(act.empty() ? 1 : act[cycle_.next_station % act.size()]);
+  st.flags = 0x3F0;
+  st.binary = settings_.protocol.format != Format::ascii;
+  st.centimetres = settings_.protocol.units == Units::centimetres;
+  st.continuous = settings_.continuous;
+  std::array<std::byte, 64> buf{};
+  auto n = tracker::encode_status(st, buf);
+  if (n.ok()) queue(std::span<const std::byte>(buf.data(), *n), now);
+}
+
 FastrakDevice::ActiveStations FastrakDevice::active_stations() const {
   ActiveStations out;
   for (int s = 1; s <= 4; ++s) {
-    if (proto_.stations[static_cast<std::size_t>(s - 1)].enabled && s <= scenario_.receivers) {
+    if (settings_.protocol.stations[static_cast<std::size_t>(s - 1)].enabled &&
+        s <= scenario_.receivers) {
       out.ids[out.count++] = s;
     }
   }
@@ -144,23 +182,28 @@ FastrakDevice::ActiveStations FastrakDevice::active_stations() const {
 }
 
 void FastrakDevice::queue(std::span<const std::byte> bytes, ports::TimestampUs now) {
-  const std::size_t n = std::min(bytes.size(), line_.room());
-  counters_.line_overflow += bytes.size() - n;
-  for (std::size_t i = 0; i < n; ++i) line_.push(bytes[i]);
-  // The line sends one byte per 10 bit times (8N1); chunks queue behind each other.
-  const ports::TimestampUs start = std::max(now, line_free_at_);
-  const auto duration =
-      static_cast<ports::TimestampUs>(static_cast<double>(n) * 10.0 * 1e6 / baud_);
-  line_free_at_ = start + duration;
-  line_.end_chunk(line_free_at_);
+  counters_.line_overflow += line_.queue(bytes, now, settings_.baud);
 }
 
-void FastrakDevice::queue(std::string_view text, ports::TimestampUs now) {
-  queue(std::as_bytes(std::span<const char>(text.data(), text.size())), now);
+void FastrakDevice::reply(std::string_view text, ports::TimestampUs at) {
+  queue(std::as_bytes(std::span<const char>(text.data(), text.size())), at);
+}
+
+void FastrakDevice::error(std::string_view echo, int code, ports::TimestampUs at) {
+  ++counters_.command_errors;
+  reply("2 E*ERROR* " + std::string(echo) + " *ERROR* EC " + std::to_string(code) +
+            " *PS 0 *FL 1 *ST 0\r\n",
+        at);
 }
 
 void FastrakDevice::queue_noise(std::uint64_t count, ports::TimestampUs now) {
-  // Random bytes, straight into the line (what does not fit is lost and counted).
+  // Random bytes, straight into the line (what does not fit is lost and counted
+  // without being made: an absurd amount must not spin the caller's loop).
+  const std::uint64_t room = line_.queue().room();
+  if (count > room) {
+    counters_.line_overflow += count - room;
+    count = room;
+  }
   std::array<std::byte, 256> block{};
   while (count > 0) {
     const std::size_t n = static_cast<std::size_t>(std::min<std::uint64_t>(count, block.size()));
@@ -171,20 +214,7 @@ void FastrakDevice::queue_noise(std::uint64_t count, ports::TimestampUs now) {
 }
 
 void FastrakDevice::solve(int station, ports::TimestampUs at) {
-  const HandSample h = sample(scenario_, station, scenario_time_s(at));
-  const auto i = static_cast<std::size_t>(station - 1);
-  glm::dvec3 p(h.position_in[0], h.position_in[1], h.position_in[2]);
-  const auto& hem = hemisphere_[i];
-  // The unit reports positions in the configured half-space.
-  if (glm::dot(p, glm::dvec3(hem[0], hem[1], hem[2])) < 0.0) p = -p;
-  const double el = std::clamp(h.euler_deg[1], -90.0, 90.0);
-  const glm::dquat q =
-      glm::quat_cast(tracker::rotation_from_euler_deg(h.euler_deg[0], el, h.euler_deg[2]));
-  Solution& s = solution_[i];
-  s.valid = true;
-  s.position_in = filter_[i][0].position(p, filter_params_[0]);
-  s.attitude = filter_[i][1].attitude(q, filter_params_[1]);
-  s.button = station == 1 && h.button;  // the stylus works on station 1 only
+  solver_.solve(station, sample(scenario_, station, scenario_time_s(at)), settings_);
 }
 
 char FastrakDevice::status_code(int station, ports::TimestampUs at,
@@ -194,7 +224,7 @@ char FastrakDevice::status_code(int station, ports::TimestampUs at,
     if (e.station == station && t >= e.t_s && t < e.t_s + e.duration_s) return e.code;
   }
   // Outside the `Q` angular envelope the record is flagged 'y' (docs/fastrak-protocol.md §2).
-  const auto& q = envelope_[static_cast<std::size_t>(station - 1)];
+  const auto& q = settings_.envelope[static_cast<std::size_t>(station - 1)];
   for (std::size_t k = 0; k < 3; ++k) {
     if (euler[k] > q[k] || euler[k] < q[k + 3]) return 'y';
   }
@@ -202,12 +232,11 @@ char FastrakDevice::status_code(int station, ports::TimestampUs at,
 }
 
 void FastrakDevice::queue_record(int station, ports::TimestampUs at) {
-  const auto i = static_cast<std::size_t>(station - 1);
-  if (!solution_[i].valid) solve(station, at);
-  const Solution& s = solution_[i];
+  if (!solver_.solution(station).valid) solve(station, at);
+  const StationSolver::Solution& s = solver_.solution(station);
   tracker::FastrakPose pose;
   pose.station = static_cast<std::uint8_t>(station);
-  const double scale = proto_.units == Units::centimetres ? 2.54 : 1.0;
+  const double scale = settings_.protocol.units == Units::centimetres ? 2.54 : 1.0;
   for (glm::length_t k = 0; k < 3; ++k) {
     pose.position[static_cast<std::size_t>(k)] = static_cast<float>(s.position_in[k] * scale);
   }
@@ -227,26 +256,16 @@ void FastrakDevice::queue_record(int station, ports::TimestampUs at) {
   pose.status = status_code(station, at, pose.euler_deg);
   counters_.status_letters += pose.status != ' ';
   std::array<std::byte, tracker::kMaxRecordBytes> buf{};
-  auto n = tracker::encode_record(pose, proto_, buf);
+  auto n = tracker::encode_record(pose, settings_.protocol, buf);
   if (!n.ok()) return;
   std::size_t size = *n;
-  if (corrupt_left_ > 0) {
-    --corrupt_left_;
+  if (faults_.take_corrupt()) {
     counters_.corrupted_records +=
-        corrupt_record(std::span(buf.data(), size), station, proto_, rng_);
+        corrupt_record(std::span(buf.data(), size), station, settings_.protocol, rng_);
   }
-  if (truncate_left_ > 0 && size > 2) {
-    --truncate_left_;
-    size = 1 + rng_() % (size - 2);
-  }
+  if (size > 2 && faults_.take_truncate()) size = 1 + rng_() % (size - 2);
   ++counters_.records;
   queue(std::span<const std::byte>(buf.data(), size), at);
-}
-
-void FastrakDevice::send_error(const std::string& input, int code, ports::TimestampUs now) {
-  ++counters_.command_errors;
-  queue("2 E*ERROR* " + input + " *ERROR* EC " + std::to_string(code) + " *PS 0 *FL 1 *ST 0\r\n",
-        now);
 }
 
 void FastrakDevice::generate(ports::TimestampUs now, bool stalled) {
@@ -254,22 +273,24 @@ void FastrakDevice::generate(ports::TimestampUs now, bool stalled) {
   // solution (and filter) is updated every cycle, and sent in continuous mode. A
   // cycle waits (is not lost) while the line queue has no room for a record: it runs
   // at the next call, once the reader has taken bytes.
-  for (ports::TimestampUs t = start_us_ + cycle_time(next_cycle_); t <= now;
-       t = start_us_ + cycle_time(++next_cycle_)) {
-    if (line_.room() < tracker::kMaxRecordBytes) return;
-    if (t < busy_until_ || stalled || in_window(t, FaultKind::stall)) continue;
+  for (ports::TimestampUs t = start_us_ + cycle_time(cycle_.next); t <= now;
+       t = start_us_ + cycle_time(++cycle_.next)) {
+    if (line_.queue().room() < tracker::kMaxRecordBytes) return;
+    if (t < busy_until_ || stalled || faults_.in_window(t, FaultKind::stall)) continue;
     const HandSample s1 = sample(scenario_, 1, scenario_time_s(t));
-    if (s1.button && !last_button_ && e_mode_ == 1 && continuous_) output_on_ = !output_on_;
-    last_button_ = s1.button;
+    if (s1.button && !cycle_.last_button && settings_.stylus_mode == 1 && settings_.continuous) {
+      settings_.output_on = !settings_.output_on;
+    }
+    cycle_.last_button = s1.button;
     const ActiveStations act = active_stations();
     if (act.empty()) continue;
-    if (!continuous_ || !output_on_) {  // polled: solutions (and filters) still run
-      solve(act[polled_station_++ % act.size()], t);
+    if (!settings_.continuous || !settings_.output_on) {  // polled: solutions still run
+      solve(act[cycle_.polled_station++ % act.size()], t);
       continue;
     }
-    const int station = act[next_station_++ % act.size()];
+    const int station = act[cycle_.next_station++ % act.size()];
     solve(station, t);
-    if (line_free_at_ > t) {
+    if (line_.busy_at(t)) {
       ++counters_.dropped_solutions;  // the previous record is still on the wire
       continue;
     }
@@ -278,7 +299,8 @@ void FastrakDevice::generate(ports::TimestampUs now, bool stalled) {
 }
 
 bool FastrakDevice::misclocked(ports::TimestampUs t) const {
-  return (host_baud_ != 0 && host_baud_ != baud_) || in_window(t, FaultKind::wrong_baud);
+  return (host_baud_ != 0 && host_baud_ != settings_.baud) ||
+         faults_.in_window(t, FaultKind::wrong_baud);
 }
 
 bool FastrakDevice::misclock_byte(std::byte& b) {
@@ -295,16 +317,14 @@ bool FastrakDevice::misclock_byte(std::byte& b) {
 
 std::size_t FastrakDevice::deliver(ports::TimestampUs now, std::span<std::byte> out) {
   std::size_t n = 0;
-  while (!line_.empty() && line_.front_ready() <= now) {
-    const bool misclock = misclocked(line_.front_ready());
-    if (drop_left_ > 0 && line_.front_ready() >= drop_until_) {
-      counters_.drop_expired += drop_left_;  // the line hit is long over
-      drop_left_ = 0;
-    }
-    while (line_.front_left() > 0 && n < out.size()) {
-      std::byte b = line_.take();
-      if (drop_left_ > 0) {
-        --drop_left_;
+  LineQueue& line = line_.queue();
+  while (!line.empty() && line.front_ready() <= now) {
+    const bool misclock = misclocked(line.front_ready());
+    counters_.drop_expired += faults_.expire_drop_before(line.front_ready());  // hit long over
+    while (line.front_left() > 0 && n < out.size()) {
+      std::byte b = line.take();
+      if (faults_.dropping()) {
+        faults_.spend_drop();
         ++counters_.dropped_bytes;
         continue;
       }
@@ -312,18 +332,18 @@ std::size_t FastrakDevice::deliver(ports::TimestampUs now, std::span<std::byte> 
       out[n++] = b;
       ++counters_.bytes_out;
     }
-    if (line_.front_left() > 0) break;  // `out` is full
-    line_.pop_front();
+    if (line.front_left() > 0) break;  // `out` is full
+    line.pop_front();
   }
   return n;
 }
 
 std::size_t FastrakDevice::advance(ports::TimestampUs now, std::span<std::byte> out) {
   if (hung_up(now)) {  // applies the faults due by now
-    line_.clear();
+    line_.queue().clear();
     return 0;
   }
-  const bool stalled = in_window(now, FaultKind::stall);
+  const bool stalled = faults_.in_window(now, FaultKind::stall);
   generate(now, stalled);
   if (stalled) return 0;
   return deliver(now, out);

@@ -1,10 +1,17 @@
 // Scenario text parser and trajectory sampling.
 #include "twister/sim/scenario.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <array>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
-#include <fstream>
+#include <cstdio>
+#include <cstring>
 #include <iterator>
 #include <sstream>
 
@@ -78,6 +85,17 @@ namespace {
 
 bool finite(double v) { return std::isfinite(v); }
 
+std::string format_limit(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.0f", v);
+  return text;
+}
+
+bool within(const std::array<double, 3>& v, double limit) {
+  return std::all_of(v.begin(), v.end(),
+                     [limit](double x) { return finite(x) && std::fabs(x) <= limit; });
+}
+
 // Each keyword's reader: the rest of the line in `ls`; returns "" or the problem.
 std::string read_seed(std::istringstream& ls, Scenario& sc) {
   long long v = 0;
@@ -94,8 +112,9 @@ std::string read_receivers(std::istringstream& ls, Scenario& sc) {
 }
 
 std::string read_duration(std::istringstream& ls, Scenario& sc) {
-  if (!(ls >> sc.duration_s) || !finite(sc.duration_s) || sc.duration_s < 0) {
-    return "duration needs seconds >= 0";
+  if (!(ls >> sc.duration_s) || !finite(sc.duration_s) || sc.duration_s < 0 ||
+      sc.duration_s > kMaxScenarioSeconds) {
+    return "duration needs seconds 0.." + format_limit(kMaxScenarioSeconds);
   }
   return {};
 }
@@ -110,7 +129,13 @@ std::string read_key(std::istringstream& ls, Scenario& sc) {
   int button = 0;
   if (ls >> button) k.button = button != 0;
   if (st < 1 || st > 4) return "station must be 1..4";
-  if (!finite(k.t_s) || k.t_s < 0) return "time must be >= 0";
+  if (!finite(k.t_s) || k.t_s < 0 || k.t_s > kMaxScenarioSeconds) {
+    return "time must be 0.." + format_limit(kMaxScenarioSeconds) + " s";
+  }
+  if (!within(k.position_in, kMaxPositionIn) || !within(k.euler_deg, kMaxAngleDeg)) {
+    return "positions must be finite and within " + format_limit(kMaxPositionIn) +
+           " in, angles within " + format_limit(kMaxAngleDeg) + " degrees";
+  }
   auto& keys = sc.stations[static_cast<std::size_t>(st - 1)].keys;
   if (!keys.empty() && k.t_s <= keys.back().t_s) return "key times must increase";
   keys.push_back(k);
@@ -125,23 +150,61 @@ std::string read_circle(std::istringstream& ls, Scenario& sc) {
     return "circle needs: station cx cy cz radius period";
   }
   if (st < 1 || st > 4) return "station must be 1..4";
-  if (!(c.period_s > 0)) return "period must be > 0";
+  if (!(c.period_s > 0) || c.period_s > kMaxScenarioSeconds) {
+    return "period must be > 0 and at most " + format_limit(kMaxScenarioSeconds) + " s";
+  }
+  if (!within(c.center_in, kMaxPositionIn) || !finite(c.radius_in) ||
+      std::fabs(c.radius_in) > kMaxPositionIn) {
+    return "centre and radius must be finite and within " + format_limit(kMaxPositionIn) + " in";
+  }
   c.enabled = true;
   sc.stations[static_cast<std::size_t>(st - 1)].circle = c;
   return {};
+}
+
+// The largest amount of each fault kind, and whether it counts whole things (bytes,
+// records) or seconds. Beyond these a fault is no test of anything, only a way to
+// spin the model (noise 1e12 once made 4e9 passes of its noise loop).
+struct FaultLimit {
+  double max;
+  bool whole;
+  const char* unit;
+};
+
+FaultLimit fault_limit(FaultKind kind) {
+  switch (kind) {
+    case FaultKind::noise:
+      return {kMaxNoiseBytes, true, "bytes"};
+    case FaultKind::drop:
+      return {kMaxDropBytes, true, "bytes"};
+    case FaultKind::truncate:
+    case FaultKind::corrupt:
+      return {kMaxFaultRecords, true, "records"};
+    case FaultKind::stall:
+    case FaultKind::hangup:
+    case FaultKind::wrong_baud:
+      return {kMaxFaultSeconds, false, "seconds"};
+  }
+  return {0.0, true, ""};
 }
 
 std::string read_fault(std::istringstream& ls, Scenario& sc) {
   Fault f;
   std::string kind;
   if (!(ls >> f.t_s >> kind >> f.amount)) return "fault needs: t kind amount";
-  if (!finite(f.t_s) || f.t_s < 0 || !finite(f.amount) || f.amount < 0) {
-    return "fault time and amount must be >= 0";
+  if (!finite(f.t_s) || f.t_s < 0 || f.t_s > kMaxScenarioSeconds) {
+    return "fault time must be 0.." + format_limit(kMaxScenarioSeconds) + " s";
   }
   const auto* named = std::find_if(std::begin(kFaultKinds), std::end(kFaultKinds),
                                    [&](FaultKind k) { return kind == fault_kind_name(k); });
   if (named == std::end(kFaultKinds)) return "unknown fault kind '" + kind + "'";
   f.kind = *named;
+  const FaultLimit limit = fault_limit(f.kind);
+  if (!finite(f.amount) || f.amount < 0 || f.amount > limit.max ||
+      (limit.whole && f.amount != std::floor(f.amount))) {
+    return "fault " + kind + " amount must be " + (limit.whole ? "a whole number " : "") + "0.." +
+           format_limit(limit.max) + " " + limit.unit;
+  }
   sc.faults.push_back(f);
   return {};
 }
@@ -150,7 +213,9 @@ std::string read_button(std::istringstream& ls, Scenario& sc) {
   ButtonEvent b;
   int level = 0;
   if (!(ls >> b.t_s >> b.line >> level)) return "button needs: t line 0|1";
-  if (!finite(b.t_s) || b.t_s < 0) return "button time must be >= 0";
+  if (!finite(b.t_s) || b.t_s < 0 || b.t_s > kMaxScenarioSeconds) {
+    return "button time must be 0.." + format_limit(kMaxScenarioSeconds) + " s";
+  }
   if (b.line < 0 || b.line >= kMaxScenarioButtonLines) {
     return "button line must be 0.." + std::to_string(kMaxScenarioButtonLines - 1);
   }
@@ -170,8 +235,9 @@ std::string read_status(std::istringstream& ls, Scenario& sc) {
   if (code.size() != 1 || !std::isalpha(static_cast<unsigned char>(code[0]))) {
     return "status code must be one letter";
   }
-  if (!finite(e.t_s) || e.t_s < 0 || !finite(e.duration_s) || e.duration_s < 0) {
-    return "status time and seconds must be >= 0";
+  if (!finite(e.t_s) || e.t_s < 0 || !finite(e.duration_s) || e.duration_s < 0 ||
+      e.t_s > kMaxScenarioSeconds || e.duration_s > kMaxScenarioSeconds) {
+    return "status time and seconds must be 0.." + format_limit(kMaxScenarioSeconds);
   }
   e.code = code[0];
   sc.status.push_back(e);
@@ -203,37 +269,125 @@ std::string read_line(const std::string& line, Scenario& sc) {
 
 }  // namespace
 
-bool parse_scenario(std::string_view text, Scenario& out, std::string& error) {
-  Scenario sc;
-  std::istringstream in{std::string(text)};
-  std::string line;
-  int line_no = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
-    if (std::string problem = read_line(line, sc); !problem.empty()) {
-      error = "line " + std::to_string(line_no) + ": " + problem;
+namespace {
+
+// Every line through read_line(); the result sorted as the players need it.
+class LineReader {
+ public:
+  bool line(std::string text, std::string& error) {
+    ++line_no_;
+    if (const auto hash = text.find('#'); hash != std::string::npos) text.erase(hash);
+    if (std::string problem = read_line(text, sc_); !problem.empty()) {
+      error = "line " + std::to_string(line_no_) + ": " + problem;
       return false;
     }
+    return true;
   }
-  std::stable_sort(sc.faults.begin(), sc.faults.end(),
-                   [](const Fault& a, const Fault& b) { return a.t_s < b.t_s; });
-  std::stable_sort(sc.buttons.begin(), sc.buttons.end(),
-                   [](const ButtonEvent& a, const ButtonEvent& b) { return a.t_s < b.t_s; });
-  out = std::move(sc);
+  int line_no() const { return line_no_; }
+  Scenario finish() {
+    std::stable_sort(sc_.faults.begin(), sc_.faults.end(),
+                     [](const Fault& a, const Fault& b) { return a.t_s < b.t_s; });
+    std::stable_sort(sc_.buttons.begin(), sc_.buttons.end(),
+                     [](const ButtonEvent& a, const ButtonEvent& b) { return a.t_s < b.t_s; });
+    return std::move(sc_);
+  }
+
+ private:
+  Scenario sc_;
+  int line_no_ = 0;
+};
+
+const char* not_regular(mode_t mode) {
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return nullptr;
+}
+
+// Reads the open file line by line through a fixed buffer into `reader`.
+hal::Expected<void> read_lines(int fd, const std::string& path, LineReader& reader) {
+  std::array<char, 1 << 16> buffer{};
+  std::string line;
+  std::string error;
+  for (;;) {
+    const ssize_t n = ::read(fd, buffer.data(), buffer.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      return hal::make_error(StatusCode::io_error,
+                             "cannot read scenario file " + path + ": " + std::strerror(errno));
+    }
+    if (n == 0) break;
+    for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i) {
+      if (buffer[i] != '\n') {
+        if (line.size() >= kMaxScenarioLineBytes) {
+          return hal::make_error(StatusCode::invalid_argument,
+                                 path + ": line " + std::to_string(reader.line_no() + 1) +
+                                     ": longer than " + std::to_string(kMaxScenarioLineBytes) +
+                                     " bytes");
+        }
+        line.push_back(buffer[i]);
+        continue;
+      }
+      if (!reader.line(std::move(line), error)) {
+        return hal::make_error(StatusCode::invalid_argument, path + ": " + error);
+      }
+      line.clear();
+    }
+  }
+  if (!line.empty() && !reader.line(std::move(line), error)) {
+    return hal::make_error(StatusCode::invalid_argument, path + ": " + error);
+  }
+  return {};
+}
+
+}  // namespace
+
+bool parse_scenario(std::string_view text, Scenario& out, std::string& error) {
+  LineReader reader;
+  while (!text.empty()) {
+    const auto end = text.find('\n');
+    const std::string_view line = text.substr(0, end);
+    if (!reader.line(std::string(line), error)) return false;
+    if (end == std::string_view::npos) break;
+    text.remove_prefix(end + 1);
+  }
+  out = reader.finish();
   return true;
 }
 
 hal::Expected<Scenario> load_scenario_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return hal::make_error(StatusCode::io_error, "cannot read scenario file " + path);
-  std::stringstream text;
-  text << in.rdbuf();
-  Scenario out;
-  if (std::string error; !parse_scenario(text.str(), out, error)) {
-    return hal::make_error(StatusCode::invalid_argument, path + ": " + error);
+  // O_NONBLOCK: a FIFO never blocks the open; then only a regular file of a sane size.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    return hal::make_error(StatusCode::io_error,
+                           "cannot read scenario file " + path + ": " + std::strerror(errno));
   }
-  return out;
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) {
+    ::close(fd);
+    return hal::make_error(StatusCode::io_error, "cannot read scenario file " + path);
+  }
+  if (const char* kind = not_regular(st.st_mode); kind != nullptr || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    return hal::make_error(StatusCode::io_error,
+                           "scenario file " + path + " is " +
+                               (kind != nullptr ? kind : "not a regular file") +
+                               ", not a regular file");
+  }
+  if (static_cast<std::uint64_t>(st.st_size) > kMaxScenarioBytes) {
+    ::close(fd);
+    return hal::make_error(StatusCode::invalid_argument,
+                           "scenario file " + path + " is " + std::to_string(st.st_size) +
+                               " bytes; scenarios are limited to " +
+                               std::to_string(kMaxScenarioBytes) + " bytes");
+  }
+  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+  LineReader reader;
+  const hal::Expected<void> read = read_lines(fd, path, reader);
+  ::close(fd);
+  if (!read) return read.error();
+  return reader.finish();
 }
 
 }  // namespace twister::sim

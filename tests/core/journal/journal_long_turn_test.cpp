@@ -20,7 +20,7 @@ JournalRecord stroke(std::uint8_t hand_mask, std::uint8_t long_turns) {
   r.stroke.long_turns = long_turns;
   r.stroke.radius_m = 0.3;
   for (int h = 0; h < 2; ++h) {
-    if ((hand_mask & (1 << h)) != 0) r.stroke.end[h].origin_m = {0.1, 0.0, 0.2 * h};
+    if ((hand_mask & (1 << h)) != 0) r.stroke.end[h].origin = {0.1, 0.0, 0.2 * h};
   }
   return r;
 }

@@ -16,7 +16,7 @@ JournalRecord stroke(std::uint32_t seq) {
   r.sequence = seq;
   r.stroke.hand_mask = 1;
   r.stroke.radius_m = 0.5;
-  r.stroke.end[0].origin_m = {0.01 * seq, 0.0, 0.0};
+  r.stroke.end[0].origin = {0.01 * seq, 0.0, 0.0};
   return r;
 }
 
@@ -100,7 +100,7 @@ TEST(JournalReader, TornAppendAtEveryByteIsDetectedAndTruncated) {
 }
 
 TEST(JournalReader, TornFileHeaderIsCutToEmpty) {
-  for (std::size_t cut = 1; cut < kFileHeaderBytes; ++cut) {
+  for (std::size_t cut = 1; cut < kMaxFileHeaderBytes; ++cut) {
     test::FakeStorage storage;
     storage.cut_power_after(cut);
     JournalWriter writer(storage);
@@ -138,7 +138,7 @@ TEST(JournalReader, HugeLengthIsCorruptNotAnAllocation) {
   JournalWriter writer(storage);
   ASSERT_TRUE(writer.open().ok());
   ASSERT_TRUE(writer.append(stroke(0)).ok());
-  storage.corrupt(kFileHeaderBytes + 3, std::byte{0x80});
+  storage.corrupt(kMaxFileHeaderBytes + 3, std::byte{0x80});
   JournalReader reader(storage);
   ASSERT_TRUE(reader.open().ok());
   EXPECT_EQ(reader.next().status().code(), StatusCode::data_loss);

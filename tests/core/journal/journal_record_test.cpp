@@ -11,13 +11,13 @@
 namespace twister::journal {
 namespace {
 
-JournalPose random_pose() {
-  JournalPose p;
+Pose random_pose() {
+  Pose p;
   auto d = [] { return *rc::gen::map(rc::gen::arbitrary<int>(), [](int i) { return i * 1e-4; }); };
-  p.origin_m = {d(), d(), d()};
+  p.origin = {d(), d(), d()};
   p.u = {d(), d(), d()};
   p.v = {d(), d(), d()};
-  return p;
+  return as_stored(p);  // the journal keeps origin, U, V; W = U x V
 }
 
 JournalRecord sample_stroke() {
@@ -28,8 +28,8 @@ JournalRecord sample_stroke() {
   r.stroke.hand_mask = 3;
   r.stroke.chain_step = 2;
   r.stroke.radius_m = 0.25;
-  r.stroke.start[0].origin_m = {0.1, 0.2, 0.3};
-  r.stroke.end[1].origin_m = {-0.1, 0.2, 1e-17};
+  r.stroke.start[0].origin = {0.1, 0.2, 0.3};
+  r.stroke.end[1].origin = {-0.1, 0.2, 1e-17};
   return r;
 }
 

@@ -22,7 +22,7 @@ JournalRecord stroke(std::uint8_t hand_mask, std::uint8_t long_turns, double thr
   r.stroke.radius_m = 0.3;
   r.stroke.refine_threshold_m = threshold;
   for (int h = 0; h < 2; ++h) {
-    if ((hand_mask & (1 << h)) != 0) r.stroke.end[h].origin_m = {0.1, 0.0, 0.2 * h};
+    if ((hand_mask & (1 << h)) != 0) r.stroke.end[h].origin = {0.1, 0.0, 0.2 * h};
   }
   return r;
 }

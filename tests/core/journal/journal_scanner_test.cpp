@@ -11,6 +11,7 @@
 
 #include "fakes/fake_file_sink.hpp"
 #include "fakes/fake_storage.hpp"
+#include "twister/journal/journal_format.hpp"
 #include "twister/journal/journal_salvage.hpp"
 #include "twister/journal/journal_writer.hpp"
 
@@ -23,14 +24,20 @@ JournalRecord stroke(std::uint32_t sequence, std::uint16_t chain_step = 0) {
   r.stroke.hand_mask = 2;
   r.stroke.chain_step = chain_step;
   r.stroke.radius_m = 0.25;
-  r.stroke.end[1].origin_m = {0.01 * sequence, 0, 0};
+  r.stroke.end[1].origin = {0.01 * sequence, 0, 0};
   return r;
 }
 
 // n records (sequences 0..n-1); offsets[i] = where record i starts; offsets[n] = end.
+// A version 2 journal (what the writer makes), or version 1 (journals from before).
 std::unique_ptr<test::FakeStorage> journal_of(const std::vector<JournalRecord>& records,
-                                              std::vector<std::size_t>& offsets) {
+                                              std::vector<std::size_t>& offsets,
+                                              std::uint32_t version = kNewestFileVersion) {
   auto storage = std::make_unique<test::FakeStorage>();
+  if (version == kFileVersion1) {
+    const auto header = file_header(kVersion1Format);
+    storage->load(std::span<const std::byte>(header).first(kVersion1Format.header_bytes()));
+  }
   JournalWriter writer(*storage);
   EXPECT_TRUE(writer.open().ok());
   for (const JournalRecord& r : records) {
@@ -105,10 +112,12 @@ TEST(JournalSurvey, AForeignFileIsNotAJournal) {
   EXPECT_EQ(survey_journal(s).status().code(), StatusCode::data_loss);
 }
 
+// Version 1 (as before issue 21): every valid record past the damage.
 TEST(JournalSalvage, KeepsEveryValidRecordAndDropsFreezeStepsThatLostTheirChain) {
   // 0: stroke, 1: chain step 0, 2: step 1, 3: step 2, 4: stroke. Damage record 2.
   std::vector<std::size_t> at;
-  const auto s = journal_of({stroke(0), stroke(1, 0), stroke(2, 1), stroke(3, 2), stroke(4)}, at);
+  const auto s = journal_of({stroke(0), stroke(1, 0), stroke(2, 1), stroke(3, 2), stroke(4)}, at,
+                            kFileVersion1);
   s->corrupt(at[2] + 20, std::byte{0x01});
   test::FakeFileSink out;
   const auto report = salvage_journal(*s, out);
@@ -129,6 +138,23 @@ TEST(JournalSalvage, KeepsEveryValidRecordAndDropsFreezeStepsThatLostTheirChain)
   EXPECT_TRUE(std::equal(out.bytes().begin() + static_cast<std::ptrdiff_t>(at[0]),
                          out.bytes().begin() + static_cast<std::ptrdiff_t>(at[2]),
                          s->bytes().begin() + static_cast<std::ptrdiff_t>(at[0])));
+}
+
+// Version 2: the longest ordered valid prefix; what follows the lost record is dropped
+// and counted (issue 21).
+TEST(JournalSalvage, Version2KeepsTheOrderedPrefixBeforeADamagedRecord) {
+  std::vector<std::size_t> at;
+  const auto s = journal_of({stroke(0), stroke(1, 0), stroke(2, 1), stroke(3, 2), stroke(4)}, at);
+  s->corrupt(at[2] + 20, std::byte{0x01});
+  test::FakeFileSink out;
+  const auto report = salvage_journal(*s, out);
+  ASSERT_TRUE(report.ok());
+  EXPECT_EQ(report->records_found, 4u);
+  EXPECT_EQ(report->damaged_ranges, 1u);
+  EXPECT_EQ(report->after_gap, 2u);
+  EXPECT_EQ(report->records_kept, 2u);
+  ASSERT_EQ(out.bytes().size(), at[2]);
+  EXPECT_TRUE(std::equal(out.bytes().begin(), out.bytes().end(), s->bytes().begin()));
 }
 
 TEST(JournalSalvage, AWriteFailureNamesNothing) {

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "twister/link/link_codec.hpp"
@@ -12,9 +13,16 @@
 namespace twister::link {
 namespace {
 
-std::vector<std::byte> frame_of(MessageType type) {
+// A default message of `type` (the alternative at index type - 1).
+template <std::size_t... I>
+LinkMessage default_of(MessageType type, std::index_sequence<I...>) {
   LinkMessage m;
-  m.type = type;
+  ((static_cast<std::size_t>(type) == I + 1 ? (void)m.emplace<I>() : void()), ...);
+  return m;
+}
+
+std::vector<std::byte> frame_of(MessageType type) {
+  const LinkMessage m = default_of(type, std::make_index_sequence<kLastMessageType>{});
   std::vector<std::byte> out(kMaxFrameBytes);
   const auto n = encode_frame(m, out);
   EXPECT_TRUE(n.ok());
@@ -85,10 +93,9 @@ TEST(FrameDecoder, ClearDropsAPartialFrame) {
 
 TEST(LinkDecoder, RefusedPayloadIsCountedAndReported) {
   // A well-framed message the decoder must refuse: a non-finite radius.
-  LinkMessage m;
-  m.type = MessageType::hands;
-  m.hands.flags = kStrokeActive;
-  m.hands.radius_m = std::numeric_limits<float>::quiet_NaN();
+  Hands m;
+  m.flags = kStrokeActive;
+  m.radius_m = std::numeric_limits<float>::quiet_NaN();
   std::vector<std::byte> out(kMaxFrameBytes);
   const auto n = encode_frame(m, out);
   ASSERT_TRUE(n.ok());

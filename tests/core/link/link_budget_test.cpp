@@ -13,14 +13,13 @@ namespace {
 // Issue 14: a two-hand live update is at most 128 bytes on the wire, and the whole
 // stream of a two-hand drag fits a 230 400-baud line (8N1: 23 040 bytes/s).
 TEST(LinkCodec, TwoHandLiveUpdateFitsTheBudget) {
-  LinkMessage m;
-  m.type = MessageType::hands;
-  m.hands.sequence = 0xffff;
-  m.hands.stroke = 0xffff;
-  m.hands.flags = kHandSample0 | kHandSample1 | kHandTracked0 | kHandTracked1 | kStrokeActive;
-  m.hands.buttons = 0xff;
-  m.hands.radius_m = 0.25F;
-  for (auto& h : m.hands.hands) {
+  Hands m;
+  m.sequence = 0xffff;
+  m.stroke = 0xffff;
+  m.flags = kHandSample0 | kHandSample1 | kHandTracked0 | kHandTracked1 | kStrokeActive;
+  m.buttons = 0xff;
+  m.radius_m = 0.25F;
+  for (auto& h : m.hands) {
     h.position = {0.55F, -0.123F, 0.1F};
     h.rotation = {0.7071068F, 0.0F, -0.7071068F, 0.0F};
   }
@@ -28,12 +27,10 @@ TEST(LinkCodec, TwoHandLiveUpdateFitsTheBudget) {
   std::printf("two-hand live update: %zu bytes on the wire\n", bytes);
   EXPECT_LE(bytes, 128u);
   EXPECT_EQ(bytes, kHandsFrameBytes);
-  LinkMessage status;
-  status.type = MessageType::status;
-  LinkMessage stroke;
-  stroke.type = MessageType::stroke;
-  stroke.stroke.hand_mask = 3;
-  stroke.stroke.radius_m = 0.25;
+  const StatusReport status;
+  StrokeBegin stroke;
+  stroke.hand_mask = 3;
+  stroke.radius_m = 0.25;
   // 120 updates/s, status and the stroke repeat once a second.
   const double per_second = 120.0 * static_cast<double>(bytes) +
                             static_cast<double>(frame_size(status) + frame_size(stroke));

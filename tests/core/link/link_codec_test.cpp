@@ -11,7 +11,8 @@
 namespace twister::link {
 namespace {
 
-std::vector<std::byte> encode(const LinkMessage& m) {
+template <class M>
+std::vector<std::byte> encode(const M& m) {
   std::vector<std::byte> out(kMaxFrameBytes);
   const auto n = encode_frame(m, out);
   EXPECT_TRUE(n.ok());
@@ -25,7 +26,7 @@ std::vector<MessageType> feed(LinkDecoder& d, const std::vector<std::byte>& byte
   std::vector<MessageType> types;
   for (const std::byte b : bytes) {
     if (const auto m = d.process(b); m.ok()) {
-      types.push_back((*m)->type);
+      types.push_back(type_of(**m));
       if (last != nullptr) *last = **m;
     }
   }
@@ -43,13 +44,13 @@ CompactPose random_compact() {
   return p;
 }
 
-void random_live(LinkMessage& m) {
+void random_live(MessageType type, LinkMessage& m) {
   const auto d = [] {
     return *rc::gen::map(rc::gen::arbitrary<std::int32_t>(),
                          [](std::int32_t v) { return static_cast<double>(v) / 7.0; });
   };
-  if (m.type == MessageType::stroke) {
-    StrokeBegin& s = m.stroke;
+  if (type == MessageType::stroke) {
+    StrokeBegin& s = m.emplace<StrokeBegin>();
     s.stroke = *rc::gen::arbitrary<std::uint32_t>();
     s.mesh_version = *rc::gen::arbitrary<std::uint32_t>();
     s.method = static_cast<std::uint8_t>(*rc::gen::inRange(0, 3));
@@ -58,8 +59,8 @@ void random_live(LinkMessage& m) {
     for (std::size_t h = 0; h < kLinkHands; ++h) {
       if ((s.hand_mask & (1u << h)) != 0) s.start[h].origin = {d(), d(), d()};
     }
-  } else if (m.type == MessageType::hands) {
-    Hands& l = m.hands;
+  } else if (type == MessageType::hands) {
+    Hands& l = m.emplace<Hands>();
     l.sequence = *rc::gen::arbitrary<std::uint16_t>();
     l.stroke = *rc::gen::arbitrary<std::uint16_t>();
     l.flags = static_cast<std::uint8_t>(*rc::gen::inRange(0, 32));
@@ -69,76 +70,92 @@ void random_live(LinkMessage& m) {
       if ((l.flags & (kHandSample0 << h)) != 0) l.hands[h] = random_compact();
     }
   } else {
-    m.object.pose = random_compact();
+    m.emplace<ObjectPose>().pose = random_compact();
+  }
+}
+
+float random_float() {
+  return *rc::gen::map(rc::gen::inRange(-100000, 100000),
+                       [](int v) { return static_cast<float>(v) / 1000.0F; });
+}
+
+void random_mesh_message(MessageType type, LinkMessage& m) {
+  const auto f = random_float;
+  switch (type) {
+    case MessageType::mesh_begin:
+      m = MeshBegin{*rc::gen::arbitrary<bool>(), *rc::gen::arbitrary<std::uint32_t>(),
+                    *rc::gen::arbitrary<std::uint32_t>(), *rc::gen::arbitrary<std::uint32_t>(),
+                    *rc::gen::arbitrary<std::uint32_t>()};
+      break;
+    case MessageType::vertices: {
+      Vertices& v = m.emplace<Vertices>();
+      v.count = static_cast<std::uint16_t>(*rc::gen::inRange<int>(0, kMaxVerticesPerChunk + 1));
+      for (std::size_t i = 0; i < v.count; ++i) {
+        v.items[i] = VertexEntry{*rc::gen::arbitrary<std::uint32_t>(), f(), f(), f()};
+      }
+      break;
+    }
+    case MessageType::triangles: {
+      Triangles& t = m.emplace<Triangles>();
+      t.first = *rc::gen::arbitrary<std::uint32_t>();
+      t.count = static_cast<std::uint16_t>(*rc::gen::inRange<int>(0, kMaxTrianglesPerChunk + 1));
+      for (std::size_t i = 0; i < 3u * t.count; ++i) {
+        t.indices[i] = *rc::gen::arbitrary<std::uint32_t>();
+      }
+      break;
+    }
+    case MessageType::mesh_end:
+      m = MeshEnd{*rc::gen::arbitrary<std::uint32_t>(), *rc::gen::arbitrary<std::uint64_t>()};
+      break;
+    default:
+      m = ResendRequest{*rc::gen::arbitrary<std::uint32_t>(), *rc::gen::arbitrary<std::uint64_t>()};
+      break;
   }
 }
 
 LinkMessage random_message() {
   LinkMessage m;
-  const auto type = *rc::gen::inRange<int>(1, kLastMessageType + 1);
-  m.type = static_cast<MessageType>(type);
-  const auto f = [] {
-    return *rc::gen::map(rc::gen::inRange(-100000, 100000),
-                         [](int v) { return static_cast<float>(v) / 1000.0F; });
-  };
-  switch (m.type) {
-    case MessageType::hello:
-      m.hello.role = *rc::gen::element(Role::station, Role::bridge);
-      m.hello.flags = static_cast<std::uint8_t>(*rc::gen::inRange(0, 2));
-      m.hello.mesh_version = *rc::gen::arbitrary<std::uint32_t>();
-      m.hello.mesh_checksum = *rc::gen::arbitrary<std::uint64_t>();
-      m.hello.nonce[3] = *rc::gen::arbitrary<std::uint8_t>();
+  const auto type = static_cast<MessageType>(*rc::gen::inRange<int>(1, kLastMessageType + 1));
+  switch (type) {
+    case MessageType::hello: {
+      Hello& h = m.emplace<Hello>();
+      h.role = *rc::gen::element(Role::station, Role::bridge);
+      h.flags = static_cast<std::uint8_t>(*rc::gen::inRange(0, 2));
+      h.mesh_version = *rc::gen::arbitrary<std::uint32_t>();
+      h.mesh_checksum = *rc::gen::arbitrary<std::uint64_t>();
+      h.nonce[3] = *rc::gen::arbitrary<std::uint8_t>();
       break;
+    }
     case MessageType::auth:
-      m.auth.tag[7] = *rc::gen::arbitrary<std::uint8_t>();
+      m.emplace<Auth>().tag[7] = *rc::gen::arbitrary<std::uint8_t>();
       break;
     case MessageType::bye:
-      m.bye.reason = static_cast<ByeReason>(*rc::gen::inRange(1, kLastByeReason + 1));
+      m = Bye{static_cast<ByeReason>(*rc::gen::inRange(1, kLastByeReason + 1))};
       break;
     case MessageType::mesh_begin:
-      m.mesh_begin =
-          MeshBegin{*rc::gen::arbitrary<bool>(), *rc::gen::arbitrary<std::uint32_t>(),
-                    *rc::gen::arbitrary<std::uint32_t>(), *rc::gen::arbitrary<std::uint32_t>(),
-                    *rc::gen::arbitrary<std::uint32_t>()};
-      break;
     case MessageType::vertices:
-      m.vertices.count =
-          static_cast<std::uint16_t>(*rc::gen::inRange<int>(0, kMaxVerticesPerChunk + 1));
-      for (std::size_t i = 0; i < m.vertices.count; ++i) {
-        m.vertices.items[i] = VertexEntry{*rc::gen::arbitrary<std::uint32_t>(), f(), f(), f()};
-      }
-      break;
     case MessageType::triangles:
-      m.triangles.first = *rc::gen::arbitrary<std::uint32_t>();
-      m.triangles.count =
-          static_cast<std::uint16_t>(*rc::gen::inRange<int>(0, kMaxTrianglesPerChunk + 1));
-      for (std::size_t i = 0; i < 3u * m.triangles.count; ++i) {
-        m.triangles.indices[i] = *rc::gen::arbitrary<std::uint32_t>();
-      }
-      break;
     case MessageType::mesh_end:
-      m.mesh_end =
-          MeshEnd{*rc::gen::arbitrary<std::uint32_t>(), *rc::gen::arbitrary<std::uint64_t>()};
-      break;
     case MessageType::resend_request:
-      m.resend_request =
-          ResendRequest{*rc::gen::arbitrary<std::uint32_t>(), *rc::gen::arbitrary<std::uint64_t>()};
+      random_mesh_message(type, m);
       break;
     case MessageType::stroke:
     case MessageType::hands:
     case MessageType::object:
-      random_live(m);
+      random_live(type, m);
       break;
-    case MessageType::status:
-      m.status.mesh_version = *rc::gen::arbitrary<std::uint32_t>();
-      m.status.tracker_state = static_cast<std::uint8_t>(*rc::gen::inRange(0, 3));
-      m.status.tracker_rate_hz = f();
-      m.status.live_dropped = *rc::gen::arbitrary<std::uint64_t>();
-      m.status.strokes_not_saved = *rc::gen::arbitrary<std::uint64_t>();
+    case MessageType::status: {
+      StatusReport& s = m.emplace<StatusReport>();
+      s.mesh_version = *rc::gen::arbitrary<std::uint32_t>();
+      s.tracker_state = static_cast<std::uint8_t>(*rc::gen::inRange(0, 3));
+      s.tracker_rate_hz = random_float();
+      s.live_dropped = *rc::gen::arbitrary<std::uint64_t>();
+      s.strokes_not_saved = *rc::gen::arbitrary<std::uint64_t>();
       break;
+    }
     case MessageType::command:
-      m.command.kind = static_cast<CommandKind>(*rc::gen::inRange(1, kLastCommandKind + 1));
-      m.command.method = static_cast<std::uint8_t>(*rc::gen::inRange(0, 3));
+      m = Command{static_cast<CommandKind>(*rc::gen::inRange(1, kLastCommandKind + 1)),
+                  static_cast<std::uint8_t>(*rc::gen::inRange(0, 3))};
       break;
   }
   return m;
@@ -155,17 +172,13 @@ RC_GTEST_PROP(LinkCodec, RoundTripIsByteExactForAnySplit, ()) {
   LinkMessage got;
   const auto types = feed(decoder, bytes, &got);
   RC_ASSERT(types.size() == 1u);
-  RC_ASSERT(got.type == m.type);
+  RC_ASSERT(type_of(got) == type_of(m));
   RC_ASSERT(encode(got) == bytes);
 }
 
 TEST(LinkCodec, DecoderResyncsAfterGarbageAndTornFrames) {
-  LinkMessage a;
-  a.type = MessageType::mesh_end;
-  a.mesh_end = MeshEnd{7, 0x1122334455667788ULL};
-  LinkMessage b;
-  b.type = MessageType::resend_request;
-  b.resend_request = ResendRequest{3, 9};
+  const MeshEnd a{7, 0x1122334455667788ULL};
+  const ResendRequest b{3, 9};
   const auto fa = encode(a);
   const auto fb = encode(b);
   std::vector<std::byte> stream;
@@ -185,7 +198,7 @@ TEST(LinkCodec, DecoderResyncsAfterGarbageAndTornFrames) {
   ASSERT_EQ(types.size(), 2u);
   EXPECT_EQ(types[0], MessageType::mesh_end);
   EXPECT_EQ(types[1], MessageType::resend_request);
-  EXPECT_EQ(last.resend_request.have_version, 3u);
+  EXPECT_EQ(std::get<ResendRequest>(last).have_version, 3u);
   EXPECT_GE(d.counters().bad_crc + d.counters().bad_cobs, 2u);
 }
 
@@ -193,24 +206,21 @@ TEST(LinkCodec, OversizeFrameIsDroppedToTheNextDelimiter) {
   LinkDecoder d;
   std::vector<std::byte> junk(kMaxFrameBytes * 2, std::byte{0x55});
   junk.push_back(std::byte{0});
-  LinkMessage a;
-  a.type = MessageType::hello;
-  const auto fa = encode(a);
+  const auto fa = encode(Hello{});
   junk.insert(junk.end(), fa.begin(), fa.end());
   EXPECT_EQ(feed(d, junk).size(), 1u);
   EXPECT_EQ(d.counters().oversize, 1u);
 }
 
 TEST(LinkCodec, RefusesOtherVersionAndOverCapacityCounts) {
-  LinkMessage m;
-  m.type = MessageType::vertices;
-  m.vertices.count = kMaxVerticesPerChunk + 1;
+  Vertices m;
+  m.count = kMaxVerticesPerChunk + 1;
   std::vector<std::byte> out(kMaxFrameBytes);
   EXPECT_EQ(encode_frame(m, out).status().code(), StatusCode::invalid_argument);
   const std::byte v1[] = {std::byte{1}, std::byte{1}};  // a protocol 1 hello
   LinkMessage got;
   EXPECT_EQ(decode_payload(v1, got).code(), StatusCode::not_supported);
-  m.vertices.count = 1;
+  m.count = 1;
   std::vector<std::byte> tiny(8);
   EXPECT_EQ(encode_frame(m, tiny).status().code(), StatusCode::resource_exhausted);
 }
@@ -218,31 +228,27 @@ TEST(LinkCodec, RefusesOtherVersionAndOverCapacityCounts) {
 // Protocol 1 sent the screws (605 bytes per two-hand update); protocol 2 derives
 // them on the bridge (intent unchanged: a non-finite pose never reaches the shader).
 TEST(LinkCodec, NonFiniteOrDegenerateLivePosesAreRefused) {
-  LinkMessage m;
-  m.type = MessageType::hands;
-  m.hands.flags = kHandSample0 | kHandTracked0 | kStrokeActive;
-  m.hands.radius_m = 0.2F;
-  m.hands.hands[0].position.y = std::numeric_limits<float>::quiet_NaN();
+  Hands m;
+  m.flags = kHandSample0 | kHandTracked0 | kStrokeActive;
+  m.radius_m = 0.2F;
+  m.hands[0].position.y = std::numeric_limits<float>::quiet_NaN();
   LinkDecoder d;
   EXPECT_TRUE(feed(d, encode(m)).empty());
   EXPECT_EQ(d.counters().bad_payload, 1u);
-  m.hands.hands[0].position.y = 0.0F;
-  m.hands.hands[0].rotation = {0.0F, 0.0F, 0.0F, 0.0F};  // not a rotation
+  m.hands[0].position.y = 0.0F;
+  m.hands[0].rotation = {0.0F, 0.0F, 0.0F, 0.0F};  // not a rotation
   EXPECT_TRUE(feed(d, encode(m)).empty());
-  m.hands.hands[0].rotation = {1.0F, 0.0F, 0.0F, 0.0F};
+  m.hands[0].rotation = {1.0F, 0.0F, 0.0F, 0.0F};
   EXPECT_EQ(feed(d, encode(m)).size(), 1u);
-  LinkMessage s;
-  s.type = MessageType::stroke;
-  s.stroke.hand_mask = 1;
-  s.stroke.radius_m = 0.2;
-  s.stroke.start[0].u.x = std::numeric_limits<double>::infinity();
+  StrokeBegin s;
+  s.hand_mask = 1;
+  s.radius_m = 0.2;
+  s.start[0].u.x = std::numeric_limits<double>::infinity();
   EXPECT_TRUE(feed(d, encode(s)).empty());
 }
 
 TEST(LinkCodec, CommandsOfUnknownKindOrMethodAreRefused) {
-  LinkMessage m;
-  m.type = MessageType::command;
-  m.command = Command{CommandKind::set_method, 2};
+  Command m{CommandKind::set_method, 2};
   auto bytes = encode(m);
   LinkDecoder decoder;
   std::size_t decoded = 0;
@@ -251,7 +257,7 @@ TEST(LinkCodec, CommandsOfUnknownKindOrMethodAreRefused) {
   for (const Command bad : {Command{static_cast<CommandKind>(0), 0},
                             Command{static_cast<CommandKind>(kLastCommandKind + 1), 0},
                             Command{CommandKind::set_method, 3}}) {
-    m.command = bad;
+    m = bad;
     bytes = encode(m);
     decoded = 0;
     for (const std::byte b : bytes) decoded += decoder.process(b).ok() ? 1 : 0;

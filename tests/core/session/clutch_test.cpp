@@ -128,9 +128,9 @@ TEST(Clutch, ReleasingTheGrabOnTheClutchAddsNoRecord) {
   s.button(kGrab1, false);
   const SessionEvents done = s.tick();
   ASSERT_EQ(count(done, SessionEventKind::committed), 1u);
-  EXPECT_TRUE(done.items()[0].repeat);      // the freeze step was the commit
-  EXPECT_EQ(done.items()[0].sequence, 0u);  // ... and this is its record
-  EXPECT_EQ(done.items()[0].reason, input::Reason::released);
+  EXPECT_TRUE(done.items()[0].stroke_end().repeat);      // the freeze step was the commit
+  EXPECT_EQ(done.items()[0].stroke_end().sequence, 0u);  // ... and this is its record
+  EXPECT_EQ(done.items()[0].stroke_end().reason, input::Reason::released);
   EXPECT_EQ(s.session->next_sequence(), 1u);
   EXPECT_FALSE(s.session->busy());
   s.button(kFreeze1, false);

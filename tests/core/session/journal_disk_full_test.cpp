@@ -34,7 +34,8 @@ struct Sculptor {
     for (const SessionEvent& e : events.items()) {
       if (e.kind == SessionEventKind::committed || e.kind == SessionEventKind::move_committed) {
         EXPECT_TRUE(e.status.ok());
-        seen.saved.insert(e.sequence);
+        seen.saved.insert(e.kind == SessionEventKind::move_committed ? e.record().sequence
+                                                                       : e.stroke_end().sequence);
       }
       if (e.kind == SessionEventKind::not_saved) ++seen.not_saved;
     }
@@ -148,7 +149,7 @@ TEST(JournalDiskFull, AtEveryByteOfASessionNothingReportedSavedIsLostAndRestartW
   const std::size_t total = full_session_bytes();
   ASSERT_GT(total, 1000u);
   std::size_t runs_with_losses = 0;
-  for (std::size_t limit = journal::kFileHeaderBytes; limit <= total; ++limit) {
+  for (std::size_t limit = journal::kMaxFileHeaderBytes; limit <= total; ++limit) {
     SCOPED_TRACE(limit);
     auto s = std::make_unique<Station>();
     s->storage.fill_disk_at(limit);

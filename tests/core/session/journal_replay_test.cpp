@@ -153,7 +153,7 @@ TEST(JournalReplay, RecordsKeepTheirSequenceNumbers) {
   journal::JournalRecord move;
   move.type = journal::RecordType::object_move;
   move.sequence = 41;
-  move.move.object_after.origin_m = {0, 0, 1};
+  move.move.object_after.origin = {0, 0, 1};
   ASSERT_TRUE(r->replay.apply(move).ok());
   EXPECT_EQ(r->rig.history.next_sequence(), 42u);
   EXPECT_EQ(r->rig.poses.object().origin, glm::dvec3(0, 0, 1));

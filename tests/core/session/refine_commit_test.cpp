@@ -14,7 +14,6 @@
 #include "allocation_counter.hpp"
 #include "mesh_checks.hpp"
 #include "refine_harness.hpp"
-#include "twister/session/journal_pose.hpp"
 #include "twister/mesh/mesh_refiner.hpp"
 #include "twister/mesh/vertex_normals.hpp"
 
@@ -51,8 +50,8 @@ void build_plan(math::WarpPlan& plan, const mesh::Mesh& rest, const journal::Str
   std::uint8_t turns = 0;
   for (std::uint8_t h = 0; h < 2; ++h) {
     if ((s.hand_mask & (1u << h)) == 0) continue;
-    start[n] = from_journal(s.start[h]);
-    end[n] = from_journal(s.end[h]);
+    start[n] = s.start[h];
+    end[n] = s.end[h];
     if ((s.long_turns & (1u << h)) != 0) turns = static_cast<std::uint8_t>(turns | (1u << n));
     ++n;
   }
@@ -71,9 +70,9 @@ TEST(RefineCommit, CoarseBoxTwisted170DegreesHasEveryEdgeWithinTheThreshold) {
   const SessionEvent* refined = find_event(events, SessionEventKind::refined);
   ASSERT_NE(refined, nullptr);
   EXPECT_EQ(find_event(events, SessionEventKind::refine_stopped), nullptr);
-  EXPECT_EQ(refined->sequence, 0u);
+  EXPECT_EQ(refined->refinement().sequence, 0u);
   EXPECT_TRUE(closed_manifold(s.mesh()));
-  EXPECT_EQ(s.mesh().vertex_count(), 26u + static_cast<std::size_t>(refined->value));
+  EXPECT_EQ(s.mesh().vertex_count(), 26u + static_cast<std::size_t>(refined->refinement().vertices_added));
 
   // The journal says how it was refined; the same refinement done here on the rest
   // mesh gives the session's topology, the threshold met on every edge against the
@@ -116,9 +115,9 @@ TEST(RefineCommit, AtCapacityTheCommitAppliesAndRefinementStopsConforming) {
   EXPECT_TRUE(committed->status.ok());
   const SessionEvent* stopped = find_event(events, SessionEventKind::refine_stopped);
   ASSERT_NE(stopped, nullptr);
-  EXPECT_EQ(static_cast<mesh::RefineStop>(stopped->value), mesh::RefineStop::vertex_capacity);
+  EXPECT_EQ(stopped->refinement_stop().stop, mesh::RefineStop::vertex_capacity);
   EXPECT_EQ(stopped->status.code(), StatusCode::resource_exhausted);
-  EXPECT_EQ(find_event(events, SessionEventKind::refined)->value, 40.0);
+  EXPECT_EQ(find_event(events, SessionEventKind::refined)->refinement().vertices_added, 40u);
   EXPECT_EQ(s.mesh().vertex_count(), s.mesh().vertex_capacity());
   EXPECT_TRUE(closed_manifold(s.mesh()));
   EXPECT_GT(glm::length(s.mesh().position(25) - corner), 0.3f);  // the warp applied
@@ -128,7 +127,7 @@ TEST(RefineCommit, AtCapacityTheCommitAppliesAndRefinementStopsConforming) {
   // The next commit still applies; with no room left it adds nothing and says so.
   const SessionEvents again = twist_box(s, -0.5);
   EXPECT_TRUE(find_event(again, SessionEventKind::committed)->status.ok());
-  EXPECT_EQ(find_event(again, SessionEventKind::refined)->value, 0.0);
+  EXPECT_EQ(find_event(again, SessionEventKind::refined)->refinement().vertices_added, 0u);
   EXPECT_NE(find_event(again, SessionEventKind::refine_stopped), nullptr);
   EXPECT_TRUE(closed_manifold(s.mesh()));
 }

@@ -123,7 +123,7 @@ RC_GTEST_PROP(SculptSessionProperty, GrabsEndOnceUndoRedoExactReplayIdentical, (
         open[e.hand] = true;
       }
       const bool ends = e.kind == SessionEventKind::cancelled ||
-                        (e.kind == SessionEventKind::committed && e.reason == input::Reason::released);
+                        (e.kind == SessionEventKind::committed && e.stroke_end().reason == input::Reason::released);
       if (ends) {
         RC_ASSERT(open[e.hand]);
         open[e.hand] = false;

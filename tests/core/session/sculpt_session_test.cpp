@@ -47,7 +47,7 @@ TEST(SculptSession, GrabDragReleaseCommitsAndJournals) {
   EXPECT_NE(s.mesh.checksum(), original);
   EXPECT_FALSE(s.session->busy());
   EXPECT_EQ(s.session->next_sequence(), 1u);
-  EXPECT_GT(s.storage.bytes().size(), journal::kFileHeaderBytes);
+  EXPECT_GT(s.storage.bytes().size(), journal::kMaxFileHeaderBytes);
   EXPECT_EQ(s.storage.synced_size(), s.storage.bytes().size());
 }
 
@@ -170,7 +170,7 @@ TEST(SculptSession, LostTrackingTooLongCancelsAndLeavesTheModelUnchanged) {
   (void)s.tick();
   const SessionEvents e = s.tick(150'000);
   ASSERT_TRUE(has_event(e, SessionEventKind::cancelled));
-  EXPECT_EQ(e.items()[0].reason, input::Reason::tracking_timeout);
+  EXPECT_EQ(e.items()[0].stroke_end().reason, input::Reason::tracking_timeout);
   EXPECT_EQ(s.mesh.checksum(), original);
   EXPECT_FALSE(s.session->busy());
   EXPECT_EQ(s.session->next_sequence(), 0u);  // nothing journaled
@@ -185,7 +185,7 @@ TEST(SculptSession, TwoHandsTogetherAndSecondGrabAtSamePointRefused) {
   s.button(kGrab1, true);
   const SessionEvents refused = s.tick();
   ASSERT_TRUE(has_event(refused, SessionEventKind::refused));
-  EXPECT_EQ(refused.items()[0].reason, input::Reason::same_point);
+  EXPECT_EQ(refused.items()[0].reasoned().reason, input::Reason::same_point);
   s.button(kGrab1, false);
   (void)s.tick();
   s.hand(1, math::identity_frame({0.5, 0, 0}));
@@ -223,9 +223,9 @@ TEST(SculptSession, ReleasingBothHandsTogetherIsOneCommit) {
   for (const SessionEvent& e : done.items()) {
     if (e.kind != SessionEventKind::committed) continue;
     ++commits[e.hand];
-    EXPECT_EQ(e.reason, input::Reason::released);
-    if (sequence == 99) sequence = e.sequence;
-    EXPECT_EQ(e.sequence, sequence);  // the same record for both hands
+    EXPECT_EQ(e.stroke_end().reason, input::Reason::released);
+    if (sequence == 99) sequence = e.stroke_end().sequence;
+    EXPECT_EQ(e.stroke_end().sequence, sequence);  // the same record for both hands
   }
   EXPECT_EQ(commits[0], 1);
   EXPECT_EQ(commits[1], 1);

@@ -73,7 +73,7 @@ TEST(SessionCommands, UndoAndRedoFromChords) {
   const SessionEvent* e = find(undone, SessionEventKind::undone);
   ASSERT_NE(e, nullptr);
   EXPECT_EQ(e->hand, 1);
-  EXPECT_EQ(e->sequence, 1u);  // the undo record follows the stroke's
+  EXPECT_EQ(e->record().sequence, 1u);  // the undo record follows the stroke's
   EXPECT_EQ(find(undone, SessionEventKind::grab_begin), nullptr);  // the trigger is consumed
   EXPECT_EQ(s.mesh.checksum(), original);
   EXPECT_EQ(s.session->state().redo_depth, 1u);
@@ -87,8 +87,8 @@ TEST(SessionCommands, UndoAndRedoFromChords) {
   const SessionEvents again = chord(s, kFreeze1, kRadius1);
   const SessionEvent* refused = find(again, SessionEventKind::command_refused);
   ASSERT_NE(refused, nullptr);
-  EXPECT_EQ(refused->reason, input::Reason::nothing_to_redo);
-  EXPECT_EQ(refused->value, static_cast<double>(SessionCommandKind::redo));
+  EXPECT_EQ(refused->command_refusal().reason, input::Reason::nothing_to_redo);
+  EXPECT_EQ(refused->command_refusal().command, SessionCommandKind::redo);
 }
 
 // Grabbing first and then pressing freeze is a freeze, not an undo: the chord needs
@@ -117,7 +117,7 @@ TEST(SessionCommands, UndoIsRefusedWhileAStrokeIsOpen) {
   const SessionEvents e = s.tick();
   const SessionEvent* refused = find(e, SessionEventKind::command_refused);
   ASSERT_NE(refused, nullptr);
-  EXPECT_EQ(refused->reason, input::Reason::busy);
+  EXPECT_EQ(refused->command_refusal().reason, input::Reason::busy);
   EXPECT_EQ(s.session->next_sequence(), 1u);
 }
 
@@ -128,7 +128,7 @@ TEST(SessionCommands, MethodCycleButtonChangesTheMethodOfTheNextStroke) {
   const SessionEvents e = s.tick();
   const SessionEvent* changed = find(e, SessionEventKind::method_changed);
   ASSERT_NE(changed, nullptr);
-  EXPECT_EQ(changed->value, static_cast<double>(math::WarpMethod::rottran));
+  EXPECT_EQ(changed->method().method, math::WarpMethod::rottran);
   s.button(kMethodLine, false);
   (void)s.tick();
   EXPECT_EQ(s.session->method(), math::WarpMethod::rottran);
@@ -140,7 +140,7 @@ TEST(SessionCommands, MethodCycleButtonChangesTheMethodOfTheNextStroke) {
   s.button(kMethodLine, true);
   const SessionEvents busy = s.tick();
   ASSERT_NE(find(busy, SessionEventKind::command_refused), nullptr);
-  EXPECT_EQ(find(busy, SessionEventKind::command_refused)->reason, input::Reason::busy);
+  EXPECT_EQ(find(busy, SessionEventKind::command_refused)->command_refusal().reason, input::Reason::busy);
   s.button(kMethodLine, false);
   s.button(kGrab0, false);
   (void)s.tick();
@@ -201,7 +201,7 @@ TEST(SessionCommands, RadiusGestureEventsAndState) {
     const float expected = enabled ? 0.5f : 0.25f;
     EXPECT_NEAR(s.session->state().radius_m, expected, 1e-6f);
     if (set != nullptr) {
-      EXPECT_NEAR(set->value, 0.5, 1e-6);
+      EXPECT_NEAR(set->radius().radius_m, 0.5, 1e-6);
     }
     EXPECT_EQ(s.session->state().radius_gesture_enabled, enabled);
   }

@@ -24,7 +24,7 @@ journal::StrokeRecord one_hand_stroke() {
   journal::StrokeRecord s;
   s.hand_mask = 1;
   s.radius_m = 0.5;
-  s.end[0].origin_m = {0, 0, 0.25};
+  s.end[0].origin = {0, 0, 0.25};
   return s;
 }
 
@@ -85,7 +85,7 @@ TEST(SessionHistory, AMoveIsRecordedAndUndoPutsTheObjectBack) {
   ASSERT_EQ(r->read_records(records), 1u);
   EXPECT_EQ(records[0].type, journal::RecordType::object_move);
   EXPECT_EQ(records[0].move.hand, 1);
-  EXPECT_EQ(records[0].move.object_after.origin_m, after.origin);
+  EXPECT_EQ(records[0].move.object_after.origin, after.origin);
   ASSERT_TRUE(r->history.commit_history_step(journal::RecordType::undo).ok());
   EXPECT_EQ(r->poses.object().origin, before.origin);
   ASSERT_TRUE(r->history.commit_history_step(journal::RecordType::redo).ok());
@@ -101,7 +101,7 @@ TEST(SessionHistory, ACommitTooLargeForTheHistoryStandsButIsNotUndoable) {
       static_cast<StrokeCommitSink&>(r->history).commit(r->plan, one_hand_stroke(), out);
   EXPECT_TRUE(done.status.ok());
   ASSERT_EQ(count_events(out, SessionEventKind::history_overflow), 1u);
-  EXPECT_EQ(out.items()[0].sequence, done.sequence);
+  EXPECT_EQ(out.items()[0].record().sequence, done.sequence);
   EXPECT_NEAR(r->mesh.position(8 * 17 + 8).z, 0.25f, 1e-6f);
   EXPECT_FALSE(r->history.undo_history().can_undo());
   EXPECT_EQ(r->history.next_sequence(), 1u);  // journaled all the same

@@ -82,15 +82,15 @@ TEST(StrokeController, GrabFollowReleaseCommitsOneSegment) {
   const SessionEvents done = s->step({release(0)});
   ASSERT_EQ(done.items().size(), 1u);
   EXPECT_EQ(done.items()[0].kind, SessionEventKind::committed);
-  EXPECT_EQ(done.items()[0].reason, input::Reason::released);
-  EXPECT_EQ(done.items()[0].sequence, 0u);
+  EXPECT_EQ(done.items()[0].stroke_end().reason, input::Reason::released);
+  EXPECT_EQ(done.items()[0].stroke_end().sequence, 0u);
   ASSERT_EQ(s->sink.count, 1u);
   const journal::StrokeRecord& r = s->sink.records[0];
   EXPECT_EQ(r.hand_mask, 1);
   EXPECT_EQ(r.chain_step, 0);
   EXPECT_EQ(r.radius_m, 0.5);
-  EXPECT_EQ(r.start[0].origin_m, glm::dvec3(0, 0, 0));
-  EXPECT_EQ(r.end[0].origin_m, glm::dvec3(0, 0, 0.3));
+  EXPECT_EQ(r.start[0].origin, glm::dvec3(0, 0, 0));
+  EXPECT_EQ(r.end[0].origin, glm::dvec3(0, 0, 0.3));
   EXPECT_FALSE(s->strokes.active());
   EXPECT_FALSE(s->rig.plan.built());
 }
@@ -104,7 +104,7 @@ TEST(StrokeController, FreezeCommitsAndGoesOnWithTheNextChainStep) {
   const SessionEvents frozen = s->step({freeze(1)});
   ASSERT_EQ(frozen.items().size(), 2u);
   EXPECT_EQ(frozen.items()[0].kind, SessionEventKind::committed);
-  EXPECT_EQ(frozen.items()[0].reason, input::Reason::none);                // the stroke goes on
+  EXPECT_EQ(frozen.items()[0].stroke_end().reason, input::Reason::none);                // the stroke goes on
   EXPECT_EQ(frozen.items()[1].kind, SessionEventKind::disengaged);  // the clutch is in
   EXPECT_TRUE(s->strokes.active());
   EXPECT_EQ(s->strokes.chain_step(), 1);
@@ -163,8 +163,8 @@ TEST(StrokeController, HandsReleasedTogetherShareOneCommit) {
   for (std::uint8_t h = 0; h < 2; ++h) {
     EXPECT_EQ(done.items()[h].kind, SessionEventKind::committed);
     EXPECT_EQ(done.items()[h].hand, h);
-    EXPECT_EQ(done.items()[h].reason, input::Reason::released);
-    EXPECT_EQ(done.items()[h].sequence, 0u);
+    EXPECT_EQ(done.items()[h].stroke_end().reason, input::Reason::released);
+    EXPECT_EQ(done.items()[h].stroke_end().sequence, 0u);
   }
   ASSERT_EQ(s->sink.count, 1u);
   EXPECT_EQ(s->sink.records[0].hand_mask, 3);
@@ -199,7 +199,7 @@ TEST(StrokeController, CancelDropsOnlyTheOpenSegment) {
   const SessionEvents cancelled = s->step({act(input::ActionKind::cancel, 1, input::Reason::tracking_timeout)});
   ASSERT_EQ(cancelled.items().size(), 1u);
   EXPECT_EQ(cancelled.items()[0].kind, SessionEventKind::cancelled);
-  EXPECT_EQ(cancelled.items()[0].reason, input::Reason::tracking_timeout);
+  EXPECT_EQ(cancelled.items()[0].stroke_end().reason, input::Reason::tracking_timeout);
   EXPECT_EQ(s->sink.count, 1u);  // the freeze step stays committed
   EXPECT_FALSE(s->strokes.active());
 }
@@ -250,8 +250,8 @@ TEST(StrokeController, HandPosesAreTakenInTheObjectFrame) {
   (void)s->step({});
   (void)s->step({release(0)});
   ASSERT_EQ(s->sink.count, 1u);
-  EXPECT_EQ(s->sink.records[0].start[0].origin_m, glm::dvec3(0, 0, 0));
-  EXPECT_EQ(s->sink.records[0].end[0].origin_m, glm::dvec3(0, 0, 0.2));
+  EXPECT_EQ(s->sink.records[0].start[0].origin, glm::dvec3(0, 0, 0));
+  EXPECT_EQ(s->sink.records[0].end[0].origin, glm::dvec3(0, 0, 0.2));
 }
 
 // Issue 11 changed this: a commit that did not happen is `not_saved`, never `committed`.
@@ -263,7 +263,7 @@ TEST(StrokeController, AFailedCommitIsReportedAsNotSaved) {
   const SessionEvents done = s->step({release(0)});
   ASSERT_EQ(done.items().size(), 1u);
   EXPECT_EQ(done.items()[0].kind, SessionEventKind::not_saved);
-  EXPECT_EQ(done.items()[0].reason, input::Reason::released);
+  EXPECT_EQ(done.items()[0].stroke_end().reason, input::Reason::released);
   EXPECT_EQ(done.items()[0].status.code(), StatusCode::invalid_argument);
   EXPECT_FALSE(s->strokes.active());
 }
@@ -288,7 +288,7 @@ TEST(StrokeController, AFreezeThatIsNotSavedEndsTheStrokeAndTheChain) {
   ASSERT_EQ(failed.items().size(), 2u);
   for (const SessionEvent& e : failed.items()) {
     EXPECT_EQ(e.kind, SessionEventKind::not_saved);
-    EXPECT_EQ(e.reason, input::Reason::released);
+    EXPECT_EQ(e.stroke_end().reason, input::Reason::released);
     EXPECT_EQ(e.status.code(), StatusCode::io_error);
   }
   EXPECT_NE(failed.items()[0].hand, failed.items()[1].hand);
@@ -336,7 +336,7 @@ RC_GTEST_PROP(StrokeControllerProperty, GrabsEndOnceAndChainsFollowEachOther, ()
         open[e.hand] = true;
       }
       const bool ends = e.kind == SessionEventKind::cancelled ||
-                        (e.kind == SessionEventKind::committed && e.reason == input::Reason::released);
+                        (e.kind == SessionEventKind::committed && e.stroke_end().reason == input::Reason::released);
       if (ends) {
         RC_ASSERT(open[e.hand]);
         open[e.hand] = false;

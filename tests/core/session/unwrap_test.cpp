@@ -178,7 +178,7 @@ TEST(UnwrappedStroke, HoldsAtTheLimitAndSaysSo) {
       if (e.kind == SessionEventKind::turn_limit_reached) {
         ++reached;
         EXPECT_EQ(e.hand, 1);
-        EXPECT_NEAR(e.value, deg(300), 1e-12);
+        EXPECT_NEAR(e.turn_limit().limit_rad, deg(300), 1e-12);
         EXPECT_EQ(k, 31);
         held = live_at(*s.session, half);
       }

@@ -66,7 +66,8 @@ class FakeListener final : public ports::LinkPort, public ports::LinkNewcomers {
   std::uint64_t id_ = 0;
 };
 
-std::vector<std::byte> frame(const LinkMessage& m) {
+template <LinkBody M>
+std::vector<std::byte> frame(const M& m) {
   std::vector<std::byte> f(kMaxFrameBytes);
   const auto n = encode_frame(m, f);
   EXPECT_TRUE(n.ok());
@@ -74,18 +75,11 @@ std::vector<std::byte> frame(const LinkMessage& m) {
   return f;
 }
 
-LinkMessage hello(std::uint32_t version = 0, std::uint64_t checksum = 0) {
-  LinkMessage m;
-  m.type = MessageType::hello;
-  m.hello = Hello{Role::bridge, 0, version, checksum, {}};
-  return m;
+Hello hello(std::uint32_t version = 0, std::uint64_t checksum = 0) {
+  return Hello{Role::bridge, 0, version, checksum, {}};
 }
 
-LinkMessage resend() {
-  LinkMessage m;
-  m.type = MessageType::resend_request;
-  return m;
-}
+ResendRequest resend() { return ResendRequest{}; }
 
 // The display's end of a wire: what it sends, what it decodes.
 struct Far {
@@ -138,7 +132,7 @@ struct Rig {
 
 std::size_t count(const std::vector<LinkMessage>& ms, MessageType t) {
   std::size_t n = 0;
-  for (const auto& m : ms) n += m.type == t ? 1 : 0;
+  for (const auto& m : ms) n += type_of(m) == t ? 1 : 0;
   return n;
 }
 
@@ -163,8 +157,8 @@ TEST(LinkPeerSwap, NewDisplaysHelloIsNotSwallowedByTheOldOnesPartialFrame) {
   EXPECT_EQ(r.listener.peer(), &wb);
   const auto told = a.receive();
   ASSERT_FALSE(told.empty());
-  EXPECT_EQ(told.back().type, MessageType::bye);
-  EXPECT_EQ(told.back().bye.reason, ByeReason::displaced);
+  EXPECT_EQ(type_of(told.back()), MessageType::bye);
+  EXPECT_EQ(std::get<Bye>(told.back()).reason, ByeReason::displaced);
   EXPECT_EQ(count(b.receive(), MessageType::hello), 1u);
   // The new display's next request is understood on the display channel.
   b.send(frame(resend()));
@@ -242,7 +236,7 @@ TEST(LinkAdmission, OldProtocolAndSilentPeersAreRefusedAndTheDisplayStays) {
   EXPECT_EQ(r.listener.peer(), &wa);
   EXPECT_TRUE(r.link->admitted());
   EXPECT_EQ(r.link->counters().displaced, 0u);
-  for (const auto& m : a.receive()) EXPECT_NE(m.type, MessageType::bye);
+  for (const auto& m : a.receive()) EXPECT_NE(type_of(m), MessageType::bye);
 }
 
 }  // namespace

@@ -30,7 +30,8 @@ struct Rig {
     EXPECT_TRUE(link->start(*station.session).ok());
   }
   // Bridge side: sends raw messages, decodes everything the station sent.
-  void bridge_send(const LinkMessage& m) {
+  template <LinkBody M>
+  void bridge_send(const M& m) {
     std::vector<std::byte> f(kMaxFrameBytes);
     const auto n = encode_frame(m, f);
     ASSERT_TRUE(n.ok());
@@ -64,15 +65,12 @@ struct Rig {
 
 std::size_t count(const std::vector<LinkMessage>& ms, MessageType t) {
   std::size_t n = 0;
-  for (const auto& m : ms) n += m.type == t ? 1 : 0;
+  for (const auto& m : ms) n += type_of(m) == t ? 1 : 0;
   return n;
 }
 
-LinkMessage bridge_hello(std::uint32_t version, std::uint64_t checksum) {
-  LinkMessage m;
-  m.type = MessageType::hello;
-  m.hello = Hello{Role::bridge, 0, version, checksum, {}};
-  return m;
+Hello bridge_hello(std::uint32_t version, std::uint64_t checksum) {
+  return Hello{Role::bridge, 0, version, checksum, {}};
 }
 
 TEST(StationLink, FullMeshOnHelloThenCommitWithChecksumAndNoHeapInPoll) {
@@ -81,13 +79,14 @@ TEST(StationLink, FullMeshOnHelloThenCommitWithChecksumAndNoHeapInPoll) {
   for (int i = 0; i < 50; ++i) r.poll();
   auto got = r.bridge_receive();
   ASSERT_GE(got.size(), 3u);
-  EXPECT_EQ(got.front().type, MessageType::hello);
+  EXPECT_EQ(type_of(got.front()), MessageType::hello);
   EXPECT_EQ(count(got, MessageType::mesh_end), 1u);
-  EXPECT_EQ(got.back().type == MessageType::mesh_end || count(got, MessageType::status) > 0, true);
+  EXPECT_EQ(type_of(got.back()) == MessageType::mesh_end || count(got, MessageType::status) > 0,
+            true);
   for (const auto& m : got) {
-    if (m.type == MessageType::mesh_end) {
-      EXPECT_EQ(m.mesh_end.version, 1u);
-      EXPECT_EQ(m.mesh_end.checksum, r.station.mesh.checksum());
+    if (const auto* e = std::get_if<MeshEnd>(&m)) {
+      EXPECT_EQ(e->version, 1u);
+      EXPECT_EQ(e->checksum, r.station.mesh.checksum());
     }
   }
   // A stroke: live frames while dragging, then one commit set (begin..end).
@@ -110,14 +109,14 @@ TEST(StationLink, FullMeshOnHelloThenCommitWithChecksumAndNoHeapInPoll) {
   ASSERT_EQ(count(got, MessageType::mesh_end), 1u);
   bool begin_seen = false;
   for (const auto& m : got) {
-    if (m.type == MessageType::mesh_begin) {
+    if (const auto* b = std::get_if<MeshBegin>(&m)) {
       begin_seen = true;
-      EXPECT_FALSE(m.mesh_begin.full);
-      EXPECT_EQ(m.mesh_begin.base_version, 1u);
-      EXPECT_EQ(m.mesh_begin.version, 2u);
+      EXPECT_FALSE(b->full);
+      EXPECT_EQ(b->base_version, 1u);
+      EXPECT_EQ(b->version, 2u);
     }
-    if (m.type == MessageType::mesh_end) {
-      EXPECT_EQ(m.mesh_end.checksum, s.mesh.checksum());
+    if (const auto* e = std::get_if<MeshEnd>(&m)) {
+      EXPECT_EQ(e->checksum, s.mesh.checksum());
     }
   }
   EXPECT_TRUE(begin_seen);
@@ -136,10 +135,7 @@ TEST(StationLink, NoPeerStationGoesOnAndPeerWithSameVersionGetsNoFullMesh) {
   EXPECT_EQ(count(got, MessageType::mesh_begin), 0u);
   EXPECT_TRUE(r.link->peer_synced());
   // Asked explicitly: full mesh even when versions agree.
-  LinkMessage req;
-  req.type = MessageType::resend_request;
-  req.resend_request = ResendRequest{1, r.station.mesh.checksum()};
-  r.bridge_send(req);
+  r.bridge_send(ResendRequest{1, r.station.mesh.checksum()});
   for (int i = 0; i < 10; ++i) r.poll();
   EXPECT_EQ(count(r.bridge_receive(), MessageType::mesh_begin), 1u);
   EXPECT_EQ(r.link->counters().resend_requests, 1u);
@@ -173,7 +169,7 @@ TEST(StationLink, SlowPeerDropsLiveFramesButNeverHalfACommit) {
   EXPECT_EQ(count(got, MessageType::mesh_begin), count(got, MessageType::mesh_end));
   std::uint64_t last = 0;
   for (const auto& m : got) {
-    if (m.type == MessageType::mesh_end) last = m.mesh_end.checksum;
+    if (const auto* e = std::get_if<MeshEnd>(&m)) last = e->checksum;
   }
   EXPECT_EQ(last, s.mesh.checksum());
 }

@@ -34,7 +34,7 @@ struct Rig {
       journal::JournalRecord r;
       r.type = journal::RecordType::object_move;
       r.sequence = i;
-      r.move.object_after.origin_m = {0.1 * i, 0, 0};
+      r.move.object_after.origin = {0.1 * i, 0, 0};
       EXPECT_TRUE(writer.append(r).ok());
     }
     at.push_back(storage.bytes().size());
@@ -108,7 +108,7 @@ std::vector<std::byte> checkpoint_of(Rig& rig) {
   test::FakeFileSink out;
   EXPECT_TRUE(rig.station({nullptr, nullptr, &out}).start().ok());
   rig.core->stop();
-  EXPECT_EQ(rig.core->counters().checkpoints_written, 1u);
+  EXPECT_EQ(rig.core->counters().events.checkpoints_written, 1u);
   return {out.bytes().begin(), out.bytes().end()};
 }
 
@@ -151,7 +151,7 @@ TEST(StationRecovery, ACheckpointIsUsedOnlyForItsJournalAndModel) {
       journal::JournalRecord r;
       r.type = journal::RecordType::object_move;
       r.sequence = i;
-      r.move.object_after.origin_m = {0.0, 0.2 * i, 0};
+      r.move.object_after.origin = {0.0, 0.2 * i, 0};
       ASSERT_TRUE(w.append(r).ok());
     }
   }

@@ -96,7 +96,7 @@ FastrakConfig gen_config(bool packed16 = false) {
   c.ascii_stylus_width = *rc::gen::element<std::uint8_t>(1, 2);
   const int n = *rc::gen::inRange(1, 5);
   for (int s = 0; s < n; ++s) {
-    StationConfig& st = c.stations[static_cast<std::size_t>(s)];
+    ReceiverConfig& st = c.stations[static_cast<std::size_t>(s)];
     st.enabled = true;
     OutputList l;
     l.items[l.count++] = Item::position;

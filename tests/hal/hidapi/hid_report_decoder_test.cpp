@@ -10,22 +10,22 @@
 namespace twister::hal {
 namespace {
 
-using Edges = std::array<ports::ButtonEdge, HidReportDecoder::kMaxButtons>;
-
 TEST(HidReportDecoderTest, MapsBitsToEdgesOnlyOnChange) {
   HidReportDecoder d;
   const std::array<HidButtonBitMap, 3> map{{{1, 0x04}, {1, 0x08}, {2, 0x01}}};
   ASSERT_TRUE(d.configure(map).ok());
-  Edges out{};
+  HidReportDecoder::Edges out;
   std::array<std::uint8_t, 3> report{0x00, 0x04, 0x00};
-  ASSERT_EQ(d.decode(report, 100, out), 1u);
+  out = d.decode(report, 100);
+  ASSERT_EQ(out.size(), 1u);
   EXPECT_EQ(out[0].line, 0);
   EXPECT_TRUE(out[0].pressed);
   EXPECT_EQ(out[0].time_us, 100);
-  EXPECT_EQ(d.decode(report, 200, out), 0u);  // same report: no edge
+  EXPECT_EQ(d.decode(report, 200).size(), 0u);  // same report: no edge
 
   report = {0x00, 0x08 | 0xF0, 0x01};  // other bits in the byte are ignored
-  ASSERT_EQ(d.decode(report, 300, out), 3u);
+  out = d.decode(report, 300);
+  ASSERT_EQ(out.size(), 3u);
   EXPECT_EQ(out[0].line, 0);
   EXPECT_FALSE(out[0].pressed);
   EXPECT_EQ(out[1].line, 1);
@@ -38,11 +38,13 @@ TEST(HidReportDecoderTest, ShortReportLeavesButtonsUnchanged) {
   HidReportDecoder d;
   const std::array<HidButtonBitMap, 2> map{{{0, 0x01}, {5, 0x01}}};
   ASSERT_TRUE(d.configure(map).ok());
-  Edges out{};
+  HidReportDecoder::Edges out;
   const std::array<std::uint8_t, 6> full{0x01, 0, 0, 0, 0, 0x01};
-  ASSERT_EQ(d.decode(full, 1, out), 2u);
+  out = d.decode(full, 1);
+  ASSERT_EQ(out.size(), 2u);
   const std::array<std::uint8_t, 1> short_report{0x00};
-  ASSERT_EQ(d.decode(short_report, 2, out), 1u);
+  out = d.decode(short_report, 2);
+  ASSERT_EQ(out.size(), 1u);
   EXPECT_EQ(out[0].line, 0);
   EXPECT_FALSE(out[0].pressed);
 }
@@ -60,11 +62,10 @@ TEST(HidReportDecoderTest, DecodeDoesNotAllocate) {
   HidReportDecoder d;
   const std::array<HidButtonBitMap, 2> map{{{0, 0x01}, {0, 0x02}}};
   ASSERT_TRUE(d.configure(map).ok());
-  Edges out{};
+  HidReportDecoder::Edges out;
   std::array<std::uint8_t, 1> report{0x03};
-  std::size_t n = 0;
-  EXPECT_NO_ALLOCATIONS(n = d.decode(report, 1, out));
-  EXPECT_EQ(n, 2u);
+  EXPECT_NO_ALLOCATIONS(out = d.decode(report, 1));
+  EXPECT_EQ(out.size(), 2u);
 }
 
 }  // namespace

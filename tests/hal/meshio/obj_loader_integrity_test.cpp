@@ -11,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "twister/meshio/mesh_generator.hpp"
@@ -115,6 +116,11 @@ TEST(ObjLoaderIntegrity, UnsupportedStatementsAreSkippedAndCounted) {
   EXPECT_FALSE(parse_obj(std::string(kTriangle), {.max_vertices = 2}));
 }
 
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 class ObjFiles : public ::testing::Test {
  protected:
   void SetUp() override { fs::create_directories(dir_); }
@@ -157,8 +163,14 @@ TEST_F(ObjFiles, WritersReplaceOnlyRegularFiles) {
   EXPECT_TRUE(fs::is_symlink(link));
   EXPECT_FALSE(save_obj(dir_, grid.mesh()));
   EXPECT_TRUE(fs::is_directory(dir_));
-  // A regular file is replaced atomically; no temporary file is left behind.
-  ASSERT_TRUE(save_obj(target, grid.mesh()));
+  // An existing file only with force, and only when it is an OBJ (issue 21); then it
+  // is replaced atomically; no temporary file is left behind.
+  EXPECT_FALSE(save_obj(target, grid.mesh()));
+  EXPECT_FALSE(save_obj(target, grid.mesh(), true));  // "precious": not an OBJ
+  EXPECT_EQ(slurp(target), "precious\n");
+  std::ofstream(target) << "# an OBJ\nv 0 0 0\n";
+  EXPECT_FALSE(save_obj(target, grid.mesh()));
+  ASSERT_TRUE(save_obj(target, grid.mesh(), true));
   EXPECT_EQ(load_obj(target)->buffer->mesh().checksum(), grid.mesh().checksum());
   std::size_t entries = 0;
   for (const auto& e : fs::directory_iterator(dir_)) entries += e.exists() ? 1 : 1;

@@ -62,24 +62,30 @@ def journal_sequences(path):
         return [], False
     if len(data) < 8:
         return [], len(data) > 0
-    pos, seqs = 8, []
+    # Format version 2 (docs/interaction.md): a 16-byte file header, the journal id
+    # after each 8-byte record header; version 1: 8 and none.
+    v2 = struct.unpack_from("<I", data, 4)[0] == 2
+    if v2 and len(data) < 16:
+        return [], True
+    pos, seqs = (16 if v2 else 8), []
+    head = 12 if v2 else 8
     while pos < len(data):
-        if len(data) - pos < 8:
+        if len(data) - pos < head:
             return seqs, True
         (length,) = struct.unpack_from("<I", data, pos)
-        total = 8 + length + 4
+        total = head + length + 4
         if length > 512 or len(data) - pos < total:
             return seqs, True
-        (crc,) = struct.unpack_from("<I", data, pos + 8 + length)
-        if zlib.crc32(data[pos:pos + 8 + length]) != crc:
+        (crc,) = struct.unpack_from("<I", data, pos + head + length)
+        if zlib.crc32(data[pos:pos + head + length]) != crc:
             return seqs, True
-        seqs.append(struct.unpack_from("<I", data, pos + 8)[0])
+        seqs.append(struct.unpack_from("<I", data, pos + head)[0])
         pos += total
     return seqs, False
 
 
 def replay_checksum(cli, journal, mesh, out):
-    r = subprocess.run([cli, "replay", journal, "--mesh", mesh, "--out", out, "-q"],
+    r = subprocess.run([cli, "replay", journal, "--mesh", mesh, "--out", out, "--force", "-q"],
                        capture_output=True, text=True)
     m = re.search(r"checksum ([0-9a-f]{16})", r.stdout)
     return m.group(1) if m else None

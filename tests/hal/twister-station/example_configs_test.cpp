@@ -29,8 +29,8 @@
 namespace twister::station_app {
 namespace {
 
-using station::StationEvent;
-using station::StationEventKind;
+using session::SessionEvent;
+using session::SessionEventKind;
 
 // A documented or configured binding: lines (held..., trigger), hand, action key.
 using Binding = std::tuple<std::vector<std::uint8_t>, std::uint8_t, std::string>;
@@ -75,7 +75,7 @@ std::set<Binding> documented(const std::string& text) {
   return out;
 }
 
-std::set<Binding> configured(const StationConfig& c) {
+std::set<Binding> configured(const StationFileConfig& c) {
   std::set<Binding> out;
   for (const ButtonBindingConfig& b : c.sculpt.buttons) {
     out.insert({b.lines, b.hand, to_string(b.action)});
@@ -118,7 +118,7 @@ struct Press {
 class SimStation {
  public:
   // `keys`: more key frames (scenario text), e.g. a hand turning.
-  SimStation(StationConfig config, const std::vector<Press>& presses, double duration_s,
+  SimStation(StationFileConfig config, const std::vector<Press>& presses, double duration_s,
              const std::string& keys = "") {
     const bool stylus = config.buttons.backend == ButtonBackend::stylus;
     std::string scn = "receivers 2\nduration " + std::to_string(duration_s) + "\n";
@@ -176,9 +176,9 @@ class SimStation {
   }
   double seconds() const { return static_cast<double>(backends_.clock->now_us()) / 1e6 - 1.0; }
   // Events of `kind` (of `hand`) between `from_s` and `to_s` scenario time.
-  std::size_t count(StationEventKind kind, int hand, double from_s, double to_s) const {
+  std::size_t count(SessionEventKind kind, int hand, double from_s, double to_s) const {
     std::size_t n = 0;
-    for (const StationEvent& e : events) {
+    for (const SessionEvent& e : events) {
       const double t = static_cast<double>(e.time_us) / 1e6 - 1.0;
       n += e.kind == kind && (hand < 0 || e.hand == hand) && t >= from_s && t < to_s ? 1 : 0;
     }
@@ -186,7 +186,7 @@ class SimStation {
   }
   const station::Station& station() const { return *station_; }
 
-  std::vector<StationEvent> events;
+  std::vector<SessionEvent> events;
 
  private:
   static inline int serial_ = 0;
@@ -267,27 +267,27 @@ void check_example(const std::string& name) {
     const std::string& action = std::get<2>(b);
     const double end = at + kSlot;
     if (action == "grab") {
-      EXPECT_EQ(s.count(StationEventKind::stroke_begin, h, at, end), 1u);
-      EXPECT_EQ(s.count(StationEventKind::stroke_committed, h, at, end), 1u);
+      EXPECT_EQ(s.count(SessionEventKind::grab_begin, h, at, end), 1u);
+      EXPECT_EQ(s.count(SessionEventKind::committed, h, at, end), 1u);
       EXPECT_TRUE((seen[{i, "grab"}]));
     } else if (action == "radius" || action == "move_object") {
       EXPECT_TRUE((seen[{i, action}]));
     } else if (action == "freeze") {
-      EXPECT_EQ(s.count(StationEventKind::hand_disengaged, h, at, end), 1u);
-      EXPECT_EQ(s.count(StationEventKind::hand_engaged, h, at, end), 1u);
+      EXPECT_EQ(s.count(SessionEventKind::disengaged, h, at, end), 1u);
+      EXPECT_EQ(s.count(SessionEventKind::engaged, h, at, end), 1u);
     } else if (action == "undo") {
-      EXPECT_EQ(s.count(StationEventKind::undone, -1, at, end), 1u);
-      EXPECT_EQ(s.count(StationEventKind::stroke_begin, h, at + 0.9, end), 0u);  // consumed
+      EXPECT_EQ(s.count(SessionEventKind::undone, -1, at, end), 1u);
+      EXPECT_EQ(s.count(SessionEventKind::grab_begin, h, at + 0.9, end), 0u);  // consumed
     } else if (action == "redo") {
-      EXPECT_EQ(s.count(StationEventKind::redone, -1, at, end), 1u);
+      EXPECT_EQ(s.count(SessionEventKind::redone, -1, at, end), 1u);
     } else if (action == "method_cycle") {
-      EXPECT_EQ(s.count(StationEventKind::method_changed, h, at, end), 1u);
+      EXPECT_EQ(s.count(SessionEventKind::method_changed, h, at, end), 1u);
     } else {
       ADD_FAILURE() << "no check for " << action;
     }
   }
-  EXPECT_EQ(s.count(StationEventKind::refused, -1, 0, t + 1), 0u);
-  EXPECT_EQ(s.count(StationEventKind::command_refused, -1, 0, t + 1), 0u);
+  EXPECT_EQ(s.count(SessionEventKind::refused, -1, 0, t + 1), 0u);
+  EXPECT_EQ(s.count(SessionEventKind::command_refused, -1, 0, t + 1), 0u);
 }
 
 TEST(ExampleConfigs, StationTomlIsWiredAsItsCommentsSay) { check_example("station.toml"); }
@@ -313,12 +313,12 @@ TEST(ExampleConfigs, UndoRedoFromButtonsAndStrokesCountedOnce) {
   SimStation s(parsed.config,
                {{3.0, {0}, 0.6}, {3.0, {3}, 0.6}, {4.0, {5, 3}, 0.3}, {5.0, {5, 4}, 0.3}}, 6.0);
   s.run(6.0);
-  EXPECT_EQ(s.count(StationEventKind::stroke_committed, -1, 3, 4), 2u);  // one per hand
-  EXPECT_EQ(s.station().counters().strokes_committed, 1u);               // one stroke
-  EXPECT_EQ(s.count(StationEventKind::undone, 1, 4, 5), 1u);
-  EXPECT_EQ(s.count(StationEventKind::redone, 1, 5, 6), 1u);
-  EXPECT_EQ(s.station().counters().undos, 1u);
-  EXPECT_EQ(s.station().counters().redos, 1u);
+  EXPECT_EQ(s.count(SessionEventKind::committed, -1, 3, 4), 2u);  // one per hand
+  EXPECT_EQ(s.station().counters().events.strokes_committed, 1u);               // one stroke
+  EXPECT_EQ(s.count(SessionEventKind::undone, 1, 4, 5), 1u);
+  EXPECT_EQ(s.count(SessionEventKind::redone, 1, 5, 6), 1u);
+  EXPECT_EQ(s.station().counters().events.undos, 1u);
+  EXPECT_EQ(s.station().counters().events.redos, 1u);
   EXPECT_EQ(s.station().journal_records(), 3u);  // stroke, undo, redo
 }
 
@@ -335,14 +335,14 @@ TEST(ExampleConfigs, TheStationHoldsAtTheTurnLimitAndSaysSo) {
   s.run(7.0, [&](double, const session::SessionState& st) {
     if (st.hands[1].in_stroke) most = std::max(most, st.hands[1].turn_rad);
   });
-  ASSERT_EQ(s.count(StationEventKind::turn_limit_reached, 1, 3, 7), 1u);
-  for (const StationEvent& e : s.events) {
-    if (e.kind == StationEventKind::turn_limit_reached) {
-      EXPECT_NEAR(e.real * 180 / 3.14159265358979, 330.0, 1e-9);
+  ASSERT_EQ(s.count(SessionEventKind::turn_limit_reached, 1, 3, 7), 1u);
+  for (const SessionEvent& e : s.events) {
+    if (e.kind == SessionEventKind::turn_limit_reached) {
+      EXPECT_NEAR(e.turn_limit().limit_rad * 180 / 3.14159265358979, 330.0, 1e-9);
     }
   }
-  EXPECT_EQ(s.count(StationEventKind::turn_limit_left, 1, 3, 7), 0u);
-  EXPECT_EQ(s.count(StationEventKind::stroke_committed, 1, 6, 7), 1u);
+  EXPECT_EQ(s.count(SessionEventKind::turn_limit_left, 1, 3, 7), 0u);
+  EXPECT_EQ(s.count(SessionEventKind::committed, 1, 6, 7), 1u);
   EXPECT_NEAR(most * 180 / 3.14159265358979, 350.0, 0.5);  // the hand's turn, unwrapped
 }
 

@@ -78,18 +78,18 @@ class RecordingLog final : public ports::LogSink {
 };
 
 TEST(RefineStation, LogLines) {
-  station::StationEvent e;
-  e.kind = station::StationEventKind::stroke_refined;
-  e.sequence = 3;
-  e.value = 1234;
+  session::SessionEvent e = session::make_event(session::SessionEventKind::refined, 0,
+                                                session::payload::Refinement{3, 1234});
   RecordingLog log;
   log_station_event(e, log);
   ASSERT_EQ(log.lines.size(), 1u);
   EXPECT_EQ(log.lines[0].level, ports::LogLevel::info);
   EXPECT_EQ(log.lines[0].component, "refine");
   EXPECT_EQ(log.lines[0].text, "journal record 3 refined: 1234 vertices added");
-  e.kind = station::StationEventKind::refinement_stopped;
-  e.value = static_cast<std::uint64_t>(mesh::RefineStop::vertex_capacity);
+  e = session::make_event(
+      session::SessionEventKind::refine_stopped, 0,
+      session::payload::RefinementStop{3, mesh::RefineStop::vertex_capacity},
+      StatusCode::resource_exhausted);
   log_station_event(e, log);
   ASSERT_EQ(log.lines.size(), 2u);
   EXPECT_EQ(log.lines[1].level, ports::LogLevel::warning);
@@ -97,7 +97,7 @@ TEST(RefineStation, LogLines) {
             "journal record 3: refinement stopped, the mesh's vertex capacity is used up "
             "(station.spare_vertices); the stroke is committed and the mesh conforming, some "
             "edges stay coarser than sculpt.refine_threshold_m");
-  EXPECT_EQ(station::station_event_kind_name(e.kind), std::string("refinement_stopped"));
+  EXPECT_EQ(session::session_event_kind_name(e.kind), std::string("refine_stopped"));
 }
 
 TEST(RefineStation, SpareVerticesComeWithTwiceAsManyTriangles) {

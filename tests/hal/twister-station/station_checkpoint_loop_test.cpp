@@ -23,7 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-StationConfig loop_config(const std::string& journal, const std::string& scenario,
+StationFileConfig loop_config(const std::string& journal, const std::string& scenario,
                           const std::string& station_keys = "", const std::string& tail = "") {
   std::string text = station_test::sim_config(journal, scenario) + tail;
   text.insert(text.find("[tracker]"), "checkpoint_interval = 1\n" + station_keys);  // [station]
@@ -38,7 +38,7 @@ TEST(StationCheckpointLoop, TheLoopWritesCheckpointsWithoutAllocatingAndRestartM
   const std::string journal = (dir / "j.twj").string();
   const std::string scenario = (dir / "chains.scn").string();
   station_test::write_file(scenario, station_test::chain_scenario(4, 3));
-  const StationConfig config = loop_config(journal, scenario);
+  const StationFileConfig config = loop_config(journal, scenario);
   std::uint64_t final_checksum = 0;
   {
     auto assembled = assemble_station(config, {TWISTER_DEPLOY_DIR, ""});
@@ -60,11 +60,11 @@ TEST(StationCheckpointLoop, TheLoopWritesCheckpointsWithoutAllocatingAndRestartM
     }
     const station::StationCounters& c = parts.core->counters();
     EXPECT_EQ(allocations, 0u);
-    EXPECT_EQ(c.strokes_committed, 16u);  // 4 strokes x (3 freezes + release)
-    EXPECT_GE(c.checkpoints_written, 4u);
-    EXPECT_EQ(c.checkpoints_failed, 0u);
+    EXPECT_EQ(c.events.strokes_committed, 16u);  // 4 strokes x (3 freezes + release)
+    EXPECT_GE(c.events.checkpoints_written, 4u);
+    EXPECT_EQ(c.events.checkpoints_failed, 0u);
     std::printf("in-loop checkpoints: %llu written, %llu restarted by a commit\n",
-                static_cast<unsigned long long>(c.checkpoints_written),
+                static_cast<unsigned long long>(c.events.checkpoints_written),
                 static_cast<unsigned long long>(c.checkpoints_restarted));
     ASSERT_TRUE(loop.finish().ok());
     final_checksum = parts.core->mesh().checksum();
@@ -92,7 +92,7 @@ struct Restart {
   std::uint64_t checksum = 0;
 };
 
-Restart restart(const StationConfig& config, const std::string& checkpoint) {
+Restart restart(const StationFileConfig& config, const std::string& checkpoint) {
   const std::string ckpt = config.station.journal + ".ckpt";
   fs::remove(ckpt);
   if (!checkpoint.empty()) fs::copy_file(checkpoint, ckpt);
@@ -109,7 +109,7 @@ TEST(StationCheckpointLoop, WithRefinementOnRefinedCommitsAreCheckpointedAndRest
   const std::string journal = (dir / "j.twj").string();
   const std::string scenario = (dir / "strokes.scn").string();
   station_test::write_file(scenario, station_test::chain_scenario(4, 0));  // plain strokes
-  const StationConfig config =
+  const StationFileConfig config =
       loop_config(journal, scenario, "spare_vertices = 20000\n",
                   "[sculpt]\nrefine = true\nrefine_threshold_m = 0.0005\n");
   const std::string middle = (dir / "middle.ckpt").string();
@@ -135,21 +135,21 @@ TEST(StationCheckpointLoop, WithRefinementOnRefinedCommitsAreCheckpointedAndRest
         allocations += counter.count();
       }
       // The second checkpoint, kept for a restart with records after it.
-      if (c.checkpoints_written == 2 && !fs::exists(middle))
+      if (c.events.checkpoints_written == 2 && !fs::exists(middle))
         fs::copy_file(journal + ".ckpt", middle);
     }
     EXPECT_EQ(allocations, 0u);
-    EXPECT_EQ(c.strokes_committed, 4u);
-    EXPECT_EQ(c.refined_commits, 4u);
-    EXPECT_GE(c.checkpoints_written, 4u);
-    EXPECT_EQ(c.checkpoints_failed, 0u);
-    EXPECT_EQ(c.journal_errors, 0u);
+    EXPECT_EQ(c.events.strokes_committed, 4u);
+    EXPECT_EQ(c.events.refined_commits, 4u);
+    EXPECT_GE(c.events.checkpoints_written, 4u);
+    EXPECT_EQ(c.events.checkpoints_failed, 0u);
+    EXPECT_EQ(c.events.journal_errors, 0u);
     ASSERT_TRUE(loop.finish().ok());
     EXPECT_GT(parts.core->mesh().vertex_count(), start_vertices);
     final_checksum = parts.core->mesh().checksum();
     std::printf("refined: %llu commits, %llu checkpoints written, %zu -> %zu vertices\n",
-                static_cast<unsigned long long>(c.refined_commits),
-                static_cast<unsigned long long>(c.checkpoints_written), start_vertices,
+                static_cast<unsigned long long>(c.events.refined_commits),
+                static_cast<unsigned long long>(c.events.checkpoints_written), start_vertices,
                 parts.core->mesh().vertex_count());
   }
   const std::string last = (dir / "last.ckpt").string();

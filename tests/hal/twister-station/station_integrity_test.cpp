@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "station_test_support.hpp"
+#include "twister/journal/journal_format.hpp"
 #include "twister/journal/journal_writer.hpp"
 
 namespace twister::station_test {
@@ -48,31 +49,34 @@ class StationIntegrity : public ::testing::Test {
       r.sequence = k;
       r.stroke.hand_mask = 1;
       r.stroke.radius_m = 0.06;
-      r.stroke.start[0].origin_m = {0.30, -0.18, 0.15};
-      r.stroke.end[0].origin_m = {0.30 + 0.002 * k, -0.18, 0.16};
+      r.stroke.start[0].origin = {0.30, -0.18, 0.15};
+      r.stroke.end[0].origin = {0.30 + 0.002 * k, -0.18, 0.16};
       ASSERT_TRUE(writer.append(r).ok());
     }
   }
   fs::path dir_ = fs::temp_directory_path() / ("station_integrity_" + std::to_string(::getpid()));
 };
 
-TEST_F(StationIntegrity, ABitFlipInRecord5Of20IsRefusedTheFileIsUntouchedAndSalvageKeeps19) {
+// Salvage of a version 2 journal keeps the longest ordered valid prefix (issue 21): the
+// four records before the damaged one; the 15 after it follow a missing sequence.
+TEST_F(StationIntegrity, ABitFlipInRecord5Of20IsRefusedTheFileIsUntouchedAndSalvageKeeps4) {
   const std::string journal = path("j.twj");
   write_twenty_strokes(journal);
   std::string bytes = read_file(journal);
-  const std::size_t record = (bytes.size() - 8) / 20;
-  bytes[8 + 4 * record + 40] ^= 0x04;  // one bit in the 5th record's payload
+  constexpr std::size_t kHeader = journal::kMaxFileHeaderBytes;  // version 2
+  const std::size_t record = (bytes.size() - kHeader) / 20;
+  bytes[kHeader + 4 * record + 40] ^= 0x04;  // one bit in the 5th record's payload
   write_file(journal, bytes);
   const std::string cfg = config_for(journal, 1, 0);
   const RunResult r = station("--config " + cfg);
   EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_NE(r.output.find("damaged record at offset " + std::to_string(8 + 4 * record) +
+  EXPECT_NE(r.output.find("damaged record at offset " + std::to_string(kHeader + 4 * record) +
                           " (bad_crc); 15 valid record(s) follow it"),
             std::string::npos)
       << r.output;
   EXPECT_EQ(read_file(journal), bytes);  // byte-identical
   EXPECT_FALSE(fs::exists(journal + ".torn-tail"));
-  // `twister replay` refuses too (exit 2), and salvage keeps the other 19.
+  // `twister replay` refuses too (exit 2), and salvage keeps the ordered prefix.
   EXPECT_EQ(cli("replay " + journal + " --mesh " TWISTER_DEPLOY_DIR "/sim_sphere.obj --out " +
                 path("o.obj"))
                 .exit_code,
@@ -83,12 +87,12 @@ TEST_F(StationIntegrity, ABitFlipInRecord5Of20IsRefusedTheFileIsUntouchedAndSalv
   const RunResult salvage = cli("journal salvage " + journal + " " + path("saved.twj") +
                                 " --mesh " TWISTER_DEPLOY_DIR "/sim_sphere.obj");
   ASSERT_EQ(salvage.exit_code, 0) << salvage.output;
-  EXPECT_NE(salvage.output.find("salvaged 19 of 19 valid records"), std::string::npos)
+  EXPECT_NE(salvage.output.find("salvaged 4 of 19 valid records"), std::string::npos)
       << salvage.output;
+  EXPECT_NE(salvage.output.find("15 after-a-gap record(s)"), std::string::npos) << salvage.output;
   const Journal saved = read_journal(path("saved.twj"));
-  ASSERT_EQ(saved.records.size(), 19u);
+  ASSERT_EQ(saved.records.size(), 4u);
   EXPECT_EQ(saved.records[3].sequence, 3u);
-  EXPECT_EQ(saved.records[4].sequence, 5u);
   EXPECT_EQ(read_file(journal), bytes);  // salvage only read it
   // The station starts from the salvaged copy.
   const RunResult again = station("--config " + cfg + " --journal " + path("saved.twj"));
@@ -99,7 +103,8 @@ TEST_F(StationIntegrity, ATornTailIsCutAndItsBytesAreKeptWithoutReplacingAnythin
   const std::string journal = path("j.twj");
   write_twenty_strokes(journal);
   const std::string good = read_file(journal);
-  const std::string torn = good.substr(8, 60);  // the start of a record, cut by power loss
+  // The start of a record, cut by power loss (after the version 2 header).
+  const std::string torn = good.substr(journal::kMaxFileHeaderBytes, 60);
   write_file(journal, good + torn);
   write_file(journal + ".torn-tail", "an older tail, kept");
   const RunResult r = station("--config " + config_for(journal, 1, 0));

@@ -1,4 +1,4 @@
-// twister-station's log lines (issue "a session"): every StationEvent kind has a line
+// twister-station's log lines (issue "a session"): every SessionEvent kind has a line
 // at its level; the sculptor's actions besides strokes (radius, clutch, turn limit,
 // undo/redo, method, refused commands) read as docs/hardware.md lists them.
 // Label interaction.
@@ -9,6 +9,8 @@
 #include <array>
 #include <numbers>
 #include <string>
+#include <utility>
+#include <variant>
 #include <vector>
 
 #include "twister/hal/logger.hpp"
@@ -19,8 +21,8 @@ namespace twister::station_app {
 namespace {
 
 using ports::LogLevel;
-using station::StationEvent;
-using station::StationEventKind;
+using session::SessionEvent;
+using session::SessionEventKind;
 
 struct Line {
   LogLevel level;
@@ -42,17 +44,28 @@ class RecordingLog final : public ports::LogSink {
   }
 };
 
-Line line_of(const StationEvent& e) {
+// A payload of the kind's type (default values).
+session::EventPayload sample_payload(SessionEventKind kind) {
+  session::EventPayload p;
+  const std::size_t want = session::payload_index(kind);
+  // Default-construct the alternative `want` (the variant's types in order).
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    ((I == want ? (p.emplace<I>(), 0) : 0), ...);
+  }(std::make_index_sequence<std::variant_size_v<session::EventPayload>>{});
+  return p;
+}
+
+Line line_of(const SessionEvent& e) {
   RecordingLog log;
   log_station_event(e, log);
-  EXPECT_EQ(log.lines.size(), 1u) << station::station_event_kind_name(e.kind);
+  EXPECT_EQ(log.lines.size(), 1u) << session::session_event_kind_name(e.kind);
   return log.lines.empty() ? Line{} : log.lines[0];
 }
 
 TEST(StationLog, EveryKindHasOneLineAtItsLevel) {
-  for (int k = 0; k <= static_cast<int>(StationEventKind::refinement_stopped); ++k) {
-    StationEvent e;
-    e.kind = static_cast<StationEventKind>(k);
+  for (std::size_t k = 0; k < session::kSessionEventKindCount; ++k) {
+    const auto kind = static_cast<SessionEventKind>(k);
+    const SessionEvent e = session::make_event(kind, 0, sample_payload(kind));
     const Line l = line_of(e);
     EXPECT_EQ(l.level, station_event_level(e)) << k;
     EXPECT_FALSE(l.text.empty()) << k;
@@ -61,50 +74,40 @@ TEST(StationLog, EveryKindHasOneLineAtItsLevel) {
 }
 
 TEST(StationLog, TheSculptorsActions) {
-  StationEvent e;
-  e.kind = StationEventKind::radius_set;
-  e.real = 0.5;
+  SessionEvent e = session::make_event(SessionEventKind::radius_set, 0, session::payload::Radius{0.5});
   Line l = line_of(e);
   EXPECT_EQ(l.level, LogLevel::notice);
   EXPECT_EQ(l.component, "sculpt");
   EXPECT_EQ(l.text, "radius 0.500 m");
 
-  e = {};
-  e.kind = StationEventKind::turn_limit_reached;
-  e.hand = 1;
-  e.real = 330.0 * std::numbers::pi / 180.0;
+  e = session::make_event(SessionEventKind::turn_limit_reached, 1,
+                          session::payload::TurnLimit{330.0 * std::numbers::pi / 180.0});
   l = line_of(e);
   EXPECT_EQ(l.level, LogLevel::notice);
   EXPECT_EQ(l.text,
             "hand 1 turned past the 330-degree limit; the warp holds until the hand turns back");
 
-  e = {};
-  e.kind = StationEventKind::hand_disengaged;
-  e.hand = 1;
-  e.sequence = 4;
+  e = session::make_event(SessionEventKind::disengaged, 1, session::payload::RecordRef{4});
   l = line_of(e);
   EXPECT_EQ(l.level, LogLevel::info);
   EXPECT_EQ(l.text,
             "hand 1 on the clutch (freeze held): committed as journal record 4; the hand moves "
             "freely");
 
-  e = {};
-  e.kind = StationEventKind::undone;
-  e.sequence = 7;
+  e = session::make_event(SessionEventKind::undone, 0, session::payload::RecordRef{7});
   l = line_of(e);
   EXPECT_EQ(l.level, LogLevel::notice);
   EXPECT_EQ(l.component, "history");
   EXPECT_EQ(l.text, "undo (journal record 7)");
 
-  e = {};
-  e.kind = StationEventKind::method_changed;
-  e.value = 2;
+  e = session::make_event(SessionEventKind::method_changed, 0,
+                          session::payload::Method{math::WarpMethod::scodef});
   EXPECT_EQ(line_of(e).text, "warp method scodef for the next strokes");
 
-  e = {};
-  e.kind = StationEventKind::command_refused;
-  e.value = static_cast<std::uint64_t>(session::SessionCommandKind::redo);
-  e.detail = static_cast<std::uint8_t>(input::Reason::nothing_to_redo);
+  e = session::make_event(
+      SessionEventKind::command_refused, 0,
+      session::payload::CommandRefusal{session::SessionCommandKind::redo,
+                                       input::Reason::nothing_to_redo});
   l = line_of(e);
   EXPECT_EQ(l.level, LogLevel::notice);
   EXPECT_EQ(l.text, "redo refused (nothing_to_redo)");

@@ -29,6 +29,7 @@
 #include "station_assembly.hpp"
 #include "station_loop.hpp"
 #include "twister/hal/logger.hpp"
+#include "twister/hal/monotonic_clock.hpp"
 #include "twister/hal/socket_link.hpp"
 
 namespace twister::station_app {
@@ -38,7 +39,7 @@ std::string temp_path(const char* name) {
   return "/tmp/twister_loop_alloc_" + std::to_string(::getpid()) + "_" + name;
 }
 
-StationConfig loop_config(const std::string& journal) {
+StationFileConfig loop_config(const std::string& journal) {
   const std::string text = std::string("[station]\njournal = \"") + journal +
                            "\"\nmesh = \"" TWISTER_DEPLOY_DIR
                            "/sim_sphere.obj\"\nspare_vertices = 20000\n"
@@ -58,7 +59,7 @@ StationConfig loop_config(const std::string& journal) {
 class BridgePeer {
  public:
   explicit BridgePeer(const std::string& address)
-      : link_({address, false, 20}), app_(link_, nullptr, {}, quiet_) {
+      : link_({address, false, 20}), app_(link_, clock_, nullptr, {}, quiet_) {
     EXPECT_TRUE(link_.open());
     thread_ = std::thread([this] { run(); });
   }
@@ -108,6 +109,7 @@ class BridgePeer {
   ports::NullLogSink quiet_;  // the peer's messages are not under test
 
   hal::SocketLink link_;
+  hal::MonotonicClock clock_;
   bridge::BridgeApp app_;
   std::atomic<bool> stop_{false};
   std::mutex mutex_;
@@ -133,7 +135,7 @@ TEST(StationLoopAllocation, SteadyStateWithStrokesButtonsLinkAndLogAllocatesNoth
   const std::string log_path = temp_path("log.txt");
   const std::string address = "unix:" + temp_path("link.sock");
   ::unlink(journal.c_str());
-  const StationConfig config = loop_config(journal);
+  const StationFileConfig config = loop_config(journal);
   auto assembled = assemble_station(config, {TWISTER_DEPLOY_DIR, address});
   ASSERT_TRUE(assembled) << assembled.error().message;
   StationParts& parts = **assembled;
@@ -173,9 +175,9 @@ TEST(StationLoopAllocation, SteadyStateWithStrokesButtonsLinkAndLogAllocatesNoth
   // Four two-hand strokes: one journal record each, counted once each (issue 12:
   // strokes count as strokes, not hands).
   EXPECT_EQ(parts.core->journal_records(), 4u);
-  EXPECT_EQ(counters.strokes_committed, 4u);
-  EXPECT_EQ(counters.strokes_cancelled, 0u);
-  EXPECT_EQ(counters.refined_commits, 4u);
+  EXPECT_EQ(counters.events.strokes_committed, 4u);
+  EXPECT_EQ(counters.events.strokes_cancelled, 0u);
+  EXPECT_EQ(counters.events.refined_commits, 4u);
   EXPECT_GT(parts.core->mesh().vertex_count(), 266u);
   std::printf(
       "steady state: %.1f s simulated, %llu passes, %u strokes committed, %zu "

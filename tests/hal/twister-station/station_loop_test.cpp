@@ -46,7 +46,7 @@ class FlakyButtons final : public ports::ButtonSource, public hal::PollSource {
 };
 
 struct Rig {
-  StationConfig config;
+  StationFileConfig config;
   Backends backends;
   FlakyButtons* buttons = nullptr;
   test::FakeStorage storage;

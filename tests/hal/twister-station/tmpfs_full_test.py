@@ -32,19 +32,23 @@ from crash_test import chain_scenario  # noqa: E402
 
 def records(path):
     data = open(path, "rb").read()
-    pos, out = 8, []
-    while pos + 8 <= len(data):
+    # Format version 2 (docs/interaction.md): a 16-byte file header, the journal id
+    # after each 8-byte record header; version 1: 8 and none.
+    v2 = len(data) >= 8 and struct.unpack_from("<I", data, 4)[0] == 2
+    pos, out = (16, []) if v2 else (8, [])
+    head = 12 if v2 else 8
+    while pos + head <= len(data):
         (length,) = struct.unpack_from("<I", data, pos)
-        if length > 512 or pos + 12 + length > len(data):
+        if length > 512 or pos + head + length + 4 > len(data):
             break
-        (crc,) = struct.unpack_from("<I", data, pos + 8 + length)
-        if zlib.crc32(data[pos:pos + 8 + length]) != crc:
+        (crc,) = struct.unpack_from("<I", data, pos + head + length)
+        if zlib.crc32(data[pos:pos + head + length]) != crc:
             break
-        seq = struct.unpack_from("<I", data, pos + 8)[0]
+        seq = struct.unpack_from("<I", data, pos + head)[0]
         rtype = data[pos + 5]
-        chain = struct.unpack_from("<H", data, pos + 8 + 6)[0] if rtype == 1 else None
+        chain = struct.unpack_from("<H", data, pos + head + 6)[0] if rtype == 1 else None
         out.append((seq, chain))
-        pos += 12 + length
+        pos += head + length + 4
     return out, pos == len(data)
 
 
@@ -98,6 +102,25 @@ def inside(args):
     print("run 2 (still full): exit %d" % rc)
     if "refusing" in out or "running (" not in out:
         failures.append("run 2 refused to start on a full disk:\n" + out)
+    # A new journal on the full disk (issue 21): its header cannot be written; the
+    # station says "disk full" (not just io_error) and leaves no partial header.
+    rest = os.path.join(mnt, "rest")
+    fd = os.open(rest, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+    try:
+        while os.write(fd, b"\1" * 512) > 0:
+            pass
+    except OSError:
+        pass
+    os.close(fd)
+    new_journal = os.path.join(mnt, "new.twj")
+    new_config = os.path.join(args.work, "new.toml")
+    open(new_config, "w").write(open(config).read().replace(journal, new_journal))
+    rc, out = run([args.station, "--config", new_config, "-q"])
+    print("run 2b (new journal, disk full): exit %d" % rc)
+    if rc != 1 or "disk full" not in out or (
+            os.path.exists(new_journal) and os.path.getsize(new_journal) != 0):
+        failures.append("a new journal on a full disk should say disk full:\n" + out)
+    os.unlink(rest)
     os.unlink(filler)
     rc, out = run([args.station, "--config", config, "-q"])
     print("run 3 (space freed): exit %d" % rc)

@@ -90,10 +90,10 @@ TEST(TwisterStationTest, SimConfigRunsAScriptedStrokeIntoTheJournal) {
   const auto& s = records[0].stroke;
   EXPECT_EQ(s.hand_mask, 1);
   // Scenario "stroke": receiver 1 pressed at (10, -8, 5) in, released at (14, -6, 5) in.
-  EXPECT_NEAR(s.start[0].origin_m.x, 10.0 * kInch, 0.2 * kInch);
-  EXPECT_NEAR(s.start[0].origin_m.y, -8.0 * kInch, 0.2 * kInch);
-  EXPECT_NEAR(s.end[0].origin_m.x, 14.0 * kInch, 0.2 * kInch);
-  EXPECT_NEAR(s.end[0].origin_m.y, -6.0 * kInch, 0.2 * kInch);
+  EXPECT_NEAR(s.start[0].origin.x, 10.0 * kInch, 0.2 * kInch);
+  EXPECT_NEAR(s.start[0].origin.y, -8.0 * kInch, 0.2 * kInch);
+  EXPECT_NEAR(s.end[0].origin.x, 14.0 * kInch, 0.2 * kInch);
+  EXPECT_NEAR(s.end[0].origin.y, -6.0 * kInch, 0.2 * kInch);
 
   // A second run replays the first stroke onto the model, then appends its own.
   const auto again =
@@ -138,10 +138,10 @@ TEST(TwisterStationTest, SimButtonsLetBothHandsGrabTogetherIntoOneTwoHandStroke)
   EXPECT_EQ(s.hand_mask, 3) << r.output;
   EXPECT_EQ(s.chain_step, 0);
   // Hand 0 grabbed the -Y side and pulled to -Y; hand 1 the +Y side, pulled to +Y.
-  EXPECT_NEAR(s.start[0].origin_m.y, -11.02 * kInch, 0.2 * kInch);
-  EXPECT_NEAR(s.end[0].origin_m.y, -13.00 * kInch, 0.2 * kInch);
-  EXPECT_NEAR(s.start[1].origin_m.y, -3.15 * kInch, 0.2 * kInch);
-  EXPECT_NEAR(s.end[1].origin_m.y, -1.20 * kInch, 0.2 * kInch);
+  EXPECT_NEAR(s.start[0].origin.y, -11.02 * kInch, 0.2 * kInch);
+  EXPECT_NEAR(s.end[0].origin.y, -13.00 * kInch, 0.2 * kInch);
+  EXPECT_NEAR(s.start[1].origin.y, -3.15 * kInch, 0.2 * kInch);
+  EXPECT_NEAR(s.end[1].origin.y, -1.20 * kInch, 0.2 * kInch);
   // Twisted in opposite senses (roll +40 and -40 degrees about the tracker's x axis):
   // each hand's V axis left the x-y plane by sin(40 deg), on opposite sides.
   EXPECT_NEAR(s.start[0].v.z, 0.0, 0.02);
@@ -165,13 +165,13 @@ TEST(TwisterStationTest, UnplugAndReplugDuringARunReinitialisesAndContinues) {
   const auto records = read_journal(journal);
   ASSERT_EQ(records.size(), 2u) << r.output;
   // Stroke 1 ends at (14, -6, 5) in; stroke 2 runs from there to (18, -4, 5) in.
-  EXPECT_NEAR(records[0].stroke.end[0].origin_m.x, 14.0 * kInch, 0.2 * kInch);
-  EXPECT_NEAR(records[1].stroke.start[0].origin_m.x, 14.0 * kInch, 0.2 * kInch);
-  EXPECT_NEAR(records[1].stroke.start[0].origin_m.y, -6.0 * kInch, 0.2 * kInch);
-  EXPECT_NEAR(records[1].stroke.end[0].origin_m.x, 18.0 * kInch, 0.2 * kInch);
-  EXPECT_NEAR(records[1].stroke.end[0].origin_m.y, -4.0 * kInch, 0.2 * kInch);
+  EXPECT_NEAR(records[0].stroke.end[0].origin.x, 14.0 * kInch, 0.2 * kInch);
+  EXPECT_NEAR(records[1].stroke.start[0].origin.x, 14.0 * kInch, 0.2 * kInch);
+  EXPECT_NEAR(records[1].stroke.start[0].origin.y, -6.0 * kInch, 0.2 * kInch);
+  EXPECT_NEAR(records[1].stroke.end[0].origin.x, 18.0 * kInch, 0.2 * kInch);
+  EXPECT_NEAR(records[1].stroke.end[0].origin.y, -4.0 * kInch, 0.2 * kInch);
   for (const auto& rec : records) {  // nothing from the untracked excursion to (30, 30, 30) in
-    EXPECT_LT(rec.stroke.end[0].origin_m.x, 20.0 * kInch);
+    EXPECT_LT(rec.stroke.end[0].origin.x, 20.0 * kInch);
   }
   ::unlink(journal.c_str());
   ::unlink(cfg.c_str());
@@ -217,9 +217,9 @@ TEST(TwisterStationTest, AgainstTwisterSimOnAPtyCommitsAScriptedStroke) {
       << r.output;
   const auto records = read_journal(journal);
   ASSERT_EQ(records.size(), 1u) << r.output;
-  EXPECT_NEAR(records[0].stroke.start[0].origin_m.x, 10.0 * kInch, 0.3 * kInch);
-  EXPECT_NEAR(records[0].stroke.end[0].origin_m.x, 14.0 * kInch, 0.3 * kInch);
-  EXPECT_NEAR(records[0].stroke.end[0].origin_m.y, -6.0 * kInch, 0.3 * kInch);
+  EXPECT_NEAR(records[0].stroke.start[0].origin.x, 10.0 * kInch, 0.3 * kInch);
+  EXPECT_NEAR(records[0].stroke.end[0].origin.x, 14.0 * kInch, 0.3 * kInch);
+  EXPECT_NEAR(records[0].stroke.end[0].origin.y, -6.0 * kInch, 0.3 * kInch);
   ::unlink(journal.c_str());
 }
 
@@ -237,10 +237,10 @@ TEST(TwisterStationTest, AgainstTwisterSimOnAPtySurvivesUnplugAndReplug) {
   EXPECT_NE(r.output.find("tracker: streaming (start-up #2)"), std::string::npos) << r.output;
   const auto records = read_journal(journal);
   ASSERT_EQ(records.size(), 2u) << r.output;
-  EXPECT_NEAR(records[0].stroke.end[0].origin_m.x, 14.0 * kInch, 0.3 * kInch);
-  EXPECT_NEAR(records[1].stroke.start[0].origin_m.x, 14.0 * kInch, 0.3 * kInch);
-  EXPECT_NEAR(records[1].stroke.end[0].origin_m.x, 18.0 * kInch, 0.3 * kInch);
-  EXPECT_NEAR(records[1].stroke.end[0].origin_m.y, -4.0 * kInch, 0.3 * kInch);
+  EXPECT_NEAR(records[0].stroke.end[0].origin.x, 14.0 * kInch, 0.3 * kInch);
+  EXPECT_NEAR(records[1].stroke.start[0].origin.x, 14.0 * kInch, 0.3 * kInch);
+  EXPECT_NEAR(records[1].stroke.end[0].origin.x, 18.0 * kInch, 0.3 * kInch);
+  EXPECT_NEAR(records[1].stroke.end[0].origin.y, -4.0 * kInch, 0.3 * kInch);
   ::unlink(journal.c_str());
 }
 

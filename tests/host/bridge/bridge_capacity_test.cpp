@@ -10,6 +10,7 @@
 
 #include "allocation_counter.hpp"
 #include "bridge_app.hpp"
+#include "fakes/fake_clock.hpp"
 #include "fakes/memory_wire.hpp"
 #include "scene_replica.hpp"
 #include "twister/link/link_codec.hpp"
@@ -17,7 +18,8 @@
 namespace twister::bridge {
 namespace {
 
-std::vector<std::byte> frame(const link::LinkMessage& m) {
+template <link::LinkBody M>
+std::vector<std::byte> frame(const M& m) {
   std::vector<std::byte> f(link::kMaxFrameBytes);
   const auto n = link::encode_frame(m, f);
   EXPECT_TRUE(n.ok());
@@ -25,10 +27,9 @@ std::vector<std::byte> frame(const link::LinkMessage& m) {
   return f;
 }
 
-link::LinkMessage begin(bool full, std::uint32_t vertices, std::uint32_t triangles) {
-  link::LinkMessage m;
-  m.type = link::MessageType::mesh_begin;
-  m.mesh_begin = {full, 0, 1, vertices, triangles};
+link::MeshBegin begin(bool full, std::uint32_t vertices, std::uint32_t triangles) {
+  link::MeshBegin m;
+  m = {full, 0, 1, vertices, triangles};
   return m;
 }
 
@@ -47,10 +48,9 @@ TEST(ReplicaCapacity, HugeAnnouncedCountsAreRefusedWithoutAllocating) {
     EXPECT_NO_ALLOCATIONS(request = replica.apply(*got));
     EXPECT_FALSE(request);  // a resend would bring the same mesh
     // Chunks of the refused set are ignored, also without allocating.
-    link::LinkMessage v;
-    v.type = link::MessageType::vertices;
-    v.vertices.count = 1;
-    v.vertices.items[0] = {0xFFFFFFF0u, 1.0F, 2.0F, 3.0F};
+    link::Vertices v;
+    v.count = 1;
+    v.items[0] = {0xFFFFFFF0u, 1.0F, 2.0F, 3.0F};
     EXPECT_NO_ALLOCATIONS((void)replica.apply(v));
   }
   EXPECT_EQ(replica.counters().over_capacity, 4u);
@@ -58,25 +58,22 @@ TEST(ReplicaCapacity, HugeAnnouncedCountsAreRefusedWithoutAllocating) {
   // Exactly at the limits is accepted.
   SceneReplica small(ReplicaLimits{3, 1});
   EXPECT_FALSE(small.apply(begin(true, 3, 1)));
-  link::LinkMessage t;
-  t.type = link::MessageType::triangles;
-  t.triangles.count = 1;
-  t.triangles.indices[0] = 0;
-  t.triangles.indices[1] = 1;
-  t.triangles.indices[2] = 2;
+  link::Triangles t;
+  t.count = 1;
+  t.indices[0] = 0;
+  t.indices[1] = 1;
+  t.indices[2] = 2;
   EXPECT_FALSE(small.apply(t));
   MeshData m;
   m.x = {0, 1, 0};
   m.y = {0, 0, 1};
   m.z = {0, 0, 0};
   m.indices = {0, 1, 2};
-  link::LinkMessage e;
-  e.type = link::MessageType::mesh_end;
-  e.mesh_end = {1, *mesh_checksum(m)};
-  link::LinkMessage v;
-  v.type = link::MessageType::vertices;
-  v.vertices.count = 3;
-  for (std::uint32_t i = 0; i < 3; ++i) v.vertices.items[i] = {i, m.x[i], m.y[i], m.z[i]};
+  link::MeshEnd e;
+  e = {1, *mesh_checksum(m)};
+  link::Vertices v;
+  v.count = 3;
+  for (std::uint32_t i = 0; i < 3; ++i) v.items[i] = {i, m.x[i], m.y[i], m.z[i]};
   EXPECT_FALSE(small.apply(v));
   EXPECT_FALSE(small.apply(e));
   EXPECT_TRUE(small.has_mesh());
@@ -97,11 +94,11 @@ TEST(ReplicaCapacity, BridgeAppSurvivesAndLogsTheRefusal) {
       errors += level == ports::LogLevel::error ? 1 : 0;
     }
   } log;
-  BridgeApp app(display, nullptr, {}, log);
+  twister::test::FakeClock clock;
+  BridgeApp app(display, clock, nullptr, {}, log);
   app.step();  // connects and says hello
-  link::LinkMessage hello;
-  hello.type = link::MessageType::hello;
-  hello.hello.role = link::Role::station;
+  link::Hello hello;
+  hello.role = link::Role::station;
   std::vector<std::byte> bytes = frame(hello);
   const auto huge = frame(begin(true, 0xFFFFFFFFu, 0xFFFFFFFFu));
   bytes.insert(bytes.end(), huge.begin(), huge.end());

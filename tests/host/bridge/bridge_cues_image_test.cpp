@@ -37,27 +37,25 @@ class DisplayCues : public DisplayRig {
     return glm::dvec3(1.03F * kSphereM * d);
   }
   void send_hands(std::array<bool, 2> present, std::uint8_t buttons = 0) {
-    link::LinkMessage m;
-    m.type = link::MessageType::hands;
-    m.hands.sequence = sequence_++;
-    m.hands.radius_m = kRadiusM;
-    m.hands.buttons = buttons;
+    link::Hands m;
+    m.sequence = sequence_++;
+    m.radius_m = kRadiusM;
+    m.buttons = buttons;
     for (std::size_t h = 0; h < 2; ++h) {
       if (!present[h]) continue;
-      m.hands.flags = static_cast<std::uint8_t>(m.hands.flags | (link::kHandSample0 << h) |
-                                                (link::kHandTracked0 << h));
-      m.hands.hands[h] = link::to_compact(math::identity_frame(hand_point(h == 0 ? -1 : 1)));
+      m.flags = static_cast<std::uint8_t>(m.flags | (link::kHandSample0 << h) |
+                                          (link::kHandTracked0 << h));
+      m.hands[h] = link::to_compact(math::identity_frame(hand_point(h == 0 ? -1 : 1)));
     }
     (void)app_->replica().apply(m);
   }
   void send_status(std::uint8_t tracker_state) {
-    link::LinkMessage m;
-    m.type = link::MessageType::status;
-    m.status.tracker_state = tracker_state;
-    m.status.tracker_rate_hz = 120.0F;
-    m.status.vertex_count = static_cast<std::uint32_t>(app_->replica().mesh().vertex_count());
-    m.status.vertex_capacity = 100000;
-    m.status.triangle_capacity = 200000;
+    link::StatusReport m;
+    m.tracker_state = tracker_state;
+    m.tracker_rate_hz = 120.0F;
+    m.vertex_count = static_cast<std::uint32_t>(app_->replica().mesh().vertex_count());
+    m.vertex_capacity = 100000;
+    m.triangle_capacity = 200000;
     (void)app_->replica().apply(m);
   }
   glm::vec2 at(glm::dvec3 p) const {
@@ -175,9 +173,9 @@ TEST_F(DisplayCues, StrokeShowsPinkScrewAxesAndYellowTrajectories) {
   const Image without = frame();
   const LiveState& state = app_->replica().live();
   std::vector<glm::vec2> cursors;
-  for (std::size_t k = 0; k < state.hand_count; ++k)
+  for (std::size_t k = 0; k < state.hands.size(); ++k)
     cursors.push_back(at(state.hands[k].end.origin));
-  for (std::size_t k = 0; k < state.hand_count; ++k) {
+  for (std::size_t k = 0; k < state.hands.size(); ++k) {
     const LiveHand& hand = state.hands[k];
     const auto axis = screw_axis_segment(hand, state.method, 0.8 * renderer_.model_radius());
     ASSERT_TRUE(axis.has_value());
@@ -250,9 +248,8 @@ TEST_F(DisplayCues, TrackerLostIsAFullScreenBanner) {
 }
 
 TEST_F(DisplayCues, ObjectFrameWhileMovingTheObject) {
-  link::LinkMessage object;
-  object.type = link::MessageType::object;
-  object.object.pose = link::to_compact(math::identity_frame({0.0, 0.0, 0.04}));
+  link::ObjectPose object;
+  object.pose = link::to_compact(math::identity_frame({0.0, 0.0, 0.04}));
   (void)app_->replica().apply(object);
   send_hands({true, false});
   const Image still = frame();

@@ -59,7 +59,7 @@ TEST(BridgeDisplay, StationWarpEqualsBridgeWarpForOneAndTwoHands) {
     EXPECT_GE(d, 0.0);
     EXPECT_LT(d, 2e-5) << "two hands, step " << k;
   }
-  EXPECT_EQ(r.bridge.replica().live().hand_count, 2u);
+  EXPECT_EQ(r.bridge.replica().live().hands.size(), 2u);
   EXPECT_EQ(r.bridge.replica().counters().live_missed, 0u);
 }
 

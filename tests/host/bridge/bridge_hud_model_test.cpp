@@ -12,17 +12,16 @@
 namespace twister::bridge::test {
 namespace {
 
-link::LinkMessage status(std::uint8_t tracker, std::uint32_t vertices, std::uint32_t capacity,
-                         std::uint64_t not_saved = 0, std::uint64_t capacity_stops = 0) {
-  link::LinkMessage m;
-  m.type = link::MessageType::status;
-  m.status.tracker_state = tracker;
-  m.status.vertex_count = vertices;
-  m.status.vertex_capacity = capacity;
-  m.status.triangle_count = 2 * vertices;
-  m.status.triangle_capacity = 4 * capacity;
-  m.status.strokes_not_saved = not_saved;
-  m.status.capacity_stops = capacity_stops;
+link::StatusReport status(std::uint8_t tracker, std::uint32_t vertices, std::uint32_t capacity,
+                          std::uint64_t not_saved = 0, std::uint64_t capacity_stops = 0) {
+  link::StatusReport m;
+  m.tracker_state = tracker;
+  m.vertex_count = vertices;
+  m.vertex_capacity = capacity;
+  m.triangle_count = 2 * vertices;
+  m.triangle_capacity = 4 * capacity;
+  m.strokes_not_saved = not_saved;
+  m.capacity_stops = capacity_stops;
   return m;
 }
 

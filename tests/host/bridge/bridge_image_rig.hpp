@@ -19,6 +19,7 @@
 
 #include "bridge_app.hpp"
 #include "bridge_test_mesh.hpp"
+#include "fakes/fake_clock.hpp"
 #include "gl_context.hpp"
 #include "scene_view.hpp"
 #include "twister/mesh/mesh.hpp"
@@ -120,10 +121,10 @@ class DisplayRig : public ::testing::Test {
     const hal::Expected<void> ready =
         renderer_.init(context_->width(), context_->height(), !window_, ViewConfig{});
     ASSERT_TRUE(ready) << ready.error().message;
-    view_ = std::make_unique<SceneView>(renderer_, options_);
+    view_ = std::make_unique<SceneView>(renderer_, clock_, options_);
     const hal::Expected<void> view = view_->init();
     ASSERT_TRUE(view) << view.error().message;
-    app_ = std::make_unique<BridgeApp>(link_, &renderer_, BridgeOptions{}, log_);
+    app_ = std::make_unique<BridgeApp>(link_, clock_, &renderer_, BridgeOptions{}, log_);
     app_->set_view(view_.get());
   }
   // Steps the app (uploads), draws a frame and reads it back (before any swap).
@@ -151,6 +152,7 @@ class DisplayRig : public ::testing::Test {
   SceneViewOptions options_{};
   std::unique_ptr<GlContext> context_;
   MeshRenderer renderer_;
+  twister::test::FakeClock clock_;  // the HUD's and the link's time: still unless a test moves it
   std::unique_ptr<SceneView> view_;
   QuietLink link_;
   ports::NullLogSink log_;

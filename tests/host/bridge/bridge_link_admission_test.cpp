@@ -27,6 +27,7 @@
 
 #include "bridge_app.hpp"
 #include "session_harness.hpp"
+#include "twister/hal/monotonic_clock.hpp"
 #include "twister/hal/socket_link.hpp"
 #include "twister/hal/sodium_authenticator.hpp"
 #include "twister/station/station_link.hpp"
@@ -80,9 +81,10 @@ struct Display {
     if (key != nullptr) auth = std::make_unique<hal::SodiumAuthenticator>(*key);
     BridgeOptions options;
     options.authenticator = auth.get();
-    app = std::make_unique<BridgeApp>(socket, nullptr, options, log);
+    app = std::make_unique<BridgeApp>(socket, clock, nullptr, options, log);
   }
   ports::NullLogSink log;
+  hal::MonotonicClock clock;  // real sockets, real time
   hal::SocketLink socket;
   std::unique_ptr<hal::SodiumAuthenticator> auth;
   std::unique_ptr<BridgeApp> app;
@@ -116,14 +118,12 @@ TEST(LinkAdmission, UnauthenticatedTcpClientsCannotDisplaceTheDisplay) {
   for (int attempt = 0; attempt < 30; ++attempt) {
     hal::SocketLink stranger({address(), false, 0});
     ASSERT_TRUE(stranger.open());
-    link::LinkMessage hello;
-    hello.type = link::MessageType::hello;
-    hello.hello.role = link::Role::bridge;
+    link::Hello hello;
+    hello.role = link::Role::bridge;
     std::array<std::byte, link::kMaxFrameBytes> frame{};
     const auto n = link::encode_frame(hello, frame);
-    link::LinkMessage forged;
-    forged.type = link::MessageType::auth;
-    forged.auth.tag.fill(0x5a);
+    link::Auth forged;
+    forged.tag.fill(0x5a);
     std::array<std::byte, link::kMaxFrameBytes> tag_frame{};
     const auto m = link::encode_frame(forged, tag_frame);
     if (attempt % 4 <= 1) (void)stranger.send(std::span<const std::byte>(frame).first(*n));

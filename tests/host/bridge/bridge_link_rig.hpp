@@ -1,5 +1,6 @@
 // A station (real SculptSession + StationLink) and a BridgeApp (no display) on the
-// two ends of an in-memory wire, for the bridge's link tests.
+// two ends of an in-memory wire, for the bridge's link tests. The bridge's time is
+// `clock` (virtual: it moves only when a test advances it).
 #pragma once
 
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "bridge_app.hpp"
+#include "fakes/fake_clock.hpp"
 #include "fakes/memory_wire.hpp"
 #include "session_harness.hpp"
 #include "twister/station/station_link.hpp"
@@ -22,7 +24,9 @@ using session::test_support::z_turn;
 
 struct BridgeLinkRig {
   explicit BridgeLinkRig(ports::LogSink& log)
-      : station_end(wire, true), bridge_end(wire, false), bridge(bridge_end, nullptr, {}, log) {
+      : station_end(wire, true),
+        bridge_end(wire, false),
+        bridge(bridge_end, clock, nullptr, {}, log) {
     const std::size_t n = station.mesh.vertex_capacity();
     x.resize(n);
     y.resize(n);
@@ -62,6 +66,7 @@ struct BridgeLinkRig {
   std::vector<std::uint32_t> idx;
   std::vector<std::byte> out;
   std::unique_ptr<station::StationLink> link;
+  twister::test::FakeClock clock;
   BridgeApp bridge;
 };
 

@@ -12,6 +12,7 @@
 
 #include "bridge_app.hpp"
 #include "bridge_test_mesh.hpp"
+#include "fakes/fake_clock.hpp"
 #include "gl_context.hpp"
 #include "mesh_renderer.hpp"
 #include "scene_replica.hpp"
@@ -135,7 +136,8 @@ class QuietLink final : public ports::LinkPort {
 TEST_F(BridgeRender, ScodefPreviewOfTheAppIsTheCpuWarpOfEachLiveFrame) {
   QuietLink link;
   ports::NullLogSink log;
-  BridgeApp app(link, &renderer_, {}, log);
+  twister::test::FakeClock clock;
+  BridgeApp app(link, clock, &renderer_, {}, log);
   load_mesh(app.replica(), sphere_mesh(0.1F));
   app.step();
   const std::array<math::Frame, 2> start{math::identity_frame({0.0, -0.1, 0.0}), math::Frame{}};
@@ -144,7 +146,7 @@ TEST_F(BridgeRender, ScodefPreviewOfTheAppIsTheCpuWarpOfEachLiveFrame) {
     const std::array<math::Frame, 2> end{math::identity_frame({0.0, -0.1 - lift, 0.0}),
                                          math::Frame{}};
     LiveMessages live = make_live_messages(1, 1, math::WarpMethod::scodef, 0.12, 1, start, end);
-    live.hands.hands.sequence = sequence++;
+    live.hands.sequence = sequence++;
     (void)app.replica().apply(live.stroke);
     (void)app.replica().apply(live.hands);
     app.step();

@@ -34,20 +34,16 @@ MeshData grid() {
 std::vector<link::LinkMessage> mesh_messages(const MeshData& m, bool full, std::uint32_t base,
                                              std::uint32_t version, std::uint64_t checksum) {
   std::vector<link::LinkMessage> out(4);
-  out[0].type = link::MessageType::mesh_begin;
-  out[0].mesh_begin = {full, base, version, static_cast<std::uint32_t>(m.vertex_count()),
-                       static_cast<std::uint32_t>(m.triangle_count())};
-  out[1].type = link::MessageType::vertices;
-  out[1].vertices.count = static_cast<std::uint16_t>(m.vertex_count());
-  for (std::uint32_t i = 0; i < m.vertex_count(); ++i) {
-    out[1].vertices.items[i] = {i, m.x[i], m.y[i], m.z[i]};
-  }
-  out[2].type = link::MessageType::triangles;
-  out[2].triangles.first = 0;
-  out[2].triangles.count = static_cast<std::uint16_t>(m.triangle_count());
-  std::copy(m.indices.begin(), m.indices.end(), out[2].triangles.indices.begin());
-  out[3].type = link::MessageType::mesh_end;
-  out[3].mesh_end = {version, checksum};
+  out[0] = link::MeshBegin{full, base, version, static_cast<std::uint32_t>(m.vertex_count()),
+                           static_cast<std::uint32_t>(m.triangle_count())};
+  auto& v = out[1].emplace<link::Vertices>();
+  v.count = static_cast<std::uint16_t>(m.vertex_count());
+  for (std::uint32_t i = 0; i < m.vertex_count(); ++i) v.items[i] = {i, m.x[i], m.y[i], m.z[i]};
+  auto& t = out[2].emplace<link::Triangles>();
+  t.first = 0;
+  t.count = static_cast<std::uint16_t>(m.triangle_count());
+  std::copy(m.indices.begin(), m.indices.end(), t.indices.begin());
+  out[3] = link::MeshEnd{version, checksum};
   return out;
 }
 
@@ -71,13 +67,11 @@ SceneReplica replica_with_grid() {
 std::vector<link::LinkMessage> commit_messages(const link::VertexEntry& moved,
                                                std::uint64_t checksum) {
   std::vector<link::LinkMessage> commit(3);
-  commit[0].type = link::MessageType::mesh_begin;
-  commit[0].mesh_begin = {false, 1, 2, 9, 8};
-  commit[1].type = link::MessageType::vertices;
-  commit[1].vertices.count = 1;
-  commit[1].vertices.items[0] = moved;
-  commit[2].type = link::MessageType::mesh_end;
-  commit[2].mesh_end = {2, checksum};
+  commit[0] = link::MeshBegin{false, 1, 2, 9, 8};
+  auto& v = commit[1].emplace<link::Vertices>();
+  v.count = 1;
+  v.items[0] = moved;
+  commit[2] = link::MeshEnd{2, checksum};
   return commit;
 }
 
@@ -117,9 +111,7 @@ TEST(BridgeSceneReplica, ChecksumMismatchKeepsTheVerifiedMeshAndAsksForResend) {
 
 TEST(BridgeSceneReplica, CommitForAnotherVersionAndBadIndicesAskForResend) {
   SceneReplica r = replica_with_grid();
-  link::LinkMessage gap;
-  gap.type = link::MessageType::mesh_begin;
-  gap.mesh_begin = {false, 5, 6, 9, 8};  // missed versions 2..5
+  const link::MeshBegin gap{false, 5, 6, 9, 8};  // missed versions 2..5
   EXPECT_TRUE(r.apply(gap));
   EXPECT_EQ(r.counters().version_gaps, 1u);
   // A full mesh whose triangle points past the vertices is refused.

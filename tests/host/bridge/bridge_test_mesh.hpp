@@ -29,33 +29,28 @@ inline MeshData sphere_mesh(float radius_m, std::size_t rings = 48, std::size_t 
 
 // Feeds `m` to the replica as the station would (full mesh, version 1).
 inline void load_mesh(SceneReplica& r, const MeshData& m) {
-  link::LinkMessage b;
-  b.type = link::MessageType::mesh_begin;
-  b.mesh_begin = {true, 0, 1, static_cast<std::uint32_t>(m.vertex_count()),
-                  static_cast<std::uint32_t>(m.triangle_count())};
+  link::MeshBegin b;
+  b = {true, 0, 1, static_cast<std::uint32_t>(m.vertex_count()),
+       static_cast<std::uint32_t>(m.triangle_count())};
   (void)r.apply(b);
-  link::LinkMessage v;
-  v.type = link::MessageType::vertices;
+  link::Vertices v;
   for (std::uint32_t i = 0; i < m.vertex_count(); ++i) {
-    v.vertices.items[v.vertices.count++] = {i, m.x[i], m.y[i], m.z[i]};
-    if (v.vertices.count == link::kMaxVerticesPerChunk || i + 1 == m.vertex_count()) {
+    v.items[v.count++] = {i, m.x[i], m.y[i], m.z[i]};
+    if (v.count == link::kMaxVerticesPerChunk || i + 1 == m.vertex_count()) {
       (void)r.apply(v);
-      v.vertices.count = 0;
+      v.count = 0;
     }
   }
-  link::LinkMessage t;
-  t.type = link::MessageType::triangles;
+  link::Triangles t;
   for (std::uint32_t k = 0; k < m.triangle_count(); k += link::kMaxTrianglesPerChunk) {
     const auto n = std::min<std::size_t>(link::kMaxTrianglesPerChunk, m.triangle_count() - k);
-    t.triangles.first = k;
-    t.triangles.count = static_cast<std::uint16_t>(n);
-    std::copy_n(m.indices.begin() + 3 * static_cast<std::ptrdiff_t>(k), 3 * n,
-                t.triangles.indices.begin());
+    t.first = k;
+    t.count = static_cast<std::uint16_t>(n);
+    std::copy_n(m.indices.begin() + 3 * static_cast<std::ptrdiff_t>(k), 3 * n, t.indices.begin());
     (void)r.apply(t);
   }
-  link::LinkMessage e;
-  e.type = link::MessageType::mesh_end;
-  e.mesh_end = {1, *mesh_checksum(m)};
+  link::MeshEnd e;
+  e = {1, *mesh_checksum(m)};
   ASSERT_FALSE(r.apply(e));
   ASSERT_EQ(r.version(), 1u);
 }

@@ -105,7 +105,7 @@ TEST_F(Figure8Command, UnwritablePictureFailsWithAMessage) {
   const fs::path bad = dir_ / "missing" / "f.png";
   const CliRun r = run("figure8 --png " + bad.string(), dir_ / "stderr.txt");
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.err.find("twister figure8: cannot write '" + bad.string() + "'"), std::string::npos)
+  EXPECT_NE(r.err.find("twister figure8: cannot write " + bad.string()), std::string::npos)
       << r.err;
 }
 

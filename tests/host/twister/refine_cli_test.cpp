@@ -44,7 +44,7 @@ TEST(RefineCli, MeshShapesAtAChosenResolution) {
                         Case{"sphere -n 10 --segments 20", meshio::sphere_vertices(10, 20), true},
                         Case{"plane -n 9 --size 0.5", 81, false}}) {
     const fs::path out = dir / "shape.obj";
-    const auto r = run("mesh " + c.args + " --out " + out.string());
+    const auto r = run("mesh " + c.args + " --out " + out.string() + " --force");
     ASSERT_EQ(r.exit_code, 0) << c.args << "\n" << r.out;
     const auto m = meshio::load_obj(out);
     ASSERT_TRUE(m) << m.error().message;
@@ -67,7 +67,8 @@ TEST(RefineCli, ReplayRebuildsARefinedSessionBitForBit) {
   write(dir / "j.twj", live.storage.bytes());
   ASSERT_EQ(run("mesh box -n 3 --size 0.5 --out " + (dir / "box.obj").string()).exit_code, 0);
   const std::string replay = "replay " + (dir / "j.twj").string() + " --mesh " +
-                             (dir / "box.obj").string() + " --out " + (dir / "out.obj").string();
+                             (dir / "box.obj").string() + " --out " + (dir / "out.obj").string() +
+                             " --force";
   const auto same = run(replay + " --spare-vertices 6000");
   ASSERT_EQ(same.exit_code, 0) << same.out;
   char checksum[32];

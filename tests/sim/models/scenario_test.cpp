@@ -84,7 +84,7 @@ TEST(Scenario, MalformedButtonLinesNameTheLine) {
   EXPECT_FALSE(parse_scenario("button 1 2 2\n", sc, err));
   EXPECT_EQ(err, "line 1: button level must be 0 or 1");
   EXPECT_FALSE(parse_scenario("button -1 2 1\n", sc, err));
-  EXPECT_EQ(err, "line 1: button time must be >= 0");
+  EXPECT_EQ(err, "line 1: button time must be 0..1000000 s");
   EXPECT_FALSE(parse_scenario("button nan 2 1\n", sc, err));
   EXPECT_FALSE(parse_scenario("button 1 2 1 7\n", sc, err));
   EXPECT_EQ(err, "line 1: unexpected '7'");

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <span>
 
+#include "twister/base/inline_vector.hpp"
 #include "twister/base/result.hpp"
 #include "twister/ports/button_source.hpp"
 #include "twister/ports/clock.hpp"
@@ -48,7 +49,7 @@ class ButtonDebouncer {
   // The debounced (reported) level of a line; false for lines out of range.
   bool pressed(std::uint8_t line) const;
 
-  std::uint8_t line_count() const { return line_count_; }
+  std::uint8_t line_count() const { return static_cast<std::uint8_t>(lines_.size()); }
 
  private:
   struct Line {
@@ -57,8 +58,7 @@ class ButtonDebouncer {
     ports::TimestampUs raw_since_us = 0;
   };
   ButtonDebouncerConfig config_;
-  std::uint8_t line_count_;
-  std::array<Line, kMaxButtonLines> lines_{};
+  InlineVector<Line, kMaxButtonLines> lines_;  // one per line in use
 };
 
 }  // namespace twister::input

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <span>
 
+#include "twister/base/inline_vector.hpp"
 #include "twister/base/status.hpp"
 #include "twister/input/button_debouncer.hpp"
 #include "twister/input/button_map.hpp"
@@ -40,7 +41,7 @@ class ButtonFrontEnd {
   const HandButtons& hand(std::uint8_t hand) const { return levels_[hand]; }
   // Commands fired by the last poll, in order (beyond kMaxButtonCommandsPerPoll in
   // one poll: dropped, counted).
-  std::span<const ButtonCommand> commands() const { return {commands_.data(), command_count_}; }
+  std::span<const ButtonCommand> commands() const { return commands_; }
   std::size_t commands_dropped() const { return commands_dropped_; }
   // Debounced lines down (bit per line) as of the last poll.
   std::uint16_t held_lines() const { return held_; }
@@ -56,8 +57,7 @@ class ButtonFrontEnd {
   std::uint16_t held_ = 0;
   // What each held line's press resolved to (its release undoes exactly that).
   std::array<ButtonBinding, kMaxButtonLines> pressed_as_{};
-  std::array<ButtonCommand, kMaxButtonCommandsPerPoll> commands_{};
-  std::size_t command_count_ = 0;
+  InlineVector<ButtonCommand, kMaxButtonCommandsPerPoll> commands_;
   std::size_t commands_dropped_ = 0;
 };
 

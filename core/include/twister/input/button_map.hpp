@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <span>
 
+#include "twister/base/inline_vector.hpp"
 #include "twister/base/result.hpp"
 #include "twister/input/button_debouncer.hpp"
 
@@ -88,7 +89,7 @@ class ButtonMap {
   // triggers (the one with the most held lines when several match), else the line's
   // own binding.
   ButtonBinding resolve(std::uint8_t line, std::uint16_t held) const;
-  std::span<const ButtonChord> chords() const { return {chords_.data(), chord_count_}; }
+  std::span<const ButtonChord> chords() const { return chords_; }
 
   // Applies one debounced event of a line's own level role to the per-hand levels
   // (unbound lines, command roles and chords are ignored: see ButtonFrontEnd).
@@ -99,8 +100,7 @@ class ButtonMap {
 
  private:
   std::array<ButtonBinding, kMaxButtonLines> lines_{};
-  std::array<ButtonChord, kMaxChords> chords_{};
-  std::size_t chord_count_ = 0;
+  InlineVector<ButtonChord, kMaxChords> chords_;
 };
 
 }  // namespace twister::input

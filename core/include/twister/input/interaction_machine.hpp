@@ -20,6 +20,7 @@
 #include <glm/vec3.hpp>
 #include <span>
 
+#include "twister/base/inline_vector.hpp"
 #include "twister/input/button_map.hpp"
 #include "twister/ports/clock.hpp"
 
@@ -57,6 +58,7 @@ enum class Reason : std::uint8_t {
   busy,              // a command (undo, redo, method) while a stroke or move is open
   nothing_to_undo,   // undo with an empty history
   nothing_to_redo,   // redo with nothing undone
+  stopped,           // cancelled from outside: the station stops (SculptSession::cancel_open)
 };
 
 const char* action_kind_name(ActionKind kind);
@@ -75,12 +77,11 @@ inline constexpr std::size_t kMaxActionsPerStep = 8;
 class ActionList {
  public:
   void push(const Action& action);
-  std::span<const Action> items() const { return {items_.data(), count_}; }
-  std::size_t size() const { return count_; }
+  std::span<const Action> items() const { return items_; }
+  std::size_t size() const { return items_.size(); }
 
  private:
-  std::array<Action, kMaxActionsPerStep> items_{};
-  std::size_t count_ = 0;
+  InlineVector<Action, kMaxActionsPerStep> items_;
 };
 
 struct HandInput {

@@ -1,6 +1,8 @@
 // JournalRecord: one entry of the stroke journal, and its byte encoding.
 //
-// File: an 8-byte header ("TWJL", u32 format version), then records. Each record:
+// File: a header ("TWJL", u32 format version, ...), then records; the file formats
+// (version 1, and version 2 whose records carry the journal's identity and whose
+// sequences are checked) are in journal_format.hpp. A version 1 record:
 //   u32 payload_length | u8 record_version | u8 type | u16 reserved (0)
 //   payload (payload_length bytes) | u32 CRC-32 over header and payload
 // All integers little-endian; reals are IEEE float64 bit patterns, so replay sees
@@ -19,26 +21,17 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 #include <span>
 
+#include "twister/base/pose.hpp"
 #include "twister/base/result.hpp"
 
 namespace twister::journal {
 
 inline constexpr std::array<std::byte, 4> kFileMagic{std::byte{'T'}, std::byte{'W'}, std::byte{'J'},
                                                      std::byte{'L'}};
-inline constexpr std::uint32_t kFileVersion = 1;
-inline constexpr std::size_t kFileHeaderBytes = 8;
-// What every journal file starts with: the magic, then kFileVersion little-endian.
-inline constexpr std::array<std::byte, kFileHeaderBytes> kFileHeader = [] {
-  std::array<std::byte, kFileHeaderBytes> header{};
-  for (std::size_t i = 0; i < 4; ++i) {
-    header[i] = kFileMagic[i];
-    header[4 + i] = static_cast<std::byte>((kFileVersion >> (8 * i)) & 0xffu);
-  }
-  return header;
-}();
 inline constexpr std::uint8_t kRecordVersion = 1;
 // A stroke record with long_turns != 0 (and no refinement).
 inline constexpr std::uint8_t kRecordVersionLongTurns = 2;
@@ -47,8 +40,10 @@ inline constexpr std::uint8_t kRecordVersionRefined = 3;
 inline constexpr std::size_t kRecordHeaderBytes = 8;
 inline constexpr std::size_t kRecordCrcBytes = 4;
 inline constexpr std::size_t kMaxPayloadBytes = 512;
+// Version 2 records carry the journal's identity after the record header.
+inline constexpr std::size_t kRecordIdBytes = 4;
 inline constexpr std::size_t kMaxRecordBytes =
-    kRecordHeaderBytes + kMaxPayloadBytes + kRecordCrcBytes;
+    kRecordHeaderBytes + kRecordIdBytes + kMaxPayloadBytes + kRecordCrcBytes;
 
 enum class RecordType : std::uint8_t {
   stroke = 1,       // a committed warp (release, freeze step, or hand-set change)
@@ -57,12 +52,10 @@ enum class RecordType : std::uint8_t {
   redo = 4,
 };
 
-struct JournalPose {
-  glm::dvec3 origin_m{0.0};
-  glm::dvec3 u{1.0, 0.0, 0.0};
-  glm::dvec3 v{0.0, 1.0, 0.0};
-  friend bool operator==(const JournalPose&, const JournalPose&) = default;
-};
+// A record's poses are twister::Pose (origin in metres). The journal stores origin, U
+// and V; W is rebuilt as U x V when a record is read, so a record round-trips exactly
+// when its poses are as_stored() ones.
+inline Pose as_stored(const Pose& p) { return {p.origin, p.u, p.v, glm::cross(p.u, p.v)}; }
 
 struct StrokeRecord {
   std::uint8_t method = 0;       // math::WarpMethod as a number
@@ -75,15 +68,15 @@ struct StrokeRecord {
   // > 0: the commit refined the mesh until every edge's midpoint error under the warp
   // was at most this (metres; version 3). 0: not refined (versions 1 and 2).
   double refine_threshold_m = 0.0;
-  std::array<JournalPose, 2> start{};  // per hand, meaningful where hand_mask says
-  std::array<JournalPose, 2> end{};
+  std::array<Pose, 2> start{};  // per hand, meaningful where hand_mask says
+  std::array<Pose, 2> end{};
   friend bool operator==(const StrokeRecord&, const StrokeRecord&) = default;
 };
 
 struct ObjectMoveRecord {
   std::uint8_t hand = 0;
-  JournalPose object_before{};  // object pose in the world before and after the move
-  JournalPose object_after{};
+  Pose object_before{};  // object pose in the world before and after the move
+  Pose object_after{};
   friend bool operator==(const ObjectMoveRecord&, const ObjectMoveRecord&) = default;
 };
 
@@ -95,7 +88,8 @@ struct JournalRecord {
   friend bool operator==(const JournalRecord&, const JournalRecord&) = default;
 };
 
-// Writes the whole record (header, payload, CRC) into out; returns its size.
+// Writes the whole record (header, payload, CRC) into out in the version 1 layout;
+// returns its size (encode_record(record, out, format) in journal_format.hpp: any format).
 // invalid_argument: the record breaks the rules above (hand_mask 0, method > 2,
 // long_turns outside hand_mask, refine_threshold_m negative or not finite).
 // resource_exhausted: out is smaller than the encoded record.

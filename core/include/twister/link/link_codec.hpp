@@ -22,9 +22,14 @@ inline constexpr std::size_t kMaxFrameBytes = kMaxPayload + 4 + (kMaxPayload + 4
 // Encodes `message` as one frame into `out`; returns the bytes written.
 // resource_exhausted: `out` is too small (nothing usable written);
 // invalid_argument: a count above its chunk capacity.
+// Senders pass the message type itself (encode_frame(hands, out)); the
+// LinkMessage overload visits (a decoded message sent on, tests).
+template <LinkBody M>
+Result<std::size_t> encode_frame(const M& message, std::span<std::byte> out);
 Result<std::size_t> encode_frame(const LinkMessage& message, std::span<std::byte> out);
 
-// Parses a payload (version, type, body; CRC already checked) into `out`.
+// Parses a payload (version, type, body; CRC already checked) into `out`, which
+// then holds the alternative of the frame's type.
 // not_supported: other protocol version; invalid_argument: unknown type, wrong
 // length or a field out of range (counts, booleans, method).
 Status decode_payload(std::span<const std::byte> payload, LinkMessage& out);
@@ -93,7 +98,8 @@ struct DecoderCounters {
 // LinkDecoder: frames -> messages. Feed bytes as they arrive (any split).
 class LinkDecoder {
  public:
-  // ok: `byte` completed a good message (valid until the next process()).
+  // ok: `byte` completed a good message (valid until the next process()); read it
+  // with std::get_if / std::visit or link::type_of.
   // unavailable / data_loss / resource_exhausted: as FrameDecoder::process.
   // invalid_argument / not_supported: a good frame whose payload is not a valid
   //   message of this protocol version (dropped, counted as bad_payload).
@@ -119,6 +125,8 @@ class LinkDecoder {
 
 // Encoded size of the message (frame bytes incl. delimiter); 0 when it cannot be
 // encoded. For link budgets (tests, docs).
+template <LinkBody M>
+std::size_t frame_size(const M& message);
 std::size_t frame_size(const LinkMessage& message);
 
 }  // namespace twister::link

@@ -1,15 +1,21 @@
 // Link messages between twister-station and twister-bridge (protocol version 2,
-// docs/link-protocol.md). One LinkMessage is one frame on the wire (see
-// link_codec.hpp for the framing). Units: metres, radians; poses are in the
-// station's object frame (the mesh's own frame, the journal's frames) except the
-// object pose, which places the object in the world. Every struct is fixed size:
-// no heap.
+// docs/link-protocol.md). Each message type is its own small struct naming its
+// MessageType (kType); one frame on the wire carries one of them (see
+// link_codec.hpp for the framing). LinkMessage, a std::variant of all thirteen, is
+// what a decoder yields: senders encode the type they send directly and never
+// build a LinkMessage for it. Units: metres, radians; poses are in the station's
+// object frame (the mesh's own frame, the journal's frames) except the object pose,
+// which places the object in the world. Every struct is fixed size: no heap.
 #pragma once
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <glm/vec3.hpp>
+#include <type_traits>
+#include <variant>
+
+#include "twister/base/pose.hpp"
 
 namespace twister::link {
 
@@ -21,16 +27,6 @@ inline constexpr std::size_t kMaxTrianglesPerChunk = 300;  // 12 bytes each
 inline constexpr std::size_t kLinkHands = 2;
 inline constexpr std::size_t kNonceBytes = 16;
 inline constexpr std::size_t kAuthTagBytes = 32;
-
-// An exact pose: origin and orthonormal axes, doubles (math::Frame's fields; the
-// link stays independent of the math library, its users convert). Used where the
-// bridge must rebuild what the station computed bit for bit (stroke start frames).
-struct Pose {
-  glm::dvec3 origin{0.0};
-  glm::dvec3 u{1.0, 0.0, 0.0};
-  glm::dvec3 v{0.0, 1.0, 0.0};
-  glm::dvec3 w{0.0, 0.0, 1.0};
-};
 
 // A compact pose: position and orientation as a unit quaternion (w, x, y, z),
 // floats (28 bytes on the wire). The quaternion's sign carries information where a
@@ -63,6 +59,7 @@ enum class Role : std::uint8_t { station = 1, bridge = 2 };
 inline constexpr std::uint8_t kHelloAuth = 1;  // the sender holds a key: challenge-response
 
 struct Hello {
+  static constexpr MessageType kType = MessageType::hello;
   Role role = Role::station;
   std::uint8_t flags = 0;
   std::uint32_t mesh_version = 0;  // 0 = holds no mesh
@@ -71,6 +68,7 @@ struct Hello {
 };
 
 struct Auth {
+  static constexpr MessageType kType = MessageType::auth;
   std::array<std::uint8_t, kAuthTagBytes> tag{};
 };
 
@@ -84,10 +82,12 @@ enum class ByeReason : std::uint8_t {
 inline constexpr std::uint8_t kLastByeReason = 5;
 
 struct Bye {
+  static constexpr MessageType kType = MessageType::bye;
   ByeReason reason = ByeReason::shutdown;
 };
 
 struct MeshBegin {
+  static constexpr MessageType kType = MessageType::mesh_begin;
   bool full = true;                // true: replace the mesh; false: a commit
   std::uint32_t base_version = 0;  // a commit applies to this version only
   std::uint32_t version = 0;       // version after mesh_end
@@ -103,22 +103,26 @@ struct VertexEntry {
 };
 
 struct Vertices {
+  static constexpr MessageType kType = MessageType::vertices;
   std::uint16_t count = 0;
   std::array<VertexEntry, kMaxVerticesPerChunk> items{};
 };
 
 struct Triangles {
+  static constexpr MessageType kType = MessageType::triangles;
   std::uint32_t first = 0;  // index of the first triangle in this run
   std::uint16_t count = 0;
   std::array<std::uint32_t, 3 * kMaxTrianglesPerChunk> indices{};
 };
 
 struct MeshEnd {
+  static constexpr MessageType kType = MessageType::mesh_end;
   std::uint32_t version = 0;
   std::uint64_t checksum = 0;  // mesh::Mesh::checksum() of the result
 };
 
 struct ResendRequest {
+  static constexpr MessageType kType = MessageType::resend_request;
   std::uint32_t have_version = 0;
   std::uint64_t have_checksum = 0;
 };
@@ -127,12 +131,13 @@ struct ResendRequest {
 // bridge that connects mid-stroke picks it up): everything the bridge needs to
 // build the same math::WarpPlan as the station, exactly.
 struct StrokeBegin {
+  static constexpr MessageType kType = MessageType::stroke;
   std::uint32_t stroke = 0;        // segment id (+1 per segment)
   std::uint32_t mesh_version = 0;  // the rest mesh it warps
   std::uint8_t method = 0;         // math::WarpMethod
   std::uint8_t hand_mask = 0;      // session hands in the segment (bit h), 1..3
   double radius_m = 0.0;
-  std::array<Pose, kLinkHands> start{};  // per session hand in hand_mask
+  std::array<twister::Pose, kLinkHands> start{};  // exact; per session hand in hand_mask
 };
 
 // Hands flags.
@@ -156,6 +161,7 @@ inline constexpr std::uint8_t kButtonMoveObject = 8;
 inline constexpr std::size_t kHandsFrameBytes = 74;  // two hands (tested)
 
 struct Hands {
+  static constexpr MessageType kType = MessageType::hands;
   std::uint16_t sequence = 0;  // +1 per hands message: the bridge counts gaps
   std::uint16_t stroke = 0;    // low 16 bits of the open segment's id
   std::uint8_t flags = 0;
@@ -165,6 +171,7 @@ struct Hands {
 };
 
 struct ObjectPose {
+  static constexpr MessageType kType = MessageType::object;
   CompactPose pose{};  // the object frame in the world
 };
 
@@ -173,6 +180,7 @@ enum class TrackerState : std::uint8_t { starting = 0, streaming = 1, lost = 2 }
 
 // Station status, about once a second and when something in it changes.
 struct StatusReport {
+  static constexpr MessageType kType = MessageType::status;
   std::uint32_t mesh_version = 0;
   std::uint32_t vertex_count = 0;
   std::uint32_t vertex_capacity = 0;
@@ -199,26 +207,31 @@ enum class CommandKind : std::uint8_t { undo = 1, redo = 2, next_method = 3, set
 inline constexpr std::uint8_t kLastCommandKind = 4;
 
 struct Command {
+  static constexpr MessageType kType = MessageType::command;
   CommandKind kind = CommandKind::undo;
   std::uint8_t method = 0;  // math::WarpMethod, set_method only
 };
 
-// One decoded or to-be-encoded message: `type` says which member is meaningful.
-struct LinkMessage {
-  MessageType type = MessageType::hello;
-  Hello hello{};
-  Auth auth{};
-  Bye bye{};
-  MeshBegin mesh_begin{};
-  Vertices vertices{};
-  Triangles triangles{};
-  MeshEnd mesh_end{};
-  ResendRequest resend_request{};
-  StrokeBegin stroke{};
-  Hands hands{};
-  ObjectPose object{};
-  StatusReport status{};
-  Command command{};
+// One decoded message: the alternative is its type, in MessageType order (index
+// + 1 is the type byte). As large as its largest alternative (Triangles) plus the
+// index: only decoders hold one.
+using LinkMessage =
+    std::variant<Hello, Auth, Bye, MeshBegin, Vertices, Triangles, MeshEnd, ResendRequest,
+                 StrokeBegin, Hands, ObjectPose, StatusReport, Command>;
+static_assert(std::variant_size_v<LinkMessage> == kLastMessageType);
+
+inline MessageType type_of(const LinkMessage& m) { return static_cast<MessageType>(m.index() + 1); }
+
+namespace internal {
+template <class T, class Variant>
+struct IsAlternative;
+template <class T, class... Ts>
+struct IsAlternative<T, std::variant<Ts...>> : std::bool_constant<(std::is_same_v<T, Ts> || ...)> {
 };
+}  // namespace internal
+
+// A message body type: one of LinkMessage's alternatives.
+template <class T>
+concept LinkBody = internal::IsAlternative<T, LinkMessage>::value;
 
 }  // namespace twister::link

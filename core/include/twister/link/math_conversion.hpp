@@ -1,4 +1,5 @@
-// Conversions between the link's wire poses and core math's Frame and Screw, for
+// Conversions between the link's compact wire poses and core math's Frame and Screw
+// (the exact pose needs none: math::Frame is twister::Pose, the link's own), for
 // the link's users that hold both (the station link, the bridge). The link library
 // itself stays independent of math: nothing in it includes this file.
 //
@@ -23,10 +24,6 @@
 #include "twister/math/screw.hpp"
 
 namespace twister::link {
-
-inline Pose to_wire(const math::Frame& f) { return {f.origin, f.u, f.v, f.w}; }
-
-inline math::Frame to_frame(const Pose& p) { return {p.origin, p.u, p.v, p.w}; }
 
 // The frame's orientation (columns U, V, W) as a unit quaternion.
 inline glm::dquat frame_rotation(const math::Frame& f) {

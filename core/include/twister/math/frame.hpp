@@ -4,17 +4,15 @@
 
 #include <glm/vec3.hpp>
 
+#include "twister/base/pose.hpp"
+
 namespace twister::math {
 
 // Tolerance of the orthonormality check (docs/math.md §10: unit and orthogonal within 1e-6).
 inline constexpr double kFrameTolerance = 1e-6;
 
-struct Frame {
-  glm::dvec3 origin{0.0};
-  glm::dvec3 u{1.0, 0.0, 0.0};
-  glm::dvec3 v{0.0, 1.0, 0.0};
-  glm::dvec3 w{0.0, 0.0, 1.0};
-};
+// The project's one pose type (twister/base/pose.hpp) under the name the math uses.
+using Frame = twister::Pose;
 
 // The world-aligned frame at `origin`.
 Frame identity_frame(glm::dvec3 origin = glm::dvec3(0.0));

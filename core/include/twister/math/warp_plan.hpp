@@ -25,6 +25,7 @@
 #include <glm/vec3.hpp>
 #include <span>
 
+#include "twister/base/inline_vector.hpp"
 #include "twister/base/status.hpp"
 #include "twister/math/frame.hpp"
 #include "twister/math/scodef.hpp"
@@ -36,6 +37,8 @@
 namespace twister::math {
 
 inline constexpr std::size_t kMaxHands = 2;
+// The start or end frames of a plan's hands, in plan order.
+using PlanFrames = InlineVector<Frame, kMaxHands>;
 // Two grab points closer than this fraction of the radius count as the same point.
 inline constexpr double kCoincidentGrabFraction = 1e-9;
 

@@ -30,6 +30,7 @@
 #include <glm/vec3.hpp>
 #include <span>
 
+#include "twister/base/inline_ring.hpp"
 #include "twister/base/result.hpp"
 #include "twister/mesh/mesh.hpp"
 #include "twister/mesh/point_warp.hpp"
@@ -136,8 +137,7 @@ class MeshRefiner {
   RefineObserver* observer_ = nullptr;
   double threshold_m_ = 0.0;
   std::uint32_t triangles_before_ = 0;
-  std::size_t queue_head_ = 0;
-  std::size_t queue_count_ = 0;
+  SpanRing<std::uint32_t> queue_;  // triangles to look at (kQueued), over storage_.queue
   RefineResult result_{};
 };
 

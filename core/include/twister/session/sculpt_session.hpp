@@ -39,6 +39,7 @@
 #include <cstdint>
 #include <span>
 
+#include "twister/base/inline_vector.hpp"
 #include "twister/base/result.hpp"
 #include "twister/input/button_debouncer.hpp"
 #include "twister/input/button_front_end.hpp"
@@ -128,7 +129,8 @@ class SculptSession {
 
   // Ends what is open without committing it (the station stopping): every hand of an
   // open stroke is cancelled (the model stays as after the last commit) and an open
-  // object move is cancelled (the object goes back). Returns those events.
+  // object move is cancelled (the object goes back), each with reason stopped.
+  // Returns those events.
   SessionEvents cancel_open();
 
   // Undo / redo of committed strokes (journaled), at once, without events.
@@ -205,8 +207,7 @@ class SculptSession {
   StrokeController strokes_;
   ObjectMover mover_;
   JournalReplay replay_;
-  std::array<SessionCommand, kMaxQueuedCommands> queued_{};
-  std::size_t queued_count_ = 0;
+  InlineVector<SessionCommand, kMaxQueuedCommands> queued_;
   mesh::NormalColumns normals_{};
   std::uint32_t normals_sequence_ = 0;  // next_sequence() when they were computed
 };

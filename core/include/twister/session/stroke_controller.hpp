@@ -90,7 +90,7 @@ class StrokeController {
   void unfreeze(std::uint8_t hand, SessionEvents& out);
   // A hand's grab ends (commit: released; else cancelled): the segment of the other
   // hands goes on as a new segment.
-  void end_grab(std::uint8_t hand, bool commit, SessionEvents& out);
+  void end_grab(std::uint8_t hand, bool commit, input::Reason cancel_reason, SessionEvents& out);
   Status begin_segment(std::uint8_t mask);
   // Rebases the open segment on the hands' current poses (same weights); the chain
   // step advances when `committed`. On failure the stroke ends (cancelled events).
@@ -113,7 +113,7 @@ class StrokeController {
   // The start poses of a (re)started segment, in the object frame, in plan order: an
   // engaged hand's drive starts at its current pose, a disengaged hand keeps its
   // anchor (the pose it disengaged at).
-  std::size_t start_drives(std::array<math::Frame, 2>& frames);
+  math::PlanFrames start_drives();
 
   math::WarpPlan& plan_;
   LiveMesh& mesh_;

@@ -4,8 +4,11 @@
 // SculptSession (debounce, button map, interaction machine, warp, undo, journal),
 // and is driven by poll() from the composition root's event loop; time comes from
 // the Clock port.
-// One poll(): drain tracker poses -> hand poses (metres, world frame); drain button
-// edges; one session step; its events become StationEvents for the log.
+// One poll(): drain tracker poses -> hand poses (metres, world frame) (TrackerHands);
+// drain button edges; one session step; its events, and the station's own, are
+// counted (EventCounters) and queued for the log (EventQueue) as they are: the
+// station's events are the session's vocabulary (session_events.hpp). Checkpoints
+// are written a chunk per poll (CheckpointSchedule).
 // Hands are valid only while the tracker streams and their pose is fresh: on a loss
 // the session holds the stroke (tracking_lost) and cancels it after lost_timeout, so
 // an unplug never commits a stroke from stale or missing poses.
@@ -13,16 +16,17 @@
 // record with valid records after it: the file is left untouched), restores the last
 // checkpoint when one fits, replays the records after it into the mesh (the same code
 // path as live commits), cuts a torn tail (keeping its bytes through a FileSink) and
-// opens the journal for appending.
+// opens the journal for appending. A composition root with more start-up steps that can
+// fail calls recover() (which changes no file), then its steps, then begin_appending()
+// (which cuts the torn tail and writes a new journal's header), so a start-up that
+// fails leaves the journal byte-identical.
 // No heap; all working memory is given at construction. Not thread-safe.
 #pragma once
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
 
 #include "twister/base/result.hpp"
-#include "twister/session/sculpt_session.hpp"
 #include "twister/checkpoint/session_checkpoint.hpp"
 #include "twister/journal/journal_scanner.hpp"
 #include "twister/journal/journal_writer.hpp"
@@ -32,59 +36,17 @@
 #include "twister/ports/clock.hpp"
 #include "twister/ports/file_sink.hpp"
 #include "twister/ports/storage.hpp"
-#include "twister/station/station_event.hpp"
+#include "twister/session/sculpt_session.hpp"
+#include "twister/session/session_events.hpp"
+#include "twister/station/checkpoint_schedule.hpp"
+#include "twister/station/event_queue.hpp"
+#include "twister/station/station_config.hpp"
+#include "twister/station/station_counters.hpp"
 #include "twister/station/station_status.hpp"
+#include "twister/station/tracker_hands.hpp"
 #include "twister/tracker/fastrak_session.hpp"
-#include "twister/tracker/pose_conversion.hpp"
 
 namespace twister::station {
-
-struct StationConfig {
-  tracker::FastrakSessionConfig session{};
-  tracker::PoseConversion conversion{};
-  // Fastrak receiver (1..4) held by hand 0 and hand 1.
-  std::array<std::uint8_t, input::kHandCount> hand_station{1, 2};
-  // A hand's pose older than this counts as not valid (tracker silent or lost).
-  ports::TimestampUs pose_stale_us = 200'000;
-  // Fastrak stylus switch (item 16) as a button: stylus_line[station - 1] is the
-  // button line its state drives (-1 = none). The edge goes through the debouncer
-  // like any ButtonSource edge, stamped with the poll time of the record.
-  std::array<std::int8_t, tracker::kMaxStations> stylus_line{-1, -1, -1, -1};
-  // Debounce, button map, interaction timing, warp method.
-  session::SculptSessionConfig sculpt{};
-  // A checkpoint is written once this many journal records were added since the last
-  // one (and at stop); 0: only at stop. Written a chunk per poll(), while the model
-  // stays unchanged (a commit meanwhile starts it over later).
-  std::uint32_t checkpoint_interval = 256;
-  std::size_t checkpoint_bytes_per_poll = std::size_t{256} << 10;
-};
-
-struct StationCounters {
-  std::uint64_t poses = 0;          // converted poses used for a hand
-  std::uint64_t pose_errors = 0;    // poses that failed conversion (skipped)
-  std::uint64_t foreign_poses = 0;  // poses of receivers bound to no hand
-  std::uint64_t button_edges = 0;   // from the ButtonSource and the stylus
-  std::uint64_t button_errors = 0;  // ButtonSource io_error / out-of-range lines
-  // Committed warps (journal stroke records): one per release, freeze step or change
-  // of the grabbing hands, however many hands took part.
-  std::uint64_t strokes_committed = 0;
-  std::uint64_t strokes_cancelled = 0;  // grabs dropped (per hand)
-  // Commits (stroke segments, object moves) whose journal record could not be made
-  // durable: not made, the model stays at the last saved record. One per commit,
-  // however many hands it ended, like strokes_committed.
-  std::uint64_t strokes_not_saved = 0;
-  std::uint64_t undos = 0;
-  std::uint64_t redos = 0;
-  std::uint64_t refined_commits = 0;  // commits that refined the mesh
-  std::uint64_t refine_stops = 0;     // of them, stopped at the mesh's capacity
-  std::uint64_t refused = 0;
-  std::uint64_t session_events_dropped = 0;
-  std::uint64_t journal_errors = 0;  // failed journal appends and checkpoint writes
-  std::uint64_t checkpoints_written = 0;
-  std::uint64_t checkpoints_failed = 0;     // the sink failed (the previous one stays)
-  std::uint64_t checkpoints_restarted = 0;  // the model changed while one was written
-  std::uint64_t events_dropped = 0;         // event queue full (the log is behind)
-};
 
 // The station's files besides the journal (all optional).
 struct StationFiles {
@@ -96,15 +58,21 @@ struct StationFiles {
   ports::Storage* checkpoint_in = nullptr;
   // Where checkpoints go (null: none are written).
   ports::FileSink* checkpoint_out = nullptr;
+  // The identity a new journal gets (journal_format.hpp; the program picks a random one).
+  std::uint32_t new_journal_id = 0;
 };
 
 // What start() found in the journal (for the start-up log and its error messages).
 struct JournalRecovery {
   enum class Outcome : std::uint8_t {
     not_started,
+    recovered,      // recover() replayed it; begin_appending() has not run yet
     ok,             // replayed (a torn tail, if any, was cut: tail_cut bytes)
     not_a_journal,  // foreign file: left alone
-    corrupt,        // damage followed by valid records: refused, left untouched
+    corrupt,        // damage followed by valid records, or a complete record that is
+                    // refused (unknown version or type, invalid values, another
+                    // journal's, out of order): refused, left untouched
+    too_new,        // a journal of a newer format version: refused, left untouched
     does_not_fit,   // a record cannot be applied to this mesh (record_index, status)
     tail_not_kept,  // the torn tail could not be copied aside: refused, left untouched
     io_error,       // storage failed
@@ -147,19 +115,26 @@ class Station {
   // by the warp plan; io_error: storage failed or the torn tail could not be kept;
   // failed_precondition: hand_station out of 1..4 or both hands on one receiver.
   Status start();
+  // start() in two steps. recover(): every check and the replay, nothing written (the
+  // same errors as start(), except those of cutting and opening).
+  // begin_appending(): keeps and cuts a torn tail and opens the journal for appending
+  // (io_error: storage failed, e.g. a full disk for a new journal's header, or the
+  // tail could not be kept; failed_precondition: recover() did not succeed).
+  Status recover();
+  Status begin_appending();
   const JournalRecovery& recovery() const { return recovery_; }
 
   // One loop iteration (never blocks). failed_precondition: start() did not succeed.
   Status poll();
 
-  // Next event for the log (oldest first). unavailable: none pending.
-  Result<StationEvent> next_event();
+  // Next event for the log (oldest first, time_us set). unavailable: none pending.
+  Result<session::SessionEvent> next_event() { return events_.pop(); }
 
   // The stop policy (SIGTERM, SIGHUP, SIGINT, end of run): an open stroke is
   // cancelled, never committed (the model stays as after the last commit; the sculptor
   // did not release it), an open object move is cancelled (the object goes back).
-  // Each cancelled hand counts in strokes_cancelled and is reported as
-  // stroke_cancelled with value input::Reason::none ("station stopping"). Then a
+  // Each cancelled hand counts in strokes_cancelled and is reported as cancelled
+  // with reason input::Reason::stopped (a move: move_cancelled, stopped). Then a
   // checkpoint of the final model is written (when the journal grew since the last
   // one; checkpoint_written / checkpoint_failed). Afterwards poll() is not called again.
   void stop();
@@ -168,7 +143,7 @@ class Station {
   Status flush();
 
   const StationCounters& counters() const { return counters_; }
-  const tracker::FastrakSession& tracker_session() const { return session_; }
+  const tracker::FastrakSession& tracker_session() const { return tracker_.session(); }
   const session::SculptSession& sculpt() const { return sculpt_; }
   // Queues a session command (undo, redo, method) for the next poll(): the path
   // of the hands' buttons, also used by the display's keys (StationLink commands).
@@ -180,42 +155,34 @@ class Station {
   std::uint32_t journal_records() const {
     return static_cast<std::uint32_t>(records_at_start_ + writer_.appended());
   }
+  // Where a checkpoint of the model as it stands would be anchored in the journal.
+  checkpoint::CheckpointAnchor checkpoint_anchor() const {
+    return {writer_.size(), journal_records(), writer_.last_crc()};
+  }
   // Vertex normals of mesh(), up to date after every poll() (empty without storage).
   mesh::NormalColumns normals() const { return sculpt_.normals(); }
   // Refinement: on, threshold, spare capacity, how the last refined commit ended
   // (what a display shows).
   session::RefineStatus refinement() const { return sculpt_.state().refine; }
-  bool hand_valid(std::uint8_t hand, ports::TimestampUs now_us) const;
+  bool hand_valid(std::uint8_t hand, ports::TimestampUs now_us) const {
+    return tracker_.hand_valid(hand, now_us);
+  }
   // The frame last applied to `hand` (hand < kHandCount); see hand_valid().
-  const tracker::TrackedFrame& hand_pose(std::uint8_t hand) const { return hands_[hand].pose; }
+  const Pose& hand_pose(std::uint8_t hand) const { return tracker_.hand_pose(hand); }
   // What the display link reports about the station (as of the last poll()).
   StationStatus status() const;
 
  private:
-  struct Hand {
-    tracker::TrackedFrame pose{};
-    ports::TimestampUs pose_time_us = 0;
-    bool has_pose = false;
-  };
-
   // start()'s steps (station_start.cpp).
   Status replay_journal(journal::JournalReader& reader);
   Status keep_torn_tail();
   // Restores files_.checkpoint_in when it fits the survey's journal and the model.
   Status use_checkpoint(const checkpoint::CheckpointHeader& header,
                         const journal::JournalSurvey& survey);
-  // Checkpoints (station_checkpoint.cpp): one chunk per poll(); the final one at stop().
-  void checkpoint_step();
-  void final_checkpoint();
-  Status begin_checkpoint();
-  void checkpoint_written();         // counted, records_at_checkpoint_, event
-  void checkpoint_failed(Status s);  // counted, event (the previous one stays)
-  void drain_tracker(ports::TimestampUs now_us);
   void drain_buttons(ports::TimestampUs now_us);
-  void report(const session::SessionEvent& event, ports::TimestampUs now_us);
-  // The sculptor's other actions (radius, clutch, turn limit, undo/redo, method).
-  void report_sculpt(const session::SessionEvent& event, ports::TimestampUs now_us);
-  void push_event(const StationEvent& event);
+  // Every event the station reports passes here: stamped, counted, queued.
+  void emit(session::SessionEvent event, ports::TimestampUs now_us);
+  void emit_all(const session::SessionEvents& events, ports::TimestampUs now_us);
 
   ports::ButtonSource& buttons_;
   ports::Clock& clock_;
@@ -223,27 +190,15 @@ class Station {
   StationFiles files_;
   JournalRecovery recovery_{};
   StationConfig config_;
-  tracker::FastrakSession session_;
+  TrackerHands tracker_;           // after config_, which it reads
   journal::JournalWriter writer_;  // before sculpt_, which keeps a pointer to it
   session::SculptSession sculpt_;
-  std::array<Hand, input::kHandCount> hands_{};
-  std::array<bool, tracker::kMaxStations> stylus_down_{};
-  bool started_ = false;
-  std::uint64_t records_at_start_ = 0;
-  std::uint64_t base_checksum_ = 0;          // the initial model's, before any record
-  std::uint64_t records_at_checkpoint_ = 0;  // records the last checkpoint holds
-  checkpoint::CheckpointWriter checkpoint_;
-  bool buttons_failed_ = false;
-  bool was_streaming_ = false;
+  CheckpointSchedule checkpoints_;
+  EventQueue events_;
   StationCounters counters_{};
-  // Tracker rate: poses counted over windows of about a second.
-  ports::TimestampUs rate_window_us_ = 0;
-  std::uint64_t rate_window_poses_ = 0;
-  float rate_hz_ = 0.0F;
-  static constexpr std::size_t kEventCapacity = 64;
-  std::array<StationEvent, kEventCapacity> events_{};
-  std::size_t event_head_ = 0;
-  std::size_t event_count_ = 0;
+  std::uint64_t records_at_start_ = 0;
+  bool started_ = false;
+  bool buttons_failed_ = false;
 };
 
 }  // namespace twister::station

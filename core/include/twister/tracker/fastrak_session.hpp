@@ -14,24 +14,13 @@
 #include "twister/base/result.hpp"
 #include "twister/ports/byte_stream.hpp"
 #include "twister/ports/clock.hpp"
+#include "twister/tracker/fastrak_command.hpp"
 #include "twister/tracker/fastrak_event.hpp"
 #include "twister/tracker/fastrak_parser.hpp"
 #include "twister/tracker/fastrak_wire.hpp"
 #include "twister/tracker/pose_continuity.hpp"
 
 namespace twister::tracker {
-
-// The unit's adaptive filter (`x` position, `v` attitude; docs/fastrak-protocol.md §2): left as the
-// unit has it (EEPROM), switched off (`x,1`: FLOW = 1 disables it), or set to the four parameters
-// (the manual's "medium" is 0.2, 0.2, 0.8, 0.95). Each value 0..1.
-struct FilterSetting {
-  enum class Mode : std::uint8_t { leave, off, set };
-  Mode mode = Mode::leave;
-  float f = 0.2f;
-  float flow = 0.2f;
-  float fhigh = 0.8f;
-  float factor = 0.95f;
-};
 
 struct FastrakSessionConfig {
   FastrakConfig protocol{};  // format, units, enabled stations and their output lists
@@ -107,21 +96,38 @@ class FastrakSession {
   const FastrakParserCounters& parser_counters() const { return parser_.counters(); }
   const FastrakStatus& last_status() const { return last_status_; }
   const FastrakSessionConfig& config() const { return config_; }
-  int ladder_rung() const { return rung_; }
+  int ladder_rung() const { return recovery_.rung; }
 
  private:
-  void enter(SessionState s, ports::TimestampUs now);
+  void enter(SessionState s);
   void fault(ports::TimestampUs now);
   void step_timers(ports::TimestampUs now);
   bool send(std::span<const char> text, ports::TimestampUs now);
-  bool send_text(const char* text, ports::TimestampUs now);
+  bool send_command(const FastrakCommand& command, ports::TimestampUs now);
   void start_ladder(ports::TimestampUs now);
   void build_commands();
-  // Appends the `x` / `v` command of `setting` (nothing for Mode::leave).
-  bool append_filter(char command, const FilterSetting& setting, std::size_t& len);
+  // Appends one encoded command to the configuration commands.
+  bool add_command(const FastrakCommand& command);
   // A validated pose while streaming: continuity and status bookkeeping. false: held back.
   bool take_pose(const FastrakPose& pose, ports::TimestampUs now);
   void handle_event(const FastrakEvent& ev, ports::TimestampUs now);
+
+  // A fixed buffer and how far it is filled (len) and used (pos).
+  template <typename T, std::size_t N>
+  struct Buffer {
+    std::array<T, N> data{};
+    std::size_t len = 0;
+    std::size_t pos = 0;
+  };
+  struct Timers {
+    ports::TimestampUs deadline = 0;   // the current state's wait ends
+    ports::TimestampUs last_pose = 0;  // a pose was last accepted
+    ports::TimestampUs last_byte = 0;  // a byte was last read
+  };
+  struct Recovery {
+    std::int64_t backoff_us = 0;  // the next re-initialisation delay
+    int rung = 0;                 // the reset ladder's rung
+  };
 
   ports::ByteStream& stream_;
   ports::Clock& clock_;
@@ -131,25 +137,14 @@ class FastrakSession {
   bool config_ok_ = false;
   bool port_open_ = false;
   SessionState state_ = SessionState::backoff;
-  ports::TimestampUs state_since_ = 0;
-  ports::TimestampUs deadline_ = 0;
-  ports::TimestampUs last_pose_ = 0;
-  ports::TimestampUs last_byte_ = 0;
-  std::int64_t backoff_us_ = 0;
-  int rung_ = 0;
+  Timers timers_{};
+  Recovery recovery_{};
   FastrakStatus last_status_{};
-  // Ladder bytes of the current attempt, sent one per pause.
-  std::array<char, 8> ladder_{};
-  std::size_t ladder_len_ = 0;
-  std::size_t ladder_pos_ = 0;
-  // Configuration commands, '\0'-separated, sent one per command pause.
-  std::array<char, 1024> commands_{};
-  std::size_t commands_len_ = 0;
-  std::size_t command_pos_ = 0;
-  // Bytes read but not yet parsed.
-  std::array<std::byte, 512> rx_{};
-  std::size_t rx_len_ = 0;
-  std::size_t rx_pos_ = 0;
+  Buffer<char, 8> ladder_{};  // ladder bytes of the current attempt, sent one per pause
+  // Configuration commands (fastrak_command.hpp, encoded), '\0'-separated, sent one
+  // per command pause.
+  Buffer<char, 1024> commands_{};
+  Buffer<std::byte, 512> rx_{};  // bytes read but not yet parsed
   FastrakSessionCounters counters_{};
 };
 

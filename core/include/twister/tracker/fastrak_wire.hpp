@@ -81,7 +81,7 @@ struct OutputList {
   }
 };
 
-struct StationConfig {
+struct ReceiverConfig {
   bool enabled = false;
   OutputList list = OutputList::of({Item::position, Item::euler, Item::crlf});  // default 2,4,1
 };
@@ -90,7 +90,7 @@ struct StationConfig {
 struct FastrakConfig {
   Format format = Format::ascii;
   Units units = Units::inches;
-  std::array<StationConfig, kMaxStations> stations{};  // index = station number - 1
+  std::array<ReceiverConfig, kMaxStations> stations{};  // index = station number - 1
   // ASCII width of the stylus item 16: 1 or 2, unconfirmed (docs/fastrak-protocol.md §3.5).
   std::uint8_t ascii_stylus_width = 1;
 };

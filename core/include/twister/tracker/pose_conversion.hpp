@@ -6,19 +6,12 @@
 #include <array>
 #include <glm/glm.hpp>
 
+#include "twister/base/pose.hpp"
 #include "twister/base/result.hpp"
 #include "twister/tracker/fastrak_event.hpp"
 #include "twister/tracker/fastrak_wire.hpp"
 
 namespace twister::tracker {
-
-// A hand pose: origin and orthonormal right-handed axes (W = U x V).
-struct TrackedFrame {
-  glm::dvec3 origin{0.0};  // O, metres (world frame)
-  glm::dvec3 u{1.0, 0.0, 0.0};
-  glm::dvec3 v{0.0, 1.0, 0.0};
-  glm::dvec3 w{0.0, 0.0, 1.0};
-};
 
 // Per-receiver and world settings applied after decoding.
 struct PoseConversion {
@@ -58,8 +51,10 @@ glm::dvec3 euler_deg_from_rotation(const glm::dmat3& r);
 // as the rotation_from_* functions.
 Result<glm::dmat3> tracker_rotation(const FastrakPose& pose, Format format);
 
-// The full conversion. failed_precondition: no position or no orientation item;
+// The full conversion: the hand's pose (twister::Pose: origin in metres, U, V, W the
+// receiver's axes, world frame). The station, time and validity stay with the caller
+// (the pose's station is pose.station). failed_precondition: no position or no orientation item;
 // invalid_argument: station out of 1..4; data_loss: orientation not orthonormal.
-Result<TrackedFrame> to_station_frame(const FastrakPose& pose, const PoseConversion& conv);
+Result<Pose> to_station_frame(const FastrakPose& pose, const PoseConversion& conv);
 
 }  // namespace twister::tracker

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "twister/base/inline_vector.hpp"
 #include "twister/hal/poll_source.hpp"
 #include "twister/ports/button_source.hpp"
 
@@ -48,16 +49,18 @@ class GpiodButtonSource final : public ports::ButtonSource, public PollSource {
 
  private:
   Result<ports::ButtonEdge> do_poll() override;
-  std::uint8_t do_line_count() const override { return static_cast<std::uint8_t>(line_count_); }
+  std::uint8_t do_line_count() const override { return static_cast<std::uint8_t>(lines_.size()); }
   std::size_t do_poll_fds(std::span<pollfd> out) const override;
   Status do_reopen() override;
 
   GpiodButtonConfig config_;  // of the last open(), for reopen()
   bool configured_ = false;
   gpiod_chip* chip_ = nullptr;
-  std::array<gpiod_line*, kMaxLines> lines_{};
-  std::array<int, kMaxLines> fds_{};
-  std::size_t line_count_ = 0;
+  struct RequestedLine {
+    gpiod_line* line = nullptr;
+    int fd = -1;  // its event fd
+  };
+  InlineVector<RequestedLine, kMaxLines> lines_;  // button line i = lines_[i]
   std::size_t next_line_ = 0;  // round-robin start so one chatty line cannot starve others
   int last_errno_ = 0;
 };

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <span>
 
+#include "twister/base/inline_vector.hpp"
 #include "twister/ports/button_source.hpp"
 
 namespace twister::hal {
@@ -21,20 +22,19 @@ struct HidButtonBitMap {
 class HidReportDecoder {
  public:
   static constexpr std::size_t kMaxButtons = 8;
+  using Edges = InlineVector<ports::ButtonEdge, kMaxButtons>;
 
   // invalid_argument: more than kMaxButtons or a zero mask.
   Status configure(std::span<const HidButtonBitMap> bits);
-  std::size_t button_count() const { return count_; }
+  std::size_t button_count() const { return bits_.size(); }
 
-  // Compares report with the previous levels and writes one edge per changed button
-  // into out (line, pressed; time_us = now_us). Returns the number written.
-  std::size_t decode(std::span<const std::uint8_t> report, ports::TimestampUs now_us,
-                     std::span<ports::ButtonEdge, kMaxButtons> out);
+  // Compares report with the previous levels: one edge per changed button (line,
+  // pressed; time_us = now_us), lowest line first.
+  Edges decode(std::span<const std::uint8_t> report, ports::TimestampUs now_us);
 
  private:
-  std::array<HidButtonBitMap, kMaxButtons> bits_{};
-  std::array<bool, kMaxButtons> pressed_{};
-  std::size_t count_ = 0;
+  InlineVector<HidButtonBitMap, kMaxButtons> bits_;
+  std::array<bool, kMaxButtons> pressed_{};  // per button of bits_
 };
 
 }  // namespace twister::hal

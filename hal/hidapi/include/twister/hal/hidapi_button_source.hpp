@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "twister/base/inline_ring.hpp"
 #include "twister/hal/hid_report_decoder.hpp"
 #include "twister/hal/poll_source.hpp"
 #include "twister/ports/button_source.hpp"
@@ -48,13 +49,13 @@ class HidapiButtonSource final : public ports::ButtonSource, public PollSource {
   }
   std::size_t do_poll_fds(std::span<pollfd>) const override { return 0; }
   Status do_reopen() override;
+  ports::ButtonEdge take_pending();
 
   ports::Clock& clock_;
   hid_device_* device_ = nullptr;
   HidReportDecoder decoder_;
-  std::array<ports::ButtonEdge, HidReportDecoder::kMaxButtons> pending_{};
-  std::size_t pending_count_ = 0;
-  std::size_t pending_pos_ = 0;
+  // Edges of the last report not handed out yet, oldest first.
+  InlineRing<ports::ButtonEdge, HidReportDecoder::kMaxButtons> pending_;
   std::array<std::uint8_t, 64> report_{};
   HidapiButtonConfig config_;  // of the last open(), for reopen()
   bool configured_ = false;

@@ -21,6 +21,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "twister/base/inline_ring.hpp"
+#include "twister/base/inline_vector.hpp"
 #include "twister/hal/poll_source.hpp"
 #include "twister/ports/byte_stream.hpp"
 
@@ -83,12 +85,9 @@ class LibusbByteStream final : public ports::ByteStream, public PollSource {
   bool removed_ = false;
   int last_error_ = 0;
   std::array<std::uint8_t, kTransferBytes> in_buffer_{};
-  std::array<std::byte, kRxBytes> rx_{};
-  std::size_t rx_head_ = 0;  // next byte to read
-  std::size_t rx_count_ = 0;
-  std::uint64_t rx_dropped_ = 0;  // ring full: oldest bytes kept, newest dropped
-  std::array<pollfd, PollSource::kMaxFds> usb_fds_{};  // libusb's descriptors
-  std::size_t usb_fd_count_ = 0;
+  InlineRing<std::byte, kRxBytes> rx_;  // received, not read yet
+  std::uint64_t rx_dropped_ = 0;        // ring full: oldest bytes kept, newest dropped
+  InlineVector<pollfd, PollSource::kMaxFds> usb_fds_;  // libusb's descriptors
 };
 
 }  // namespace twister::hal

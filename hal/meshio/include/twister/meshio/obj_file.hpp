@@ -19,7 +19,7 @@
 // any other polygon is refused ("triangulate it in the modeller"), never dropped.
 // Saving writes "v x y z" (%.9g: every float survives the round trip) and 1-based
 // "f a b c" lines through hal::PosixFileSink: a temporary file made durable and
-// renamed into place, refusing to replace anything but a regular file.
+// renamed into place.
 #pragma once
 
 #include <cstddef>
@@ -56,8 +56,11 @@ hal::Expected<ObjMesh> load_obj(const std::filesystem::path& path, const ObjOpti
 
 // The OBJ text of a mesh ("v x y z" lines then "f a b c" lines).
 std::string obj_text(const mesh::Mesh& mesh);
-// Writes the mesh to `path` atomically (see above). io_error: cannot write;
-// failed_precondition: `path` holds something other than a regular file.
-hal::Expected<void> save_obj(const std::filesystem::path& path, const mesh::Mesh& mesh);
+// Writes the mesh to `path` atomically (see above), under the programs' output rule
+// (twister/hal/output_file.hpp): a new file, or with `force` over an OBJ; never over a
+// journal, a checkpoint, a locked file (a running station's journal or base model)
+// or anything else. io_error: cannot write; failed_precondition: refused.
+hal::Expected<void> save_obj(const std::filesystem::path& path, const mesh::Mesh& mesh,
+                             bool force = false);
 
 }  // namespace twister::meshio

@@ -10,7 +10,10 @@
 //   regular   - a regular file may be replaced (not a FIFO, device, socket,
 //               directory or symlink: refused with failed_precondition);
 //   own_magic - only a regular file that starts with `magic` (one this program
-//               wrote, e.g. the previous checkpoint) may be replaced.
+//               wrote, e.g. the previous checkpoint), or an empty one, may be replaced;
+//   output    - the programs' output rule (output_file.hpp: never a journal, a
+//               checkpoint, a locked file or another kind; a file of `output.kind`
+//               only with `output.force`).
 // begin(), write() and commit() never allocate (names are built in fixed buffers),
 // so the station may write a checkpoint from its loop. Not thread-safe; one file at
 // a time.
@@ -20,17 +23,21 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "twister/hal/expected.hpp"
+#include "twister/hal/output_file.hpp"
 #include "twister/ports/file_sink.hpp"
 
 namespace twister::hal {
 
 struct PosixFileSinkConfig {
-  enum class Replace : std::uint8_t { never, regular, own_magic };
+  enum class Replace : std::uint8_t { never, regular, own_magic, output };
   std::string path;  // final name
   Replace replace = Replace::regular;
   std::vector<std::byte> magic;  // own_magic: the first bytes of a file we wrote
+  OutputRule output;             // output: what may be replaced
   unsigned mode = 0644;
   // Ask the kernel to start writing back every this many bytes (sync_file_range), so
   // commit()'s fsync waits less (0: never).
@@ -43,6 +50,12 @@ class PosixFileSink final : public ports::FileSink {
   ~PosixFileSink() override;
   PosixFileSink(const PosixFileSink&) = delete;
   PosixFileSink& operator=(const PosixFileSink&) = delete;
+
+  // Removes what a killed writer of `path` left: regular files named exactly
+  // `path.tmp-PID-N` (this sink's temporary names; nothing else is touched). Only for
+  // a caller that owns `path` (the station, holding its journal's lock). Returns how
+  // many were removed.
+  static int remove_stale_temporaries(const std::string& path);
 
   const std::string& path() const { return config_.path; }
   // The name the last commit() gave its file (replace == never may add a suffix).
@@ -75,5 +88,9 @@ class PosixFileSink final : public ports::FileSink {
   int last_errno_ = 0;
   std::array<char, 256> last_error_{};
 };
+
+// Writes `bytes` to `path` atomically under the output rule (Replace::output): what
+// the programs' writers of whole files in memory use. Error naming the path.
+Expected<void> write_output_file(const std::string& path, std::string_view bytes, OutputRule rule);
 
 }  // namespace twister::hal

@@ -30,7 +30,10 @@ class PosixFileStorage final : public ports::Storage {
   PosixFileStorage(const PosixFileStorage&) = delete;
   PosixFileStorage& operator=(const PosixFileStorage&) = delete;
 
-  // Opens (or creates) the file. io_error: open/create failed (errno() tells why);
+  // Opens (or creates) the file, without blocking (O_NONBLOCK, then fstat(2)).
+  // invalid_argument: the path holds something other than a regular file (a FIFO,
+  // device, socket or directory: closed again, never read); io_error: open/create
+  // failed (errno() tells why);
   // unavailable: missing and create_if_missing is false; failed_precondition: `lock`
   // and another process holds the lock (lock_holder_pid() names it; the file was not
   // changed).

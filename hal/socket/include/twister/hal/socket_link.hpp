@@ -101,6 +101,9 @@ class SocketLink final : public ports::LinkPort, public ports::LinkNewcomers, pu
   void expire_pending(std::int64_t now_ms);
   void promote_newcomer();
   bool ensure_client();
+  // connect(2) on a non-blocking socket, waiting at most timeout_ms for a TCP one.
+  bool connect_within(int fd, int timeout_ms);
+  static constexpr int kConnectTimeoutMs = 500;
   Result<std::size_t> send_on(int& fd, std::span<const std::byte> src);
   Result<std::size_t> receive_on(int& fd, std::span<std::byte> dest);
   static void close_fd(int& fd);

@@ -11,6 +11,10 @@
 // epoch fixed at construction), so it runs in virtual or real time. Steady state
 // (record generation, filters, corruption, the line, advance) uses no heap: the line
 // is a fixed LineQueue; command handling (start-up) may allocate. Not thread-safe.
+// The device composes its parts, one job each: CommandInput (framing, processing time),
+// ParameterCommands (the parameter commands), UnitSettings (what they set),
+// StationSolver (solutions through the filters), FaultSchedule (the scenario's faults),
+// PacedLine (the output line); it runs the 120 Hz cycle, the mode commands and records.
 #pragma once
 
 #include <array>
@@ -26,24 +30,17 @@
 
 #include "twister/ports/clock.hpp"
 #include "twister/sim/adaptive_filter.hpp"
-#include "twister/sim/line_queue.hpp"
+#include "twister/sim/command_input.hpp"
+#include "twister/sim/fault_schedule.hpp"
+#include "twister/sim/paced_line.hpp"
+#include "twister/sim/parameter_commands.hpp"
 #include "twister/sim/scenario.hpp"
+#include "twister/sim/station_solver.hpp"
+#include "twister/sim/unit_settings.hpp"
 #include "twister/tracker/fastrak_event.hpp"
 #include "twister/tracker/fastrak_wire.hpp"
 
 namespace twister::sim {
-
-// Processing time of each command (index: its letter or control byte), microseconds:
-// from the command's last byte until the unit listens again; bytes sent meanwhile are
-// lost, and a reply leaves when the command is done.
-using CommandTimes = std::array<std::int32_t, 128>;
-// Defaults (docs/fastrak.md): 40 ms for parameter commands (VRPN waits 50 ms after
-// `O`), 500 ms for the filters `x`, `v` (VRPN waits 1 s), 3 s for ^K (manual: "several
-// seconds"), 1 s for W, 0 for the single-letter modes; ^Y is reset_time_us. Assumed
-// except ^K's order of magnitude.
-CommandTimes default_command_times();
-// Every command done at once (tests of behaviour other than timing).
-CommandTimes instant_commands();
 
 struct FastrakDeviceConfig {
   int baud = 115200;                     // line rate; 10 bits per byte (`o` changes it)
@@ -79,9 +76,12 @@ struct FastrakDeviceCounters {
   std::array<std::uint64_t, kFaultKindCount> faults{};  // injected, indexed by FaultKind
 };
 
-class FastrakDevice {
+class FastrakDevice final : private ReplySink {
  public:
   FastrakDevice(const FastrakDeviceConfig& config, Scenario scenario, ports::TimestampUs start_us);
+  // The parts refer to each other: neither copied nor moved.
+  FastrakDevice(const FastrakDevice&) = delete;
+  FastrakDevice& operator=(const FastrakDevice&) = delete;
 
   // Bytes from the host (commands). LF and stray CR around commands are ignored.
   void receive(const std::byte* data, std::size_t size, ports::TimestampUs now);
@@ -101,47 +101,35 @@ class FastrakDevice {
   bool misclocked(ports::TimestampUs t) const;
 
   const FastrakDeviceCounters& counters() const { return counters_; }
-  bool continuous() const { return continuous_; }
-  int baud() const { return baud_; }
-  const tracker::FastrakConfig& protocol() const { return proto_; }
-  const FilterParams& position_filter() const { return filter_params_[0]; }
-  const FilterParams& attitude_filter() const { return filter_params_[1]; }
+  bool continuous() const { return settings_.continuous; }
+  int baud() const { return settings_.baud; }
+  const tracker::FastrakConfig& protocol() const { return settings_.protocol; }
+  const FilterParams& position_filter() const { return settings_.filter[0]; }
+  const FilterParams& attitude_filter() const { return settings_.filter[1]; }
   // Scenario time in seconds at `now`.
   double scenario_time_s(ports::TimestampUs now) const;
 
  private:
+  // Where the 120 Hz cycle stands.
+  struct Cycle {
+    std::int64_t next = 0;           // the next cycle's number
+    std::size_t next_station = 0;    // next station to send (continuous mode)
+    std::size_t polled_station = 0;  // next station to solve while nothing is sent
+    bool last_button = false;        // the stylus at the previous cycle (toggle edge)
+  };
+
   void power_up(ports::TimestampUs now);
   void apply_faults(ports::TimestampUs now);
-  void execute(char command, const std::string& args, ports::TimestampUs now);
-  // The commands without arguments (mode letters, status, resets); false when
-  // `command` is not one of them.
-  bool execute_mode(char command, ports::TimestampUs now);
+  void execute(const tracker::FastrakCommand& command, std::string_view echo,
+               ports::TimestampUs now);
+  // The single-byte commands (mode letters, status, resets).
+  void execute_mode(tracker::ModeCommand command, ports::TimestampUs now);
   void send_status(ports::TimestampUs now);
-  // The parameter commands, `fields` split at commas; `echo` is the command as
-  // received, for the error record.
-  void execute_output_list(int station, const std::vector<std::string>& fields,
-                           const std::string& echo, ports::TimestampUs now);
-  void execute_station_state(int station, const std::vector<std::string>& fields,
-                             const std::string& echo, ports::TimestampUs now);
-  void execute_hemisphere(int station, const std::vector<std::string>& fields,
-                          const std::string& echo, ports::TimestampUs now);
-  // `x` / `v` (no station): set, macro or read back the filter; `Q` envelope; `o` port.
-  void execute_filter(char command, const std::vector<std::string>& fields, const std::string& echo,
-                      ports::TimestampUs now);
-  void execute_envelope(int station, const std::vector<std::string>& fields,
-                        const std::string& echo, ports::TimestampUs now);
-  void execute_serial_port(const std::vector<std::string>& fields, const std::string& echo,
-                           ports::TimestampUs now);
-  // The command's processing time; the unit is deaf until it has passed.
-  std::int64_t command_time(char command) const;
-  // One command byte outside a parameter command.
-  void receive_command_byte(char c, ports::TimestampUs now);
+  void reply(std::string_view text, ports::TimestampUs at) override;
+  void error(std::string_view echo, int code, ports::TimestampUs at) override;
   void queue(std::span<const std::byte> bytes, ports::TimestampUs now);
-  void queue(std::string_view text, ports::TimestampUs now);
   void queue_noise(std::uint64_t count, ports::TimestampUs now);
   void queue_record(int station, ports::TimestampUs at);
-  // The unit's solution for `station` at `at`: the scenario sample in the station's
-  // hemisphere, through the filters (updates the filter state).
   void solve(int station, ports::TimestampUs at);
   // The header status byte of `station` for a record with these Euler angles.
   char status_code(int station, ports::TimestampUs at, const std::array<float, 3>& euler) const;
@@ -149,7 +137,6 @@ class FastrakDevice {
   bool misclock_byte(std::byte& b);
   void generate(ports::TimestampUs now, bool stalled);
   std::size_t deliver(ports::TimestampUs now, std::span<std::byte> out);
-  void send_error(const std::string& input, int code, ports::TimestampUs now);
   // Stations 1..4 that are enabled and plugged in, ascending.
   struct ActiveStations {
     std::array<int, 4> ids{};
@@ -161,59 +148,20 @@ class FastrakDevice {
     const int* end() const { return ids.data() + count; }
   };
   ActiveStations active_stations() const;
-  bool in_window(ports::TimestampUs now, FaultKind kind) const;
 
   FastrakDeviceConfig config_;
   Scenario scenario_;
   ports::TimestampUs start_us_;
   std::mt19937 rng_;
-
-  // Unit state.
-  tracker::FastrakConfig proto_;
-  bool continuous_ = false;
-  bool output_on_ = true;  // stylus point/track toggle in continuous mode
-  int e_mode_ = 1;
-  bool last_button_ = false;
-  std::array<std::array<double, 3>, 4> hemisphere_{};
-  // `Q` angular envelope per station: az max, el max, roll max, az min, el min, roll min.
-  std::array<std::array<double, 6>, 4> envelope_{};
-  std::array<FilterParams, 2> filter_params_{};  // position (`x`), attitude (`v`)
-  struct Solution {
-    bool valid = false;
-    glm::dvec3 position_in{0.0};
-    glm::dquat attitude{1.0, 0.0, 0.0, 0.0};
-    bool button = false;
-  };
-  std::array<Solution, 4> solution_{};
-  std::array<std::array<AdaptiveFilter, 2>, 4> filter_{};  // [station][position, attitude]
-  int baud_ = 115200;
+  UnitSettings settings_;
+  ParameterCommands parameters_{settings_, *this};
+  CommandInput input_{config_.command_time_us};
+  FaultSchedule faults_{scenario_.faults, start_us_};
+  StationSolver solver_;
+  PacedLine line_;
+  Cycle cycle_;
   int host_baud_ = 0;
   ports::TimestampUs busy_until_ = 0;  // reset in progress until then (deaf and mute)
-  ports::TimestampUs deaf_until_ = 0;  // a command is processed until then
-  std::int64_t next_cycle_ = 0;
-  std::size_t next_station_ = 0;    // next station to send (continuous mode)
-  std::size_t polled_station_ = 0;  // next station to solve while nothing is sent
-
-  // Command input.
-  std::string pending_cmd_;
-  bool in_param_cmd_ = false;
-
-  // Line: chunks that finish transmitting at their ready time.
-  LineQueue line_;
-  ports::TimestampUs line_free_at_ = 0;
-
-  // Faults.
-  std::size_t next_fault_ = 0;
-  std::uint64_t drop_left_ = 0;
-  ports::TimestampUs drop_until_ = 0;  // the drop budget expires then
-  std::uint64_t truncate_left_ = 0;
-  std::uint64_t corrupt_left_ = 0;
-  struct Window {
-    FaultKind kind;
-    ports::TimestampUs from, to;
-  };
-  std::vector<Window> windows_;  // reserved for every scenario fault: no growth later
-  bool was_hung_up_ = false;
   FastrakDeviceCounters counters_{};
 };
 

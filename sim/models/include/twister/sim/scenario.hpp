@@ -97,12 +97,29 @@ struct HandSample {
 // Position/orientation/button of `station` (1..4) at t_s.
 HandSample sample(const Scenario& scenario, int station, double t_s);
 
+// Limits of what a scenario may ask for (beyond them it is refused with a message
+// naming the line and the range): times and durations, fault amounts per kind,
+// positions and angles; and of a scenario file: its size and line length.
+inline constexpr double kMaxScenarioSeconds = 1e6;  // 11.6 days
+inline constexpr double kMaxNoiseBytes = 1e6;       // noise: bytes injected
+inline constexpr double kMaxDropBytes = 1e8;        // drop: bytes lost
+inline constexpr double kMaxFaultRecords = 1e6;     // truncate, corrupt: records
+inline constexpr double kMaxFaultSeconds = 3600.0;  // stall, hangup, wrongbaud
+inline constexpr double kMaxPositionIn = 1000.0;    // key and circle positions (inches)
+inline constexpr double kMaxAngleDeg = 1e4;         // key angles (degrees)
+inline constexpr std::uint64_t kMaxScenarioBytes = std::uint64_t{16} << 20;  // 16 MiB
+inline constexpr std::size_t kMaxScenarioLineBytes = 4096;
+
 // Parses the text format. On error returns false and sets `error` to
 // "line N: message".
 bool parse_scenario(std::string_view text, Scenario& out, std::string& error);
 
-// Reads and parses a scenario file (start-up). Errors: io_error "cannot read
-// scenario file PATH"; invalid_argument "PATH: line N: message".
+// Reads and parses a scenario file (start-up), line by line through a fixed buffer:
+// memory is what the scenario holds, not the file. The file is opened O_NONBLOCK
+// and must be a regular file of at most kMaxScenarioBytes. Errors: io_error
+// "cannot read scenario file PATH: why", "scenario file PATH is a FIFO (a device, a
+// directory), not a regular file"; invalid_argument "scenario file PATH is N bytes;
+// scenarios are limited to ...", "PATH: line N: message".
 hal::Expected<Scenario> load_scenario_file(const std::string& path);
 
 }  // namespace twister::sim

@@ -1,0 +1,132 @@
+// LinkAdmission: who the display is. Reads the display's channel and, on a
+// listening transport (ports::LinkNewcomers), the newcomer's; runs each one's
+// handshake (hello, and the pre-shared-key challenge-response when an
+// authenticator is given); admits, displaces (bye: displaced) and refuses
+// (unauthorised, protocol, another version, timeout); a fresh decoder per
+// connection. An admitted display's other requests (resend, commands) go to the
+// listener, and so do admission and loss. Replies to the display go on the urgent
+// queue; the newcomer's are sent straight to it. No heap. Not thread-safe.
+#pragma once
+
+#include <cstdint>
+
+#include "twister/link/link_authenticator.hpp"
+#include "twister/link/link_codec.hpp"
+#include "twister/ports/clock.hpp"
+#include "twister/ports/link_newcomers.hpp"
+#include "twister/ports/link_port.hpp"
+#include "twister/station/station_link_queues.hpp"
+
+namespace twister::station {
+
+// Optional capabilities: newcomer admission (listening transports) and the
+// pre-shared-key handshake. Both must outlive the link.
+struct StationLinkOptions {
+  ports::LinkNewcomers* newcomers = nullptr;
+  link::LinkAuthenticator* authenticator = nullptr;
+};
+
+// The mesh a peer holds (or the station offers): version and checksum.
+struct MeshIdentity {
+  std::uint32_t version = 0;
+  std::uint64_t checksum = 0;
+};
+
+struct AdmissionCounters {
+  std::uint64_t connects = 0;              // displays admitted
+  std::uint64_t disconnects = 0;           // display channel lost
+  std::uint64_t resend_requests = 0;       // from the admitted display
+  std::uint64_t newcomers = 0;             // peers that arrived on the newcomer channel
+  std::uint64_t displaced = 0;             // displays told "displaced" by an admitted newcomer
+  std::uint64_t refused_unauthorised = 0;  // wrong or missing tag
+  std::uint64_t refused_protocol = 0;      // wrong role, order or message
+  std::uint64_t refused_version = 0;       // another protocol version
+  std::uint64_t refused_timeout = 0;       // handshake not finished in time
+  std::uint64_t commands_refused = 0;      // a command from a peer not admitted
+  std::uint64_t send_errors = 0;           // newcomer replies the port did not take
+};
+
+// What the admitted display asks for, and when it comes and goes.
+class AdmissionListener {
+ public:
+  // A display was admitted holding `holds` (resync by version).
+  virtual void on_admitted(const MeshIdentity& holds) = 0;
+  // The display's channel closed or another display took it: drop what was queued.
+  virtual void on_display_lost() = 0;
+  virtual void on_resend_request() = 0;
+  virtual void on_command(const link::Command& command) = 0;
+
+ protected:
+  ~AdmissionListener() = default;
+};
+
+class LinkAdmission {
+ public:
+  LinkAdmission(ports::LinkPort& port, FrameQueues& replies, AdmissionListener& listener,
+                const StationLinkOptions& options, ports::TimestampUs handshake_timeout_us)
+      : port_(port),
+        replies_(replies),
+        listener_(listener),
+        options_(options),
+        handshake_timeout_us_(handshake_timeout_us) {}
+
+  // Reads both channels (never blocks); `offered` goes in the station's hello.
+  void poll(ports::TimestampUs now_us, const MeshIdentity& offered);
+
+  bool connected() const { return connected_; }
+  bool admitted() const { return connected_ && display_.admitted; }
+  const AdmissionCounters& counters() const { return counters_; }
+  link::DecoderCounters decoder_counters() const { return decoder_.counters(); }
+  // The version byte of the last peer refused for speaking another protocol (0: none).
+  std::uint8_t refused_version() const { return refused_version_; }
+
+ private:
+  // One connection's handshake (display channel or newcomer channel).
+  struct Handshake {
+    bool hello = false;     // the bridge's hello arrived
+    bool admitted = false;  // hello (and auth) done: it is the display
+    link::Nonce station_nonce{};
+    link::Nonce bridge_nonce{};
+    MeshIdentity holds{};
+    ports::TimestampUs since_us = 0;
+  };
+  // The newcomer channel: its own decoder and handshake.
+  struct Newcomer {
+    link::LinkDecoder decoder;
+    Handshake handshake{};
+    std::uint64_t id = 0;
+    bool open = false;
+  };
+
+  void receive(ports::TimestampUs now_us, const MeshIdentity& offered);
+  void lose_display();
+  void on_display_message(const link::LinkMessage& m, const MeshIdentity& offered);
+  void on_display_hello(const link::Hello& hello, const MeshIdentity& offered);
+  void poll_newcomer(ports::TimestampUs now_us, const MeshIdentity& offered);
+  void on_newcomer_message(const link::LinkMessage& m, const MeshIdentity& offered);
+  // Tells the newcomer why (bye) and closes it; `counter` (may be null) counts it.
+  void refuse_newcomer(link::ByeReason reason, std::uint64_t* counter);
+  void admit_newcomer();
+  // Starts a handshake on `hello`; returns the station's hello to send back.
+  link::Hello begin_handshake(Handshake& hs, const link::Hello& hello, const MeshIdentity& offered);
+  bool check_auth(const Handshake& hs, const link::Auth& auth) const;
+  link::Auth station_auth(const Handshake& hs) const;
+  // Encodes `m` and hands it straight to the newcomer (small handshake frames).
+  template <link::LinkBody M>
+  void send_newcomer(const M& m);
+  void refuse_version(link::LinkDecoder& decoder);
+
+  ports::LinkPort& port_;
+  FrameQueues& replies_;
+  AdmissionListener& listener_;
+  StationLinkOptions options_;
+  ports::TimestampUs handshake_timeout_us_;
+  link::LinkDecoder decoder_;  // the display channel's
+  Handshake display_{};
+  bool connected_ = false;
+  Newcomer newcomer_{};
+  std::uint8_t refused_version_ = 0;
+  AdmissionCounters counters_{};
+};
+
+}  // namespace twister::station

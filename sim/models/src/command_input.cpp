@@ -1,0 +1,85 @@
+#include "twister/sim/command_input.hpp"
+
+#include <algorithm>
+
+namespace twister::sim {
+
+CommandTimes default_command_times() {
+  CommandTimes t{};
+  for (std::size_t c = 0; c < t.size(); ++c) {
+    if (tracker::parameter_command(static_cast<char>(c))) t[c] = 40'000;
+  }
+  t[static_cast<std::size_t>(tracker::ParameterCommand::position_filter)] = 500'000;
+  t[static_cast<std::size_t>(tracker::ParameterCommand::attitude_filter)] = 500'000;
+  t[static_cast<std::size_t>(tracker::ModeCommand::save)] = 3'000'000;
+  t[static_cast<std::size_t>(tracker::ModeCommand::factory_defaults)] = 1'000'000;
+  return t;
+}
+
+CommandTimes instant_commands() { return CommandTimes{}; }
+
+std::int64_t CommandInput::command_time(char letter) const {
+  const auto i = static_cast<unsigned char>(letter);
+  return i < times_.size() ? times_[i] : 0;
+}
+
+void CommandInput::reset() {
+  pending_.clear();
+  in_parameter_ = false;
+  deaf_until_ = 0;
+}
+
+CommandInput::Heard CommandInput::take(char byte, ports::TimestampUs now) {
+  if (now < deaf_until_) return Heard::lost;  // still processing the previous command
+  if (!in_parameter_) return take_first(byte, now);
+  if (byte == tracker::kCr) {
+    in_parameter_ = false;
+    pending_ += byte;
+    const auto decoded = tracker::decode(std::span<const char>(pending_.data(), pending_.size()));
+    pending_.pop_back();
+    echo_ = pending_;
+    pending_.clear();
+    if (!decoded.ok()) return fail(-5);  // cannot happen: 80 bytes fit a command
+    return finish(*decoded, now);
+  }
+  if (byte == tracker::kLf) return Heard::nothing;
+  pending_ += byte;
+  if (pending_.size() > 80) {
+    in_parameter_ = false;
+    echo_ = pending_;
+    pending_.clear();
+    return fail(-5);
+  }
+  return Heard::nothing;
+}
+
+CommandInput::Heard CommandInput::take_first(char byte, ports::TimestampUs now) {
+  if (byte == tracker::kCr || byte == tracker::kLf) return Heard::nothing;
+  if (const auto mode = tracker::mode_command(byte)) {
+    echo_.assign(1, byte);
+    return finish(tracker::Mode{*mode}, now);
+  }
+  if (tracker::parameter_command(byte)) {
+    in_parameter_ = true;
+    pending_.assign(1, byte);
+    return Heard::nothing;
+  }
+  echo_.assign(1, byte);
+  return fail(-99);
+}
+
+CommandInput::Heard CommandInput::finish(const tracker::FastrakCommand& command,
+                                         ports::TimestampUs now) {
+  command_ = command;
+  // Replies leave when the command is done; until then the unit is deaf.
+  done_ = now + command_time(tracker::letter(command));
+  deaf_until_ = std::max(deaf_until_, done_);
+  return Heard::command;
+}
+
+CommandInput::Heard CommandInput::fail(int code) {
+  error_code_ = code;
+  return Heard::error;
+}
+
+}  // namespace twister::sim
