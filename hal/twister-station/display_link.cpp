@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 
+#include "config/link_config.hpp"
 #include "twister/hal/startup_signals.hpp"
 
 namespace twister::station_app {
@@ -26,6 +27,9 @@ hal::Expected<void> DisplayLink::open(const LinkSection& settings,
                                       const session::SculptSession& session, hal::Logger& log) {
   log_ = &log;
   const std::string& address = settings.address;
+  if (const std::string why = internal::unauthenticated_tcp_problem(settings); !why.empty()) {
+    return hal::make_error(StatusCode::invalid_argument, "link: " + why);
+  }
   if (!settings.psk_file.empty()) {
     if (auto ready = hal::SodiumAuthenticator::init(); !ready) return ready.error();
     auto key = hal::load_link_key(settings.psk_file);

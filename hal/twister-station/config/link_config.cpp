@@ -1,4 +1,5 @@
-// [link]: address, socket_mode, socket_group, listen, psk_file, baud.
+// [link]: address, socket_mode, socket_group, listen, psk_file,
+// allow_unauthenticated_tcp, baud.
 #include "link_config.hpp"
 
 #include <algorithm>
@@ -50,6 +51,16 @@ std::string check_link_address(const std::string& address, bool& loopback) {
   return "unix:PATH, tcp:A.B.C.D:PORT or serial:DEVICE";
 }
 
+std::string unauthenticated_tcp_problem(const LinkSection& link) {
+  if (link.address.rfind("tcp:", 0) != 0 || !link.psk_file.empty() ||
+      link.allow_unauthenticated_tcp) {
+    return "";
+  }
+  return "expected psk_file with a tcp: address (without a key any local user can take the "
+         "display; use unix:PATH with socket_group, or set allow_unauthenticated_tcp = true), "
+         "got \"" + link.address + "\"";
+}
+
 void read_link(ConfigReader& root, StationFileConfig& cfg) {
   ConfigReader l = root.table("link", false);
   LinkSection& lc = cfg.link;
@@ -79,6 +90,7 @@ void read_link(ConfigReader& root, StationFileConfig& cfg) {
     lc.listen = listen == "network" ? LinkListen::network : LinkListen::loopback;
   }
   l.string("psk_file", false, lc.psk_file);
+  l.boolean("allow_unauthenticated_tcp", lc.allow_unauthenticated_tcp);
   std::int64_t baud = 0;
   if (l.integer("baud", false, 1, 4'000'000, baud)) {
     if (std::find(std::begin(kLinkBauds), std::end(kLinkBauds), baud) == std::end(kLinkBauds)) {
@@ -92,6 +104,9 @@ void read_link(ConfigReader& root, StationFileConfig& cfg) {
   if (lc.listen == LinkListen::network && lc.psk_file.empty()) {
     l.error(l.node("listen"), "listen",
             "expected psk_file with listen = \"network\" (a link beyond loopback needs a key)");
+  }
+  if (const std::string why = unauthenticated_tcp_problem(lc); !why.empty()) {
+    l.error(l.node("address"), "address", why);
   }
   if (!loopback && lc.listen != LinkListen::network) {
     l.error(l.node("address"), "address",

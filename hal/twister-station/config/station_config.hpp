@@ -149,6 +149,9 @@ struct LinkSection {
   std::string socket_group;          // its group ("" = the service user's)
   LinkListen listen = LinkListen::loopback;  // network: TCP beyond loopback (needs psk_file)
   std::string psk_file;                      // pre-shared key file (64 hex digits, mode 0600)
+  // A TCP link without psk_file lets any local user take the display: refused at
+  // start unless this is set (Unix sockets with a group are the keyless default).
+  bool allow_unauthenticated_tcp = false;
   std::uint32_t baud = 230400;               // serial: addresses
 };
 

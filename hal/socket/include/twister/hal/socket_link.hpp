@@ -3,7 +3,12 @@
 // Server (station): listens; every peer that connects waits as the newcomer
 // (ports::LinkNewcomers) until the station's handshake admits it as the peer or
 // refuses it: the connected peer is never replaced behind the station's back
-// (a stranger cannot displace the display). Client (bridge): connects on use and,
+// (a stranger cannot displace the display). Admission cannot be starved: accepted
+// connections wait in a bounded pending set (kMaxPending, arrival order) and only
+// one that has spoken becomes the newcomer, oldest first, once the station is done
+// with the previous one; a connection silent for pending_timeout_ms is closed, and
+// when the set is full the oldest silent one makes room (a flood of silent
+// connects never pushes out a display that says hello). Client (bridge): connects on use and,
 // after a loss, retries at most every reconnect_interval_ms. No peer ->
 // unavailable (the station keeps working). Errors from the OS become io_error
 // (errno kept in last_errno()). The address is parsed once, at construction:
@@ -15,13 +20,16 @@
 // whatever the umask, and the server removes it when it closes (if it is still
 // the file it created). A TCP server listens on a loopback address unless
 // allow_network is set (the station then requires a pre-shared key).
-// PollSource: the peer's, the newcomer's and the listening descriptor (POLLIN);
+// PollSource: the peer's, the newcomer's, the listening and (room permitting) the
+// pending descriptors (POLLIN);
 // reopen() closes everything and opens again (server: binds anew).
 #pragma once
 
 #include <sys/socket.h>
 #include <sys/types.h>
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -47,6 +55,7 @@ struct SocketLinkConfig {
   std::uint32_t socket_mode = 0660;  // the Unix socket file's mode, whatever the umask
   std::string socket_group;          // its group ("" = the process's)
   bool allow_network = false;        // a TCP listener on a non-loopback address
+  std::uint32_t pending_timeout_ms = 1000;  // a silent accepted connection is closed after
 };
 
 class SocketLink final : public ports::LinkPort, public ports::LinkNewcomers, public PollSource {
@@ -70,6 +79,7 @@ class SocketLink final : public ports::LinkPort, public ports::LinkNewcomers, pu
   // Kept for twister-bridge's loop; the station uses poll_fds().
   int poll_fd() const { return peer_fd_ >= 0 ? peer_fd_ : listen_fd_; }
   std::uint64_t connects() const { return connects_; }
+  std::uint64_t accepted() const { return accepted_; }  // server: connections accepted
   int last_errno() const { return last_errno_; }
 
  private:
@@ -85,6 +95,11 @@ class SocketLink final : public ports::LinkPort, public ports::LinkNewcomers, pu
   Expected<void> prepare_unix_path();
   Expected<void> listen_now();
   void accept_newcomers();
+  // The pending set (server): silent ones expire, the oldest speaker is promoted.
+  void add_pending(int fd, std::int64_t now_ms);
+  void drop_pending(std::size_t index);
+  void expire_pending(std::int64_t now_ms);
+  void promote_newcomer();
   bool ensure_client();
   // connect(2) on a non-blocking socket, waiting at most timeout_ms for a TCP one.
   bool connect_within(int fd, int timeout_ms);
@@ -101,8 +116,16 @@ class SocketLink final : public ports::LinkPort, public ports::LinkNewcomers, pu
   int listen_fd_ = -1;
   int peer_fd_ = -1;
   int newcomer_fd_ = -1;
+  struct Pending {
+    int fd = -1;
+    std::int64_t since_ms = 0;
+  };
+  static constexpr std::size_t kMaxPending = 16;
+  std::array<Pending, kMaxPending> pending_{};  // [0] arrived first
+  std::size_t pending_count_ = 0;
   std::uint64_t newcomer_id_ = 0;
   std::uint64_t connects_ = 0;
+  std::uint64_t accepted_ = 0;
   std::int64_t next_attempt_ms_ = 0;
   int last_errno_ = 0;
   // The socket file this server made (removed at close if it is still that file).
