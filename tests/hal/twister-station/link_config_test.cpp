@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "config/link_config.hpp"
 #include "config/station_config.hpp"
 #include "config_test_support.hpp"
 
@@ -46,11 +47,35 @@ TEST(LinkConfig, DefaultsAndAGoodSection) {
   EXPECT_EQ(r.config.link.listen, LinkListen::network);
   EXPECT_EQ(r.config.link.psk_file, "/etc/twister/link.key");
   EXPECT_EQ(r.config.link.baud, 921600u);
-  for (const char* a :
-       {"unix:/run/twister/link.sock", "tcp:127.0.0.1:7000", "serial:/dev/twister-display"}) {
+  for (const char* a : {"unix:/run/twister/link.sock", "serial:/dev/twister-display"}) {
     const auto ok = parse_link(std::string("address = \"") + a + "\"\n");
     EXPECT_TRUE(ok.ok()) << a << "\n" << messages(ok);
   }
+}
+
+// Issue 21 item 5: without a key, any local user could take a loopback TCP display
+// link; it is refused unless allowed explicitly (a Unix socket with a group is the
+// keyless default).
+TEST(LinkConfig, KeylessLoopbackTcpIsRefusedUnlessAllowed) {
+  const auto keyless = parse_link("address = \"tcp:127.0.0.1:7000\"\n");
+  ASSERT_FALSE(keyless.ok());
+  EXPECT_NE(messages(keyless).find("link.address: expected psk_file with a tcp: address"),
+            std::string::npos)
+      << messages(keyless);
+  EXPECT_NE(messages(keyless).find("allow_unauthenticated_tcp = true"), std::string::npos);
+  const auto allowed =
+      parse_link("address = \"tcp:127.0.0.1:7000\"\nallow_unauthenticated_tcp = true\n");
+  EXPECT_TRUE(allowed.ok()) << messages(allowed);
+  EXPECT_TRUE(allowed.config.link.allow_unauthenticated_tcp);
+  const auto keyed =
+      parse_link("address = \"tcp:127.0.0.1:7000\"\npsk_file = \"/etc/twister/link.key\"\n");
+  EXPECT_TRUE(keyed.ok()) << messages(keyed);
+  // --link overrides the address at start: the same rule is applied there.
+  LinkSection over;
+  over.address = "tcp:127.0.0.1:7000";
+  EXPECT_FALSE(internal::unauthenticated_tcp_problem(over).empty());
+  over.allow_unauthenticated_tcp = true;
+  EXPECT_TRUE(internal::unauthenticated_tcp_problem(over).empty());
 }
 
 TEST(LinkConfig, BadValuesNameFileLineKeyAndExpectedForm) {
