@@ -136,11 +136,7 @@ SessionEvent make_event(SessionEventKind kind, std::uint8_t hand, EventPayload p
 }
 
 void SessionEvents::push(const SessionEvent& event) {
-  if (count_ == items_.size()) {
-    ++dropped_;
-    return;
-  }
-  items_[count_++] = event;
+  if (!items_.push_back(event).ok()) ++dropped_;
 }
 
 }  // namespace twister::session

@@ -41,14 +41,14 @@ void StationLink::step(const session::SculptSession& session, const StationStatu
 
 template <class Submit>
 void StationLink::route_commands(Submit submit) {
-  for (std::size_t i = 0; i < command_count_; ++i) {
-    if (submit(session_command(commands_[i])).ok()) {
+  for (const link::Command& command : commands_) {
+    if (submit(session_command(command)).ok()) {
       ++commands_routed_;
     } else {
       ++commands_refused_;  // the session's queue is full
     }
   }
-  command_count_ = 0;
+  commands_.clear();
 }
 
 void StationLink::poll(Station& station, ports::TimestampUs now_us) {
@@ -79,11 +79,7 @@ void StationLink::on_display_lost() {
 void StationLink::on_resend_request() { mirror_.want_full(); }
 
 void StationLink::on_command(const link::Command& command) {
-  if (command_count_ == kMaxCommands) {
-    ++commands_refused_;
-    return;
-  }
-  commands_[command_count_++] = command;
+  if (!commands_.push_back(command).ok()) ++commands_refused_;
 }
 
 void StationLink::say_goodbye() {

@@ -3,7 +3,7 @@
 namespace twister::station {
 
 void StylusEdges::push(const ports::ButtonEdge& edge) {
-  if (count_ < items_.size()) items_[count_++] = edge;  // at most one per pose
+  items_.push_back(edge).ignore();  // at most one per pose: never full
 }
 
 TrackerHands::TrackerHands(ports::ByteStream& tracker, ports::Clock& clock,

@@ -19,6 +19,7 @@
 #include <variant>
 
 #include "twister/base/assert.hpp"
+#include "twister/base/inline_vector.hpp"
 #include "twister/base/status.hpp"
 #include "twister/input/interaction_machine.hpp"
 #include "twister/math/warp_method.hpp"
@@ -202,12 +203,11 @@ inline constexpr std::size_t kMaxEventsPerStep = 32;
 class SessionEvents {
  public:
   void push(const SessionEvent& event);  // beyond capacity: counted, dropped
-  std::span<const SessionEvent> items() const { return {items_.data(), count_}; }
+  std::span<const SessionEvent> items() const { return items_.span(); }
   std::size_t dropped() const { return dropped_; }
 
  private:
-  std::array<SessionEvent, kMaxEventsPerStep> items_{};
-  std::size_t count_ = 0;
+  InlineVector<SessionEvent, kMaxEventsPerStep> items_;
   std::size_t dropped_ = 0;
 };
 

@@ -2,9 +2,9 @@
 // What does not fit is dropped (push() says so; the station counts it).
 #pragma once
 
-#include <array>
 #include <cstddef>
 
+#include "twister/base/inline_ring.hpp"
 #include "twister/base/result.hpp"
 #include "twister/session/session_events.hpp"
 
@@ -18,12 +18,10 @@ class EventQueue {
   bool push(const session::SessionEvent& event);
   // The oldest event. unavailable: none pending.
   Result<session::SessionEvent> pop();
-  std::size_t size() const { return count_; }
+  std::size_t size() const { return items_.size(); }
 
  private:
-  std::array<session::SessionEvent, kCapacity> items_{};
-  std::size_t head_ = 0;
-  std::size_t count_ = 0;
+  InlineRing<session::SessionEvent, kCapacity> items_;
 };
 
 }  // namespace twister::station

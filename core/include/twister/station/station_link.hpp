@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <span>
 
+#include "twister/base/inline_vector.hpp"
 #include "twister/link/link_codec.hpp"
 #include "twister/ports/clock.hpp"
 #include "twister/ports/link_port.hpp"
@@ -133,8 +134,7 @@ class StationLink final : private AdmissionListener {
   bool started_ = false;
   std::uint32_t last_sequence_ = 0;
   // The admitted display's commands since the last poll, oldest first.
-  std::array<link::Command, kMaxCommands> commands_{};
-  std::size_t command_count_ = 0;
+  InlineVector<link::Command, kMaxCommands> commands_;
   std::uint64_t commands_routed_ = 0;
   std::uint64_t commands_refused_ = 0;  // queue full here or in the session
   StationLinkCounters counters_{};

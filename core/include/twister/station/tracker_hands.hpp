@@ -14,6 +14,7 @@
 #include <optional>
 #include <span>
 
+#include "twister/base/inline_vector.hpp"
 #include "twister/ports/button_source.hpp"
 #include "twister/ports/byte_stream.hpp"
 #include "twister/ports/clock.hpp"
@@ -31,11 +32,10 @@ inline constexpr std::size_t kMaxPosesPerPoll = 64;
 class StylusEdges {
  public:
   void push(const ports::ButtonEdge& edge);
-  std::span<const ports::ButtonEdge> items() const { return {items_.data(), count_}; }
+  std::span<const ports::ButtonEdge> items() const { return items_.span(); }
 
  private:
-  std::array<ports::ButtonEdge, kMaxPosesPerPoll> items_{};
-  std::size_t count_ = 0;
+  InlineVector<ports::ButtonEdge, kMaxPosesPerPoll> items_;
 };
 
 class TrackerHands {
