@@ -14,15 +14,6 @@
 namespace twister::hal {
 namespace {
 
-const char* type_name(mode_t mode) {
-  if (S_ISDIR(mode)) return "a directory";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
-  if (S_ISSOCK(mode)) return "a socket";
-  if (S_ISLNK(mode)) return "a symbolic link";
-  return "not a regular file";
-}
-
 bool starts_with(const std::array<char, 64>& head, std::size_t n, const char* prefix,
                  std::size_t len) {
   return n >= len && std::memcmp(head.data(), prefix, len) == 0;
@@ -151,6 +142,15 @@ Status inspect_open(int fd, const char* path, OutputRule rule, char* message, st
 
 }  // namespace
 
+const char* file_type_name(mode_t mode) {
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
+  if (S_ISSOCK(mode)) return "a socket";
+  if (S_ISLNK(mode)) return "a symbolic link";
+  return "not a regular file";
+}
+
 bool output_kind_of(const std::string& path, OutputKind& kind) {
   struct Ending {
     const char* ending;
@@ -196,7 +196,7 @@ Status inspect_output_target(const char* path, OutputRule rule, char* message, s
   }
   if (!S_ISREG(before.st_mode)) {
     char why[64];
-    std::snprintf(why, sizeof why, "is %s", type_name(before.st_mode));
+    std::snprintf(why, sizeof why, "is %s", file_type_name(before.st_mode));
     return refuse(message, size, path, why);
   }
   const int fd = ::open(path, O_RDONLY | O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC);

@@ -31,14 +31,6 @@ void sync_directory(const char* dir) {
   }
 }
 
-const char* kind_of(mode_t mode) {
-  if (S_ISDIR(mode)) return "a directory";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
-  if (S_ISSOCK(mode)) return "a socket";
-  if (S_ISLNK(mode)) return "a symbolic link";
-  return "not a regular file";
-}
 
 }  // namespace
 
@@ -148,7 +140,7 @@ Status PosixFileSink::check_target() {
   }
   if (!S_ISREG(st.st_mode)) {
     std::snprintf(last_error_.data(), last_error_.size(), "%s is %s; it is not replaced",
-                  config_.path.c_str(), kind_of(st.st_mode));
+                  config_.path.c_str(), file_type_name(st.st_mode));
     last_errno_ = 0;
     return StatusCode::failed_precondition;
   }

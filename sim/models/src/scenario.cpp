@@ -15,6 +15,8 @@
 #include <iterator>
 #include <sstream>
 
+#include "twister/hal/output_file.hpp"
+
 namespace twister::sim {
 namespace {
 constexpr FaultKind kFaultKinds[] = {FaultKind::noise,  FaultKind::drop,   FaultKind::truncate,
@@ -297,14 +299,6 @@ class LineReader {
   int line_no_ = 0;
 };
 
-const char* not_regular(mode_t mode) {
-  if (S_ISDIR(mode)) return "a directory";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
-  if (S_ISSOCK(mode)) return "a socket";
-  return nullptr;
-}
-
 // Reads the open file line by line through a fixed buffer into `reader`.
 hal::Expected<void> read_lines(int fd, const std::string& path, LineReader& reader) {
   std::array<char, 1 << 16> buffer{};
@@ -368,12 +362,11 @@ hal::Expected<Scenario> load_scenario_file(const std::string& path) {
     ::close(fd);
     return hal::make_error(StatusCode::io_error, "cannot read scenario file " + path);
   }
-  if (const char* kind = not_regular(st.st_mode); kind != nullptr || !S_ISREG(st.st_mode)) {
+  if (!S_ISREG(st.st_mode)) {
     ::close(fd);
-    return hal::make_error(StatusCode::io_error,
-                           "scenario file " + path + " is " +
-                               (kind != nullptr ? kind : "not a regular file") +
-                               ", not a regular file");
+    return hal::make_error(StatusCode::io_error, "scenario file " + path + " is " +
+                                                     hal::file_type_name(st.st_mode) +
+                                                     ", not a regular file");
   }
   if (static_cast<std::uint64_t>(st.st_size) > kMaxScenarioBytes) {
     ::close(fd);

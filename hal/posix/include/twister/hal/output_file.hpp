@@ -15,6 +15,8 @@
 // it again right before it renames its file into place).
 #pragma once
 
+#include <sys/types.h>
+
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -63,6 +65,10 @@ class FileReadLock {
  private:
   int fd_ = -1;
 };
+
+// What a file that is not a regular one is, for messages: "a directory", "a FIFO",
+// "a device", "a socket", "a symbolic link" ("not a regular file" otherwise).
+const char* file_type_name(mode_t mode);
 
 // The journal's and the checkpoint's magic ("TWJL", "TWCK"; hal cannot include the
 // journal's headers: tests check they equal journal::kFileMagic and
