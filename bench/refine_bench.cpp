@@ -21,11 +21,11 @@
 #include <vector>
 
 #include "counting_storage.hpp"
-#include "twister/session/sculpt_session.hpp"
 #include "twister/journal/journal_writer.hpp"
 #include "twister/meshio/mesh_buffer.hpp"
 #include "twister/meshio/mesh_generator.hpp"
 #include "twister/meshio/refiner_buffer.hpp"
+#include "twister/session/sculpt_session.hpp"
 
 namespace {
 
@@ -58,7 +58,7 @@ struct Rig {
     session = std::make_unique<session::SculptSession>(
         config, buffer.mesh(),
         session::SculptStorage{lx, ly, lz, math::WarpPlanStorage{indices, w1, w2}, changes, entries,
-                             refiner.storage(), triangles},
+                               refiner.storage(), triangles},
         &writer);
   }
   // Hand h at its pole (z = +-0.5), turned by `turn` about z, pulled out by `pull`.

@@ -14,10 +14,10 @@
 #include <vector>
 
 #include "counting_storage.hpp"
-#include "twister/session/sculpt_session.hpp"
 #include "twister/journal/journal_writer.hpp"
 #include "twister/meshio/mesh_buffer.hpp"
 #include "twister/meshio/mesh_generator.hpp"
+#include "twister/session/sculpt_session.hpp"
 
 namespace {
 
@@ -42,7 +42,8 @@ struct Rig {
     (void)writer.open();
     session = std::make_unique<session::SculptSession>(
         config, buffer.mesh(),
-        session::SculptStorage{lx, ly, lz, math::WarpPlanStorage{indices, w1, w2}, changes, entries},
+        session::SculptStorage{lx, ly, lz, math::WarpPlanStorage{indices, w1, w2}, changes,
+                               entries},
         &writer);
   }
   math::Frame pose(double t) const {

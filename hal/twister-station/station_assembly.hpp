@@ -20,8 +20,8 @@
 #include "twister/hal/output_file.hpp"
 #include "twister/hal/posix_file_sink.hpp"
 #include "twister/hal/posix_file_storage.hpp"
-#include "twister/session/sculpt_session.hpp"
 #include "twister/meshio/mesh_buffer.hpp"
+#include "twister/session/sculpt_session.hpp"
 #include "twister/station/station.hpp"
 
 namespace twister::station_app {

@@ -17,8 +17,8 @@
 #include <memory>
 #include <vector>
 
-#include "twister/session/sculpt_session.hpp"
 #include "twister/meshio/refiner_buffer.hpp"
+#include "twister/session/sculpt_session.hpp"
 
 namespace twister::station_app {
 
@@ -35,8 +35,8 @@ struct MemoryBudget {
 
 MemoryBudget memory_budget(std::size_t vertex_capacity, std::size_t triangle_capacity,
                            std::size_t undo_changes = session::kDefaultUndoChanges,
-                           std::size_t undo_entries = session::kDefaultUndoEntries, bool link = false,
-                           bool refine = false);
+                           std::size_t undo_entries = session::kDefaultUndoEntries,
+                           bool link = false, bool refine = false);
 
 // The SculptSession's working memory for a mesh of `vertex_capacity` vertices: one
 // arena of memory_budget(...).live + plan + undo + normals bytes.

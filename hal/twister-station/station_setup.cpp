@@ -39,7 +39,8 @@ math::WarpMethod method_of(SculptMethod m) {
 
 // [sculpt]: method, radius, turns, lost-tracking timeout and the button map (the
 // paper's map unless [sculpt.buttons] is given).
-void set_sculpt(const StationFileConfig& config, session::SculptSessionConfig& s, std::string& error) {
+void set_sculpt(const StationFileConfig& config, session::SculptSessionConfig& s,
+                std::string& error) {
   const SculptConfig& sc = config.sculpt;
   s.method = method_of(sc.method);
   s.interaction.initial_radius_m = static_cast<float>(sc.radius_m);

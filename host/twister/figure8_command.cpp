@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <memory>
 #include <optional>
-#include <utility>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli_exit_code.hpp"
@@ -110,8 +110,8 @@ int run_figure8(const Figure8Options& opt) {
 }  // namespace
 
 void add_figure8_command(CLI::App& app, int& exit_code) {
-  auto* cmd =
-      app.add_subcommand("figure8", "Run the Figure 8 comparison of the warp methods (docs/math.md §9)");
+  auto* cmd = app.add_subcommand(
+      "figure8", "Run the Figure 8 comparison of the warp methods (docs/math.md §9)");
   auto opt = std::make_shared<Figure8Options>();
   cmd->add_option("--svg", opt->svg, "write the grid of curves as SVG");
   cmd->add_option("--png", opt->png, "write the grid of curves as PNG");

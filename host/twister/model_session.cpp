@@ -36,15 +36,15 @@ ModelSession::ModelSession(meshio::ObjMesh model, std::size_t undo_changes,
   changes_.resize(undo_changes);
   entries_.resize(std::max<std::size_t>(undo_entries, 1));
   const session::SculptStorage work{lx_,
-                                  ly_,
-                                  lz_,
-                                  math::WarpPlanStorage{plan_indices_, w1_, w2_},
-                                  changes_,
-                                  entries_,
-                                  refiner_.storage(),
-                                  triangles_};
-  session_ =
-      std::make_unique<session::SculptSession>(session::SculptSessionConfig{}, mesh(), work, nullptr);
+                                    ly_,
+                                    lz_,
+                                    math::WarpPlanStorage{plan_indices_, w1_, w2_},
+                                    changes_,
+                                    entries_,
+                                    refiner_.storage(),
+                                    triangles_};
+  session_ = std::make_unique<session::SculptSession>(session::SculptSessionConfig{}, mesh(), work,
+                                                      nullptr);
 }
 
 }  // namespace twister::cli

@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "twister/hal/expected.hpp"
-#include "twister/session/sculpt_session.hpp"
 #include "twister/meshio/obj_file.hpp"
 #include "twister/meshio/refiner_buffer.hpp"
+#include "twister/session/sculpt_session.hpp"
 
 namespace twister::cli {
 

@@ -17,7 +17,6 @@
 #include "model_session.hpp"
 #include "twister/hal/output_file.hpp"
 #include "twister/journal/journal_format.hpp"
-#include "twister/session/sculpt_session.hpp"
 #include "twister/journal/journal_reader.hpp"
 #include "twister/journal/journal_scanner.hpp"
 #include "twister/meshio/obj_file.hpp"

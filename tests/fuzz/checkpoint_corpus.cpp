@@ -83,7 +83,8 @@ Seed raw(std::span<const std::byte> bytes) {
   return s;
 }
 
-std::map<std::string, Seed> seeds(std::span<const std::byte> file, const checkpoint::CheckpointHeader& h,
+std::map<std::string, Seed> seeds(std::span<const std::byte> file,
+                                  const checkpoint::CheckpointHeader& h,
                                   const session::UndoHistory& history) {
   using namespace checkpoint;
   using session::UndoEntry;

@@ -12,8 +12,8 @@
 #include <new>
 
 #include "fakes/fake_file_sink.hpp"
-#include "twister/session/sculpt_session.hpp"
 #include "twister/checkpoint/session_checkpoint.hpp"
+#include "twister/session/sculpt_session.hpp"
 
 namespace twister::fuzz_support {
 

@@ -56,7 +56,8 @@ bool topology_fits(const session::UndoEntry& e, const CheckpointHeader& h) {
 }
 
 // The entries in order; `start`: the counts before the first one.
-Status read_entries(Input& in, const CheckpointHeader& h, session::SculptSession* target, Counts& start) {
+Status read_entries(Input& in, const CheckpointHeader& h, session::SculptSession* target,
+                    Counts& start) {
   const Counts mesh{h.vertex_count, h.triangle_count};
   CountChain chain;
   // Where the undoable entries end the mesh stands (or, before any refined entry, the

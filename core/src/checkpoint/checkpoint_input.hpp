@@ -8,9 +8,9 @@
 #include <span>
 
 #include "twister/base/result.hpp"
-#include "twister/session/sculpt_session.hpp"
 #include "twister/checkpoint/session_checkpoint.hpp"
 #include "twister/ports/storage.hpp"
+#include "twister/session/sculpt_session.hpp"
 
 namespace twister::checkpoint::format {
 

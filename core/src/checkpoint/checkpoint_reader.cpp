@@ -85,8 +85,8 @@ Status walk_mesh(Input& in, const CheckpointHeader& h, session::SculptSession* t
 }
 
 // Checks (and with `target`, restores) the whole file.
-Status walk(ports::Storage& storage, const CheckpointHeader& h, const session::SculptSession& session,
-            session::SculptSession* target) {
+Status walk(ports::Storage& storage, const CheckpointHeader& h,
+            const session::SculptSession& session, session::SculptSession* target) {
   if (!fits(h, session)) return StatusCode::data_loss;
   TWISTER_TRY_ASSIGN(const std::uint64_t size, storage.size());
   if (size != checkpoint_bytes(h)) return StatusCode::data_loss;

@@ -34,8 +34,8 @@ std::uint64_t checkpoint_bytes(const CheckpointHeader& h) {
          kCheckpointTriangleChangeBytes * h.used_triangle_changes + 4;
 }
 
-Status CheckpointWriter::begin(const session::SculptSession& session, const CheckpointAnchor& anchor,
-                               std::uint64_t base_checksum) {
+Status CheckpointWriter::begin(const session::SculptSession& session,
+                               const CheckpointAnchor& anchor, std::uint64_t base_checksum) {
   abort();
   if (sink_ == nullptr || session.busy()) return StatusCode::failed_precondition;
   const session::UndoHistory& history = session.history();
@@ -89,7 +89,8 @@ std::uint64_t CheckpointWriter::section_size() const {
   }
 }
 
-std::size_t CheckpointWriter::encode(const session::SculptSession& session, std::span<std::byte> out) const {
+std::size_t CheckpointWriter::encode(const session::SculptSession& session,
+                                     std::span<std::byte> out) const {
   namespace f = format;
   const auto i = static_cast<std::size_t>(index_);
   const mesh::Mesh& m = session.mesh();
@@ -121,7 +122,8 @@ std::size_t CheckpointWriter::encode(const session::SculptSession& session, std:
   }
 }
 
-Result<bool> CheckpointWriter::step(const session::SculptSession& session, std::size_t budget_bytes) {
+Result<bool> CheckpointWriter::step(const session::SculptSession& session,
+                                    std::size_t budget_bytes) {
   if (!active_) return StatusCode::failed_precondition;
   std::size_t written = 0;
   while (section_ != kDone) {

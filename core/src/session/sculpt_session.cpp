@@ -177,12 +177,11 @@ void SculptSession::commit_move(const input::Action& a, SessionEvents& out) {
   if (!move.ok()) return;  // no move open
   const CommitOutcome done = history_.commit_move(a.hand, move->before, move->after);
   if (done.status.ok()) {
-    out.push(make_event(SessionEventKind::move_committed, a.hand,
-                        payload::RecordRef{done.sequence}));
+    out.push(
+        make_event(SessionEventKind::move_committed, a.hand, payload::RecordRef{done.sequence}));
   } else {
     out.push(make_event(SessionEventKind::not_saved, a.hand,
-                        payload::StrokeEnd{input::Reason::released, done.sequence},
-                        done.status));
+                        payload::StrokeEnd{input::Reason::released, done.sequence}, done.status));
   }
 }
 
@@ -214,7 +213,8 @@ void SculptSession::run_command(const SessionCommand& c, SessionEvents& out) {
     case SessionCommandKind::next_method:
     case SessionCommandKind::set_method: {
       // The open stroke keeps its method (its weights and journal record use it).
-      if (strokes_.active()) return refuse(input::Reason::busy, Status(StatusCode::failed_precondition));
+      if (strokes_.active())
+        return refuse(input::Reason::busy, Status(StatusCode::failed_precondition));
       const math::WarpMethod m =
           c.kind == SessionCommandKind::set_method ? c.method : next_method(strokes_.method());
       strokes_.set_method(m);

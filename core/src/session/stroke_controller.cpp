@@ -2,7 +2,6 @@
 
 #include <span>
 
-
 namespace twister::session {
 namespace {
 
@@ -97,8 +96,8 @@ void StrokeController::grab(std::uint8_t hand, SessionEvents& out) {
 }
 
 void StrokeController::freeze(std::uint8_t hand, SessionEvents& out) {
-  const SessionEvent frozen =
-      commit_segment(hand, input::Reason::none, out, input::Reason::released, /*plan_goes_on=*/true);
+  const SessionEvent frozen = commit_segment(hand, input::Reason::none, out,
+                                             input::Reason::released, /*plan_goes_on=*/true);
   if (!frozen.status.ok()) return end_not_saved(hand, frozen, out);
   // Restarted while still engaged: its start pose is where the hand is now, the point
   // its grabbed material went to; disengaged, it stays there (its anchor).
@@ -115,8 +114,8 @@ void StrokeController::unfreeze(std::uint8_t hand, SessionEvents& out) {
   // becomes the next chain step, as a replay needs it.
   const bool commit = chain_step_ == 0 || (segment_can_change() && segment_moved_);
   if (commit) {
-    const SessionEvent done =
-        commit_segment(hand, input::Reason::none, out, input::Reason::released, /*plan_goes_on=*/true);
+    const SessionEvent done = commit_segment(hand, input::Reason::none, out,
+                                             input::Reason::released, /*plan_goes_on=*/true);
     if (!done.status.ok()) return end_not_saved(hand, done, out);
   }
   drives_[hand].set_engaged(true);
@@ -209,8 +208,9 @@ Status StrokeController::begin_segment(std::uint8_t mask) {
   return plan_.apply(mesh_.rest(), mesh_.live());
 }
 
-SessionEvent StrokeController::commit_segment(std::uint8_t hand, input::Reason reason, SessionEvents& out,
-                                              input::Reason reason_if_not_saved, bool plan_goes_on) {
+SessionEvent StrokeController::commit_segment(std::uint8_t hand, input::Reason reason,
+                                              SessionEvents& out, input::Reason reason_if_not_saved,
+                                              bool plan_goes_on) {
   update_plan(&out).ignore();  // on error the previous update stays in force
   journal::StrokeRecord r;
   r.method = static_cast<std::uint8_t>(plan_.method());
@@ -230,8 +230,8 @@ SessionEvent StrokeController::commit_segment(std::uint8_t hand, input::Reason r
   // A commit that did not happen (journal failure, plan error) is `not_saved`.
   const SessionEvent committed =
       done.status.ok()
-          ? make_event(SessionEventKind::committed, hand,
-                       payload::StrokeEnd{reason, done.sequence}, done.status)
+          ? make_event(SessionEventKind::committed, hand, payload::StrokeEnd{reason, done.sequence},
+                       done.status)
           : make_event(SessionEventKind::not_saved, hand,
                        payload::StrokeEnd{reason_if_not_saved, done.sequence}, done.status);
   out.push(committed);

@@ -151,7 +151,8 @@ Status Station::use_checkpoint(const checkpoint::CheckpointHeader& h,
   ports::Storage& file = *files_.checkpoint_in;
   const session::UndoHistory& history = sculpt_.history();
   const mesh::Mesh& m = sculpt_.mesh();
-  if (h.base_checksum != checkpoints_.base_checksum() || h.change_capacity != history.change_capacity() ||
+  if (h.base_checksum != checkpoints_.base_checksum() ||
+      h.change_capacity != history.change_capacity() ||
       h.entry_capacity != history.entry_capacity() ||
       h.triangle_change_capacity != history.triangle_change_capacity() ||
       h.vertex_capacity != m.vertex_capacity() || h.triangle_capacity != m.triangle_capacity()) {

@@ -31,7 +31,6 @@ void sync_directory(const char* dir) {
   }
 }
 
-
 }  // namespace
 
 namespace {

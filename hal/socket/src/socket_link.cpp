@@ -81,15 +81,6 @@ Expected<gid_t> group_id(const std::string& name) {
   return found->gr_gid;
 }
 
-// Peeks at an accepted connection: 1 it has spoken, 0 silent so far, -1 gone.
-int peek(int fd) {
-  std::byte b{};
-  const ssize_t n = ::recv(fd, &b, 1, MSG_PEEK | MSG_DONTWAIT);
-  if (n > 0) return 1;
-  if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR)) return 0;
-  return -1;
-}
-
 }  // namespace
 
 SocketLink::SocketLink(SocketLinkConfig config) : config_(std::move(config)) {
@@ -110,7 +101,7 @@ void SocketLink::close_fd(int& fd) {
 void SocketLink::close() {
   close_fd(peer_fd_);
   close_fd(newcomer_fd_);
-  while (pending_count_ > 0) drop_pending(pending_count_ - 1);
+  while (!pending_.empty()) drop_pending(pending_.size() - 1);
   close_fd(listen_fd_);
   if (made_file_) {
     // Only the socket file this server made: a file put there since is left alone.
@@ -234,8 +225,8 @@ std::size_t SocketLink::do_poll_fds(std::span<pollfd> out) const {
   for (const int fd : {peer_fd_, newcomer_fd_, listen_fd_}) {
     if (fd >= 0 && n < out.size()) out[n++] = {fd, POLLIN, 0};
   }
-  for (std::size_t i = 0; i < pending_count_ && n < out.size(); ++i) {
-    out[n++] = {pending_[i].fd, POLLIN, 0};
+  for (const Pending& p : pending_) {
+    if (n < out.size()) out[n++] = {p.fd, POLLIN, 0};
   }
   return n;
 }
@@ -260,58 +251,6 @@ void SocketLink::accept_newcomers() {
     add_pending(fd, now);
   }
   promote_newcomer();
-}
-
-void SocketLink::add_pending(int fd, std::int64_t now_ms) {
-  if (pending_count_ == kMaxPending) {
-    // Full: the oldest silent connection makes room (or the oldest of all).
-    std::size_t victim = 0;
-    for (std::size_t i = 0; i < pending_count_; ++i) {
-      if (peek(pending_[i].fd) != 1) {
-        victim = i;
-        break;
-      }
-    }
-    drop_pending(victim);
-  }
-  pending_[pending_count_++] = {fd, now_ms};
-}
-
-void SocketLink::drop_pending(std::size_t index) {
-  close_fd(pending_[index].fd);
-  for (std::size_t i = index + 1; i < pending_count_; ++i) pending_[i - 1] = pending_[i];
-  --pending_count_;
-}
-
-void SocketLink::expire_pending(std::int64_t now_ms) {
-  for (std::size_t i = 0; i < pending_count_;) {
-    const int state = peek(pending_[i].fd);
-    const bool stale = now_ms - pending_[i].since_ms > config_.pending_timeout_ms;
-    if (state < 0 || (state == 0 && stale)) {
-      drop_pending(i);
-    } else {
-      ++i;
-    }
-  }
-}
-
-void SocketLink::promote_newcomer() {
-  if (newcomer_fd_ >= 0) return;  // the station is still busy with the last one
-  for (std::size_t i = 0; i < pending_count_;) {
-    const int state = peek(pending_[i].fd);
-    if (state < 0) {
-      drop_pending(i);
-      continue;
-    }
-    if (state > 0) {
-      newcomer_fd_ = pending_[i].fd;
-      pending_[i].fd = -1;
-      drop_pending(i);
-      ++newcomer_id_;
-      return;
-    }
-    ++i;
-  }
 }
 
 std::uint64_t SocketLink::do_newcomer_id() {

@@ -58,7 +58,8 @@ std::string unauthenticated_tcp_problem(const LinkSection& link) {
   }
   return "expected psk_file with a tcp: address (without a key any local user can take the "
          "display; use unix:PATH with socket_group, or set allow_unauthenticated_tcp = true), "
-         "got \"" + link.address + "\"";
+         "got \"" +
+         link.address + "\"";
 }
 
 void read_link(ConfigReader& root, StationFileConfig& cfg) {

@@ -98,7 +98,8 @@ std::string lines_text(const std::vector<std::uint8_t>& lines) {
 }
 
 // The lines the backend has; with the stylus only its hand's grab exists.
-void check_lines_exist(ConfigReader& s, const StationFileConfig& cfg, const ButtonBindingConfig& b) {
+void check_lines_exist(ConfigReader& s, const StationFileConfig& cfg,
+                       const ButtonBindingConfig& b) {
   const std::size_t count = button_line_count(cfg);
   if (cfg.buttons.backend == ButtonBackend::stylus) {
     const std::uint8_t stylus_hand = cfg.tracker.left_station == 1 ? 0 : 1;

@@ -152,7 +152,7 @@ struct LinkSection {
   // A TCP link without psk_file lets any local user take the display: refused at
   // start unless this is set (Unix sockets with a group are the keyless default).
   bool allow_unauthenticated_tcp = false;
-  std::uint32_t baud = 230400;               // serial: addresses
+  std::uint32_t baud = 230400;  // serial: addresses
 };
 
 struct SystemdConfig {

@@ -142,7 +142,7 @@ void SceneReplica::update_live(const link::Hands& h) {
   live_.hands.clear();
   for (std::size_t k = 0; k < link::kLinkHands; ++k) {
     if ((stroke_.hand_mask & (1u << k)) == 0) continue;
-    if (!hands_[k].present) return;  // a stroke hand without its sample: not drawn
+    if (!hands_[k].present) return;      // a stroke hand without its sample: not drawn
     live_.hands.push_back({}).ignore();  // one per link hand: fits
     LiveHand& lh = live_.hands.back();
     lh.session_hand = static_cast<std::uint8_t>(k);

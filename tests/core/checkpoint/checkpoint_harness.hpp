@@ -14,9 +14,9 @@
 #include <span>
 #include <vector>
 
+#include "core/session/refine_harness.hpp"
 #include "fakes/fake_file_sink.hpp"
 #include "fakes/fake_storage.hpp"
-#include "core/session/refine_harness.hpp"
 #include "twister/base/checksum.hpp"
 #include "twister/checkpoint/session_checkpoint.hpp"
 

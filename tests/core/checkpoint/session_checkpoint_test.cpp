@@ -9,8 +9,8 @@
 #include <numbers>
 #include <vector>
 
-#include "fakes/fake_file_sink.hpp"
 #include "core/session/session_harness.hpp"
+#include "fakes/fake_file_sink.hpp"
 
 namespace twister::checkpoint {
 namespace {
@@ -173,12 +173,14 @@ TEST(SessionCheckpoint, AnotherMeshCapacityOrHistorySizeIsRefused) {
   auto other_capacity = std::make_unique<TestSession>(test_config(), *smaller, nullptr);
   EXPECT_EQ(verify_checkpoint(file, *header, *other_capacity).code(), StatusCode::data_loss);
   auto target = std::make_unique<Station>(9, test_config(), false);
-  auto other_history = std::make_unique<session::SculptSessionWithStorage<kVertices, kVertices, 4096, 32>>(
-      test_config(), target->mesh, nullptr);
+  auto other_history =
+      std::make_unique<session::SculptSessionWithStorage<kVertices, kVertices, 4096, 32>>(
+          test_config(), target->mesh, nullptr);
   EXPECT_EQ(verify_checkpoint(file, *header, *other_history).code(), StatusCode::data_loss);
   // No triangle change pool (no refinement memory): another history size too.
-  auto no_refinement = std::make_unique<session::SculptSessionWithStorage<kVertices, kVertices, 8192, 32>>(
-      test_config(), target->mesh, nullptr);
+  auto no_refinement =
+      std::make_unique<session::SculptSessionWithStorage<kVertices, kVertices, 8192, 32>>(
+          test_config(), target->mesh, nullptr);
   EXPECT_EQ(verify_checkpoint(file, *header, *no_refinement).code(), StatusCode::data_loss);
   // The model itself is the caller's check (base_checksum, compared by the station):
   // another start mesh of the same capacity verifies.

@@ -35,7 +35,7 @@ struct Sculptor {
       if (e.kind == SessionEventKind::committed || e.kind == SessionEventKind::move_committed) {
         EXPECT_TRUE(e.status.ok());
         seen.saved.insert(e.kind == SessionEventKind::move_committed ? e.record().sequence
-                                                                       : e.stroke_end().sequence);
+                                                                     : e.stroke_end().sequence);
       }
       if (e.kind == SessionEventKind::not_saved) ++seen.not_saved;
     }

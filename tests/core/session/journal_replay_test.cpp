@@ -34,7 +34,9 @@ struct ReplayRig {
   }
   // A step with one action of hand 1.
   void act(input::ActionKind kind) {
-    const input::Action a{kind, 1, kind == input::ActionKind::commit ? input::Reason::released : input::Reason::none, 0.0f};
+    const input::Action a{
+        kind, 1, kind == input::ActionKind::commit ? input::Reason::released : input::Reason::none,
+        0.0f};
     input::ActionList list;
     list.push(a);
     SessionEvents out;

@@ -10,13 +10,13 @@
 #include <cstdint>
 
 #include "session_harness.hpp"
+#include "twister/journal/journal_reader.hpp"
+#include "twister/journal/journal_writer.hpp"
+#include "twister/math/warp_plan.hpp"
 #include "twister/session/live_mesh.hpp"
 #include "twister/session/session_events.hpp"
 #include "twister/session/session_history.hpp"
 #include "twister/session/session_poses.hpp"
-#include "twister/journal/journal_reader.hpp"
-#include "twister/journal/journal_writer.hpp"
-#include "twister/math/warp_plan.hpp"
 
 namespace twister::session::test_support {
 

@@ -72,7 +72,8 @@ TEST(RefineCommit, CoarseBoxTwisted170DegreesHasEveryEdgeWithinTheThreshold) {
   EXPECT_EQ(find_event(events, SessionEventKind::refine_stopped), nullptr);
   EXPECT_EQ(refined->refinement().sequence, 0u);
   EXPECT_TRUE(closed_manifold(s.mesh()));
-  EXPECT_EQ(s.mesh().vertex_count(), 26u + static_cast<std::size_t>(refined->refinement().vertices_added));
+  EXPECT_EQ(s.mesh().vertex_count(),
+            26u + static_cast<std::size_t>(refined->refinement().vertices_added));
 
   // The journal says how it was refined; the same refinement done here on the rest
   // mesh gives the session's topology, the threshold met on every edge against the

@@ -13,11 +13,11 @@
 
 #include "fakes/fake_storage.hpp"
 #include "session_harness.hpp"
-#include "twister/session/sculpt_session.hpp"
 #include "twister/journal/journal_reader.hpp"
 #include "twister/journal/journal_writer.hpp"
 #include "twister/meshio/mesh_buffer.hpp"
 #include "twister/meshio/mesh_generator.hpp"
+#include "twister/session/sculpt_session.hpp"
 
 namespace twister::session::test_support {
 

@@ -123,7 +123,8 @@ RC_GTEST_PROP(SculptSessionProperty, GrabsEndOnceUndoRedoExactReplayIdentical, (
         open[e.hand] = true;
       }
       const bool ends = e.kind == SessionEventKind::cancelled ||
-                        (e.kind == SessionEventKind::committed && e.stroke_end().reason == input::Reason::released);
+                        (e.kind == SessionEventKind::committed &&
+                         e.stroke_end().reason == input::Reason::released);
       if (ends) {
         RC_ASSERT(open[e.hand]);
         open[e.hand] = false;
@@ -133,7 +134,8 @@ RC_GTEST_PROP(SculptSessionProperty, GrabsEndOnceUndoRedoExactReplayIdentical, (
     for (std::uint8_t h = 0; h < 2; ++h) {
       const input::HandState st = s.session->machine().state(h);
       RC_ASSERT(static_cast<std::uint8_t>(st) < input::kHandStateCount);
-      RC_ASSERT(open[h] == (st == input::HandState::dragging || st == input::HandState::dragging_lost));
+      RC_ASSERT(open[h] ==
+                (st == input::HandState::dragging || st == input::HandState::dragging_lost));
     }
     if (!s.session->busy() && sculptor.pick(10) == 0) {
       const auto before = s.mesh.checksum();

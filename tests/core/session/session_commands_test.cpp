@@ -140,7 +140,8 @@ TEST(SessionCommands, MethodCycleButtonChangesTheMethodOfTheNextStroke) {
   s.button(kMethodLine, true);
   const SessionEvents busy = s.tick();
   ASSERT_NE(find(busy, SessionEventKind::command_refused), nullptr);
-  EXPECT_EQ(find(busy, SessionEventKind::command_refused)->command_refusal().reason, input::Reason::busy);
+  EXPECT_EQ(find(busy, SessionEventKind::command_refused)->command_refusal().reason,
+            input::Reason::busy);
   s.button(kMethodLine, false);
   s.button(kGrab0, false);
   (void)s.tick();

@@ -9,10 +9,10 @@
 #include <memory>
 
 #include "fakes/fake_storage.hpp"
-#include "twister/session/sculpt_session.hpp"
 #include "twister/journal/journal_reader.hpp"
 #include "twister/journal/journal_writer.hpp"
 #include "twister/mesh/mesh.hpp"
+#include "twister/session/sculpt_session.hpp"
 
 namespace twister::session::test_support {
 

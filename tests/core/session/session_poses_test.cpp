@@ -41,7 +41,8 @@ TEST(SessionPoses, ANonOrthonormalPoseIsRefusedAndCountsAsLost) {
 
 TEST(SessionPoses, HandOutOfRangeIsRefused) {
   SessionPoses p;
-  EXPECT_EQ(p.set_hand(input::kHandCount, true, math::identity_frame()).code(), StatusCode::out_of_range);
+  EXPECT_EQ(p.set_hand(input::kHandCount, true, math::identity_frame()).code(),
+            StatusCode::out_of_range);
 }
 
 // The journal stores O, U, V only: W must be exactly U x V so replay sees the same frame.

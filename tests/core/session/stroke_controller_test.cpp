@@ -53,11 +53,14 @@ struct Strokes {
   StrokeController strokes{rig.plan, rig.live, rig.poses, sink, math::WarpMethod::twister};
 };
 
-input::Action act(input::ActionKind kind, std::uint8_t hand, input::Reason reason = input::Reason::none) {
+input::Action act(input::ActionKind kind, std::uint8_t hand,
+                  input::Reason reason = input::Reason::none) {
   return {kind, hand, reason, 0.0f};
 }
 input::Action grab(std::uint8_t h) { return act(input::ActionKind::grab_begin, h); }
-input::Action release(std::uint8_t h) { return act(input::ActionKind::commit, h, input::Reason::released); }
+input::Action release(std::uint8_t h) {
+  return act(input::ActionKind::commit, h, input::Reason::released);
+}
 input::Action freeze(std::uint8_t h) { return act(input::ActionKind::freeze, h); }
 
 constexpr std::uint32_t kCentre = 8 * 17 + 8;  // vertex at the origin of the 17 x 17 grid
@@ -104,8 +107,8 @@ TEST(StrokeController, FreezeCommitsAndGoesOnWithTheNextChainStep) {
   const SessionEvents frozen = s->step({freeze(1)});
   ASSERT_EQ(frozen.items().size(), 2u);
   EXPECT_EQ(frozen.items()[0].kind, SessionEventKind::committed);
-  EXPECT_EQ(frozen.items()[0].stroke_end().reason, input::Reason::none);                // the stroke goes on
-  EXPECT_EQ(frozen.items()[1].kind, SessionEventKind::disengaged);  // the clutch is in
+  EXPECT_EQ(frozen.items()[0].stroke_end().reason, input::Reason::none);  // the stroke goes on
+  EXPECT_EQ(frozen.items()[1].kind, SessionEventKind::disengaged);        // the clutch is in
   EXPECT_TRUE(s->strokes.active());
   EXPECT_EQ(s->strokes.chain_step(), 1);
   (void)s->step({act(input::ActionKind::unfreeze, 1)});  // the clutch is out again, same pose
@@ -196,7 +199,8 @@ TEST(StrokeController, CancelDropsOnlyTheOpenSegment) {
   (void)s->step({freeze(1)});
   s->hand(1, z_turn({0, 0, 0}, 1.0));
   (void)s->step({});
-  const SessionEvents cancelled = s->step({act(input::ActionKind::cancel, 1, input::Reason::tracking_timeout)});
+  const SessionEvents cancelled =
+      s->step({act(input::ActionKind::cancel, 1, input::Reason::tracking_timeout)});
   ASSERT_EQ(cancelled.items().size(), 1u);
   EXPECT_EQ(cancelled.items()[0].kind, SessionEventKind::cancelled);
   EXPECT_EQ(cancelled.items()[0].stroke_end().reason, input::Reason::tracking_timeout);
@@ -234,7 +238,8 @@ TEST(StrokeController, ARefusedJoinKeepsTheFirstHandGoing) {
 TEST(StrokeController, ActionsOfHandsNotInTheStrokeAreIgnored) {
   auto s = std::make_unique<Strokes<>>();
   s->hand(0, math::identity_frame({0, 0, 0}));
-  EXPECT_EQ(s->step({freeze(0), release(1), act(input::ActionKind::move_begin, 0)}).items().size(), 0u);
+  EXPECT_EQ(s->step({freeze(0), release(1), act(input::ActionKind::move_begin, 0)}).items().size(),
+            0u);
   (void)s->step({grab(0)});
   EXPECT_EQ(s->step({freeze(1), release(1)}).items().size(), 0u);
   EXPECT_EQ(s->sink.count, 0u);
@@ -322,7 +327,8 @@ RC_GTEST_PROP(StrokeControllerProperty, GrabsEndOnceAndChainsFollowEachOther, ()
       if (!open[h] && roll < 4) actions.push(grab(h));
       if (open[h] && roll < 2) actions.push(freeze(h));
       if (open[h] && roll >= 2 && roll < 5) actions.push(release(h));
-      if (open[h] && roll == 5) actions.push(act(input::ActionKind::cancel, h, input::Reason::tracking_timeout));
+      if (open[h] && roll == 5)
+        actions.push(act(input::ActionKind::cancel, h, input::Reason::tracking_timeout));
     }
     const std::size_t records_before = s->sink.count;
     SessionEvents out;
@@ -336,7 +342,8 @@ RC_GTEST_PROP(StrokeControllerProperty, GrabsEndOnceAndChainsFollowEachOther, ()
         open[e.hand] = true;
       }
       const bool ends = e.kind == SessionEventKind::cancelled ||
-                        (e.kind == SessionEventKind::committed && e.stroke_end().reason == input::Reason::released);
+                        (e.kind == SessionEventKind::committed &&
+                         e.stroke_end().reason == input::Reason::released);
       if (ends) {
         RC_ASSERT(open[e.hand]);
         open[e.hand] = false;

@@ -7,10 +7,10 @@
 #include <cmath>
 #include <memory>
 
-#include "twister/session/undo_history.hpp"
 #include "twister/mesh/mesh_refiner.hpp"
 #include "twister/meshio/mesh_buffer.hpp"
 #include "twister/meshio/mesh_generator.hpp"
+#include "twister/session/undo_history.hpp"
 
 namespace twister::session {
 namespace {

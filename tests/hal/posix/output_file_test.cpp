@@ -13,9 +13,9 @@
 #include <sstream>
 #include <string>
 
+#include "twister/checkpoint/session_checkpoint.hpp"
 #include "twister/hal/posix_file_sink.hpp"
 #include "twister/hal/posix_file_storage.hpp"
-#include "twister/checkpoint/session_checkpoint.hpp"
 #include "twister/journal/journal_record.hpp"
 
 namespace twister::hal {

@@ -313,8 +313,8 @@ TEST(ExampleConfigs, UndoRedoFromButtonsAndStrokesCountedOnce) {
   SimStation s(parsed.config,
                {{3.0, {0}, 0.6}, {3.0, {3}, 0.6}, {4.0, {5, 3}, 0.3}, {5.0, {5, 4}, 0.3}}, 6.0);
   s.run(6.0);
-  EXPECT_EQ(s.count(SessionEventKind::committed, -1, 3, 4), 2u);  // one per hand
-  EXPECT_EQ(s.station().counters().events.strokes_committed, 1u);               // one stroke
+  EXPECT_EQ(s.count(SessionEventKind::committed, -1, 3, 4), 2u);   // one per hand
+  EXPECT_EQ(s.station().counters().events.strokes_committed, 1u);  // one stroke
   EXPECT_EQ(s.count(SessionEventKind::undone, 1, 4, 5), 1u);
   EXPECT_EQ(s.count(SessionEventKind::redone, 1, 5, 6), 1u);
   EXPECT_EQ(s.station().counters().events.undos, 1u);

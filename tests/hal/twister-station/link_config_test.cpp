@@ -1,10 +1,11 @@
 // station.toml [link] (issues 11 and 14): every key's good and bad forms, each
 // error naming file, line, key and the expected form; the rules across keys.
+#include "config/link_config.hpp"
+
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "config/link_config.hpp"
 #include "config/station_config.hpp"
 #include "config_test_support.hpp"
 

@@ -86,10 +86,9 @@ TEST(RefineStation, LogLines) {
   EXPECT_EQ(log.lines[0].level, ports::LogLevel::info);
   EXPECT_EQ(log.lines[0].component, "refine");
   EXPECT_EQ(log.lines[0].text, "journal record 3 refined: 1234 vertices added");
-  e = session::make_event(
-      session::SessionEventKind::refine_stopped, 0,
-      session::payload::RefinementStop{3, mesh::RefineStop::vertex_capacity},
-      StatusCode::resource_exhausted);
+  e = session::make_event(session::SessionEventKind::refine_stopped, 0,
+                          session::payload::RefinementStop{3, mesh::RefineStop::vertex_capacity},
+                          StatusCode::resource_exhausted);
   log_station_event(e, log);
   ASSERT_EQ(log.lines.size(), 2u);
   EXPECT_EQ(log.lines[1].level, ports::LogLevel::warning);

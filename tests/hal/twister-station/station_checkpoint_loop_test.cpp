@@ -24,7 +24,7 @@ namespace {
 namespace fs = std::filesystem;
 
 StationFileConfig loop_config(const std::string& journal, const std::string& scenario,
-                          const std::string& station_keys = "", const std::string& tail = "") {
+                              const std::string& station_keys = "", const std::string& tail = "") {
   std::string text = station_test::sim_config(journal, scenario) + tail;
   text.insert(text.find("[tracker]"), "checkpoint_interval = 1\n" + station_keys);  // [station]
   const ConfigParseResult parsed = parse_station_config(text, "ckpt.toml");

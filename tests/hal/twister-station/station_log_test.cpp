@@ -49,9 +49,8 @@ session::EventPayload sample_payload(SessionEventKind kind) {
   session::EventPayload p;
   const std::size_t want = session::payload_index(kind);
   // Default-construct the alternative `want` (the variant's types in order).
-  [&]<std::size_t... I>(std::index_sequence<I...>) {
-    ((I == want ? (p.emplace<I>(), 0) : 0), ...);
-  }(std::make_index_sequence<std::variant_size_v<session::EventPayload>>{});
+  [&]<std::size_t... I>(std::index_sequence<I...>) { ((I == want ? (p.emplace<I>(), 0) : 0), ...); }
+  (std::make_index_sequence<std::variant_size_v<session::EventPayload>>{});
   return p;
 }
 
@@ -74,7 +73,8 @@ TEST(StationLog, EveryKindHasOneLineAtItsLevel) {
 }
 
 TEST(StationLog, TheSculptorsActions) {
-  SessionEvent e = session::make_event(SessionEventKind::radius_set, 0, session::payload::Radius{0.5});
+  SessionEvent e =
+      session::make_event(SessionEventKind::radius_set, 0, session::payload::Radius{0.5});
   Line l = line_of(e);
   EXPECT_EQ(l.level, LogLevel::notice);
   EXPECT_EQ(l.component, "sculpt");
@@ -104,10 +104,9 @@ TEST(StationLog, TheSculptorsActions) {
                           session::payload::Method{math::WarpMethod::scodef});
   EXPECT_EQ(line_of(e).text, "warp method scodef for the next strokes");
 
-  e = session::make_event(
-      SessionEventKind::command_refused, 0,
-      session::payload::CommandRefusal{session::SessionCommandKind::redo,
-                                       input::Reason::nothing_to_redo});
+  e = session::make_event(SessionEventKind::command_refused, 0,
+                          session::payload::CommandRefusal{session::SessionCommandKind::redo,
+                                                           input::Reason::nothing_to_redo});
   l = line_of(e);
   EXPECT_EQ(l.level, LogLevel::notice);
   EXPECT_EQ(l.text, "redo refused (nothing_to_redo)");

@@ -185,7 +185,6 @@ TEST(LinkAdmission, AnAuthorisedNewDisplayTakesOverAndTheOldOneBacksOff) {
   EXPECT_EQ(s.link->counters().connects, 2u);
 }
 
-
 // Another user's flood: 50 clients on the station's port taking turns, one of them
 // connecting anew (and saying nothing) every 2 ms, until `seconds` have passed. Runs in a child
 // process that drops to the nobody user when it can (root in CI).
@@ -240,8 +239,8 @@ TEST(LinkAdmission, AFloodOfSilentClientsOfAnotherUserNeverKeepsTheDisplayOut) {
       std::array<pollfd, 8> fds{};
       ::poll(fds.data(), s.socket.poll_fds(fds), 1);
     }
-    const double ms = std::chrono::duration<double, std::milli>(
-                          std::chrono::steady_clock::now() - began).count();
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - began).count();
     EXPECT_TRUE(in) << "admission " << admissions << " took over " << ms << " ms";
     if (!in) break;
     ++admissions;

@@ -132,7 +132,8 @@ TEST_P(StationOnSim, RecoversAndAppliesOnlyValidatedPoses) {
       static_cast<unsigned long long>(c.jump_rejects), static_cast<unsigned long long>(pc.resyncs),
       static_cast<unsigned long long>(d.corrupted_records),
       static_cast<unsigned long long>(d.misclock_junk),
-      static_cast<unsigned long long>(st.counters().input.pose_errors), worst_off_in, last_invalid_s);
+      static_cast<unsigned long long>(st.counters().input.pose_errors), worst_off_in,
+      last_invalid_s);
   EXPECT_TRUE(valid_at_end) << "not recovered";
   EXPECT_TRUE(st.tracker_session().streaming());
   const std::string name = fc.name;

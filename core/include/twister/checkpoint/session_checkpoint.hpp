@@ -50,10 +50,10 @@
 #include <cstdint>
 
 #include "twister/base/result.hpp"
-#include "twister/session/sculpt_session.hpp"
 #include "twister/math/frame.hpp"
 #include "twister/ports/file_sink.hpp"
 #include "twister/ports/storage.hpp"
+#include "twister/session/sculpt_session.hpp"
 
 namespace twister::checkpoint {
 

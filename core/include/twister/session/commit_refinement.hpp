@@ -24,11 +24,11 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "twister/session/live_mesh.hpp"
-#include "twister/session/undo_history.hpp"
 #include "twister/journal/journal_record.hpp"
 #include "twister/math/warp_plan.hpp"
 #include "twister/mesh/mesh_refiner.hpp"
+#include "twister/session/live_mesh.hpp"
+#include "twister/session/undo_history.hpp"
 
 namespace twister::session {
 

@@ -15,11 +15,11 @@
 #include <cstdint>
 
 #include "twister/base/status.hpp"
+#include "twister/journal/journal_record.hpp"
+#include "twister/math/warp_plan.hpp"
 #include "twister/session/live_mesh.hpp"
 #include "twister/session/session_history.hpp"
 #include "twister/session/session_poses.hpp"
-#include "twister/journal/journal_record.hpp"
-#include "twister/math/warp_plan.hpp"
 
 namespace twister::session {
 

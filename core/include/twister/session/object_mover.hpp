@@ -10,8 +10,8 @@
 #include <cstdint>
 
 #include "twister/base/result.hpp"
-#include "twister/session/session_poses.hpp"
 #include "twister/math/frame.hpp"
+#include "twister/session/session_poses.hpp"
 
 namespace twister::session {
 

@@ -24,16 +24,16 @@
 #include <span>
 
 #include "twister/base/status.hpp"
+#include "twister/journal/journal_record.hpp"
+#include "twister/journal/journal_writer.hpp"
+#include "twister/math/frame.hpp"
+#include "twister/math/warp_plan.hpp"
 #include "twister/session/commit_refinement.hpp"
 #include "twister/session/live_mesh.hpp"
 #include "twister/session/session_events.hpp"
 #include "twister/session/session_poses.hpp"
 #include "twister/session/stroke_commit_sink.hpp"
 #include "twister/session/undo_history.hpp"
-#include "twister/journal/journal_record.hpp"
-#include "twister/journal/journal_writer.hpp"
-#include "twister/math/frame.hpp"
-#include "twister/math/warp_plan.hpp"
 
 namespace twister::session {
 

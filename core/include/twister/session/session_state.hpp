@@ -11,22 +11,22 @@
 #include <cstdint>
 
 #include "twister/input/button_map.hpp"
-#include "twister/session/commit_refinement.hpp"
-#include "twister/session/hand_drive.hpp"
 #include "twister/input/interaction_machine.hpp"
 #include "twister/math/warp_method.hpp"
+#include "twister/session/commit_refinement.hpp"
+#include "twister/session/hand_drive.hpp"
 
 namespace twister::session {
 
 struct HandView {
   input::HandState state = input::HandState::idle;
-  input::HandButtons buttons{};        // role levels after debounce and chords
-  bool tracked = false;         // the hand's latest sample is valid
-  bool in_stroke = false;       // the hand grabs in the open stroke segment
-  bool engaged = true;          // false: clutch in (freeze held), the hand's motion does not warp
-  double turn_rad = 0.0;        // how far the hand has turned since its segment started
-  double turn_limit_rad = 0.0;  // the limit of one stroke (a half turn when minimal)
-  bool at_turn_limit = false;   // turned past the limit: the warp holds
+  input::HandButtons buttons{};  // role levels after debounce and chords
+  bool tracked = false;          // the hand's latest sample is valid
+  bool in_stroke = false;        // the hand grabs in the open stroke segment
+  bool engaged = true;           // false: clutch in (freeze held), the hand's motion does not warp
+  double turn_rad = 0.0;         // how far the hand has turned since its segment started
+  double turn_limit_rad = 0.0;   // the limit of one stroke (a half turn when minimal)
+  bool at_turn_limit = false;    // turned past the limit: the warp holds
 };
 
 struct SessionState {

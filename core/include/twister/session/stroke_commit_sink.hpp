@@ -11,9 +11,9 @@
 #include <cstdint>
 
 #include "twister/base/status.hpp"
-#include "twister/session/session_events.hpp"
 #include "twister/journal/journal_record.hpp"
 #include "twister/math/warp_plan.hpp"
+#include "twister/session/session_events.hpp"
 
 namespace twister::session {
 

@@ -28,16 +28,16 @@
 #include <cstdint>
 
 #include "twister/base/status.hpp"
-#include "twister/session/hand_drive.hpp"
 #include "twister/input/interaction_machine.hpp"
-#include "twister/session/live_mesh.hpp"
-#include "twister/session/session_events.hpp"
-#include "twister/session/session_poses.hpp"
-#include "twister/session/stroke_commit_sink.hpp"
 #include "twister/math/frame.hpp"
 #include "twister/math/vertex_columns.hpp"
 #include "twister/math/warp_method.hpp"
 #include "twister/math/warp_plan.hpp"
+#include "twister/session/hand_drive.hpp"
+#include "twister/session/live_mesh.hpp"
+#include "twister/session/session_events.hpp"
+#include "twister/session/session_poses.hpp"
+#include "twister/session/stroke_commit_sink.hpp"
 
 namespace twister::session {
 

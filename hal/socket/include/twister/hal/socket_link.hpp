@@ -28,12 +28,12 @@
 #include <sys/socket.h>
 #include <sys/types.h>
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <utility>
 
+#include "twister/base/inline_vector.hpp"
 #include "twister/hal/expected.hpp"
 #include "twister/hal/poll_source.hpp"
 #include "twister/ports/link_newcomers.hpp"
@@ -52,9 +52,9 @@ struct SocketLinkConfig {
   bool server = false;
   std::uint32_t reconnect_interval_ms = 200;
   // Server only.
-  std::uint32_t socket_mode = 0660;  // the Unix socket file's mode, whatever the umask
-  std::string socket_group;          // its group ("" = the process's)
-  bool allow_network = false;        // a TCP listener on a non-loopback address
+  std::uint32_t socket_mode = 0660;         // the Unix socket file's mode, whatever the umask
+  std::string socket_group;                 // its group ("" = the process's)
+  bool allow_network = false;               // a TCP listener on a non-loopback address
   std::uint32_t pending_timeout_ms = 1000;  // a silent accepted connection is closed after
 };
 
@@ -121,8 +121,7 @@ class SocketLink final : public ports::LinkPort, public ports::LinkNewcomers, pu
     std::int64_t since_ms = 0;
   };
   static constexpr std::size_t kMaxPending = 16;
-  std::array<Pending, kMaxPending> pending_{};  // [0] arrived first
-  std::size_t pending_count_ = 0;
+  InlineVector<Pending, kMaxPending> pending_;  // [0] arrived first
   std::uint64_t newcomer_id_ = 0;
   std::uint64_t connects_ = 0;
   std::uint64_t accepted_ = 0;
