@@ -25,7 +25,7 @@ Status StationLink::start(const session::SculptSession& session) {
 
 void StationLink::step(const session::SculptSession& session, const StationStatus& status,
                        ports::TimestampUs now_us) {
-  admission_.poll(now_us, mirror_.offered());
+  admission_.poll(now_us);
   if (session.next_sequence() != last_sequence_) {
     last_sequence_ = session.next_sequence();
     mirror_.track(session.mesh(), admitted());

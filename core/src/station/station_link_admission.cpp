@@ -11,9 +11,9 @@ constexpr std::size_t kReceiveChunk = 256;
 
 }  // namespace
 
-void LinkAdmission::poll(ports::TimestampUs now_us, const MeshIdentity& offered) {
-  receive(now_us, offered);
-  poll_newcomer(now_us, offered);
+void LinkAdmission::poll(ports::TimestampUs now_us) {
+  receive(now_us);
+  poll_newcomer(now_us);
 }
 
 void LinkAdmission::lose_display() {
@@ -24,7 +24,7 @@ void LinkAdmission::lose_display() {
   listener_.on_display_lost();
 }
 
-void LinkAdmission::receive(ports::TimestampUs now_us, const MeshIdentity& offered) {
+void LinkAdmission::receive(ports::TimestampUs now_us) {
   std::array<std::byte, kReceiveChunk> buf{};
   for (int round = 0; round < 16; ++round) {
     const Result<std::size_t> got = port_.receive(buf);
@@ -40,7 +40,7 @@ void LinkAdmission::receive(ports::TimestampUs now_us, const MeshIdentity& offer
       decoder_.clear();
     }
     for (std::size_t i = 0; i < *got; ++i) {
-      if (const auto m = decoder_.process(buf[i]); m.ok()) on_display_message(**m, offered);
+      if (const auto m = decoder_.process(buf[i]); m.ok()) on_display_message(**m);
     }
     if (decoder_.other_version() != 0) refuse_version(decoder_);
     if (*got < buf.size()) return;
@@ -53,13 +53,13 @@ void LinkAdmission::refuse_version(link::LinkDecoder& decoder) {
   decoder.clear();
 }
 
-link::Hello LinkAdmission::begin_handshake(Handshake& hs, const link::Hello& hello,
-                                           const MeshIdentity& offered) {
+link::Hello LinkAdmission::begin_handshake(Handshake& hs, const link::Hello& hello) {
   hs.hello = true;
   hs.bridge_nonce = hello.nonce;
   hs.holds = MeshIdentity{hello.mesh_version, hello.mesh_checksum};
   hs.station_nonce =
       options_.authenticator != nullptr ? options_.authenticator->make_nonce() : link::Nonce{};
+  const MeshIdentity offered = listener_.offered();
   return link::Hello{link::Role::station,
                      options_.authenticator != nullptr ? link::kHelloAuth : std::uint8_t{0},
                      offered.version, offered.checksum, hs.station_nonce};
@@ -76,7 +76,7 @@ link::Auth LinkAdmission::station_auth(const Handshake& hs) const {
       options_.authenticator->tag(link::Role::station, hs.station_nonce, hs.bridge_nonce)};
 }
 
-void LinkAdmission::on_display_hello(const link::Hello& hello, const MeshIdentity& offered) {
+void LinkAdmission::on_display_hello(const link::Hello& hello) {
   if (hello.role != link::Role::bridge) {
     ++counters_.refused_protocol;
     return;
@@ -86,7 +86,7 @@ void LinkAdmission::on_display_hello(const link::Hello& hello, const MeshIdentit
   // displaces nobody).
   const bool auth = options_.authenticator != nullptr;
   Handshake next = display_;
-  const link::Hello reply = begin_handshake(next, hello, offered);
+  const link::Hello reply = begin_handshake(next, hello);
   if (!auth) next.admitted = true;
   display_ = next;
   (void)replies_.urgent(reply);
@@ -96,9 +96,9 @@ void LinkAdmission::on_display_hello(const link::Hello& hello, const MeshIdentit
   }
 }
 
-void LinkAdmission::on_display_message(const link::LinkMessage& m, const MeshIdentity& offered) {
+void LinkAdmission::on_display_message(const link::LinkMessage& m) {
   if (const auto* hello = std::get_if<link::Hello>(&m)) {
-    on_display_hello(*hello, offered);
+    on_display_hello(*hello);
   } else if (const auto* auth = std::get_if<link::Auth>(&m)) {
     if (!check_auth(display_, *auth)) {
       ++counters_.refused_unauthorised;
@@ -125,7 +125,7 @@ void LinkAdmission::on_display_message(const link::LinkMessage& m, const MeshIde
   }
 }
 
-void LinkAdmission::poll_newcomer(ports::TimestampUs now_us, const MeshIdentity& offered) {
+void LinkAdmission::poll_newcomer(ports::TimestampUs now_us) {
   ports::LinkNewcomers* n = options_.newcomers;
   if (n == nullptr) return;
   if (n->newcomer_id() != newcomer_.id) {
@@ -146,7 +146,7 @@ void LinkAdmission::poll_newcomer(ports::TimestampUs now_us, const MeshIdentity&
     }
     for (std::size_t i = 0; i < *got && newcomer_.open; ++i) {
       if (const auto m = newcomer_.decoder.process(buf[i]); m.ok()) {
-        on_newcomer_message(**m, offered);
+        on_newcomer_message(**m);
       }
     }
     if (newcomer_.open && newcomer_.decoder.other_version() != 0) {
@@ -161,12 +161,12 @@ void LinkAdmission::poll_newcomer(ports::TimestampUs now_us, const MeshIdentity&
   }
 }
 
-void LinkAdmission::on_newcomer_message(const link::LinkMessage& m, const MeshIdentity& offered) {
+void LinkAdmission::on_newcomer_message(const link::LinkMessage& m) {
   const bool auth = options_.authenticator != nullptr;
   Handshake& hs = newcomer_.handshake;
   const auto* hello = std::get_if<link::Hello>(&m);
   if (hello != nullptr && hello->role == link::Role::bridge && !hs.hello) {
-    send_newcomer(begin_handshake(hs, *hello, offered));
+    send_newcomer(begin_handshake(hs, *hello));
     if (!auth) admit_newcomer();
     return;
   }

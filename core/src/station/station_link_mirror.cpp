@@ -23,22 +23,30 @@ Status MeshMirror::start(const mesh::Mesh& mesh) {
   return ok_status();
 }
 
+MeshIdentity MeshMirror::offered() {
+  if (checksum_stale_) {
+    checksum_ = shadow_.checksum();
+    checksum_stale_ = false;
+  }
+  return MeshIdentity{version_, checksum_};
+}
+
 void MeshMirror::resync(const MeshIdentity& holds) {
   // Resync by version: a display that holds exactly our mesh gets nothing again.
-  if (holds.version != version_ || holds.checksum != checksum_) full_wanted_ = true;
+  if (holds != offered()) full_wanted_ = true;
 }
 
 void MeshMirror::track(const mesh::Mesh& mesh, bool send) {
   const auto old_vertices = static_cast<std::uint32_t>(shadow_.vertex_count());
   const auto old_triangles = static_cast<std::uint32_t>(shadow_.triangle_count());
   ++version_;
-  checksum_ = mesh.checksum();
+  checksum_stale_ = true;  // a commit queued for the display computes it now
   const bool sent =
       send && !full_active_ && !full_wanted_ && queue_commit(mesh, old_vertices, old_triangles);
   if (!shadow_.copy_from(mesh).ok()) {
     // Larger than the shadow (cannot happen when sized from the mesh capacity).
     shadow_.clear();
-    checksum_ = shadow_.checksum();
+    checksum_stale_ = true;
   }
   if (full_active_) {
     full_phase_ = FullPhase::begin;  // restart from the fresh shadow
@@ -56,6 +64,8 @@ bool MeshMirror::queue_commit(const mesh::Mesh& mesh, std::uint32_t old_vertices
                                       static_cast<std::uint32_t>(mesh.triangle_count())}) &&
             queue_changed_vertices(mesh, old_vertices) &&
             queue_changed_triangles(mesh, old_triangles);
+  checksum_ = mesh.checksum();  // the shadow's once it is copied from `mesh`
+  checksum_stale_ = false;
   ok = ok && out_.bulk(link::MeshEnd{version_, checksum_});
   if (!ok) {
     out_.bulk_rewind(mark);  // all or nothing: never a half commit in the buffer
@@ -172,7 +182,7 @@ void MeshMirror::continue_full() {
         full_triangles();
         break;
       case FullPhase::end:
-        (void)out_.bulk(link::MeshEnd{version_, checksum_});
+        (void)out_.bulk(link::MeshEnd{version_, offered().checksum});
         full_active_ = false;
         break;
     }

@@ -113,6 +113,8 @@ struct Recorder final : AdmissionListener {
   void on_display_lost() override { ++lost; }
   void on_resend_request() override { ++resends; }
   void on_command(const link::Command& c) override { commands.push_back(c); }
+  MeshIdentity offered() override { return ours; }
+  MeshIdentity ours{};  // what the station offers in its hello
   int admitted = 0;
   int lost = 0;
   int resends = 0;
@@ -128,14 +130,14 @@ TEST(LinkAdmission, HelloAdmitsAndOnlyTheAdmittedDisplaysRequestsReachTheListene
   FrameQueues q(station_end, bulk);
   Recorder r;
   LinkAdmission a(station_end, q, r, StationLinkOptions{}, 2'000'000);
-  const MeshIdentity ours{3, 0xabcdef};
+  r.ours = MeshIdentity{3, 0xabcdef};
   display.send(link::Command{link::CommandKind::undo, 0});  // before any hello
-  a.poll(0, ours);
+  a.poll(0);
   EXPECT_TRUE(a.connected());
   EXPECT_FALSE(a.admitted());
   EXPECT_EQ(a.counters().commands_refused, 1u);
   display.send(link::Hello{link::Role::bridge, 0, 2, 7, {}});
-  a.poll(1000, ours);
+  a.poll(1000);
   ASSERT_TRUE(a.admitted());
   EXPECT_EQ(r.admitted, 1);
   EXPECT_EQ(r.holds.version, 2u);
@@ -147,15 +149,15 @@ TEST(LinkAdmission, HelloAdmitsAndOnlyTheAdmittedDisplaysRequestsReachTheListene
   EXPECT_EQ(std::get<link::Hello>(reply[0]).mesh_checksum, 0xabcdefu);
   display.send(link::ResendRequest{});
   display.send(link::Command{link::CommandKind::set_method, 2});
-  a.poll(2000, ours);
+  a.poll(2000);
   EXPECT_EQ(r.resends, 1);
   ASSERT_EQ(r.commands.size(), 1u);
   EXPECT_EQ(r.commands[0].method, 2u);
   display.send(link::Hands{});  // only the station sends hands
-  a.poll(3000, ours);
+  a.poll(3000);
   EXPECT_EQ(a.counters().refused_protocol, 1u);
   wire.cut();
-  a.poll(4000, ours);
+  a.poll(4000);
   EXPECT_FALSE(a.connected());
   EXPECT_EQ(r.lost, 1);
   EXPECT_EQ(a.counters().disconnects, 1u);

@@ -120,6 +120,7 @@ class StationLink final : private AdmissionListener {
   void on_display_lost() override;
   void on_resend_request() override;
   void on_command(const link::Command& command) override;
+  MeshIdentity offered() override { return mirror_.offered(); }
 
   void step(const session::SculptSession& session, const StationStatus& status,
             ports::TimestampUs now_us);

@@ -30,6 +30,7 @@ struct StationLinkOptions {
 struct MeshIdentity {
   std::uint32_t version = 0;
   std::uint64_t checksum = 0;
+  bool operator==(const MeshIdentity&) const = default;
 };
 
 struct AdmissionCounters {
@@ -55,6 +56,8 @@ class AdmissionListener {
   virtual void on_display_lost() = 0;
   virtual void on_resend_request() = 0;
   virtual void on_command(const link::Command& command) = 0;
+  // The mesh the station offers, for its hello (asked only when a hello arrives).
+  virtual MeshIdentity offered() = 0;
 
  protected:
   ~AdmissionListener() = default;
@@ -70,8 +73,8 @@ class LinkAdmission {
         options_(options),
         handshake_timeout_us_(handshake_timeout_us) {}
 
-  // Reads both channels (never blocks); `offered` goes in the station's hello.
-  void poll(ports::TimestampUs now_us, const MeshIdentity& offered);
+  // Reads both channels (never blocks).
+  void poll(ports::TimestampUs now_us);
 
   bool connected() const { return connected_; }
   bool admitted() const { return connected_ && display_.admitted; }
@@ -98,17 +101,17 @@ class LinkAdmission {
     bool open = false;
   };
 
-  void receive(ports::TimestampUs now_us, const MeshIdentity& offered);
+  void receive(ports::TimestampUs now_us);
   void lose_display();
-  void on_display_message(const link::LinkMessage& m, const MeshIdentity& offered);
-  void on_display_hello(const link::Hello& hello, const MeshIdentity& offered);
-  void poll_newcomer(ports::TimestampUs now_us, const MeshIdentity& offered);
-  void on_newcomer_message(const link::LinkMessage& m, const MeshIdentity& offered);
+  void on_display_message(const link::LinkMessage& m);
+  void on_display_hello(const link::Hello& hello);
+  void poll_newcomer(ports::TimestampUs now_us);
+  void on_newcomer_message(const link::LinkMessage& m);
   // Tells the newcomer why (bye) and closes it; `counter` (may be null) counts it.
   void refuse_newcomer(link::ByeReason reason, std::uint64_t* counter);
   void admit_newcomer();
   // Starts a handshake on `hello`; returns the station's hello to send back.
-  link::Hello begin_handshake(Handshake& hs, const link::Hello& hello, const MeshIdentity& offered);
+  link::Hello begin_handshake(Handshake& hs, const link::Hello& hello);
   bool check_auth(const Handshake& hs, const link::Auth& auth) const;
   link::Auth station_auth(const Handshake& hs) const;
   // Encodes `m` and hands it straight to the newcomer (small handshake frames).

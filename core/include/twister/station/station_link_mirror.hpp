@@ -52,7 +52,8 @@ class MeshMirror {
   void send();
 
   // The mesh the display gets (or holds): version and checksum.
-  MeshIdentity offered() const { return MeshIdentity{version_, checksum_}; }
+  // The checksum is computed when first asked after a commit, not at every commit.
+  MeshIdentity offered();
   std::uint32_t version() const { return version_; }
   bool idle() const { return !full_active_ && !full_wanted_; }
   const MirrorCounters& counters() const { return counters_; }
@@ -71,7 +72,8 @@ class MeshMirror {
   FrameQueues& out_;
   mesh::Mesh shadow_;
   std::uint32_t version_ = 0;
-  std::uint64_t checksum_ = 0;  // the shadow's
+  std::uint64_t checksum_ = 0;  // the shadow's, when checksum_stale_ is false
+  bool checksum_stale_ = false;
   bool full_wanted_ = false;
   bool full_active_ = false;
   FullPhase full_phase_ = FullPhase::begin;
