@@ -107,7 +107,7 @@ endfunction()
 # LABELS).
 set(TWISTER_FUZZ_SECONDS 10 CACHE STRING "Length of the libFuzzer smoke run per target")
 function(twister_add_fuzzer name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS;LABELS;ARGS" ${ARGN})
   set(corpus ${PROJECT_SOURCE_DIR}/tests/fuzz/corpus/${name})
   set(labels fuzz ${ARG_LABELS})
   add_executable(${name} ${ARG_SOURCES})
@@ -121,7 +121,7 @@ function(twister_add_fuzzer name)
     file(MAKE_DIRECTORY ${work})
     add_test(NAME fuzz.${name}
       COMMAND ${name} -max_total_time=${TWISTER_FUZZ_SECONDS} -rss_limit_mb=2048
-              -print_final_stats=1 ${work} ${corpus})
+              -print_final_stats=1 ${ARG_ARGS} ${work} ${corpus})
     set_tests_properties(fuzz.${name} PROPERTIES LABELS "${labels}")
   else()
     target_sources(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support/fuzz_replay_main.cpp)

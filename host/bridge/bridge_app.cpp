@@ -21,6 +21,7 @@ BridgeApp::BridgeApp(ports::LinkPort& port, ports::Clock& clock, MeshRenderer* r
 
 std::size_t BridgeApp::step() {
   if (stop_ != BridgeStop::none) return 0;  // backed off: the link is left alone
+  if (yield_.active && now_ms() < yield_.retry_at_ms) return 0;  // displaced: not yet
   std::size_t frames = 0;
   for (int round = 0; round < 64 && stop_ == BridgeStop::none; ++round) {
     const Result<std::size_t> got = port_.receive(in_);
@@ -216,9 +217,8 @@ void BridgeApp::refresh_weights(bool mesh_uploaded) {
 }
 
 LinkView BridgeApp::link_view() const {
+  if (yield_.active) return LinkView::displaced;
   switch (stop_) {
-    case BridgeStop::displaced:
-      return LinkView::displaced;
     case BridgeStop::unauthorised:
     case BridgeStop::version:
       return LinkView::refused;

@@ -5,9 +5,12 @@
 // restarted behind a serial line), keeps the scene replica and answers resend
 // requests, and keeps the display current: the rest mesh on each verified version,
 // the stroke's weights once per segment, the screws on each hands update.
-// Backing off: a `bye` saying displaced (another display took the link),
-// unauthorised, or a station speaking another protocol version stops all link
-// I/O for good (stopped() says why): two displays never fight over the link.
+// Yielding: told `bye: displaced` (another display took the link), it leaves the
+// link alone and tries again after 2 s, doubling to 60 s, with a yielding hello the
+// station refuses (`bye: busy`) while another display holds the link: it comes
+// back when the link is free, and two displays never take it from each other.
+// Backing off for good: unauthorised, or a station speaking another protocol
+// version, stops all link I/O (stopped() says why).
 // Snapshots (offscreen): the rest mesh when the first mesh arrives, the live warp
 // as each stroke segment ends (live-<next version>.png), and the committed mesh.
 // Time (hello retry, silence, the hands rate) comes from the ports::Clock the
@@ -41,6 +44,8 @@ struct BridgeOptions {
   ReplicaLimits limits{};
   std::int64_t hello_retry_ms = 1000;  // hello again until the station answers
   std::int64_t silence_ms = 3000;      // no frame this long: hello again (new session)
+  std::int64_t yield_first_ms = 2000;  // displaced: the first try again after this,
+  std::int64_t yield_max_ms = 60000;   // doubling on each `bye: busy` up to this
 };
 
 struct BridgeCounters {
@@ -51,10 +56,12 @@ struct BridgeCounters {
   std::uint64_t ignored = 0;               // station messages before the handshake completed
   std::uint64_t hands_busiest_second = 0;  // most hands updates in one wall-clock second
   std::uint64_t commands_sent = 0;         // keyboard commands sent to the station
+  std::uint64_t displaced = 0;             // times another display took the link
+  std::uint64_t busy = 0;                  // yielding tries refused while it was taken
 };
 
 // Why the bridge stopped using the link (none: it did not).
-enum class BridgeStop : std::uint8_t { none, displaced, unauthorised, version };
+enum class BridgeStop : std::uint8_t { none, unauthorised, version };
 
 class BridgeApp {
  public:
@@ -82,6 +89,10 @@ class BridgeApp {
   // The handshake is complete: the station's data is trusted and shown.
   bool ready() const { return connected_ && ready_; }
   BridgeStop stopped() const { return stop_; }
+  // Displaced: waiting to try again (yielding) until the station admits it.
+  bool yielding() const { return yield_.active; }
+  // When the next try is due (monotonic ms; meaningful while yielding()).
+  std::int64_t next_try_ms() const { return yield_.retry_at_ms; }
   const SceneReplica& replica() const { return replica_; }
   SceneReplica& replica() { return replica_; }
   const BridgeCounters& counters() const { return counters_; }
@@ -96,6 +107,9 @@ class BridgeApp {
   void on_station_auth(const link::Auth& auth);
   void on_bye(const link::Bye& bye);
   void stop(BridgeStop why);
+  // Leaves the link alone until the next try (first 2 s, then doubling).
+  void yield_link();
+  void admitted();
   void keep_alive();
   // Display (bridge_app.cpp).
   void handle(const link::LinkMessage& m);
@@ -135,6 +149,11 @@ class BridgeApp {
   std::uint64_t hands_in_second_ = 0;
   std::uint64_t hands_last_second_ = 0;
   BridgeStop stop_ = BridgeStop::none;
+  struct Yield {
+    bool active = false;
+    std::int64_t backoff_ms = 0;
+    std::int64_t retry_at_ms = 0;
+  } yield_;
   // Display.
   bool display_mesh_live_ = false;  // the renderer holds CPU-warped positions (scodef)
   std::uint32_t shown_version_ = 0;

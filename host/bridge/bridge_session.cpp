@@ -1,7 +1,10 @@
 // BridgeApp: the display's side of the link handshake (docs/link-protocol.md):
 // hello on every connection and again while the station is silent, the
-// challenge-response with a pre-shared key, and backing off for good when the
-// station says displaced or unauthorised, or speaks another protocol version.
+// challenge-response with a pre-shared key, yielding with back-off when another
+// display took the link, and backing off for good when the station says
+// unauthorised or speaks another protocol version.
+#include <algorithm>
+
 #include "bridge_app.hpp"
 
 namespace twister::bridge {
@@ -22,9 +25,11 @@ void BridgeApp::send_hello() {
   ready_ = false;
   bridge_nonce_ =
       options_.authenticator != nullptr ? options_.authenticator->make_nonce() : link::Nonce{};
-  const link::Hello mine{link::Role::bridge,
-                         options_.authenticator != nullptr ? link::kHelloAuth : std::uint8_t{0},
-                         replica_.version(), replica_.checksum(), bridge_nonce_};
+  const auto flags =
+      static_cast<std::uint8_t>((options_.authenticator != nullptr ? link::kHelloAuth : 0) |
+                                (yield_.active ? link::kHelloYield : 0));
+  const link::Hello mine{link::Role::bridge, flags, replica_.version(), replica_.checksum(),
+                         bridge_nonce_};
   send(mine);
   ++counters_.hellos_sent;
   hello_sent_ms_ = now_ms();
@@ -62,7 +67,7 @@ void BridgeApp::on_station_hello(const link::Hello& hello) {
     return;
   }
   if (!station_auth) {
-    ready_ = true;
+    admitted();
     return;
   }
   send(link::Auth{options_.authenticator->tag(link::Role::bridge, station_nonce_, bridge_nonce_)});
@@ -76,17 +81,43 @@ void BridgeApp::on_station_auth(const link::Auth& auth) {
     stop(BridgeStop::unauthorised);
     return;
   }
-  ready_ = true;
   log_.write(LogLevel::notice, "link", "station authenticated", {});
+  admitted();
+}
+
+void BridgeApp::admitted() {
+  ready_ = true;
+  if (!yield_.active) return;
+  yield_ = Yield{};
+  log_.write(LogLevel::notice, "link", "the link was free again: this display has it back", {});
+}
+
+void BridgeApp::yield_link() {
+  yield_.backoff_ms = yield_.active ? std::min(2 * yield_.backoff_ms, options_.yield_max_ms)
+                                    : options_.yield_first_ms;
+  yield_.active = true;
+  yield_.retry_at_ms = now_ms() + yield_.backoff_ms;
+  // The station closes this connection after its bye; the next try connects anew.
+  connected_ = false;
+  ready_ = false;
+  out_.clear();
 }
 
 void BridgeApp::on_bye(const link::Bye& bye) {
   switch (bye.reason) {
     case link::ByeReason::displaced:
+      ++counters_.displaced;
+      yield_link();
       log_.write(LogLevel::warning, "link",
-                 "displaced by another display; not reconnecting (restart to take the link back)",
-                 {});
-      stop(BridgeStop::displaced);
+                 "displaced by another display; trying again in %lld s, taking the link only "
+                 "when it is free (restart to take it back now)",
+                 {static_cast<long long>(yield_.backoff_ms / 1000)});
+      return;
+    case link::ByeReason::busy:
+      ++counters_.busy;
+      yield_link();
+      log_.write(LogLevel::info, "link", "another display holds the link; next try in %lld s",
+                 {static_cast<long long>(yield_.backoff_ms / 1000)});
       return;
     case link::ByeReason::unauthorised:
       log_.write(LogLevel::error, "link", "the station refused this display: unauthorised", {});

@@ -29,7 +29,7 @@ const char* link_text(LinkView link) {
     case LinkView::lost:
       return "lost, reconnecting";
     case LinkView::displaced:
-      return "displaced by another display";
+      return "another display has the link (retrying)";
     case LinkView::refused:
       return "refused by the station";
   }

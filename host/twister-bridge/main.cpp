@@ -113,9 +113,11 @@ int run_loop(const Options& opt, BridgeApp& app, Display& display, const int lin
   twister::bridge::GlContext& context = *display.context;
   for (;;) {
     app.step();
-    if (app.stopped() != twister::bridge::BridgeStop::none && context.offscreen()) {
-      // Backed off (displaced, refused): nothing more will come.
-      return app.stopped() == twister::bridge::BridgeStop::displaced ? kExitOk : kExitFailure;
+    if (context.offscreen() && app.stopped() != twister::bridge::BridgeStop::none) {
+      return kExitFailure;  // refused: nothing more will come
+    }
+    if (context.offscreen() && app.yielding()) {
+      return kExitOk;  // a snapshot run another display took over: its pictures are done
     }
     if (!context.offscreen()) {
       context.poll_events();

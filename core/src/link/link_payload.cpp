@@ -193,7 +193,7 @@ bool read_hello(ByteReader& r, Hello& h) {
   read_bytes(r, h.nonce);
   return (role == static_cast<std::uint8_t>(Role::station) ||
           role == static_cast<std::uint8_t>(Role::bridge)) &&
-         (h.flags & ~kHelloAuth) == 0;
+         (h.flags & ~(kHelloAuth | kHelloYield)) == 0;
 }
 
 template <class T>

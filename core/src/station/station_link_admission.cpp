@@ -55,6 +55,7 @@ void LinkAdmission::refuse_version(link::LinkDecoder& decoder) {
 
 link::Hello LinkAdmission::begin_handshake(Handshake& hs, const link::Hello& hello) {
   hs.hello = true;
+  hs.yield = (hello.flags & link::kHelloYield) != 0;
   hs.bridge_nonce = hello.nonce;
   hs.holds = MeshIdentity{hello.mesh_version, hello.mesh_checksum};
   hs.station_nonce =
@@ -166,7 +167,9 @@ void LinkAdmission::on_newcomer_message(const link::LinkMessage& m) {
   Handshake& hs = newcomer_.handshake;
   const auto* hello = std::get_if<link::Hello>(&m);
   if (hello != nullptr && hello->role == link::Role::bridge && !hs.hello) {
-    send_newcomer(begin_handshake(hs, *hello));
+    const link::Hello reply = begin_handshake(hs, *hello);
+    if (refused_busy()) return;
+    send_newcomer(reply);
     if (!auth) admit_newcomer();
     return;
   }
@@ -208,7 +211,15 @@ void LinkAdmission::refuse_newcomer(link::ByeReason reason, std::uint64_t* count
   newcomer_.open = false;
 }
 
+bool LinkAdmission::refused_busy() {
+  if (!newcomer_.handshake.yield || !admitted()) return false;
+  refuse_newcomer(link::ByeReason::busy, &counters_.refused_busy);
+  return true;
+}
+
 void LinkAdmission::admit_newcomer() {
+  // Checked again after the challenge-response: a display may have come meanwhile.
+  if (refused_busy()) return;
   if (connected_) {
     // Tell the display why it goes, at a frame boundary of its stream: a 0x00 ends
     // any frame it has half received, then the bye follows.

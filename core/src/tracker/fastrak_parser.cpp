@@ -92,6 +92,12 @@ FastrakParser::Candidate FastrakParser::examine(const std::byte* p, std::size_t 
   return {Verdict::drop, 1};
 }
 
+std::size_t FastrakParser::skip_to_start(const std::byte* p, std::size_t n) const {
+  std::size_t k = 1;
+  while (k < n && !can_start(p[k])) ++k;
+  return k;
+}
+
 bool FastrakParser::can_start(std::byte b) const {
   if (ch(b) == kReplyType) return true;
   return config_.format == Format::binary16 ? std::to_integer<unsigned>(b) == kPacked16Start
@@ -249,11 +255,14 @@ Result<FastrakEvent> FastrakParser::next(std::span<const std::byte>& input) {
         counters_.bytes += n;
         continue;
       }
-      const std::size_t used = c.verdict == Verdict::drop ? 1 : c.length;
+      // A dropped candidate takes with it every following byte that cannot start
+      // anything (examine would drop them one by one), so one shift per resync.
+      const std::size_t used =
+          c.verdict == Verdict::drop ? skip_to_start(pending_.data(), pending_len_) : c.length;
       std::memmove(pending_.data(), pending_.data() + used, pending_len_ - used);
       pending_len_ -= used;
       if (c.verdict == Verdict::drop) {
-        drop_bytes(1);
+        drop_bytes(used);
         continue;
       }
       return emit(ev);
@@ -261,8 +270,7 @@ Result<FastrakEvent> FastrakParser::next(std::span<const std::byte>& input) {
     if (input.empty()) return StatusCode::unavailable;
     // Fast skip of bytes that cannot start anything.
     if (!can_start(input[0])) {
-      std::size_t k = 1;
-      while (k < input.size() && !can_start(input[k])) ++k;
+      const std::size_t k = skip_to_start(input.data(), input.size());
       drop_bytes(k);
       counters_.bytes += k;
       input = input.subspan(k);

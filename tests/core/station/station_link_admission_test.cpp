@@ -4,6 +4,8 @@
 //     admitted and its next request is understood (a fresh decoder per
 //     connection); the old display is told "displaced" at a frame boundary;
 //   - the same on a plain port: reconnect after a torn frame;
+//   - a displaced display's yielding hello is told "busy" while another display
+//     holds the link and is admitted once the link is free (issue 21 item 5);
 //   - a protocol 1 peer is refused with a clear count, a silent one times out,
 //     and neither disturbs the connected display.
 #include <gtest/gtest.h>
@@ -166,6 +168,51 @@ TEST(LinkPeerSwap, NewDisplaysHelloIsNotSwallowedByTheOldOnesPartialFrame) {
   EXPECT_EQ(r.link->counters().resend_requests, 1u);
   EXPECT_EQ(count(b.receive(), MessageType::mesh_end), 1u);
   EXPECT_EQ(r.link->counters().displaced, 1u);
+}
+
+TEST(LinkPeerSwap, AYieldingDisplayWaitsWhileAnotherHoldsTheLinkAndComesBackWhenItIsFree) {
+  Rig r;
+  test::MemoryWire wa;
+  Far a(wa);
+  r.listener.connect(wa);
+  a.send(frame(hello()));
+  r.poll();
+  ASSERT_EQ(r.listener.peer(), &wa);
+  (void)a.receive();
+  // A displaced display tries again, yielding: busy, and the display stays.
+  Hello yielding = hello();
+  yielding.flags = kHelloYield;
+  test::MemoryWire wb;
+  Far b(wb);
+  r.listener.connect(wb);
+  b.send(frame(yielding));
+  r.poll();
+  EXPECT_EQ(r.listener.peer(), &wa);
+  EXPECT_FALSE(wb.up);  // refused and closed; read what was sent before it closed
+  wb.up = true;
+  const auto told = b.receive();
+  ASSERT_EQ(told.size(), 1u);  // no station hello: only the bye
+  EXPECT_EQ(std::get<Bye>(told[0]).reason, ByeReason::busy);
+  EXPECT_EQ(count(a.receive(), MessageType::bye), 0u);
+  EXPECT_EQ(r.link->counters().refused_busy, 1u);
+  EXPECT_EQ(r.link->counters().displaced, 0u);
+  // The display leaves; the next yielding try is admitted, displacing nobody.
+  wa.up = false;
+  r.poll();
+  ASSERT_FALSE(r.link->connected());
+  test::MemoryWire wc;
+  Far c(wc);
+  r.listener.connect(wc);
+  c.send(frame(yielding));
+  r.poll();
+  EXPECT_EQ(r.listener.peer(), &wc);
+  const auto welcome = c.receive();
+  EXPECT_EQ(count(welcome, MessageType::hello), 1u);
+  EXPECT_EQ(count(welcome, MessageType::mesh_end), 1u);
+  EXPECT_EQ(count(welcome, MessageType::bye), 0u);
+  EXPECT_EQ(r.link->counters().refused_busy, 1u);
+  EXPECT_EQ(r.link->counters().displaced, 0u);
+  EXPECT_EQ(r.link->counters().connects, 2u);
 }
 
 TEST(LinkPeerSwap, ReconnectAfterATornFrameOnAPlainPort) {

@@ -1,10 +1,12 @@
 // Issue 20 (label architecture): the bridge takes its time from the ports::Clock
 // its composition root injects, so a fake clock drives everything time-dependent
 // in it, deterministically: the hello retry while the station is silent at
-// connect, the new hello after a silent station, and the HUD's hands rate.
+// connect, the new hello after a silent station, the HUD's hands rate, and the
+// displaced display's back-off (2 s doubling to 60 s, yielding hellos).
 // Nothing here depends on how long the test takes to run.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstring>
 #include <span>
 #include <vector>
@@ -53,10 +55,24 @@ struct ClockRig {
     station_sends(hands);
   }
   std::uint64_t hellos() const { return bridge.counters().hellos_sent; }
+  // The hellos the bridge sent since the last call, decoded at the station's end.
+  std::vector<link::Hello> bridge_hellos() {
+    std::vector<link::Hello> got;
+    std::array<std::byte, 4096> buf{};
+    for (auto n = station_end.receive(buf); n.ok() && *n > 0; n = station_end.receive(buf)) {
+      for (std::size_t i = 0; i < *n; ++i) {
+        if (const auto m = decoder.process(buf[i]); m.ok()) {
+          if (const auto* h = std::get_if<link::Hello>(*m)) got.push_back(*h);
+        }
+      }
+    }
+    return got;
+  }
 
   test::MemoryWire wire;
   test::MemoryLinkEnd station_end{wire, true};
   test::MemoryLinkEnd bridge_end{wire, false};
+  link::LinkDecoder decoder;
   SilenceLog log;
   test::FakeClock clock;
   BridgeApp bridge;
@@ -124,6 +140,53 @@ TEST(BridgeClock, HudHandsRateCountsUpdatesPerSecondOfTheClock) {
   rig.clock.advance_us(1'000 * kMs);
   EXPECT_EQ(rig.bridge.hud_input().hands_rate_hz, 0.0);
   EXPECT_EQ(rig.bridge.counters().hands_busiest_second, 7u);
+}
+
+TEST(BridgeClock, ADisplacedDisplayTriesAgainYieldingWithBackOffUntilTheLinkIsFree) {
+  ClockRig rig(1'000 * kMs);
+  rig.bridge.step();
+  rig.station_hello();
+  rig.bridge.step();
+  ASSERT_TRUE(rig.bridge.ready());
+  ASSERT_EQ(rig.bridge_hellos().size(), 1u);
+  // Another display took the link.
+  rig.station_sends(link::Bye{link::ByeReason::displaced});
+  rig.bridge.step();
+  EXPECT_TRUE(rig.bridge.yielding());
+  EXPECT_FALSE(rig.bridge.ready());
+  EXPECT_EQ(rig.bridge.link_view(), LinkView::displaced);
+  EXPECT_EQ(rig.bridge.stopped(), BridgeStop::none);
+  // Each try comes exactly when due, a yielding hello, and each `busy` doubles
+  // the wait: 2, 4, 8, 16, 32, then 60 s at most.
+  for (const std::int64_t wait_s : {2, 4, 8, 16, 32, 60, 60}) {
+    rig.clock.advance_us((wait_s * 1000 - 1) * kMs);
+    for (int i = 0; i < 100; ++i) rig.bridge.step();
+    EXPECT_TRUE(rig.bridge_hellos().empty()) << "too early, wait " << wait_s << " s";
+    rig.clock.advance_us(1 * kMs);
+    rig.bridge.step();
+    const auto hellos = rig.bridge_hellos();
+    ASSERT_EQ(hellos.size(), 1u) << "wait " << wait_s << " s";
+    EXPECT_EQ(hellos[0].flags & link::kHelloYield, link::kHelloYield);
+    rig.station_sends(link::Bye{link::ByeReason::busy});
+    rig.bridge.step();
+  }
+  EXPECT_EQ(rig.bridge.counters().busy, 7u);
+  EXPECT_EQ(rig.bridge.counters().displaced, 1u);
+  // The link is free at the next try: the station answers, the display is back
+  // and its later hellos no longer yield.
+  rig.clock.advance_us(60'000 * kMs);
+  rig.bridge.step();
+  ASSERT_EQ(rig.bridge_hellos().size(), 1u);
+  rig.station_hello();
+  rig.bridge.step();
+  EXPECT_TRUE(rig.bridge.ready());
+  EXPECT_FALSE(rig.bridge.yielding());
+  EXPECT_EQ(rig.bridge.link_view(), LinkView::connected);
+  rig.clock.advance_us(3'000 * kMs);  // silence: a new session's hello
+  rig.bridge.step();
+  const auto later = rig.bridge_hellos();
+  ASSERT_EQ(later.size(), 1u);
+  EXPECT_EQ(later[0].flags & link::kHelloYield, 0);
 }
 
 }  // namespace

@@ -57,6 +57,9 @@ enum class Role : std::uint8_t { station = 1, bridge = 2 };
 
 // Hello flags.
 inline constexpr std::uint8_t kHelloAuth = 1;  // the sender holds a key: challenge-response
+// A displaced display trying again: admit it only while no display holds the link
+// (otherwise bye: busy), so two displays never take the link from each other.
+inline constexpr std::uint8_t kHelloYield = 2;
 
 struct Hello {
   static constexpr MessageType kType = MessageType::hello;
@@ -74,12 +77,13 @@ struct Auth {
 
 enum class ByeReason : std::uint8_t {
   shutdown = 1,      // the station stops
-  displaced = 2,     // another (authorised) display took the link: do not reconnect
+  displaced = 2,     // another (authorised) display took the link: retry yielding
   unauthorised = 3,  // authentication failed or missing
   protocol = 4,      // the peer broke the protocol (wrong role, version, order)
   timeout = 5,       // the handshake took too long
+  busy = 6,          // a yielding hello while another display holds the link: later
 };
-inline constexpr std::uint8_t kLastByeReason = 5;
+inline constexpr std::uint8_t kLastByeReason = 6;
 
 struct Bye {
   static constexpr MessageType kType = MessageType::bye;

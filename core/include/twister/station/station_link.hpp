@@ -67,6 +67,7 @@ struct StationLinkCounters {
   std::uint64_t refused_protocol = 0;      // wrong role, order or message
   std::uint64_t refused_version = 0;       // another protocol version
   std::uint64_t refused_timeout = 0;       // handshake not finished in time
+  std::uint64_t refused_busy = 0;          // a displaced display asked while another holds it
   std::uint64_t commands = 0;              // display commands the session queued
   std::uint64_t commands_refused = 0;      // from a display not admitted, or queue full
 };

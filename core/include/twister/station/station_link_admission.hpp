@@ -2,7 +2,8 @@
 // listening transport (ports::LinkNewcomers), the newcomer's; runs each one's
 // handshake (hello, and the pre-shared-key challenge-response when an
 // authenticator is given); admits, displaces (bye: displaced) and refuses
-// (unauthorised, protocol, another version, timeout); a fresh decoder per
+// (unauthorised, protocol, another version, timeout; busy: a displaced display's
+// yielding hello while another display holds the link); a fresh decoder per
 // connection. An admitted display's other requests (resend, commands) go to the
 // listener, and so do admission and loss. Replies to the display go on the urgent
 // queue; the newcomer's are sent straight to it. No heap. Not thread-safe.
@@ -43,6 +44,7 @@ struct AdmissionCounters {
   std::uint64_t refused_protocol = 0;      // wrong role, order or message
   std::uint64_t refused_version = 0;       // another protocol version
   std::uint64_t refused_timeout = 0;       // handshake not finished in time
+  std::uint64_t refused_busy = 0;          // a yielding display while another holds the link
   std::uint64_t commands_refused = 0;      // a command from a peer not admitted
   std::uint64_t send_errors = 0;           // newcomer replies the port did not take
 };
@@ -88,6 +90,7 @@ class LinkAdmission {
   struct Handshake {
     bool hello = false;     // the bridge's hello arrived
     bool admitted = false;  // hello (and auth) done: it is the display
+    bool yield = false;     // its hello said kHelloYield
     link::Nonce station_nonce{};
     link::Nonce bridge_nonce{};
     MeshIdentity holds{};
@@ -110,6 +113,8 @@ class LinkAdmission {
   // Tells the newcomer why (bye) and closes it; `counter` (may be null) counts it.
   void refuse_newcomer(link::ByeReason reason, std::uint64_t* counter);
   void admit_newcomer();
+  // A yielding newcomer while an admitted display holds the link: bye: busy.
+  bool refused_busy();
   // Starts a handshake on `hello`; returns the station's hello to send back.
   link::Hello begin_handshake(Handshake& hs, const link::Hello& hello);
   bool check_auth(const Handshake& hs, const link::Auth& auth) const;

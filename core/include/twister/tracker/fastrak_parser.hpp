@@ -69,6 +69,8 @@ class FastrakParser {
   Candidate examine(const std::byte* p, std::size_t avail, FastrakEvent& out) const;
   // True when `b` can begin a record (per format) or a reply.
   bool can_start(std::byte b) const;
+  // Bytes from p[0] up to the next one that could start a record or reply (at least 1).
+  std::size_t skip_to_start(const std::byte* p, std::size_t n) const;
   // A data record at p: header checks, then (binary16) unpacking, then decode_record.
   Candidate examine_record(const std::byte* p, std::size_t avail, FastrakEvent& out) const;
   // Items and plausibility of a framed record `rec` (logical bytes) of `station`
