@@ -28,6 +28,11 @@ void SceneView::draw(const SceneReplica& replica, HudInput input) {
       cues_, camera.projection(renderer_.width(), renderer_.height()) * camera.view_matrix());
   if (options_.hud) {
     input.fps = fps_;
+    if (replica.live().active && replica.live().refine_threshold_m > 0.0 &&
+        replica.live().method != math::WarpMethod::scodef) {
+      input.preview = renderer_.refining_live() ? HudInput::Preview::refined
+                                                : HudInput::Preview::unrefined;
+    }
     input.now_s = 1e-6 * static_cast<double>(now_us);
     text_ = hud_model_.update(replica, input);
     hud_.draw(text_, renderer_.width(), renderer_.height(), delta);

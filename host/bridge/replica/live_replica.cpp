@@ -139,6 +139,7 @@ void SceneReplica::update_live(const link::Hands& h) {
   live_.method = static_cast<math::WarpMethod>(stroke_.method);
   live_.hand_mask = stroke_.hand_mask;
   live_.radius_m = stroke_.radius_m;
+  live_.refine_threshold_m = stroke_.refine_threshold_m;
   live_.hands.clear();
   for (std::size_t k = 0; k < link::kLinkHands; ++k) {
     if ((stroke_.hand_mask & (1u << k)) == 0) continue;

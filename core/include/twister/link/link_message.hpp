@@ -19,7 +19,7 @@
 
 namespace twister::link {
 
-inline constexpr std::uint8_t kProtocolVersion = 2;
+inline constexpr std::uint8_t kProtocolVersion = 3;
 // Largest payload (version byte .. last body byte, without CRC) of one frame.
 inline constexpr std::size_t kMaxPayload = 4096;
 inline constexpr std::size_t kMaxVerticesPerChunk = 200;   // 16 bytes each
@@ -142,6 +142,9 @@ struct StrokeBegin {
   std::uint8_t hand_mask = 0;      // session hands in the segment (bit h), 1..3
   double radius_m = 0.0;
   std::array<twister::Pose, kLinkHands> start{};  // exact; per session hand in hand_mask
+  // The refinement threshold the segment's commit refines with (metres; 0: the
+  // commit is not refined): the display refines its live preview to the same.
+  float refine_threshold_m = 0.0F;
 };
 
 // Hands flags.

@@ -163,7 +163,11 @@ class SculptSession {
   const input::HandButtons& hand_buttons(std::uint8_t hand) const { return buttons_.hand(hand); }
   float radius_m() const { return machine_.radius_m(); }
   const input::InteractionMachine& machine() const { return machine_; }
-  LiveWarp live() const { return strokes_.live(); }
+  LiveWarp live() const {
+    LiveWarp w = strokes_.live();
+    w.refine_threshold_m = refinement_.live_threshold();
+    return w;
+  }
   // What the display shows besides mesh and live warp (see SessionState).
   SessionState state() const;
   math::WarpMethod method() const { return strokes_.method(); }

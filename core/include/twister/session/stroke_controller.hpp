@@ -47,6 +47,7 @@ struct LiveWarp {
   std::uint8_t hand_mask = 0;            // session hands in the stroke (bit h)
   const math::WarpPlan* plan = nullptr;  // indices, weights, screws, start/end frames
   math::ConstVertexColumns positions;    // live_x/y/z: warped where plan->indices()
+  double refine_threshold_m = 0.0;       // the commit's refinement (0: none), for the preview
 };
 
 class StrokeController {
