@@ -1,4 +1,4 @@
-// Link messages between twister-station and twister-bridge (protocol version 2,
+// Link messages between twister-station and twister-bridge (protocol version 3,
 // docs/link-protocol.md). Each message type is its own small struct naming its
 // MessageType (kType); one frame on the wire carries one of them (see
 // link_codec.hpp for the framing). LinkMessage, a std::variant of all thirteen, is
