@@ -101,16 +101,14 @@ void DisplayLink::log_changes() {
     log_->warning("link", "display command refused (not admitted, or the command queue is full)");
   }
   // Refusals: at most one line per 10 s (a stranger may retry every 100 ms).
-  const std::uint64_t refused =
-      c.refused_unauthorised + c.refused_version + c.refused_timeout + c.refused_protocol;
-  const std::uint64_t before = logged_.refused_unauthorised + logged_.refused_version +
-                               logged_.refused_timeout + logged_.refused_protocol;
+  const std::uint64_t refused = c.refused.errors();
+  const std::uint64_t before = logged_.refused.errors();
   const auto now = Clock::now();
   if (refused != before && now - last_refusal_log_ >= std::chrono::seconds(10)) {
-    const char* why = c.refused_unauthorised != logged_.refused_unauthorised
+    const char* why = c.refused.unauthorised != logged_.refused.unauthorised
                           ? "unauthorised (no or wrong key)"
-                      : c.refused_version != logged_.refused_version ? "another protocol version"
-                      : c.refused_timeout != logged_.refused_timeout ? "no handshake within 2 s"
+                      : c.refused.version != logged_.refused.version ? "another protocol version"
+                      : c.refused.timeout != logged_.refused.timeout ? "no handshake within 2 s"
                                                                      : "it broke the handshake";
     log_->warning(
         "link", "refused a peer: %s (peer protocol %u, this station %u; %llu refused so far)", why,

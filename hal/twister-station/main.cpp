@@ -130,8 +130,7 @@ void log_summary(hal::Logger& results, const twister::station::Station& core,
 void log_link_summary(hal::Logger& results, const app::DisplayLink& display) {
   const twister::station::StationLinkCounters* l = display.counters();
   if (l == nullptr) return;
-  const std::uint64_t refused =
-      l->refused_unauthorised + l->refused_protocol + l->refused_version + l->refused_timeout;
+  const std::uint64_t refused = l->refused.errors();
   results.notice(
       "link",
       "displays admitted %llu, hands sent %llu, dropped %llu; commits %llu, full "

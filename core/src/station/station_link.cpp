@@ -92,14 +92,10 @@ void StationLink::refresh_counters() {
   const AdmissionCounters& a = admission_.counters();
   const MirrorCounters& m = mirror_.counters();
   const LiveCounters& l = live_.counters();
-  counters_ = StationLinkCounters{a.connects,         a.disconnects,
-                                  m.full_sends,       m.commits_sent,
-                                  l.live_sent,        l.live_dropped,
-                                  a.resend_requests,  a.newcomers,
-                                  a.displaced,        a.refused_unauthorised,
-                                  a.refused_protocol, a.refused_version,
-                                  a.refused_timeout,  a.refused_busy,
-                                  commands_routed_,   a.commands_refused + commands_refused_};
+  counters_ = StationLinkCounters{
+      a.connects,  a.disconnects,  m.full_sends,      m.commits_sent,
+      l.live_sent, l.live_dropped, a.resend_requests, a.newcomers,
+      a.displaced, a.refused,      commands_routed_,  a.commands_refused + commands_refused_};
 }
 
 session::SessionCommand session_command(const link::Command& c) {

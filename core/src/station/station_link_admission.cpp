@@ -49,7 +49,7 @@ void LinkAdmission::receive(ports::TimestampUs now_us) {
 
 void LinkAdmission::refuse_version(link::LinkDecoder& decoder) {
   refused_version_ = decoder.other_version();
-  ++counters_.refused_version;
+  ++counters_.refused.version;
   decoder.clear();
 }
 
@@ -79,7 +79,7 @@ link::Auth LinkAdmission::station_auth(const Handshake& hs) const {
 
 void LinkAdmission::on_display_hello(const link::Hello& hello) {
   if (hello.role != link::Role::bridge) {
-    ++counters_.refused_protocol;
+    ++counters_.refused.protocol;
     return;
   }
   // A (re)started display on this channel. With a key, the display stays admitted
@@ -102,7 +102,7 @@ void LinkAdmission::on_display_message(const link::LinkMessage& m) {
     on_display_hello(*hello);
   } else if (const auto* auth = std::get_if<link::Auth>(&m)) {
     if (!check_auth(display_, *auth)) {
-      ++counters_.refused_unauthorised;
+      ++counters_.refused.unauthorised;
       return;
     }
     if (!display_.admitted) ++counters_.connects;
@@ -122,7 +122,7 @@ void LinkAdmission::on_display_message(const link::LinkMessage& m) {
     }
     listener_.on_command(*command);
   } else {
-    ++counters_.refused_protocol;  // only the station sends the other types
+    ++counters_.refused.protocol;  // only the station sends the other types
   }
 }
 
@@ -158,7 +158,7 @@ void LinkAdmission::poll_newcomer(ports::TimestampUs now_us) {
     if (*got < buf.size()) break;
   }
   if (newcomer_.open && now_us - newcomer_.handshake.since_us > handshake_timeout_us_) {
-    refuse_newcomer(link::ByeReason::timeout, &counters_.refused_timeout);
+    refuse_newcomer(link::ByeReason::timeout, &counters_.refused.timeout);
   }
 }
 
@@ -168,7 +168,7 @@ void LinkAdmission::on_newcomer_message(const link::LinkMessage& m) {
   const auto* hello = std::get_if<link::Hello>(&m);
   if (hello != nullptr && hello->role == link::Role::bridge && !hs.hello) {
     const link::Hello reply = begin_handshake(hs, *hello);
-    if (refused_busy()) return;
+    if (refuse_if_busy()) return;
     send_newcomer(reply);
     if (!auth) admit_newcomer();
     return;
@@ -176,7 +176,7 @@ void LinkAdmission::on_newcomer_message(const link::LinkMessage& m) {
   const auto* tag = std::get_if<link::Auth>(&m);
   if (tag != nullptr && auth && hs.hello) {
     if (!check_auth(hs, *tag)) {
-      refuse_newcomer(link::ByeReason::unauthorised, &counters_.refused_unauthorised);
+      refuse_newcomer(link::ByeReason::unauthorised, &counters_.refused.unauthorised);
       return;
     }
     send_newcomer(station_auth(hs));
@@ -191,7 +191,7 @@ void LinkAdmission::on_newcomer_message(const link::LinkMessage& m) {
   // Anything else before admission breaks the handshake (and with a key, a
   // display that does not prove itself is unauthorised).
   refuse_newcomer(auth ? link::ByeReason::unauthorised : link::ByeReason::protocol,
-                  auth ? &counters_.refused_unauthorised : &counters_.refused_protocol);
+                  auth ? &counters_.refused.unauthorised : &counters_.refused.protocol);
 }
 
 template <link::LinkBody M>
@@ -211,15 +211,15 @@ void LinkAdmission::refuse_newcomer(link::ByeReason reason, std::uint64_t* count
   newcomer_.open = false;
 }
 
-bool LinkAdmission::refused_busy() {
+bool LinkAdmission::refuse_if_busy() {
   if (!newcomer_.handshake.yield || !admitted()) return false;
-  refuse_newcomer(link::ByeReason::busy, &counters_.refused_busy);
+  refuse_newcomer(link::ByeReason::busy, &counters_.refused.busy);
   return true;
 }
 
 void LinkAdmission::admit_newcomer() {
   // Checked again after the challenge-response: a display may have come meanwhile.
-  if (refused_busy()) return;
+  if (refuse_if_busy()) return;
   if (connected_) {
     // Tell the display why it goes, at a frame boundary of its stream: a 0x00 ends
     // any frame it has half received, then the bye follows.

@@ -194,7 +194,7 @@ TEST(LinkPeerSwap, AYieldingDisplayWaitsWhileAnotherHoldsTheLinkAndComesBackWhen
   ASSERT_EQ(told.size(), 1u);  // no station hello: only the bye
   EXPECT_EQ(std::get<Bye>(told[0]).reason, ByeReason::busy);
   EXPECT_EQ(count(a.receive(), MessageType::bye), 0u);
-  EXPECT_EQ(r.link->counters().refused_busy, 1u);
+  EXPECT_EQ(r.link->counters().refused.busy, 1u);
   EXPECT_EQ(r.link->counters().displaced, 0u);
   // The display leaves; the next yielding try is admitted, displacing nobody.
   wa.up = false;
@@ -210,7 +210,7 @@ TEST(LinkPeerSwap, AYieldingDisplayWaitsWhileAnotherHoldsTheLinkAndComesBackWhen
   EXPECT_EQ(count(welcome, MessageType::hello), 1u);
   EXPECT_EQ(count(welcome, MessageType::mesh_end), 1u);
   EXPECT_EQ(count(welcome, MessageType::bye), 0u);
-  EXPECT_EQ(r.link->counters().refused_busy, 1u);
+  EXPECT_EQ(r.link->counters().refused.busy, 1u);
   EXPECT_EQ(r.link->counters().displaced, 0u);
   EXPECT_EQ(r.link->counters().connects, 2u);
 }
@@ -273,13 +273,13 @@ TEST(LinkAdmission, OldProtocolAndSilentPeersAreRefusedAndTheDisplayStays) {
   r.listener.connect(old_wire);
   old.send(frame_of_version(1));
   r.poll();
-  EXPECT_EQ(r.link->counters().refused_version, 1u);
+  EXPECT_EQ(r.link->counters().refused.version, 1u);
   EXPECT_EQ(r.link->refused_version(), 1u);
   EXPECT_FALSE(old_wire.up);
   test::MemoryWire silent_wire;
   r.listener.connect(silent_wire);
   r.poll(2100);  // 2.1 s of station time
-  EXPECT_EQ(r.link->counters().refused_timeout, 1u);
+  EXPECT_EQ(r.link->counters().refused.timeout, 1u);
   EXPECT_EQ(r.listener.peer(), &wa);
   EXPECT_TRUE(r.link->admitted());
   EXPECT_EQ(r.link->counters().displaced, 0u);

@@ -155,7 +155,7 @@ TEST(LinkAdmission, HelloAdmitsAndOnlyTheAdmittedDisplaysRequestsReachTheListene
   EXPECT_EQ(r.commands[0].method, 2u);
   display.send(link::Hands{});  // only the station sends hands
   a.poll(3000);
-  EXPECT_EQ(a.counters().refused_protocol, 1u);
+  EXPECT_EQ(a.counters().refused.protocol, 1u);
   wire.cut();
   a.poll(4000);
   EXPECT_FALSE(a.connected());

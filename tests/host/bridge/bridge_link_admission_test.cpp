@@ -139,7 +139,7 @@ TEST(LinkAdmission, UnauthenticatedTcpClientsCannotDisplaceTheDisplay) {
   EXPECT_EQ(good.app->counters().disconnects, 0u);
   EXPECT_EQ(s.link->counters().connects, 1u);
   EXPECT_EQ(s.link->counters().displaced, 0u);
-  EXPECT_GE(s.link->counters().refused_unauthorised, 3u);
+  EXPECT_GE(s.link->counters().refused.unauthorised, 3u);
   EXPECT_GE(s.link->counters().newcomers, 10u);
   // The display still gets the station's commits.
   s.station.hand(0, math::identity_frame({0, 0, 0}));
@@ -164,7 +164,7 @@ TEST(LinkAdmission, DisplaysWithoutTheKeyAreRefusedAndBackOff) {
   EXPECT_EQ(bad.app->stopped(), BridgeStop::unauthorised);
   EXPECT_FALSE(bad.app->replica().has_mesh());
   EXPECT_EQ(s.link->counters().connects, 0u);
-  EXPECT_GE(s.link->counters().refused_unauthorised, 1u);
+  EXPECT_GE(s.link->counters().refused.unauthorised, 1u);
 }
 
 TEST(LinkAdmission, AnAuthorisedNewDisplayTakesOverAndTheOldOneYieldsUntilTheLinkIsFree) {
@@ -188,7 +188,7 @@ TEST(LinkAdmission, AnAuthorisedNewDisplayTakesOverAndTheOldOneYieldsUntilTheLin
   EXPECT_TRUE(second->app->ready());
   EXPECT_EQ(second->app->counters().displaced, 0u);
   EXPECT_EQ(s.link->counters().displaced, 1u);
-  EXPECT_GE(s.link->counters().refused_busy, 3u);
+  EXPECT_GE(s.link->counters().refused.busy, 3u);
   // The second display goes away: at its next try the first has the link back.
   second.reset();
   ASSERT_TRUE(run(s, {&first}, 3000, [&] { return first.app->ready(); }));

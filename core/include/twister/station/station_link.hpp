@@ -61,15 +61,11 @@ struct StationLinkCounters {
   std::uint64_t live_sent = 0;     // hands updates
   std::uint64_t live_dropped = 0;  // hands updates that found no room
   std::uint64_t resend_requests = 0;
-  std::uint64_t newcomers = 0;             // peers that arrived on the newcomer channel
-  std::uint64_t displaced = 0;             // displays told "displaced" by an admitted newcomer
-  std::uint64_t refused_unauthorised = 0;  // wrong or missing tag
-  std::uint64_t refused_protocol = 0;      // wrong role, order or message
-  std::uint64_t refused_version = 0;       // another protocol version
-  std::uint64_t refused_timeout = 0;       // handshake not finished in time
-  std::uint64_t refused_busy = 0;          // a displaced display asked while another holds it
-  std::uint64_t commands = 0;              // display commands the session queued
-  std::uint64_t commands_refused = 0;      // from a display not admitted, or queue full
+  std::uint64_t newcomers = 0;         // peers that arrived on the newcomer channel
+  std::uint64_t displaced = 0;         // displays told "displaced" by an admitted newcomer
+  LinkRefusals refused{};              // by why
+  std::uint64_t commands = 0;          // display commands the session queued
+  std::uint64_t commands_refused = 0;  // from a display not admitted, or queue full
 };
 
 // The session command of a display's command (link message `command`).

@@ -34,19 +34,27 @@ struct MeshIdentity {
   bool operator==(const MeshIdentity&) const = default;
 };
 
+// Peers the handshake turned away, by why (busy is no error: a displaced display
+// asked while another held the link).
+struct LinkRefusals {
+  std::uint64_t unauthorised = 0;  // wrong or missing tag
+  std::uint64_t protocol = 0;      // wrong role, order or message
+  std::uint64_t version = 0;       // another protocol version
+  std::uint64_t timeout = 0;       // handshake not finished in time
+  std::uint64_t busy = 0;          // a yielding display while another holds the link
+  // The refusals that are errors (all but busy).
+  std::uint64_t errors() const { return unauthorised + protocol + version + timeout; }
+};
+
 struct AdmissionCounters {
-  std::uint64_t connects = 0;              // displays admitted
-  std::uint64_t disconnects = 0;           // display channel lost
-  std::uint64_t resend_requests = 0;       // from the admitted display
-  std::uint64_t newcomers = 0;             // peers that arrived on the newcomer channel
-  std::uint64_t displaced = 0;             // displays told "displaced" by an admitted newcomer
-  std::uint64_t refused_unauthorised = 0;  // wrong or missing tag
-  std::uint64_t refused_protocol = 0;      // wrong role, order or message
-  std::uint64_t refused_version = 0;       // another protocol version
-  std::uint64_t refused_timeout = 0;       // handshake not finished in time
-  std::uint64_t refused_busy = 0;          // a yielding display while another holds the link
-  std::uint64_t commands_refused = 0;      // a command from a peer not admitted
-  std::uint64_t send_errors = 0;           // newcomer replies the port did not take
+  std::uint64_t connects = 0;         // displays admitted
+  std::uint64_t disconnects = 0;      // display channel lost
+  std::uint64_t resend_requests = 0;  // from the admitted display
+  std::uint64_t newcomers = 0;        // peers that arrived on the newcomer channel
+  std::uint64_t displaced = 0;        // displays told "displaced" by an admitted newcomer
+  LinkRefusals refused{};
+  std::uint64_t commands_refused = 0;  // a command from a peer not admitted
+  std::uint64_t send_errors = 0;       // newcomer replies the port did not take
 };
 
 // What the admitted display asks for, and when it comes and goes.
@@ -114,7 +122,7 @@ class LinkAdmission {
   void refuse_newcomer(link::ByeReason reason, std::uint64_t* counter);
   void admit_newcomer();
   // A yielding newcomer while an admitted display holds the link: bye: busy.
-  bool refused_busy();
+  bool refuse_if_busy();
   // Starts a handshake on `hello`; returns the station's hello to send back.
   link::Hello begin_handshake(Handshake& hs, const link::Hello& hello);
   bool check_auth(const Handshake& hs, const link::Auth& auth) const;
