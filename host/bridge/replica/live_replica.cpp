@@ -211,8 +211,11 @@ LiveMessages make_live_messages(std::uint32_t mesh_version, std::uint32_t stroke
                                 const std::array<math::Frame, 2>& end,
                                 const std::array<math::Screw, 2>* screws) {
   LiveMessages out;
-  out.stroke = link::StrokeBegin{stroke,    mesh_version, static_cast<std::uint8_t>(method),
-                                 hand_mask, radius_m,     {}};
+  out.stroke.stroke = stroke;
+  out.stroke.mesh_version = mesh_version;
+  out.stroke.method = static_cast<std::uint8_t>(method);
+  out.stroke.hand_mask = hand_mask;
+  out.stroke.radius_m = radius_m;
   out.hands.stroke = static_cast<std::uint16_t>(stroke);
   out.hands.flags = link::kStrokeActive;
   out.hands.radius_m = static_cast<float>(radius_m);

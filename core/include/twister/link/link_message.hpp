@@ -140,11 +140,11 @@ struct StrokeBegin {
   std::uint32_t mesh_version = 0;  // the rest mesh it warps
   std::uint8_t method = 0;         // math::WarpMethod
   std::uint8_t hand_mask = 0;      // session hands in the segment (bit h), 1..3
-  double radius_m = 0.0;
-  std::array<twister::Pose, kLinkHands> start{};  // exact; per session hand in hand_mask
   // The refinement threshold the segment's commit refines with (metres; 0: the
   // commit is not refined): the display refines its live preview to the same.
   float refine_threshold_m = 0.0F;
+  double radius_m = 0.0;
+  std::array<twister::Pose, kLinkHands> start{};  // exact; per session hand in hand_mask
 };
 
 // Hands flags.
