@@ -273,6 +273,9 @@ int run(const Options& opt) {
   twister::bridge::WindowInput input(app, display.view, options.fixed_camera);
   input.attach(display.context->window());
   int rc = run_loop(opt, app, display, transport.poll_fd(), clock);
+  // The display as it was when the run ended (the model the station left, the hands
+  // where they went): final.png.
+  if (!opt.snapshots.empty() && rc == kExitOk && app.replica().has_mesh()) app.snapshot("final");
   if (!opt.export_path.empty()) {
     if (const int exported = export_final_mesh(opt.export_path, opt.force, app);
         exported != kExitOk) {
@@ -303,7 +306,8 @@ void add_options(CLI::App& cli, Options& opt) {
   cli.add_flag("--kiosk", opt.kiosk, "full screen on the primary monitor");
   cli.add_option("--size", opt.size, "WxH in pixels (window or offscreen)");
   cli.add_option("--snapshots", opt.snapshots,
-                 "directory for PNGs: rest.png, live-<version>.png, commit-<version>.png");
+                 "directory for PNGs: rest.png, live-<version>.png, commit-<version>.png, final.png "
+                 "(the display at exit)");
   cli.add_option("--movie-every", opt.movie_every,
                  "with --snapshots: also frame-<n>.png after every N-th hands update (the "
                  "station sends at most one per 8 ms of its clock): frames for an animation");
