@@ -305,9 +305,10 @@ void add_options(CLI::App& cli, Options& opt) {
                "no window: EGL surfaceless rendering (PNG snapshots)");
   cli.add_flag("--kiosk", opt.kiosk, "full screen on the primary monitor");
   cli.add_option("--size", opt.size, "WxH in pixels (window or offscreen)");
-  cli.add_option("--snapshots", opt.snapshots,
-                 "directory for PNGs: rest.png, live-<version>.png, commit-<version>.png, final.png "
-                 "(the display at exit)");
+  cli.add_option(
+      "--snapshots", opt.snapshots,
+      "directory for PNGs: rest.png, live-<version>.png, commit-<version>.png, final.png "
+      "(the display at exit)");
   cli.add_option("--movie-every", opt.movie_every,
                  "with --snapshots: also frame-<n>.png after every N-th hands update (the "
                  "station sends at most one per 8 ms of its clock): frames for an animation");
