@@ -6,12 +6,12 @@
 # stroke commits: weights, hand glyphs, screw axes and trajectories, HUD.
 # Usage: host/twister-bridge/figure6.sh [BUILD_DIR] [OUT_DIR]
 #   writes OUT_DIR/figure6-twist.png and OUT_DIR/figure6-bend.png (default OUT_DIR:
-#   docs/images). Fails unless each run ends with the display's mesh equal to the
+#   docs/pictures). Fails unless each run ends with the display's mesh equal to the
 #   station's (checksums).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 build="${1:-$here/../../build}"
-out="${2:-$here/../../docs/images}"
+out="${2:-$here/../../docs/pictures}"
 mkdir -p "$out"
 out="$(cd "$out" && pwd)"
 work="$(mktemp -d)"

@@ -89,11 +89,13 @@ HEADER = """
 # Inches, degrees (azimuth about Z, elevation about Y, roll about X), tracker frame
 # (+X forward, +Z down); buttons.backend = "sim".
 # Both hands hold still 0.5 s before every press and after every release.
-#   1. the top and the bottom pressed together: a thick disc;
-#   2. the handle pulled out of the -Y side and bent up (screws about X);
-#   radius x 0.6; 3. the bowl pressed into the head, its rim tilted (screws about X);
-#   radius x 0.46; 4. two tines pulled out of the tip, each twisted about itself;
-#   5. the middle tine pulled and twisted while the other hand holds the handle.
+#   1. the top and the bottom pressed together (radius 0.45 m): a thick disc;
+#   radius x 0.55; 2. the bowl pressed into the top, the bottom following, both hands
+#   turning 45 degrees about X;
+#   radius x 0.52; 3. the handle pulled out of the -Y side, bent (hand 0 turns 50
+#   degrees about X), hand 1 holding the tip turning 25;
+#   radius x 0.48; 4. two tines pulled out of the tip, each twisted 60 degrees about it;
+#   5. the middle tine pulled and twisted 60 degrees while the other hand holds the handle.
 # @mesh sphere -n 80 --segments 128 --size 0.30 --center 0.55 0 0.10
 # @sculpt radius_m = 0.45
 # @view --azimuth 35 --elevation 45 --zoom-out 1.45
