@@ -55,9 +55,6 @@ run() {
 # check PICTURE [picture_check options]
 check() { python3 "$scn/picture_check.py" "$@" > /dev/null || python3 "$scn/picture_check.py" "$@" >&2 || die "$1"; }
 
-# panel NAME SOURCE LABEL: a picture with its caption, for a figure's row.
-label() { printf '%s' "$2" > "$work/label-$1"; }
-
 spork() {
   run "$scn/spork.scn" spork --no-hud
   local pics="$work/spork/pictures"
@@ -180,7 +177,7 @@ check_current() {
     [[ -s "$out/$p" ]] || { echo "showcase: $out/$p missing" >&2; stale=1; continue; }
     case "$p" in
       spork-live-* | figure6-*) check "$out/$p" --pink 100 ;;
-      *.gif) check "$out/$p[0]" ;;
+      *.gif) check "${out}/${p}[0]" ;;
       *) check "$out/$p" ;;
     esac
   done
