@@ -18,7 +18,7 @@ def pixels(path):
     w, h = int(size[0]), int(size[1])
     raw = subprocess.run(["convert", path, "-depth", "8", "rgb:-"], check=True,
                          capture_output=True).stdout
-    return w, h, [tuple(raw[i:i + 3]) for i in range(0, 3 * w * h, 3)]
+    return w, h, raw[0:3 * w * h:3], raw[1:3 * w * h:3], raw[2:3 * w * h:3]
 
 
 def main():
@@ -28,12 +28,15 @@ def main():
     ap.add_argument("--pink", type=int, default=0)
     ap.add_argument("--yellow", type=int, default=0)
     a = ap.parse_args()
-    w, h, px = pixels(a.image)
-    bg = px[0]
-    model = sum(1 for p in px if sum(abs(c - b) for c, b in zip(p, bg)) > 30) / len(px)
-    colours = len(set(px))
-    pink = sum(1 for r, g, b in px if r > 200 and b - g > 40 and r - b > 30)
-    yellow = sum(1 for r, g, b in px if r > 170 and g > 150 and r - b > 80 and g - b > 60)
+    w, h, rs, gs, bs = pixels(a.image)
+    n = len(rs)
+    bg = (rs[0], gs[0], bs[0])
+    model = sum(1 for r, g, b in zip(rs, gs, bs)
+                if abs(r - bg[0]) + abs(g - bg[1]) + abs(b - bg[2]) > 30) / n
+    colours = len(set(zip(rs, gs, bs)))
+    pink = sum(1 for r, g, b in zip(rs, gs, bs) if r > 200 and b - g > 40 and r - b > 30)
+    yellow = sum(1 for r, g, b in zip(rs, gs, bs)
+                 if r > 170 and g > 150 and r - b > 80 and g - b > 60)
     fails = []
     if colours < 50:
         fails.append("nearly uniform (%d colours)" % colours)
