@@ -27,7 +27,8 @@ void SceneView::draw(const SceneReplica& replica, HudInput input) {
   cue_renderer_.draw(
       cues_, camera.projection(renderer_.width(), renderer_.height()) * camera.view_matrix());
   if (options_.hud) {
-    input.fps = fps_;
+    input.fps = options_.offscreen ? 0.0 : fps_;
+    if (options_.offscreen) input.hands_rate_hz = -1.0;
     input.now_s = 1e-6 * static_cast<double>(now_us);
     text_ = hud_model_.update(replica, input);
     hud_.draw(text_, renderer_.width(), renderer_.height(), delta);
