@@ -23,6 +23,7 @@ packages=(
   libtinygltf-dev  # twister-bridge --export FILE.glb / .gltf
   libgl1-mesa-dri xvfb xauth  # xvfb: the bridge's window path is tested on a virtual X server
   libcairo2-dev fonts-dejavu-core  # twister figure8 draws its SVG/PNG with cairo, text in DejaVu Sans
+  imagemagick  # the showcase's figure rows and animated GIF (sim/scenarios/showcase.sh)
 )
 
 missing=()

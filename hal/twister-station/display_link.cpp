@@ -139,6 +139,16 @@ bool DisplayLink::wait_for_peer(station::Station& core, double seconds) {
   return false;
 }
 
+void DisplayLink::settle(station::Station& core, ports::TimestampUs now_us, double seconds) {
+  if (!link_ || !link_->connected() || link_->idle()) return;
+  const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                        std::chrono::duration<double>(seconds));
+  while (link_->connected() && !link_->idle() && Clock::now() < until) {
+    wait_ready(ms_left(until));
+    poll(core, now_us);
+  }
+}
+
 void DisplayLink::drain(station::Station& core, ports::TimestampUs now_us, double seconds) {
   if (!link_) return;
   const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(

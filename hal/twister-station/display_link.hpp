@@ -49,6 +49,10 @@ class DisplayLink {
   std::size_t poll_fds(std::span<pollfd> out) const { return poll_ ? poll_->poll_fds(out) : 0; }
   // Real-time wait: true when a display holds our mesh within `seconds`.
   bool wait_for_peer(station::Station& core, double seconds);
+  // Virtual time only: waits (up to `seconds` of real time) until everything queued
+  // has gone to a connected display, so a display slower than the simulated clock
+  // is never dropped a hands update: the same run sends the same frames.
+  void settle(station::Station& core, ports::TimestampUs now_us, double seconds);
   // Hands everything queued to the display (up to `seconds`), then says goodbye.
   void drain(station::Station& core, ports::TimestampUs now_us, double seconds);
   const station::StationLinkCounters* counters() const {

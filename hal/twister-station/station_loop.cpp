@@ -106,6 +106,8 @@ bool StationLoop::step() {
     return false;
   }
   display_.poll(core_, now_us);  // the display's commands run at the next core_.poll()
+  // Virtual time: the clock waits for the display (no update dropped for want of room).
+  if (backends_.virtual_clock != nullptr) display_.settle(core_, now_us, 5.0);
   log_events();
   retry_buttons(now_us);
   pet_watchdog(now_us);

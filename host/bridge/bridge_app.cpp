@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
 
 #include "scene_view.hpp"
 
@@ -135,6 +136,14 @@ void BridgeApp::handle_scene(const link::LinkMessage& m) {
       refresh_display();
       snapshot("commit-" + std::to_string(replica_.version()));
     }
+  }
+  if (hands != nullptr && options_.movie_every > 0 && !options_.snapshot_dir.empty() &&
+      ++movie_hands_ % options_.movie_every == 0) {
+    refresh_display();
+    std::array<char, 16> name{};
+    std::snprintf(name.data(), name.size(), "frame-%05llu",
+                  static_cast<unsigned long long>(++movie_frames_));
+    snapshot(name.data());
   }
 }
 

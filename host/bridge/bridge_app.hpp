@@ -39,7 +39,10 @@
 namespace twister::bridge {
 
 struct BridgeOptions {
-  std::string snapshot_dir;                          // empty: no PNGs
+  std::string snapshot_dir;  // empty: no PNGs
+  // With snapshot_dir: also a frame-<n>.png after every `movie_every`-th hands update
+  // (0: none), a moving picture in the station's time (one update per 8 ms at most).
+  std::uint32_t movie_every = 0;
   link::LinkAuthenticator* authenticator = nullptr;  // the pre-shared key (null: none)
   ReplicaLimits limits{};
   std::int64_t hello_retry_ms = 1000;  // hello again until the station answers
@@ -161,6 +164,8 @@ class BridgeApp {
   std::uint64_t shown_live_frames_ = 0;  // replica live frames when the CPU warp was shown
   bool showing_live_weights_ = false;    // the renderer holds the stroke's weights
   std::uint32_t live_pictured_ = 0;      // the stroke segment last pictured (live-<v>.png)
+  std::uint64_t movie_hands_ = 0;        // hands updates counted for movie frames
+  std::uint64_t movie_frames_ = 0;       // frame-<n>.png written
   WeightPreview preview_;                // weights before a grab
   std::uint64_t over_capacity_logged_ = 0;
   BridgeCounters counters_{};

@@ -92,10 +92,13 @@ void station_lines(const SceneReplica& r, std::vector<std::string>& lines) {
 
 HudText HudModel::update(const SceneReplica& r, const HudInput& in) {
   HudText out;
-  out.lines.push_back(format("link: %s%s, hands %.0f/s, missed %llu", link_text(in.link),
-                             in.link == LinkView::connected && !in.ready ? " (handshake)" : "",
-                             in.hands_rate_hz,
-                             static_cast<unsigned long long>(r.counters().live_missed)));
+  const char* handshake = in.link == LinkView::connected && !in.ready ? " (handshake)" : "";
+  const auto missed = static_cast<unsigned long long>(r.counters().live_missed);
+  out.lines.push_back(
+      in.hands_rate_hz >= 0.0
+          ? format("link: %s%s, hands %.0f/s, missed %llu", link_text(in.link), handshake,
+                   in.hands_rate_hz, missed)
+          : format("link: %s%s, hands missed %llu", link_text(in.link), handshake, missed));
   station_lines(r, out.lines);
   for (std::size_t h = 0; h < r.hands().size(); ++h)
     out.lines.push_back(hand_line(h, r.hands()[h]));

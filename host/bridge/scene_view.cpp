@@ -27,7 +27,8 @@ void SceneView::draw(const SceneReplica& replica, HudInput input) {
   cue_renderer_.draw(
       cues_, camera.projection(renderer_.width(), renderer_.height()) * camera.view_matrix());
   if (options_.hud) {
-    input.fps = fps_;
+    input.fps = options_.offscreen ? 0.0 : fps_;
+    if (options_.offscreen) input.hands_rate_hz = -1.0;
     if (replica.live().active && replica.live().refine_threshold_m > 0.0 &&
         replica.live().method != math::WarpMethod::scodef) {
       input.preview = renderer_.refining_live() ? HudInput::Preview::refined

@@ -20,6 +20,10 @@ namespace twister::bridge {
 struct SceneViewOptions {
   CueOptions cues{};
   bool hud = true;
+  // Offscreen snapshots: frames are drawn when the link's messages call for a
+  // picture, not on a clock, so the HUD shows no frame rate and no per-second
+  // hands rate (a picture depends on what arrived, not on when).
+  bool offscreen = false;
 };
 
 class SceneView {

@@ -6,12 +6,12 @@
 # stroke commits: weights, hand glyphs, screw axes and trajectories, HUD.
 # Usage: host/twister-bridge/figure6.sh [BUILD_DIR] [OUT_DIR]
 #   writes OUT_DIR/figure6-twist.png and OUT_DIR/figure6-bend.png (default OUT_DIR:
-#   docs/images). Fails unless each run ends with the display's mesh equal to the
+#   docs/pictures). Fails unless each run ends with the display's mesh equal to the
 #   station's (checksums).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 build="${1:-$here/../../build}"
-out="${2:-$here/../../docs/images}"
+out="${2:-$here/../../docs/pictures}"
 mkdir -p "$out"
 out="$(cd "$out" && pwd)"
 work="$(mktemp -d)"
@@ -97,6 +97,16 @@ TOML
     echo "figure6: $stroke: the display's mesh differs from the station's" >&2
     exit 1
   fi
+  # The end face under hand 1 turned by the hand's angle (measured on the display's
+  # final mesh; sim/scenarios/run_scenario.py's @expect-turn).
+  case "$stroke" in
+    twist) expect="0.55 -0.24 0.10 -> 0.54991 -0.26035 0.100076 y 70 12" ;;
+    bend) expect="0.55 -0.24 0.10 -> 0.62611 -0.22479 0.100076 z 35 12" ;;
+  esac
+  PYTHONPATH="$here/../../sim/scenarios" python3 -c '
+import sys, run_scenario
+sys.exit(1 if run_scenario.check_expectations([("expect-turn", sys.argv[1])], sys.argv[2], sys.argv[3]) else 0)
+' "$expect" "$work/bar.obj" "$work/$stroke.obj" >&2 || { echo "figure6: $stroke: the end face did not turn as the hand did" >&2; exit 1; }
   cp "$work/$stroke/live-2.png" "$out/figure6-$stroke.png"
   echo "$out/figure6-$stroke.png"
 done

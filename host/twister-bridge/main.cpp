@@ -61,6 +61,7 @@ struct Options {
   twister::bridge::ReplicaLimits limits;  // --max-vertices / --max-triangles
   bool no_cues = false;                   // the model alone (no glyphs, spheres, axes, ...)
   bool no_hud = false;
+  std::uint32_t movie_every = 0;  // --movie-every N: frame-<n>.png every N-th hands update
 };
 
 twister::hal::Logger& logger() { return twister::hal::process_log(); }
@@ -102,6 +103,7 @@ Expected<void> open_display(const Options& opt, Size size, Display& display) {
   if (opt.no_cues)
     display.view.options().cues = twister::bridge::CueOptions{false, false, false, false, false};
   display.view.options().hud = !opt.no_hud;
+  display.view.options().offscreen = opt.offscreen;
   return display.view.init();
 }
 
@@ -263,6 +265,7 @@ int run(const Options& opt) {
   }
   twister::bridge::BridgeOptions bridge_options;
   bridge_options.snapshot_dir = opt.snapshots;
+  bridge_options.movie_every = opt.movie_every;
   bridge_options.authenticator = auth.get();
   bridge_options.limits = opt.limits;
   BridgeApp app(*transport.port, clock, &display.renderer, bridge_options, logger());
@@ -270,6 +273,9 @@ int run(const Options& opt) {
   twister::bridge::WindowInput input(app, display.view, options.fixed_camera);
   input.attach(display.context->window());
   int rc = run_loop(opt, app, display, transport.poll_fd(), clock);
+  // The display as it was when the run ended (the model the station left, the hands
+  // where they went): final.png.
+  if (!opt.snapshots.empty() && rc == kExitOk && app.replica().has_mesh()) app.snapshot("final");
   if (!opt.export_path.empty()) {
     if (const int exported = export_final_mesh(opt.export_path, opt.force, app);
         exported != kExitOk) {
@@ -299,8 +305,13 @@ void add_options(CLI::App& cli, Options& opt) {
                "no window: EGL surfaceless rendering (PNG snapshots)");
   cli.add_flag("--kiosk", opt.kiosk, "full screen on the primary monitor");
   cli.add_option("--size", opt.size, "WxH in pixels (window or offscreen)");
-  cli.add_option("--snapshots", opt.snapshots,
-                 "directory for PNGs: rest.png, live-<version>.png, commit-<version>.png");
+  cli.add_option(
+      "--snapshots", opt.snapshots,
+      "directory for PNGs: rest.png, live-<version>.png, commit-<version>.png, final.png "
+      "(the display at exit)");
+  cli.add_option("--movie-every", opt.movie_every,
+                 "with --snapshots: also frame-<n>.png after every N-th hands update (the "
+                 "station sends at most one per 8 ms of its clock): frames for an animation");
   cli.add_option("--export", opt.export_path,
                  "write the final mesh at exit: .obj, .ply, .glb or .gltf (checked at start)");
   cli.add_flag("--force", opt.force,

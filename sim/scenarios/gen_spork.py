@@ -4,6 +4,8 @@
 Kept next to the scenario so its numbers can be changed and the file written again.
 Sphere: radius 11.81 in at (21.65, 0, 3.94) in (tracker frame: +X forward, +Z down).
 Hand 0 = receiver 1 (grab line 0, radius line 1), hand 1 = receiver 2 (lines 3, 4).
+Angles are the Fastrak's azimuth (about Z), elevation (about Y), roll (about X), in
+degrees; a hand that turns while it drags makes a screw (its axis drawn in pink).
 Every press and release happens with both hands still for 0.5 s on each side.
 """
 
@@ -15,18 +17,28 @@ def p(dx, dy, dz):
     return (round(C[0] + dx, 2), round(C[1] + dy, 2), round(C[2] + dz, 2))
 
 
-# (label, hand0 start, hand0 end, hand1 start, hand1 end, angles h0 end, h1 end)
-STROKES = [
-    ("stroke 1 of 5: pull the handle out of the -Y side, the +Y side held",
-     p(0, -R, 0), p(0, -R - 16, 0), p(0, R, 0), p(0, R + 2, 0), (0, 0, 0), (0, 0, 0)),
-    ("stroke 2 of 5: pull the handle longer and thinner, the body held",
-     p(0, -R - 15, 0), p(0, -R - 30, -2), p(0, -2, 0), p(0, -2, 0), (0, 0, 0), (0, 0, 0)),
-    ("stroke 3 of 5: press the bowl into the top of the +Y end, its bottom pushed up",
-     p(0, 5, -R + 1), p(0, 6, -R + 11), p(0, 5, R - 1), p(0, 5, R - 9), (0, 0, 0), (0, 0, 0)),
-    ("stroke 4 of 5: pull two tines out of the tip",
-     p(-4, R - 0.5, -1), p(-6.5, R + 13, -1), p(4, R - 0.5, -1), p(6.5, R + 13, -1), (0, 0, 0), (0, 0, 0)),
-    ("stroke 5 of 5: pull the middle tine, the handle held",
-     p(0, R + 1, -1), p(0, R + 14, -1), p(0, -R - 20, 0), p(0, -R - 20, 0), (0, 0, 0), (0, 0, 0)),
+Z = (0, 0, 0)
+
+# ("stroke", label, (hand 0 start, end, end angles), (hand 1 start, end, end angles))
+# ("radius", label, hand separation at the press, at the release): radius x (end / start)
+STEPS = [
+    ("stroke", "stroke 1 of 5: flatten the sphere: the top and the bottom pressed together",
+     (p(0, 0, -R), p(0, 0, -R + 7.5), Z), (p(0, 0, R), p(0, 0, R - 7.5), Z)),
+    ("radius", "radius: hands 24 in apart, then 13.3 in: radius x 0.55", 24.0, 13.3),
+    ("stroke", "stroke 2 of 5: press the bowl into the top of the disc, its bottom following, "
+     "the rim tilted (both hands turn 45 degrees about X)",
+     (p(0, 1.5, -4.3), p(0, 2.0, -0.8), (0, 0, 45)), (p(0, 1.5, 4.3), p(0, 2.0, 6.8), (0, 0, 45))),
+    ("radius", "radius: hands 24 in apart, then 12.5 in: radius x 0.52", 24.0, 12.5),
+    ("stroke", "stroke 3 of 5: pull the handle out of the -Y side, bending it up "
+     "(hand 0 turns 50 degrees about X, hand 1 holds the tip turning 25)",
+     (p(0, -R + 0.5, 0), p(0, -R - 24, -6), (0, 0, 50)), (p(0, R - 0.5, 0), p(0, R - 0.5, 0), (0, 0, 25))),
+    ("radius", "radius: hands 24 in apart, then 11.5 in: radius x 0.48", 24.0, 11.5),
+    ("stroke", "stroke 4 of 5: pull two tines out of the tip, each twisted 60 degrees about it",
+     (p(-3.5, R - 1.0, 0), p(-4.5, R + 9, -1), (0, 60, 0)),
+     (p(3.5, R - 1.0, 0), p(4.5, R + 9, -1), (0, -60, 0))),
+    ("stroke", "stroke 5 of 5: pull the middle tine, twisted 60 degrees, the handle held",
+     (p(0, R - 0.5, 0), p(0, R + 9.5, -1), (0, 60, 0)),
+     (p(0, -R - 20, -5), p(0, -R - 20, -5), Z)),
 ]
 
 
@@ -37,32 +49,33 @@ def key(t, station, pos, ang):
 def main():
     out = [l.rstrip() for l in HEADER.strip("\n").splitlines()]
     out += ["seed 1", "receivers 2"]
-    t = 0.0
-    zero = (0, 0, 0)
     lines = {1: [], 2: []}
     buttons = []
-    h = {1: (p(0, -R - 6, 0), zero), 2: (p(0, R + 6, 0), zero)}
+    h = {1: (p(0, -R - 6, 0), Z), 2: (p(0, R + 6, 0), Z)}
     for s in (1, 2):
         lines[s].append(key(0, s, *h[s]))
     t = 2.5
-    for k, (label, a0, a1, b0, b1, ang0, ang1) in enumerate(STROKES):
-        if k == 3:  # the radius gesture: both radius buttons, hands 24 in -> 7.5 in apart
-            buttons.append("# radius: hands 24 in apart, then 7.5 in: radius x 0.31")
-            for s, q0, q1 in ((1, p(0, -12, -20), p(0, -3.75, -20)), (2, p(0, 12, -20), p(0, 3.75, -20))):
-                lines[s] += [key(t + 1.0, s, q0, zero), key(t + 2.0, s, q0, zero),
-                             key(t + 3.5, s, q1, zero), key(t + 4.5, s, q1, zero)]
+    for step in STEPS:
+        kind, label = step[0], step[1]
+        buttons.append("# " + label)
+        if kind == "radius":  # both radius buttons, hands apart along Y above the model
+            a, b = step[2], step[3]
+            for s, sign in ((1, -1), (2, 1)):
+                q0, q1 = p(0, sign * a / 2, -20), p(0, sign * b / 2, -20)
+                lines[s] += [key(t + 1.0, s, q0, Z), key(t + 2.0, s, q0, Z),
+                             key(t + 3.5, s, q1, Z), key(t + 4.5, s, q1, Z)]
             buttons += ["button %.2f 1 1" % (t + 1.5), "button %.2f 4 1" % (t + 1.5),
                         "button %.2f 1 0" % (t + 4.0), "button %.2f 4 0" % (t + 4.0)]
             t += 4.5
-        buttons.append("# " + label)
+            continue
+        (a0, a1, ang0), (b0, b1, ang1) = step[2], step[3]
         for s, q0, q1, ang in ((1, a0, a1, ang0), (2, b0, b1, ang1)):
-            lines[s] += [key(t + 1.0, s, q0, zero), key(t + 2.0, s, q0, zero),
+            lines[s] += [key(t + 1.0, s, q0, Z), key(t + 2.0, s, q0, Z),
                          key(t + 4.0, s, q1, ang), key(t + 5.0, s, q1, ang)]
         buttons += ["button %.2f 0 1" % (t + 1.5), "button %.2f 3 1" % (t + 1.5),
                     "button %.2f 0 0" % (t + 4.5), "button %.2f 3 0" % (t + 4.5)]
         t += 5.0
-    end = t + 1.0
-    out.append("duration %g" % end)
+    out.append("duration %g" % (t + 1.0))
     for s in (1, 2):
         out += lines[s]
     out += buttons
@@ -73,16 +86,18 @@ HEADER = """
 # The paper's Figure 1: a sphere becomes a spork in five two-hand strokes.
 # Generated by sim/scenarios/gen_spork.py (edit the numbers there, then
 #   python3 sim/scenarios/gen_spork.py > sim/scenarios/spork.scn).
-# Inches, degrees, tracker frame (+X forward, +Z down); buttons.backend = "sim".
+# Inches, degrees (azimuth about Z, elevation about Y, roll about X), tracker frame
+# (+X forward, +Z down); buttons.backend = "sim".
 # Both hands hold still 0.5 s before every press and after every release.
-#   1. hand 0 pulls the handle out of the -Y side while hand 1 holds the +Y side;
-#   2. the handle is pulled longer (thinner) while hand 1 holds the body;
-#   3. hand 0 presses the bowl into the top (-Z) of the +Y end, hand 1 pushes its bottom up;
-#   then both radius buttons: the hands come together (24 -> 7.5 in), radius x 0.31;
-#   4. both hands pull a tine each out of the tip;
-#   5. hand 0 pulls the middle tine while hand 1 holds the handle.
+#   1. the top and the bottom pressed together (radius 0.45 m): a thick disc;
+#   radius x 0.55; 2. the bowl pressed into the top, the bottom following, both hands
+#   turning 45 degrees about X;
+#   radius x 0.52; 3. the handle pulled out of the -Y side, bent (hand 0 turns 50
+#   degrees about X), hand 1 holding the tip turning 25;
+#   radius x 0.48; 4. two tines pulled out of the tip, each twisted 60 degrees about it;
+#   5. the middle tine pulled and twisted 60 degrees while the other hand holds the handle.
 # @mesh sphere -n 80 --segments 128 --size 0.30 --center 0.55 0 0.10
-# @sculpt radius_m = 0.25
+# @sculpt radius_m = 0.45
 # @view --azimuth 35 --elevation 45 --zoom-out 1.45
 """
 

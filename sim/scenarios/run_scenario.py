@@ -9,6 +9,13 @@ The scenario's header names its start mesh and station settings:
   # @view ARGS        twister-bridge camera options
   # @buttons stylus  the receiver-1 stylus instead of the scripted button lines
   # @replay ARGS      `twister replay` options (e.g. --spare-vertices N with refinement)
+  # @expect-vertex X Y Z -> X' Y' Z' TOL
+                    the start vertex nearest X Y Z (metres) ends within TOL of X' Y' Z'
+                    in the replayed mesh (a grab point follows its hand exactly)
+  # @expect-turn X Y Z -> X' Y' Z' AXIS DEG TOL
+                    the start vertices 3 to 12 mm around X Y Z, seen from X' Y' Z' in the
+                    replayed mesh, turned by DEG degrees (either sense) about AXIS x|y|z,
+                    within TOL degrees (median): the hand's turn reached the surface
 twister-station plays it (in-process simulated Fastrak with scripted buttons,
 virtual time unless --time real) and, with --bridge, serves a Unix-socket link to
 twister-bridge --offscreen, which writes PNG snapshots and exports the final mesh.
@@ -20,6 +27,7 @@ and the station's counters line; exit 0 when the programs succeeded and all
 printed checksums agree (the caller compares them with other runs).
 """
 import argparse
+import math
 import os
 import re
 import shutil
@@ -29,9 +37,12 @@ import time
 
 
 def header(path):
-    h = {"mesh": None, "sculpt": [], "station": [], "toml": [], "view": "", "replay": "", "buttons": "sim"}
+    h = {"mesh": None, "sculpt": [], "station": [], "toml": [], "view": "", "replay": "", "buttons": "sim",
+         "expect": []}
     for line in open(path):
-        m = re.match(r"#\s*@(\w+)\s+(.*)$", line.strip())
+        m = re.match(r"#\s*@([\w-]+)\s+(.*)$", line.strip())
+        if m and m.group(1) in ("expect-vertex", "expect-turn"):
+            h["expect"].append((m.group(1), m.group(2)))
         if m and m.group(1) in ("mesh", "view", "replay", "buttons"):
             h[m.group(1)] = m.group(2)
         elif m and m.group(1) in ("sculpt", "station", "toml"):
@@ -75,6 +86,51 @@ def cut_link(out, bridge_cmd, env):
         sys.exit("run_scenario: no commit to cut the link after")
 
 
+def read_obj(path):
+    return [tuple(float(c) for c in line.split()[1:4]) for line in open(path)
+            if line.startswith("v ")]
+
+
+def check_expectations(expect, start_path, final_path):
+    """The scenario's @expect-vertex / @expect-turn lines; returns failure messages."""
+    if not expect:
+        return []
+    start, final = read_obj(start_path), read_obj(final_path)
+    sub = lambda a, b: tuple(x - y for x, y in zip(a, b))  # noqa: E731
+    norm = lambda a: math.sqrt(sum(x * x for x in a))  # noqa: E731
+    fails = []
+    for kind, text in expect:
+        f = text.replace("->", " ").split()
+        grab, end = tuple(map(float, f[0:3])), tuple(map(float, f[3:6]))
+        i = min(range(len(start)), key=lambda k: norm(sub(start[k], grab)))
+        if kind == "expect-vertex":
+            miss = norm(sub(final[i], end))
+            ok = miss <= float(f[6])
+            print("check vertex %d: %.4f m from the hand's end point (tolerance %s) %s"
+                  % (i, miss, f[6], "ok" if ok else "FAILED"))
+            if not ok:
+                fails.append(text)
+            continue
+        axis, deg, tol = "xyz".index(f[6]), float(f[7]), float(f[8])
+        a, b = [k for k in range(3) if k != axis]
+        turns = []
+        for k, q in enumerate(start):
+            d = norm(sub(q, start[i]))
+            u, v = sub(q, start[i]), sub(final[k], final[i])
+            # around the axis: those straight along it (or nearly) show no turn
+            if 0.003 <= d <= 0.012 and math.hypot(u[a], u[b]) >= 0.3 * d:
+                turn = math.degrees(math.atan2(u[a] * v[b] - u[b] * v[a], u[a] * v[a] + u[b] * v[b]))
+                turns.append(abs(turn))
+        turns.sort()
+        got = turns[len(turns) // 2] if turns else float("nan")
+        ok = abs(got - deg) <= tol
+        print("check turn about %s near vertex %d: %.1f degrees (%d vertices; expected %g +- %g) %s"
+              % (f[6], i, got, len(turns), deg, tol, "ok" if ok else "FAILED"))
+        if not ok:
+            fails.append(text)
+    return fails
+
+
 def checksum(pattern, text):
     m = re.findall(pattern, text, re.M)
     return m[-1] if m else None
@@ -93,7 +149,8 @@ def bridge_command(args, exe, out, sock, view):
         "--size", args.size, "--snapshots", os.path.join(out, "pictures"),
         "--export", os.path.join(out, "final.glb"), "--exit-on-disconnect",
         "--timeout", "120"] + view.split() + (["--no-cues", "--no-hud"] if args.plain else
-                                              ["--no-hud"] if args.no_hud else [])
+                                              ["--no-hud"] if args.no_hud else []) + (
+        ["--movie-every", str(args.movie_every)] if args.movie_every else [])
     return cmd, env
 
 
@@ -165,6 +222,9 @@ def run(args):
         print("%s %s" % (k, v))
     summary = [ln for ln in stext.splitlines() if "stopped (" in ln]
     print(summary[-1] if summary else "station: no summary")
+    if result["replay"]:
+        ok = not check_expectations(h["expect"], os.path.join(out, "start.obj"),
+                                    os.path.join(out, "replayed.obj")) and ok
     return ok and len(set(result.values())) == 1 and None not in result.values()
 
 
@@ -184,6 +244,8 @@ def main():
                     help="snapshots of the model alone (twister-bridge --no-cues --no-hud)")
     ap.add_argument("--no-hud", action="store_true",
                     help="snapshots with the cues but without the heads-up text")
+    ap.add_argument("--movie-every", type=int, default=0, metavar="N",
+                    help="with --bridge: also frame-<n>.png every N-th hands update")
     ap.add_argument("--cut-link", action="store_true",
                     help="with --bridge: a first display is killed after the first commit")
     args = ap.parse_args()

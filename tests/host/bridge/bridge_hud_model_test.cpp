@@ -99,6 +99,22 @@ TEST(HudModel, TheLivePreviewLineSaysRefinedOrWhyNot) {
   EXPECT_FALSE(has(hud.update(r, in), "live preview"));
 }
 
+// Offscreen (issue 27): a picture is drawn when a message calls for it, so the
+// HUD shows no frame rate and no per-second hands rate (SceneView passes fps 0 and
+// a negative rate); the window's lines keep both.
+TEST(HudModel, OffscreenLinesShowNoFrameRateAndNoHandsRate) {
+  SceneReplica r;
+  HudModel hud;
+  (void)r.apply(status(1, 10, 1000, 0));
+  const HudText window = hud.update(r, HudInput{LinkView::connected, true, 60.0, 1.0, 120.0});
+  EXPECT_NE(window.lines.front().find("hands 120/s"), std::string::npos) << window.lines.front();
+  EXPECT_NE(window.lines.back().find("fps"), std::string::npos) << window.lines.back();
+  const HudText offscreen = hud.update(r, HudInput{LinkView::connected, true, 0.0, 1.0, -1.0});
+  EXPECT_EQ(offscreen.lines.front().find("/s"), std::string::npos) << offscreen.lines.front();
+  EXPECT_NE(offscreen.lines.front().find("hands missed 0"), std::string::npos);
+  EXPECT_EQ(offscreen.lines.back().find("fps"), std::string::npos) << offscreen.lines.back();
+}
+
 TEST(WeightPreview, EqualsTheStrokesWeightsWhenTheHandsGrabThere) {
   SceneReplica r;
   load_mesh(r, sphere_mesh(0.1F, 24, 32));
