@@ -40,6 +40,7 @@ MeshRenderer::~MeshRenderer() {
   if (vao_ != 0) {
     glDeleteBuffers(static_cast<GLsizei>(vbo_.size()), vbo_.data());
     glDeleteBuffers(1, &ebo_);
+    glDeleteBuffers(1, &live_ebo_);
     glDeleteVertexArrays(1, &vao_);
   }
   if (fbo_ != 0) glDeleteFramebuffers(1, &fbo_);
@@ -122,6 +123,7 @@ hal::Expected<void> MeshRenderer::init(int width, int height, bool offscreen,
   glGenVertexArrays(1, &vao_);
   glGenBuffers(static_cast<GLsizei>(vbo_.size()), vbo_.data());
   glGenBuffers(1, &ebo_);
+  glGenBuffers(1, &live_ebo_);
   glBindVertexArray(vao_);
   const GLint sizes[] = {3, 2, 3, 3, 3};
   for (GLuint a = 0; a < vbo_.size(); ++a) {
@@ -191,6 +193,7 @@ void MeshRenderer::set_mesh(const MeshData& mesh, const ShadedMesh& shaded, bool
                static_cast<GLsizeiptr>(shaded_.indices.size() * sizeof(std::uint32_t)),
                shaded_.indices.data(), GL_STATIC_DRAW);
   index_count_ = shaded_.indices.size();
+  split_radius_ = -1.0F;
 }
 
 void MeshRenderer::set_positions(const MeshData& mesh) {
@@ -295,59 +298,119 @@ void MeshRenderer::use(const Program& program) {
   glBindVertexArray(vao_);
 }
 
+void MeshRenderer::split_live_triangles() {
+  if (split_radius_ == stroke_radius_ && split_grab_ == grab_ && split_mask_ == hand_mask_) return;
+  split_radius_ = stroke_radius_;
+  split_grab_ = grab_;
+  split_mask_ = hand_mask_;
+  // The tessellation control shader's own test (mesh_shaders.hpp influenced()).
+  std::vector<float> pos(3 * vertex_count_);
+  glBindBuffer(GL_ARRAY_BUFFER, vbo_[0]);
+  glGetBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(pos.size() * sizeof(float)),
+                     pos.data());
+  const auto at = [&pos](std::uint32_t v) {
+    return glm::vec3(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2]);
+  };
+  std::vector<std::uint32_t> reached;
+  std::vector<std::uint32_t> rest;
+  reached.reserve(shaded_.indices.size());
+  rest.reserve(shaded_.indices.size());
+  for (std::size_t t = 0; t + 3 <= shaded_.indices.size(); t += 3) {
+    const std::uint32_t* i = &shaded_.indices[t];
+    const glm::vec3 a = at(i[0]), b = at(i[1]), c = at(i[2]);
+    const glm::vec3 m = (a + b + c) / 3.0F;
+    const float reach = stroke_radius_ + std::max({glm::length(a - m), glm::length(b - m),
+                                                   glm::length(c - m)});
+    bool in = false;
+    for (std::size_t h = 0; h < 2; ++h) {
+      in = in || ((hand_mask_ & (1 << h)) != 0 && glm::length(m - grab_[h]) < reach);
+    }
+    (in ? reached : rest).insert((in ? reached : rest).end(), i, i + 3);
+  }
+  live_reached_ = reached.size();
+  reached.insert(reached.end(), rest.begin(), rest.end());
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, live_ebo_);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+               static_cast<GLsizeiptr>(reached.size() * sizeof(std::uint32_t)), reached.data(),
+               GL_DYNAMIC_DRAW);
+}
+
+void MeshRenderer::draw_range(const Program& program, bool patches, std::size_t first,
+                              std::size_t count) {
+  if (count == 0) return;
+  use(program);
+  if (patches) glPatchParameteri(GL_PATCH_VERTICES, 3);
+  glDrawElements(patches ? GL_PATCHES : GL_TRIANGLES, static_cast<GLsizei>(count),
+                 GL_UNSIGNED_INT,
+                 reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));  // NOLINT
+}
+
 void MeshRenderer::draw_mesh() {
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
-  const auto count = static_cast<GLsizei>(index_count_);
-  if (refining_live()) {
-    use(refined_);
-    glPatchParameteri(GL_PATCH_VERTICES, 3);
-    glDrawElements(GL_PATCHES, count, GL_UNSIGNED_INT, nullptr);
-  } else {
-    use(plain_);
-    glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
+  if (!refining_live()) {
+    glBindVertexArray(vao_);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);
+    draw_range(plain_, false, 0, index_count_);
+    return;
   }
+  // What the balls can reach is refined; the rest is the mesh itself (the warp is
+  // the identity there, and so are the shared edges' points on both sides).
+  glBindVertexArray(vao_);
+  split_live_triangles();
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, live_ebo_);
+  draw_range(refined_, true, 0, live_reached_);
+  draw_range(plain_, false, live_reached_, index_count_ - live_reached_);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);
 }
 
 MeshRenderer::Surface MeshRenderer::capture_live_surface() {
-  const bool refined = refining_live();
-  use(refined ? refined_ : plain_);
-  if (refined) glPatchParameteri(GL_PATCH_VERTICES, 3);
-  const GLenum mode = refined ? GL_PATCHES : GL_TRIANGLES;
-  const auto count = static_cast<GLsizei>(index_count_);
-  glEnable(GL_RASTERIZER_DISCARD);
-  // First how many triangles the preview makes, then exactly that much room.
-  GLuint query = 0;
-  glGenQueries(1, &query);
-  glBeginQuery(GL_PRIMITIVES_GENERATED, query);
-  glDrawElements(mode, count, GL_UNSIGNED_INT, nullptr);
-  glEndQuery(GL_PRIMITIVES_GENERATED);
-  GLuint triangles = 0;
-  glGetQueryObjectuiv(query, GL_QUERY_RESULT, &triangles);
-  glDeleteQueries(1, &query);
-  const std::size_t floats = std::size_t{triangles} * 3 * 6;  // rest, warped per corner
-  GLuint buffer = 0;
-  glGenBuffers(1, &buffer);
-  glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, buffer);
-  glBufferData(GL_TRANSFORM_FEEDBACK_BUFFER, static_cast<GLsizeiptr>(floats * sizeof(float)),
-               nullptr, GL_STATIC_READ);
-  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, buffer);
-  glBeginTransformFeedback(GL_TRIANGLES);
-  glDrawElements(mode, count, GL_UNSIGNED_INT, nullptr);
-  glEndTransformFeedback();
-  glDisable(GL_RASTERIZER_DISCARD);
-  std::vector<float> data(floats);
-  glGetBufferSubData(GL_TRANSFORM_FEEDBACK_BUFFER, 0,
-                     static_cast<GLsizeiptr>(floats * sizeof(float)), data.data());
-  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
-  glDeleteBuffers(1, &buffer);
   Surface out;
-  out.rest.reserve(floats / 6);
-  out.warped.reserve(floats / 6);
-  for (std::size_t i = 0; i + 6 <= floats; i += 6) {
-    out.rest.emplace_back(data[i], data[i + 1], data[i + 2]);
-    out.warped.emplace_back(data[i + 3], data[i + 4], data[i + 5]);
+  const auto capture = [this, &out](const Program& program, bool patches, std::size_t first,
+                                    std::size_t count) {
+    if (count == 0) return;
+    glEnable(GL_RASTERIZER_DISCARD);
+    // First how many triangles the preview makes, then exactly that much room.
+    GLuint query = 0;
+    glGenQueries(1, &query);
+    glBeginQuery(GL_PRIMITIVES_GENERATED, query);
+    draw_range(program, patches, first, count);
+    glEndQuery(GL_PRIMITIVES_GENERATED);
+    GLuint triangles = 0;
+    glGetQueryObjectuiv(query, GL_QUERY_RESULT, &triangles);
+    glDeleteQueries(1, &query);
+    const std::size_t floats = std::size_t{triangles} * 3 * 6;  // rest, warped per corner
+    GLuint buffer = 0;
+    glGenBuffers(1, &buffer);
+    glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, buffer);
+    glBufferData(GL_TRANSFORM_FEEDBACK_BUFFER, static_cast<GLsizeiptr>(floats * sizeof(float)),
+                 nullptr, GL_STATIC_READ);
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, buffer);
+    glBeginTransformFeedback(GL_TRIANGLES);
+    draw_range(program, patches, first, count);
+    glEndTransformFeedback();
+    glDisable(GL_RASTERIZER_DISCARD);
+    std::vector<float> data(floats);
+    glGetBufferSubData(GL_TRANSFORM_FEEDBACK_BUFFER, 0,
+                       static_cast<GLsizeiptr>(floats * sizeof(float)), data.data());
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+    glDeleteBuffers(1, &buffer);
+    for (std::size_t i = 0; i + 6 <= floats; i += 6) {
+      out.rest.emplace_back(data[i], data[i + 1], data[i + 2]);
+      out.warped.emplace_back(data[i + 3], data[i + 4], data[i + 5]);
+    }
+  };
+  glBindVertexArray(vao_);
+  if (!refining_live()) {
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);
+    capture(plain_, false, 0, index_count_);
+    return out;
   }
+  split_live_triangles();
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, live_ebo_);
+  capture(refined_, true, 0, live_reached_);
+  capture(plain_, false, live_reached_, index_count_ - live_reached_);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);
   return out;
 }
 

@@ -118,6 +118,12 @@ class MeshRenderer {
   void create_fbo(int width, int height);
   // The per-vertex input of the mesh as the drawn vertices' (crease splits copied).
   std::vector<float> drawn(const std::vector<float>& per_vertex, std::size_t columns) const;
+  // The triangles the stroke's balls can reach first, in live_ebo_ (live_reached_
+  // of them): only those go through tessellation; kept per grab points and radius.
+  void split_live_triangles();
+  // Draws (and with `feedback`, captures) indices [first, first + count) of the
+  // bound element buffer with `program`.
+  void draw_range(const Program& program, bool patches, std::size_t first, std::size_t count);
 
   Program plain_;
   Program refined_;  // 0 without GL 4 tessellation
@@ -133,6 +139,11 @@ class MeshRenderer {
   int width_ = 0;
   int height_ = 0;
   ShadedMesh shaded_;  // drawn vertices of the current mesh
+  unsigned live_ebo_ = 0;
+  std::size_t live_reached_ = 0;  // triangles (first in live_ebo_) the balls can reach
+  std::array<glm::vec3, 2> split_grab_{};
+  float split_radius_ = -1.0F;  // < 0: live_ebo_ is stale
+  int split_mask_ = 0;
   std::size_t index_count_ = 0;
   std::size_t vertex_count_ = 0;
   std::size_t mesh_vertices_ = 0;

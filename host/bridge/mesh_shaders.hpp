@@ -140,51 +140,86 @@ uniform float u_max_level;
 // piece into n parts divides its midpoint error by about n² where the curvature is
 // even, so the worst of e, 4 e_half and 16 e_quarter is the whole edge's error
 // where it bends most (a warp bends unevenly along a long coarse edge). Parts aim
-// at half the threshold.
-float midpoint_error(vec3 a, vec3 b) {
-  precise vec3 chord = 0.5 * (warp_at(a) + warp_at(b));
-  precise float e = length(chord - warp_at(0.5 * (a + b)));
+// at half the threshold. The edge is walked from its lexicographically first end,
+// so both of its patches compute the same level from the same operands.
+bool before(vec3 a, vec3 b) {
+  return a.x < b.x || (a.x == b.x && (a.y < b.y || (a.y == b.y && a.z < b.z)));
+}
+float err(vec3 a, vec3 m, vec3 b) {
+  precise vec3 chord = 0.5 * (a + b);
+  precise float e = length(chord - m);
   return e;
 }
+const float kShortEdge = 0.25;
 float level_for(float error) {
   return clamp(ceil(sqrt(2.0 * error / u_threshold)), 1.0, u_max_level);
 }
-float edge_level(vec3 a, vec3 b) {
-  float e = midpoint_error(a, b);
-  vec3 q[5] = vec3[5](a, mix(a, b, 0.25), 0.5 * (a + b), mix(a, b, 0.75), b);
-  e = max(e, 4.0 * max(midpoint_error(q[0], q[2]), midpoint_error(q[2], q[4])));
-  for (int i = 0; i < 4; ++i) e = max(e, 16.0 * midpoint_error(q[i], q[i + 1]));
-  return level_for(e);
-}
-// Inside the triangle: the centroid's error, and four times that of the centroids of
-// its four half-size corner and middle triangles.
-float centroid_error(vec3 a, vec3 b, vec3 c) {
-  precise vec3 facet = (warp_at(a) + warp_at(b) + warp_at(c)) / 3.0;
-  return length(facet - warp_at((a + b + c) / 3.0));
-}
-float inner_error(vec3 a, vec3 b, vec3 c) {
-  vec3 ab = 0.5 * (a + b);
-  vec3 bc = 0.5 * (b + c);
-  vec3 ca = 0.5 * (c + a);
-  float e = centroid_error(a, b, c);
-  e = max(e, 4.0 * max(centroid_error(a, ab, ca), centroid_error(ab, b, bc)));
-  e = max(e, 4.0 * max(centroid_error(ca, bc, c), centroid_error(ab, bc, ca)));
+// w[i]: the warp at i/8 along the edge from its first end (w[0], w[8] its ends).
+// An edge short against the radius bends evenly along its length: its midpoint
+// alone tells (a dense mesh pays one warp per edge, not seven).
+float edge_error(vec3 a, vec3 b, vec3 wa, vec3 wb, out vec3 mid) {
+  bool forward = before(a, b);
+  vec3 lo = forward ? a : b;
+  vec3 hi = forward ? b : a;
+  vec3 w[9];
+  w[0] = forward ? wa : wb;
+  w[8] = forward ? wb : wa;
+  w[4] = warp_at(0.5 * (lo + hi));
+  mid = w[4];
+  float e = err(w[0], w[4], w[8]);
+  if (length(hi - lo) < kShortEdge * u_radius) return e;
+  for (int i = 1; i < 8; ++i) {
+    if (i != 4) w[i] = warp_at(mix(lo, hi, float(i) / 8.0));
+  }
+  e = max(e, 4.0 * max(err(w[0], w[2], w[4]), err(w[4], w[6], w[8])));
+  for (int i = 0; i < 8; i += 2) e = max(e, 16.0 * err(w[i], w[i + 1], w[i + 2]));
   return e;
+}
+// Can any hand's ball reach the triangle? (A hand's weights vanish outside its
+// ball; the squash only shrinks it.) Outside every ball the warp is the identity.
+bool influenced(vec3 a, vec3 b, vec3 c) {
+  vec3 m = (a + b + c) / 3.0;
+  float reach = u_radius + max(length(a - m), max(length(b - m), length(c - m)));
+  return ((u_hand_mask & 1) != 0 && length(m - u_grab[0]) < reach) ||
+         ((u_hand_mask & 2) != 0 && length(m - u_grab[1]) < reach);
 }
 void main() {
   e_pos[gl_InvocationID] = c_pos[gl_InvocationID];
   e_normal[gl_InvocationID] = c_normal[gl_InvocationID];
-  if (gl_InvocationID == 0) {
-    // Outer level i is the edge opposite corner i.
-    float l0 = edge_level(c_pos[1], c_pos[2]);
-    float l1 = edge_level(c_pos[2], c_pos[0]);
-    float l2 = edge_level(c_pos[0], c_pos[1]);
-    gl_TessLevelOuter[0] = l0;
-    gl_TessLevelOuter[1] = l1;
-    gl_TessLevelOuter[2] = l2;
-    float inner = level_for(inner_error(c_pos[0], c_pos[1], c_pos[2]));
-    gl_TessLevelInner[0] = max(inner, max(l0, max(l1, l2)));
+  if (gl_InvocationID != 0) return;
+  vec3 a = c_pos[0];
+  vec3 b = c_pos[1];
+  vec3 c = c_pos[2];
+  if (!influenced(a, b, c)) {
+    gl_TessLevelOuter[0] = gl_TessLevelOuter[1] = gl_TessLevelOuter[2] = 1.0;
+    gl_TessLevelInner[0] = 1.0;
+    return;
   }
+  vec3 wa = warp_at(a);
+  vec3 wb = warp_at(b);
+  vec3 wc = warp_at(c);
+  vec3 mbc, mca, mab;
+  // Outer level i is the edge opposite corner i.
+  float l0 = level_for(edge_error(b, c, wb, wc, mbc));
+  float l1 = level_for(edge_error(c, a, wc, wa, mca));
+  float l2 = level_for(edge_error(a, b, wa, wb, mab));
+  // Inside: the centroid's error, and four times that of the four half-size
+  // triangles' centroids (their corners' warps known from the edges).
+  vec3 ab = 0.5 * (a + b);
+  vec3 bc = 0.5 * (b + c);
+  vec3 ca = 0.5 * (c + a);
+  float e = length((wa + wb + wc) / 3.0 - warp_at((a + b + c) / 3.0));
+  float longest = max(length(b - a), max(length(c - b), length(a - c)));
+  if (longest >= kShortEdge * u_radius) {
+    e = max(e, 4.0 * length((wa + mab + mca) / 3.0 - warp_at((a + ab + ca) / 3.0)));
+    e = max(e, 4.0 * length((mab + wb + mbc) / 3.0 - warp_at((ab + b + bc) / 3.0)));
+    e = max(e, 4.0 * length((mca + mbc + wc) / 3.0 - warp_at((ca + bc + c) / 3.0)));
+    e = max(e, 4.0 * length((mab + mbc + mca) / 3.0 - warp_at((ab + bc + ca) / 3.0)));
+  }
+  gl_TessLevelOuter[0] = l0;
+  gl_TessLevelOuter[1] = l1;
+  gl_TessLevelOuter[2] = l2;
+  gl_TessLevelInner[0] = max(level_for(e), max(l0, max(l1, l2)));
 }
 )";
 
@@ -227,10 +262,12 @@ void main() {
   n = dot(n, n) > 0.0 ? normalize(n) : vec3(0.0, 0.0, 1.0);
   vec2 w = weights_at(p);
   vec3 q = warp(p, w);
-  vec3 t1 = normalize(cross(n, abs(n.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0)));
-  vec3 t2 = cross(n, t1);
-  vec3 m = cross(warp_at(p + u_eps * t1) - q, warp_at(p + u_eps * t2) - q);
-  if (dot(m, m) > 0.0) n = normalize(m);
+  if (w.x > 0.0 || w.y > 0.0) {
+    vec3 t1 = normalize(cross(n, abs(n.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0)));
+    vec3 t2 = cross(n, t1);
+    vec3 m = cross(warp_at(p + u_eps * t1) - q, warp_at(p + u_eps * t2) - q);
+    if (dot(m, m) > 0.0) n = normalize(m);
+  }
   vec4 world = u_model * vec4(q, 1.0);
   v_pos = world.xyz;
   v_normal = mat3(u_model) * n;
