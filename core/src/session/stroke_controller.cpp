@@ -64,8 +64,11 @@ LiveWarp StrokeController::live() const {
   w.active = hand_mask_ != 0;
   w.hand_mask = hand_mask_;
   w.plan = &plan_;
-  w.positions = static_cast<const LiveMesh&>(mesh_).live();
   return w;
+}
+
+math::ConstVertexColumns StrokeController::live_positions() const {
+  return static_cast<const LiveMesh&>(mesh_).live();
 }
 
 void StrokeController::grab(std::uint8_t hand, SessionEvents& out) {

@@ -41,12 +41,12 @@
 
 namespace twister::session {
 
-// What a display needs for the live stroke (valid while active).
+// What a display needs for the live stroke (valid while active). The warped positions
+// are not part of it: StrokeController::live_positions() computes them when asked.
 struct LiveWarp {
   bool active = false;
   std::uint8_t hand_mask = 0;            // session hands in the stroke (bit h)
   const math::WarpPlan* plan = nullptr;  // indices, weights, screws, start/end frames
-  math::ConstVertexColumns positions;    // live_x/y/z: warped where plan->indices()
 };
 
 class StrokeController {
@@ -83,6 +83,9 @@ class StrokeController {
   // Hand h's drive (clutch, turn, limit); meaningful while h is in the stroke.
   const HandDrive& drive(std::uint8_t hand) const { return drives_[hand]; }
   LiveWarp live() const;
+  // The live columns (live_x/y/z, vertex_count() long): the open stroke's warped
+  // positions where plan->indices(), meaningful while active().
+  math::ConstVertexColumns live_positions() const;
 
  private:
   void grab(std::uint8_t hand, SessionEvents& out);
