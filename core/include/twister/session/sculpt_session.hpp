@@ -164,6 +164,9 @@ class SculptSession {
   float radius_m() const { return machine_.radius_m(); }
   const input::InteractionMachine& machine() const { return machine_; }
   LiveWarp live() const { return strokes_.live(); }
+  // The open stroke's warped positions where live().plan->indices() (see
+  // StrokeController::live_positions()).
+  math::ConstVertexColumns live_positions() const { return strokes_.live_positions(); }
   // What the display shows besides mesh and live warp (see SessionState).
   SessionState state() const;
   math::WarpMethod method() const { return strokes_.method(); }
