@@ -4,15 +4,17 @@
 //            quaternion + stylus) and writes it into a PTY master;
 //   read     the station's side polls the raw PTY slave until the whole record is in
 //            (write -> last byte read);
-//   station  parse + pose conversion + SculptSession::set_hand/step (the live warp of
-//            every influenced vertex on the CPU) + the hands message encoded and
-//            written to the display socket (last record byte in -> message out);
+//   station  parse + pose conversion + SculptSession::set_hand/step (the plan follows
+//            the hand; no vertex is warped on the CPU between commits since issue 24)
+//            + the hands message encoded and written to the display socket (last
+//            record byte in -> message out);
 //   link     the bridge's side reads the Unix socket and decodes byte-wise into the
 //            scene replica (message out -> received and applied);
 //   frame    MeshRenderer::set_live + draw, which ends with glFinish (offscreen
 //            llvmpipe, 800x600 unless --size): received -> frame finished;
 //   total    record write -> frame finished.
-// Worst case for the station: the grab radius covers the whole model. The hands
+// Worst case for the station: the grab radius covers the whole model (it was the
+// per-record CPU warp's; the stage no longer grows with the model). The hands
 // message is built with bridge::make_live_messages (the content StationLink sends).
 // Usage: latency_probe [--size WxH] [VERTICES...] (default 800x600; 30000 100000
 // 1000000 vertices); prints median

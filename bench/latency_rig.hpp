@@ -49,8 +49,8 @@ class LatencyRig {
   std::size_t vertices() const { return buffer_.mesh().vertex_count(); }
   bridge::SceneReplica& replica() { return replica_; }
 
-  // The station's work for one pose of hand 1: the session step (live warp on the
-  // CPU), then the hands message for the display.
+  // The station's work for one pose of hand 1: the session step (the plan follows
+  // the hand; no CPU warp of the vertices), then the hands message for the display.
   link::Hands step(const Pose& pose) {
     (void)session_->set_hand(1, true, pose);
     (void)session_->step(++now_);

@@ -1,8 +1,13 @@
 // Cost of the sculpting session per tracker update and per committed stroke, against
 // the bare warp it wraps, in one run (docs/performance.md, session section).
-//   PlanUpdate/<n>     baseline: WarpPlan::update + apply (what a live update must do)
+//   PlanUpdate/<n>     baseline: WarpPlan::update + apply (a live CPU warp of every
+//                      influenced vertex)
 //   SessionStep/<n>    SculptSession::set_hand + step while dragging (debounce,
-//                      state machine, object-frame conversion, update + apply)
+//                      state machine, object-frame conversion, WarpPlan::update; no
+//                      vertex is warped between commits since issue 24)
+//   SessionStepLive/<n> the same plus live_positions(), as a consumer of the live
+//                      positions at every record pays (update + apply: the station's
+//                      step before issue 24)
 //   SessionStroke/<n>  one whole stroke: grab (weights), one move, release (apply,
 //                      undo record of every moved vertex, journal append + sync)
 // The mesh is a UV sphere of radius 0.5 grabbed on its surface with radius 1, so
@@ -110,6 +115,19 @@ void SessionStep(benchmark::State& state) {
                           static_cast<std::int64_t>(rig.session->live().plan->indices().size()));
 }
 
+void SessionStepLive(benchmark::State& state) {
+  Rig rig(rings_for(state.range(0)));
+  rig.grab();
+  double t = 0.0;
+  for (auto _ : state) {
+    (void)rig.session->set_hand(1, true, rig.pose(t += 0.01));
+    benchmark::DoNotOptimize(rig.session->step(++rig.now));
+    benchmark::DoNotOptimize(rig.session->live_positions());
+  }
+  state.SetItemsProcessed(state.iterations() *
+                          static_cast<std::int64_t>(rig.session->live().plan->indices().size()));
+}
+
 void SessionStroke(benchmark::State& state) {
   Rig rig(rings_for(state.range(0)));
   double t = 0.0;
@@ -124,7 +142,8 @@ void SessionStroke(benchmark::State& state) {
 }
 
 BENCHMARK(PlanUpdate)->Arg(30'000)->Arg(100'000)->Unit(benchmark::kMicrosecond);
-BENCHMARK(SessionStep)->Arg(30'000)->Arg(100'000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(SessionStep)->Arg(30'000)->Arg(100'000)->Arg(1'000'000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(SessionStepLive)->Arg(30'000)->Arg(100'000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(SessionStroke)->Arg(30'000)->Arg(100'000)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

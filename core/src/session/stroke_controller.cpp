@@ -64,8 +64,15 @@ LiveWarp StrokeController::live() const {
   w.active = hand_mask_ != 0;
   w.hand_mask = hand_mask_;
   w.plan = &plan_;
-  w.positions = static_cast<const LiveMesh&>(mesh_).live();
   return w;
+}
+
+math::ConstVertexColumns StrokeController::live_positions() const {
+  // The only CPU warp of a live stroke: asked for, never per tracker record.
+  if (hand_mask_ != 0 && !live_current_) {
+    live_current_ = plan_.apply(mesh_.rest(), mesh_.live()).ok();
+  }
+  return static_cast<const LiveMesh&>(mesh_).live();
 }
 
 void StrokeController::grab(std::uint8_t hand, SessionEvents& out) {
@@ -146,6 +153,7 @@ void StrokeController::end_not_saved(std::uint8_t hand, const SessionEvent& fail
 }
 
 void StrokeController::restart_segment(bool committed, SessionEvents& out) {
+  plan_moved();
   const math::PlanFrames frames = start_drives();
   const Status rebased = plan_.rebase(frames);
   if (rebased.ok()) {
@@ -196,6 +204,7 @@ void StrokeController::end_grab(std::uint8_t hand, bool commit, input::Reason ca
 }
 
 Status StrokeController::begin_segment(std::uint8_t mask) {
+  plan_moved();
   hand_mask_ = mask;
   const math::PlanFrames frames = start_drives();
   segment_radius_m_ = static_cast<double>(radius_m_);
@@ -205,7 +214,7 @@ Status StrokeController::begin_segment(std::uint8_t mask) {
     return s;
   }
   chain_step_ = 0;
-  return plan_.apply(mesh_.rest(), mesh_.live());
+  return ok_status();  // no warp: live_positions() computes it when asked
 }
 
 SessionEvent StrokeController::commit_segment(std::uint8_t hand, input::Reason reason,
@@ -254,11 +263,13 @@ void StrokeController::end_hands(std::uint8_t mask, Status status, SessionEvents
 }
 
 void StrokeController::drop_segment() {
+  plan_moved();
   hand_mask_ = 0;
   plan_.reset();
 }
 
 Status StrokeController::update_plan(SessionEvents* out) {
+  plan_moved();
   math::PlanFrames ends;
   std::uint8_t long_turns = 0;
   for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
@@ -277,10 +288,10 @@ Status StrokeController::update_plan(SessionEvents* out) {
   }
   const std::span<const math::Frame> end = ends;
   // Minimal: today's update, which keeps the stroke's axis sense at a half turn.
-  TWISTER_TRY(drives_[0].config().tracking == TurnTracking::minimal
-                  ? plan_.update(end)
-                  : plan_.update_turns(end, long_turns));
-  return plan_.apply(mesh_.rest(), mesh_.live());
+  // The screws only: no vertex is warped here (live_positions(), the commit).
+  return drives_[0].config().tracking == TurnTracking::minimal
+             ? plan_.update(end)
+             : plan_.update_turns(end, long_turns);
 }
 
 math::PlanFrames StrokeController::start_drives() {

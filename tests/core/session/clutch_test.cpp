@@ -38,10 +38,11 @@ std::size_t count(const SessionEvents& events, SessionEventKind kind) {
 std::vector<float> live_snapshot(const SculptSession& s) {
   std::vector<float> out;
   const LiveWarp w = s.live();
+  const math::ConstVertexColumns p = s.live_positions();
   for (const std::uint32_t i : w.plan->indices()) {
-    out.push_back(w.positions.x[i]);
-    out.push_back(w.positions.y[i]);
-    out.push_back(w.positions.z[i]);
+    out.push_back(p.x[i]);
+    out.push_back(p.y[i]);
+    out.push_back(p.z[i]);
   }
   return out;
 }
@@ -184,9 +185,8 @@ TEST(Clutch, TheOtherHandWarpsWhileOneIsDisengagedAndTheJournalReplays) {
     (void)s.tick();
   }
   const std::uint32_t anchor = nearest_vertex(s.mesh, {0.5f, 0, 0});
-  const glm::vec3 before = {s.session->live().positions.x[anchor],
-                            s.session->live().positions.y[anchor],
-                            s.session->live().positions.z[anchor]};
+  const math::ConstVertexColumns live = s.session->live_positions();
+  const glm::vec3 before = {live.x[anchor], live.y[anchor], live.z[anchor]};
   EXPECT_NEAR(before.z, s.mesh.position(anchor).z, 1e-6f);  // hand 1's material stays
   s.button(kGrab0, false);  // hand 0 leaves: hand 1, still disengaged, goes on alone
   (void)s.tick();

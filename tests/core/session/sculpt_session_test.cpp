@@ -38,7 +38,7 @@ TEST(SculptSession, GrabDragReleaseCommitsAndJournals) {
   EXPECT_EQ(live.hand_mask, 1);
   EXPECT_GT(live.plan->indices().size(), 0u);
   const std::uint32_t centre = nearest_vertex(s.mesh, {0, 0, 0});
-  EXPECT_NEAR(live.positions.z[centre], 0.3f, 1e-5f);
+  EXPECT_NEAR(s.session->live_positions().z[centre], 0.3f, 1e-5f);
   EXPECT_EQ(s.mesh.checksum(), original);  // nothing committed yet
   s.button(kGrab0, false);
   const SessionEvents done = s.tick();
@@ -150,7 +150,7 @@ TEST(SculptSession, LostTrackingHoldsThenResumes) {
   s.lose(0);
   EXPECT_TRUE(has_event(s.tick(), SessionEventKind::tracking_lost));
   const std::uint32_t centre = nearest_vertex(s.mesh, {0, 0, 0});
-  EXPECT_NEAR(s.session->live().positions.z[centre], 0.2f, 1e-5f);  // held
+  EXPECT_NEAR(s.session->live_positions().z[centre], 0.2f, 1e-5f);  // held
   s.hand(0, math::identity_frame({0, 0, 0.4}));
   EXPECT_TRUE(has_event(s.tick(50'000), SessionEventKind::tracking_resumed));
   s.button(kGrab0, false);

@@ -79,7 +79,7 @@ TEST(StrokeController, GrabFollowReleaseCommitsOneSegment) {
   EXPECT_TRUE(live.active);
   EXPECT_EQ(live.hand_mask, 1);
   EXPECT_EQ(live.plan, &s->rig.plan);
-  EXPECT_NEAR(live.positions.z[kCentre], 0.3f, 1e-6f);
+  EXPECT_NEAR(s->strokes.live_positions().z[kCentre], 0.3f, 1e-6f);
   EXPECT_EQ(s->rig.mesh.position(kCentre).z, 0.0f);  // committing is the sink's
 
   const SessionEvents done = s->step({release(0)});

@@ -39,8 +39,8 @@ std::uint32_t nearest_vertex(const mesh::Mesh& m, glm::vec3 p) {
 }
 
 glm::dvec3 live_at(const SculptSession& s, std::uint32_t i) {
-  const LiveWarp w = s.live();
-  return {w.positions.x[i], w.positions.y[i], w.positions.z[i]};
+  const math::ConstVertexColumns p = s.live_positions();
+  return {p.x[i], p.y[i], p.z[i]};
 }
 
 // The largest distance any influenced vertex moved since `previous` (then updated).

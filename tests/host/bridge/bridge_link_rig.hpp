@@ -74,11 +74,12 @@ struct BridgeLinkRig {
 // over the stroke's influenced vertices; -1 when either side has no live stroke.
 inline double warp_difference(const BridgeLinkRig& r) {
   const session::LiveWarp live = r.station.session->live();
+  const math::ConstVertexColumns positions = r.station.session->live_positions();
   const MeshData bridge = r.bridge.replica().cpu_warp();
   if (!live.active || live.plan == nullptr || bridge.vertex_count() == 0) return -1.0;
   double worst = 0.0;
   for (const std::uint32_t i : live.plan->indices()) {
-    const glm::dvec3 s(live.positions.x[i], live.positions.y[i], live.positions.z[i]);
+    const glm::dvec3 s(positions.x[i], positions.y[i], positions.z[i]);
     const glm::dvec3 b(bridge.x[i], bridge.y[i], bridge.z[i]);
     worst = std::max(worst, glm::length(s - b));
   }

@@ -1,8 +1,9 @@
 // LiveMesh: the model a session sculpts, as two sets of columns over the same
 // vertices. rest() is the mesh (object frame), changed only by commits and undo/redo;
-// live() holds the warped positions of the open stroke, written by the warp plan each
-// step (only where the plan has influenced vertices) and copied into the mesh at
-// commit. Both views are sized to the mesh's current vertex count.
+// live() holds the warped positions of the open stroke, written by the warp plan
+// (only where the plan has influenced vertices) when a consumer asks for them
+// (StrokeController::live_positions(); never per tracker record) and at commit, just
+// before they are copied into the mesh. Both views are sized to the mesh's current vertex count.
 // Memory: the mesh and the live spans are the caller's and must outlive this object.
 #pragma once
 

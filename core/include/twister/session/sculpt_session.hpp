@@ -168,6 +168,9 @@ class SculptSession {
     w.refine_threshold_m = refinement_.live_threshold();
     return w;
   }
+  // The open stroke's warped positions where live().plan->indices() (see
+  // StrokeController::live_positions()).
+  math::ConstVertexColumns live_positions() const { return strokes_.live_positions(); }
   // What the display shows besides mesh and live warp (see SessionState).
   SessionState state() const;
   math::WarpMethod method() const { return strokes_.method(); }

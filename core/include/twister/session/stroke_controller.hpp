@@ -7,7 +7,14 @@
 // or leaving commits the segment and starts a new one for the hands that still grab;
 // hands released in the same step share one commit. A cancel (tracking lost too long)
 // drops the open segment only. Between actions, end_step() moves the plan to the
-// hands' end poses and writes the warped positions into the live columns.
+// hands' end poses: its screws, which is all the display's live stream carries.
+// The live warp on demand (issue 24): no vertex is warped on the CPU between commits.
+// The display warps the live stroke itself (the vertex shader; scodef, which has no
+// per-vertex closed form, on the bridge's CPU from the same messages), so nothing on
+// the station needs the warped positions per tracker record. live_positions() warps
+// the plan's vertices into the live columns when a consumer asks (at most once per
+// plan move), and a commit warps them once, at the end poses, with the same kernel:
+// the model is bit-for-bit what a warp at every step would have made of it.
 // Freeze is the paper's clutch: pressing it commits the segment and rebases the plan
 // (same vertices and weights, chain step + 1) with the hand disengaged, so moving it
 // changes nothing; releasing it rebases again from the poses of that moment and the
@@ -41,12 +48,12 @@
 
 namespace twister::session {
 
-// What a display needs for the live stroke (valid while active).
+// What a display needs for the live stroke (valid while active). The warped positions
+// are not part of it: StrokeController::live_positions() computes them when asked.
 struct LiveWarp {
   bool active = false;
   std::uint8_t hand_mask = 0;            // session hands in the stroke (bit h)
   const math::WarpPlan* plan = nullptr;  // indices, weights, screws, start/end frames
-  math::ConstVertexColumns positions;    // live_x/y/z: warped where plan->indices()
   double refine_threshold_m = 0.0;       // the commit's refinement (0: none), for the preview
 };
 
@@ -84,6 +91,12 @@ class StrokeController {
   // Hand h's drive (clutch, turn, limit); meaningful while h is in the stroke.
   const HandDrive& drive(std::uint8_t hand) const { return drives_[hand]; }
   LiveWarp live() const;
+  // The live columns (live_x/y/z, vertex_count() long): the open stroke's warped
+  // positions where plan->indices(), meaningful while active(). Computed here, on
+  // demand: the first call after the plan moved (a step, a segment begun or rebased)
+  // warps the plan's vertices (the cost of one WarpPlan::apply), later calls return
+  // them as they are. Logically const (a cache of the plan's warp of the rest mesh).
+  math::ConstVertexColumns live_positions() const;
 
  private:
   void grab(std::uint8_t hand, SessionEvents& out);
@@ -115,6 +128,8 @@ class StrokeController {
   // engaged hand's drive starts at its current pose, a disengaged hand keeps its
   // anchor (the pose it disengaged at).
   math::PlanFrames start_drives();
+  // The plan moved (or the segment changed): the live columns are out of date.
+  void plan_moved() { live_current_ = false; }
 
   math::WarpPlan& plan_;
   LiveMesh& mesh_;
@@ -132,6 +147,8 @@ class StrokeController {
   // Hands whose grab the machine ends with a commit in the current step: released
   // together, they share one commit instead of one hand "continuing" for no time.
   std::uint8_t releasing_mask_ = 0;
+  // The live columns hold the plan's current warp (live_positions() since plan_moved()).
+  mutable bool live_current_ = false;
 };
 
 }  // namespace twister::session
