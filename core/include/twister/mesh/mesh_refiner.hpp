@@ -103,6 +103,22 @@ class MeshRefiner {
   Result<RefineResult> refine(Mesh& mesh, const PointWarp& warp, double threshold_m,
                               RefineObserver* observer = nullptr);
 
+  // The same refinement over the triangles that have a vertex in `vertices` (the
+  // stroke's influenced vertices) and whatever their splits reach (the longest-edge
+  // propagation paths): cost proportional to the region, not the mesh. The edge-
+  // triangle adjacency persists between calls while the mesh's topology_version()
+  // and vertex count are what the last call left (else it is rebuilt once, O(mesh)).
+  // Order: the region's triangles in ascending index, a triangle a split changes
+  // before its index is reached visited there, then a FIFO (exactly the order
+  // refine() would use), so the result is bit-identical to refine() whenever every
+  // edge over the threshold at the start has a triangle in the region
+  // (docs/refinement.md "Local refinement"). A mesh with an edge shared by more than
+  // two triangles or a vertex whose triangles are not one fan is refined by refine().
+  // Errors as refine().
+  Result<RefineResult> refine_around(Mesh& mesh, const PointWarp& warp, double threshold_m,
+                                     std::span<const std::uint32_t> vertices,
+                                     RefineObserver* observer = nullptr);
+
   // S of vertex v (rest position as of the last refine()); valid for every vertex
   // that refine() added (asserted).
   glm::dvec3 warped(std::uint32_t v) const;
@@ -127,6 +143,18 @@ class MeshRefiner {
   std::uint32_t split_one(std::uint32_t h, std::uint32_t m);
   void changing(std::uint32_t t);
   void push(std::uint32_t t);
+  void run();
+  // Persistent adjacency (refine_around).
+  Status build_adjacency(const Mesh& mesh);
+  bool adjacency_current(const Mesh& mesh) const;
+  void keep_adjacency(const Mesh& mesh);
+  std::uint32_t slot(std::uint32_t t, std::uint32_t v) const;
+  template <typename F>
+  std::uint32_t for_fan(std::uint32_t v, F&& f) const;
+  void touch(std::uint32_t t);
+  void reset_triangle_stamps();
+  void collect_region(std::span<const std::uint32_t> vertices);
+  bool next_triangle(std::uint32_t& t);
 
   MeshRefinerStorage storage_;
   TriangleAdjacency adjacency_;
@@ -139,6 +167,22 @@ class MeshRefiner {
   std::uint32_t triangles_before_ = 0;
   SpanRing<std::uint32_t> queue_;  // triangles to look at (kQueued), over storage_.queue
   RefineResult result_{};
+  // refine_around: the region's original triangles still to visit in index order
+  // (sorted list + a min-heap of those a split changed before their turn), in the
+  // adjacency's scratch after build (stamps, list, heap: one triangle capacity each).
+  bool local_ = false;
+  bool pending_phase_ = false;
+  std::int64_t cursor_ = -1;  // the original triangle visited last
+  std::span<std::uint32_t> stamps_;
+  std::span<std::uint32_t> pending_;
+  std::size_t pending_pos_ = 0;
+  std::span<std::uint32_t> heap_;
+  std::size_t heap_size_ = 0;
+  // The adjacency (twins, a corner triangle per vertex) is current for this mesh.
+  const Mesh* adjacency_mesh_ = nullptr;
+  std::uint64_t adjacency_version_ = 0;
+  std::size_t adjacency_vertices_ = 0;
+  bool manifold_ = false;  // every edge has <= 2 triangles, every vertex one fan
 };
 
 namespace internal {
