@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <utility>
 #include <glm/geometric.hpp>
 
 #include "twister/base/assert.hpp"
@@ -20,6 +21,7 @@ namespace {
 constexpr std::uint8_t kUnknown = 0;
 constexpr std::uint8_t kWithin = 1;
 constexpr std::uint8_t kOver = 2;
+constexpr std::uint8_t kBatched = 3;  // in a float batch (settle_in_float only)
 constexpr std::uint8_t kQueued = 1;
 constexpr std::uint8_t kReported = 2;
 constexpr std::uint8_t kPending = 4;  // refine_around: an original triangle still to visit
@@ -94,6 +96,7 @@ Result<RefineResult> MeshRefiner::refine_around(Mesh& mesh, const PointWarp& war
   start(mesh, warp, threshold_m, observer);
   const auto vertices_before = static_cast<std::uint32_t>(mesh.vertex_count());
   collect_region(vertices);
+  settle_in_float();
   run();
   local_ = false;
   for (std::uint32_t v = vertices_before; v < mesh.vertex_count(); ++v) (void)warped_of(v);
@@ -420,7 +423,7 @@ void MeshRefiner::keep_adjacency(const Mesh& mesh) {
 }
 
 std::uint32_t MeshRefiner::slot(std::uint32_t t, std::uint32_t v) const {
-  const std::array<std::uint32_t, 3> tv = mesh_->triangle(t);
+  const std::uint32_t* tv = mesh_->triangle_indices().data() + 3 * std::size_t{t};
   return tv[0] == v ? 0 : tv[1] == v ? 1 : 2;
 }
 
@@ -489,6 +492,81 @@ void MeshRefiner::collect_region(std::span<const std::uint32_t> vertices) {
   heap_ = b;
   pending_pos_ = 0;
   heap_size_ = 0;
+}
+
+// The float filter: every edge of the region's triangles evaluated in single precision
+// in batches (S at both ends and at the float midpoint); an edge whose float error is
+// at most threshold - 2 delta - slack (delta = the warp's float_error_m bound for the
+// batch, slack for computing the error itself) is within the threshold in double too,
+// so its verdict is cached as refine() would have computed it. Every other edge is
+// left to the double criterion (docs/refinement.md "The float filter").
+struct MeshRefiner::FloatBatch {
+  static constexpr std::size_t kEdges = PointWarp::kFloatBatch / 3;
+  std::array<std::uint32_t, kEdges> edges{};
+  std::array<float, 3 * kEdges> x{}, y{}, z{}, ox{}, oy{}, oz{};
+  std::size_t n = 0;
+  float extent = 0.0f;
+};
+
+void MeshRefiner::settle_in_float() {
+  settled_in_float_ = 0;
+  FloatBatch b;
+  const std::span<const std::uint32_t> indices = mesh_->triangle_indices();
+  const std::span<const float> px = std::as_const(*mesh_).x();
+  const std::span<const float> py = std::as_const(*mesh_).y();
+  const std::span<const float> pz = std::as_const(*mesh_).z();
+  for (const std::uint32_t t : pending_) {
+    for (std::uint32_t h = 3 * t; h < 3 * t + 3; ++h) {
+      if (storage_.edge_state[h] != kUnknown) continue;
+      const std::uint32_t va = indices[h];
+      const std::uint32_t vb = indices[h % 3 == 2 ? h - 2 : h + 1];
+      const glm::vec3 pa(px[va], py[va], pz[va]);
+      const glm::vec3 pb(px[vb], py[vb], pz[vb]);
+      const glm::vec3 pm = (pa + pb) * 0.5f;
+      const std::size_t k = b.n;
+      b.edges[k] = h;
+      b.x[k] = pa.x, b.y[k] = pa.y, b.z[k] = pa.z;
+      b.x[FloatBatch::kEdges + k] = pb.x, b.y[FloatBatch::kEdges + k] = pb.y;
+      b.z[FloatBatch::kEdges + k] = pb.z;
+      b.x[2 * FloatBatch::kEdges + k] = pm.x, b.y[2 * FloatBatch::kEdges + k] = pm.y;
+      b.z[2 * FloatBatch::kEdges + k] = pm.z;
+      for (const float c : {pa.x, pa.y, pa.z, pb.x, pb.y, pb.z}) {
+        b.extent = std::max(b.extent, std::abs(c));
+      }
+      storage_.edge_state[h] = kBatched;  // the twin is not batched again
+      const std::uint32_t g = adjacency_.twin(h);
+      if (real_twin(g)) {
+        touch(g / 3);
+        storage_.edge_state[g] = kBatched;
+      }
+      if (++b.n == FloatBatch::kEdges) settle_batch(b);
+    }
+  }
+  settle_batch(b);
+}
+
+void MeshRefiner::settle_batch(FloatBatch& b) {
+  if (b.n == 0) return;
+  constexpr std::size_t e = FloatBatch::kEdges;
+  // Unused slots of the a/b/m thirds are harmless (evaluated, ignored).
+  const bool fast = warp_->warp_float(b.x.data(), b.y.data(), b.z.data(), b.ox.data(),
+                                      b.oy.data(), b.oz.data(), 3 * e);
+  const double delta = fast ? warp_->float_error_m(b.extent) : 0.0;
+  const double limit = threshold_m_ - 2.0 * delta - 0x1p-40 * (1.0 + b.extent);
+  for (std::size_t k = 0; k < b.n; ++k) {
+    const std::uint32_t h = b.edges[k];
+    const glm::dvec3 sa(b.ox[k], b.oy[k], b.oz[k]);
+    const glm::dvec3 sb(b.ox[e + k], b.oy[e + k], b.oz[e + k]);
+    const glm::dvec3 sm(b.ox[2 * e + k], b.oy[2 * e + k], b.oz[2 * e + k]);
+    const bool within = fast && limit > 0.0 && glm::length(0.5 * (sa + sb) - sm) <= limit;
+    const std::uint8_t state = within ? kWithin : kUnknown;
+    storage_.edge_state[h] = state;
+    const std::uint32_t g = adjacency_.twin(h);
+    if (real_twin(g)) storage_.edge_state[g] = state;
+    if (within) ++settled_in_float_;
+  }
+  b.n = 0;
+  b.extent = 0.0f;
 }
 
 }  // namespace twister::mesh

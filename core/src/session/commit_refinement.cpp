@@ -15,6 +15,13 @@ class PlanWarp final : public mesh::PointWarp {
 
  private:
   glm::dvec3 do_warp(glm::dvec3 rest_m) const override { return plan_.warp_point(rest_m); }
+  bool do_warp_float(const float* x, const float* y, const float* z, float* ox, float* oy,
+                     float* oz, std::size_t n) const override {
+    return plan_.warp_points_float(x, y, z, ox, oy, oz, n);
+  }
+  double do_float_error_m(double extent_m) const override {
+    return plan_.float_error_bound(extent_m);
+  }
   const math::WarpPlan& plan_;
 };
 

@@ -33,6 +33,13 @@ class PlanWarp final : public mesh::PointWarp {
 
  private:
   glm::dvec3 do_warp(glm::dvec3 rest_m) const override { return plan_.warp_point(rest_m); }
+  bool do_warp_float(const float* x, const float* y, const float* z, float* ox, float* oy,
+                     float* oz, std::size_t n) const override {
+    return plan_.warp_points_float(x, y, z, ox, oy, oz, n);
+  }
+  double do_float_error_m(double extent_m) const override {
+    return plan_.float_error_bound(extent_m);
+  }
   const math::WarpPlan& plan_;
 };
 
@@ -183,6 +190,7 @@ RC_GTEST_PROP(RefineLocal,
     RC_CLASSIFY(outside, "an offending edge outside the region");
     RC_CLASSIFY(rl->edges_split > 0, "splits");
     RC_CLASSIFY(rl->stop != mesh::RefineStop::done, "capacity stop");
+    RC_CLASSIFY(around.settled_in_float() > 0, "edges settled in float");
     if (identical) {
       RC_ASSERT(rl->edges_split == rg->edges_split);
       RC_ASSERT(rl->triangles_added == rg->triangles_added);
@@ -200,6 +208,43 @@ RC_GTEST_PROP(RefineLocal,
     place(local->mesh(), plan_local, around, vl);
     if (!identical) break;  // different meshes from here on: nothing more to compare
   }
+}
+
+// The float filter's premise: warp_points_float stays within float_error_bound of
+// warp_point, for points (and float midpoints) anywhere near random one- and two-hand
+// strokes (turns up to 170 degrees and the long way round, squash, drags); and the bound
+// is mostly well under 0.1 mm (close grabs, whose squash steepens the weight, and turns
+// the long way round give larger bounds: there the filter settles fewer edges).
+RC_GTEST_PROP(RefineFloat, TheFloatWarpIsWithinItsBoundOfTheDoubleWarp, ()) {
+  meshio::MeshBuffer grid(meshio::grid_vertices(2), meshio::grid_triangles(2));
+  RC_ASSERT(meshio::make_grid(grid.mesh(), 2, 0.3f).ok());
+  math::WarpPlanWithStorage<16> plan;
+  const StrokeDraw draw = any_stroke();
+  RC_PRE(build(plan, grid.mesh(), draw));
+  if (*rc::gen::inRange(0, 3) == 0) {  // the long way round
+    RC_PRE(plan.update_turns(draw.end, static_cast<std::uint8_t>(*rc::gen::inRange(1, 4))).ok());
+  }
+  constexpr std::size_t n = math::WarpPlan::kFloatChunk;
+  std::array<float, n> x{}, y{}, z{}, ox{}, oy{}, oz{};
+  const glm::dvec3 around_grab = draw.start[0].origin;
+  float extent = 0.0f;
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::dvec3 p = around_grab + any_point(draw.radius * 1.2);
+    x[i] = static_cast<float>(p.x);
+    y[i] = static_cast<float>(p.y);
+    z[i] = static_cast<float>(p.z);
+    extent = std::max({extent, std::abs(x[i]), std::abs(y[i]), std::abs(z[i])});
+  }
+  RC_ASSERT(plan.warp_points_float(x.data(), y.data(), z.data(), ox.data(), oy.data(), oz.data(), n));
+  const double bound = plan.float_error_bound(extent);
+  RC_TAG(bound < 1e-4 ? "bound < 0.1 mm" : "bound >= 0.1 mm (the float filter settles less)");
+  double worst = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::dvec3 d = plan.warp_point(glm::dvec3(x[i], y[i], z[i]));
+    worst = std::max(worst, glm::length(glm::dvec3(ox[i], oy[i], oz[i]) - d));
+  }
+  RC_ASSERT(worst <= bound);
+  RC_TAG(worst <= bound / 8 ? "margin >= 8x" : "margin < 8x");
 }
 
 // A mesh with an edge on three triangles: refine_around refines it like refine().

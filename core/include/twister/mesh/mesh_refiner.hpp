@@ -154,6 +154,9 @@ class MeshRefiner {
   void touch(std::uint32_t t);
   void reset_triangle_stamps();
   void collect_region(std::span<const std::uint32_t> vertices);
+  void settle_in_float();
+  struct FloatBatch;
+  void settle_batch(FloatBatch& b);
   bool next_triangle(std::uint32_t& t);
 
   MeshRefinerStorage storage_;
@@ -183,6 +186,11 @@ class MeshRefiner {
   std::uint64_t adjacency_version_ = 0;
   std::size_t adjacency_vertices_ = 0;
   bool manifold_ = false;  // every edge has <= 2 triangles, every vertex one fan
+  std::uint32_t settled_in_float_ = 0;  // edges the last refine_around settled in float
+ public:
+  // Edges the last refine_around() found within the threshold by the float filter
+  // alone (the rest of its verdicts were computed in double).
+  std::uint32_t settled_in_float() const { return settled_in_float_; }
 };
 
 namespace internal {
