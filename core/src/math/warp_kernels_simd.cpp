@@ -257,19 +257,22 @@ void decay_weights_simd(const DecaySpan& s, const float grab[3], const float uni
   const float ux = unit[0], uy = unit[1], uz = unit[2];
   constexpr float kHalfPiF = 1.57079632679489662f;
   const float scale = kHalfPiF / radius;
+  const float c0 = cos_quarter(kHalfPiF);
   for (std::size_t i = 0; i < s.n; ++i) {
     float px = x[i] - gx;
     float py = y[i] - gy;
     float pz = z[i] - gz;
-    // Branch-free (selects kept this loop scalar): max(proj, 0) and min(x, pi/2) from
-    // fabs; outside the radius the argument is pi/2 and the weight cos^2 ~ 4e-17.
+    // Branch-free (a select or compare kept this loop scalar): max(proj, 0) and
+    // min(x, pi/2) from fabs; the polynomial's value at pi/2 (c0, ~1e-8) subtracted so
+    // that the weight outside the radius is exactly 0 (a tiny one would make the warp
+    // kernel compute with denormals).
     const float proj = px * ux + py * uy + pz * uz;
     const float k = 0.5f * (proj + std::fabs(proj)) * stretch;
     px += k * ux;
     py += k * uy;
     pz += k * uz;
     const float arg = std::sqrt(px * px + py * py + pz * pz) * scale;
-    const float c = cos_quarter(0.5f * (arg + kHalfPiF - std::fabs(arg - kHalfPiF)));
+    const float c = cos_quarter(0.5f * (arg + kHalfPiF - std::fabs(arg - kHalfPiF))) - c0;
     w[i] = c * c;
   }
 }

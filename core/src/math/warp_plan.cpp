@@ -315,8 +315,8 @@ double WarpPlan::float_error_bound(double extent_m) const {
   for (std::size_t h = 0; h < hands_; ++h) {
     const KernelHand& k = kernel_hands_[h];
     const glm::dvec3 mid(k.mid[0], k.mid[1], k.mid[2]);
-    const double kx = std::abs(k.cot_half) * glm::length(glm::dvec3(k.chord[0], k.chord[1],
-                                                                    k.chord[2]));
+    const double kx =
+        std::abs(k.cot_half) * glm::length(glm::dvec3(k.chord[0], k.chord[1], k.chord[2]));
     const double shift = glm::length(glm::dvec3(k.shift[0], k.shift[1], k.shift[2]));
     const double v = radius_ + glm::length(start_[h].origin - mid);
     const double magnitude = 1.7320508075688772 * extent_m + glm::length(mid) + kx + shift + 2 * v;

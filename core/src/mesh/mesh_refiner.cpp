@@ -10,8 +10,8 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <utility>
 #include <glm/geometric.hpp>
+#include <utility>
 
 #include "twister/base/assert.hpp"
 
@@ -157,6 +157,7 @@ void MeshRefiner::start(Mesh& mesh, const PointWarp& warp, double threshold_m,
   result_ = RefineResult{};
   if (++generation_ == 1) {  // first call, or the stamps wrapped: none is valid
     for (std::uint32_t& s : storage_.warped_stamp) s = 0;
+    for (std::uint32_t& s : storage_.float_stamp) s = 0;
     reset_triangle_stamps();
   }
   const std::size_t triangles = mesh.triangle_count();
@@ -501,20 +502,75 @@ void MeshRefiner::collect_region(std::span<const std::uint32_t> vertices) {
 // so its verdict is cached as refine() would have computed it. Every other edge is
 // left to the double criterion (docs/refinement.md "The float filter").
 struct MeshRefiner::FloatBatch {
+  // Without the vertex cache: kEdges edges, their ends and midpoints in the thirds of
+  // the columns; with it: up to 3 kEdges midpoints.
   static constexpr std::size_t kEdges = PointWarp::kFloatBatch / 3;
-  std::array<std::uint32_t, kEdges> edges{};
+  std::array<std::uint32_t, 3 * kEdges> edges{};
+  std::array<std::array<std::uint32_t, 2>, 3 * kEdges> ends{};
   std::array<float, 3 * kEdges> x{}, y{}, z{}, ox{}, oy{}, oz{};
   std::size_t n = 0;
   float extent = 0.0f;
+  bool cached = false;
 };
+
+struct MeshRefiner::VertexBatch {
+  static constexpr std::size_t kSize = PointWarp::kFloatBatch;
+  std::array<std::uint32_t, kSize> vertices{};
+  std::array<float, kSize> x{}, y{}, z{}, ox{}, oy{}, oz{};
+  std::size_t n = 0;
+  float extent = 0.0f;
+  bool fast = true;
+};
+
+// S in float of a batch of vertices into the float cache (and the bound for them).
+void MeshRefiner::warp_vertices(VertexBatch& b) {
+  if (b.n == 0) return;
+  b.fast = b.fast && warp_->warp_float(b.x.data(), b.y.data(), b.z.data(), b.ox.data(), b.oy.data(),
+                                       b.oz.data(), b.n);
+  if (b.fast) vertex_error_ = std::max(vertex_error_, warp_->float_error_m(b.extent));
+  for (std::size_t k = 0; k < b.n; ++k) {
+    const std::uint32_t v = b.vertices[k];
+    storage_.float_x[v] = b.ox[k];
+    storage_.float_y[v] = b.oy[k];
+    storage_.float_z[v] = b.oz[k];
+  }
+  b.n = 0;
+  b.extent = 0.0f;
+}
 
 void MeshRefiner::settle_in_float() {
   settled_in_float_ = 0;
-  FloatBatch b;
   const std::span<const std::uint32_t> indices = mesh_->triangle_indices();
   const std::span<const float> px = std::as_const(*mesh_).x();
   const std::span<const float> py = std::as_const(*mesh_).y();
   const std::span<const float> pz = std::as_const(*mesh_).z();
+  // S at every vertex of the region once (when the storage has the float cache).
+  const bool cached = storage_.float_stamp.size() >= mesh_->vertex_capacity() &&
+                      storage_.float_x.size() >= mesh_->vertex_capacity() &&
+                      storage_.float_y.size() >= mesh_->vertex_capacity() &&
+                      storage_.float_z.size() >= mesh_->vertex_capacity();
+  vertex_error_ = 0.0;
+  bool vertices_fast = true;
+  if (cached) {
+    VertexBatch vb;
+    for (const std::uint32_t t : pending_) {
+      for (std::size_t j = 3 * std::size_t{t}; j < 3 * std::size_t{t} + 3; ++j) {
+        const std::uint32_t v = indices[j];
+        if (storage_.float_stamp[v] == generation_) continue;
+        storage_.float_stamp[v] = generation_;
+        const std::size_t k = vb.n;
+        vb.vertices[k] = v;
+        vb.x[k] = px[v], vb.y[k] = py[v], vb.z[k] = pz[v];
+        vb.extent = std::max({vb.extent, std::abs(px[v]), std::abs(py[v]), std::abs(pz[v])});
+        if (++vb.n == VertexBatch::kSize) warp_vertices(vb);
+      }
+    }
+    warp_vertices(vb);
+    vertices_fast = vb.fast;
+  }
+  if (!vertices_fast) return;  // the warp offers no float path
+  FloatBatch b;
+  b.cached = cached;
   for (const std::uint32_t t : pending_) {
     for (std::uint32_t h = 3 * t; h < 3 * t + 3; ++h) {
       if (storage_.edge_state[h] != kUnknown) continue;
@@ -525,21 +581,23 @@ void MeshRefiner::settle_in_float() {
       const glm::vec3 pm = (pa + pb) * 0.5f;
       const std::size_t k = b.n;
       b.edges[k] = h;
-      b.x[k] = pa.x, b.y[k] = pa.y, b.z[k] = pa.z;
-      b.x[FloatBatch::kEdges + k] = pb.x, b.y[FloatBatch::kEdges + k] = pb.y;
-      b.z[FloatBatch::kEdges + k] = pb.z;
-      b.x[2 * FloatBatch::kEdges + k] = pm.x, b.y[2 * FloatBatch::kEdges + k] = pm.y;
-      b.z[2 * FloatBatch::kEdges + k] = pm.z;
-      for (const float c : {pa.x, pa.y, pa.z, pb.x, pb.y, pb.z}) {
-        b.extent = std::max(b.extent, std::abs(c));
+      b.ends[k] = {va, vb};
+      b.x[k] = pm.x, b.y[k] = pm.y, b.z[k] = pm.z;
+      if (!cached) {
+        b.x[FloatBatch::kEdges + k] = pa.x, b.y[FloatBatch::kEdges + k] = pa.y;
+        b.z[FloatBatch::kEdges + k] = pa.z;
+        b.x[2 * FloatBatch::kEdges + k] = pb.x, b.y[2 * FloatBatch::kEdges + k] = pb.y;
+        b.z[2 * FloatBatch::kEdges + k] = pb.z;
       }
+      b.extent = std::max({b.extent, std::abs(pa.x), std::abs(pa.y), std::abs(pa.z), std::abs(pb.x),
+                           std::abs(pb.y), std::abs(pb.z)});
       storage_.edge_state[h] = kBatched;  // the twin is not batched again
       const std::uint32_t g = adjacency_.twin(h);
       if (real_twin(g)) {
         touch(g / 3);
         storage_.edge_state[g] = kBatched;
       }
-      if (++b.n == FloatBatch::kEdges) settle_batch(b);
+      if (++b.n == (cached ? 3 * FloatBatch::kEdges : FloatBatch::kEdges)) settle_batch(b);
     }
   }
   settle_batch(b);
@@ -548,16 +606,24 @@ void MeshRefiner::settle_in_float() {
 void MeshRefiner::settle_batch(FloatBatch& b) {
   if (b.n == 0) return;
   constexpr std::size_t e = FloatBatch::kEdges;
-  // Unused slots of the a/b/m thirds are harmless (evaluated, ignored).
-  const bool fast = warp_->warp_float(b.x.data(), b.y.data(), b.z.data(), b.ox.data(),
-                                      b.oy.data(), b.oz.data(), 3 * e);
+  // Unused slots are harmless (evaluated, ignored).
+  const std::size_t points = b.cached ? b.n : 3 * e;
+  const bool fast = warp_->warp_float(b.x.data(), b.y.data(), b.z.data(), b.ox.data(), b.oy.data(),
+                                      b.oz.data(), points);
   const double delta = fast ? warp_->float_error_m(b.extent) : 0.0;
-  const double limit = threshold_m_ - 2.0 * delta - 0x1p-40 * (1.0 + b.extent);
+  // |e_float - e_double| <= (delta_a + delta_b) / 2 + delta_m.
+  const double ends_error = b.cached ? vertex_error_ : delta;
+  const double limit = threshold_m_ - ends_error - delta - 0x1p-40 * (1.0 + b.extent);
   for (std::size_t k = 0; k < b.n; ++k) {
     const std::uint32_t h = b.edges[k];
-    const glm::dvec3 sa(b.ox[k], b.oy[k], b.oz[k]);
-    const glm::dvec3 sb(b.ox[e + k], b.oy[e + k], b.oz[e + k]);
-    const glm::dvec3 sm(b.ox[2 * e + k], b.oy[2 * e + k], b.oz[2 * e + k]);
+    const auto [va, vb] = b.ends[k];
+    const glm::dvec3 sm(b.ox[k], b.oy[k], b.oz[k]);
+    const glm::dvec3 sa =
+        b.cached ? glm::dvec3(storage_.float_x[va], storage_.float_y[va], storage_.float_z[va])
+                 : glm::dvec3(b.ox[e + k], b.oy[e + k], b.oz[e + k]);
+    const glm::dvec3 sb =
+        b.cached ? glm::dvec3(storage_.float_x[vb], storage_.float_y[vb], storage_.float_z[vb])
+                 : glm::dvec3(b.ox[2 * e + k], b.oy[2 * e + k], b.oz[2 * e + k]);
     const bool within = fast && limit > 0.0 && glm::length(0.5 * (sa + sb) - sm) <= limit;
     const std::uint8_t state = within ? kWithin : kUnknown;
     storage_.edge_state[h] = state;

@@ -235,7 +235,8 @@ RC_GTEST_PROP(RefineFloat, TheFloatWarpIsWithinItsBoundOfTheDoubleWarp, ()) {
     z[i] = static_cast<float>(p.z);
     extent = std::max({extent, std::abs(x[i]), std::abs(y[i]), std::abs(z[i])});
   }
-  RC_ASSERT(plan.warp_points_float(x.data(), y.data(), z.data(), ox.data(), oy.data(), oz.data(), n));
+  RC_ASSERT(
+      plan.warp_points_float(x.data(), y.data(), z.data(), ox.data(), oy.data(), oz.data(), n));
   const double bound = plan.float_error_bound(extent);
   RC_TAG(bound < 1e-4 ? "bound < 0.1 mm" : "bound >= 0.1 mm (the float filter settles less)");
   double worst = 0.0;

@@ -77,12 +77,19 @@ struct MeshRefinerStorage {
   std::span<std::uint8_t> edge_state;      // 3 per triangle of capacity
   std::span<std::uint8_t> triangle_flags;  // per triangle of capacity
   std::span<std::uint32_t> queue;          // per triangle of capacity
+  // Optional (refine_around's float filter; empty: S in float per edge end instead):
+  // per vertex of capacity, S in float and its stamp.
+  std::span<float> float_x{};
+  std::span<float> float_y{};
+  std::span<float> float_z{};
+  std::span<std::uint32_t> float_stamp{};
 };
 
 // Bytes of MeshRefinerStorage per vertex and per triangle of capacity.
-// (S cache and its stamp, the vertex table; twins, incidence, edge states, flags, queue)
+// (S cache and its stamp, the vertex table, S in float and its stamp; twins, incidence,
+// edge states, flags, queue)
 inline constexpr std::size_t kRefinerBytesPerVertex =
-    3 * sizeof(double) + 2 * sizeof(std::uint32_t);
+    3 * sizeof(double) + 2 * sizeof(std::uint32_t) + 3 * sizeof(float) + sizeof(std::uint32_t);
 inline constexpr std::size_t kRefinerBytesPerTriangle =
     6 * sizeof(std::uint32_t) + 3 + 1 + sizeof(std::uint32_t);
 
@@ -157,6 +164,9 @@ class MeshRefiner {
   void settle_in_float();
   struct FloatBatch;
   void settle_batch(FloatBatch& b);
+  struct VertexBatch;
+  void warp_vertices(VertexBatch& b);
+  double vertex_error_ = 0.0;  // the float filter's bound on the cached vertices
   bool next_triangle(std::uint32_t& t);
 
   MeshRefinerStorage storage_;
@@ -185,7 +195,7 @@ class MeshRefiner {
   const Mesh* adjacency_mesh_ = nullptr;
   std::uint64_t adjacency_version_ = 0;
   std::size_t adjacency_vertices_ = 0;
-  bool manifold_ = false;  // every edge has <= 2 triangles, every vertex one fan
+  bool manifold_ = false;               // every edge has <= 2 triangles, every vertex one fan
   std::uint32_t settled_in_float_ = 0;  // edges the last refine_around settled in float
  public:
   // Edges the last refine_around() found within the threshold by the float filter
@@ -206,6 +216,10 @@ struct MeshRefinerArrays {
   std::array<std::uint8_t, 3 * kTriangles> edge_state{};
   std::array<std::uint8_t, kTriangles> triangle_flags{};
   std::array<std::uint32_t, kTriangles> queue{};
+  std::array<float, kVertices> float_x{};
+  std::array<float, kVertices> float_y{};
+  std::array<float, kVertices> float_z{};
+  std::array<std::uint32_t, kVertices> float_stamp{};
 
   MeshRefinerStorage spans() {
     return {{twins, vertex_offsets, incident},
@@ -215,7 +229,11 @@ struct MeshRefinerArrays {
             warped_stamp,
             edge_state,
             triangle_flags,
-            queue};
+            queue,
+            float_x,
+            float_y,
+            float_z,
+            float_stamp};
   }
 };
 }  // namespace internal
