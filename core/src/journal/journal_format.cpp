@@ -22,7 +22,8 @@ TailProblem undecodable(std::uint8_t version, std::uint8_t type) {
   const bool stroke = type == static_cast<std::uint8_t>(RecordType::stroke);
   const bool known =
       version == kRecordVersion ||
-      (stroke && (version == kRecordVersionLongTurns || version == kRecordVersionRefined));
+      (stroke && (version == kRecordVersionLongTurns || version == kRecordVersionRefined ||
+                  version == kRecordVersionRefinedLocal));
   return known ? TailProblem::bad_payload : TailProblem::unknown_version;
 }
 

@@ -38,7 +38,8 @@ Pose read_pose(ByteReader& r) {
 // Version 2 strokes end with the long_turns byte, version 3 with it and the threshold.
 std::size_t stroke_bytes(std::uint8_t hand_mask, std::uint8_t version) {
   const auto hands = static_cast<std::size_t>(std::popcount(static_cast<unsigned>(hand_mask)));
-  const std::size_t tail = version == kRecordVersionRefined     ? kRefinedTailBytes
+  const std::size_t tail = version == kRecordVersionRefined || version == kRecordVersionRefinedLocal
+                               ? kRefinedTailBytes
                            : version == kRecordVersionLongTurns ? 1
                                                                 : 0;
   return kStrokeFixedBytes + 2 * hands * kPoseBytes + tail;
@@ -46,7 +47,9 @@ std::size_t stroke_bytes(std::uint8_t hand_mask, std::uint8_t version) {
 
 std::uint8_t record_version(const JournalRecord& r) {
   if (r.type != RecordType::stroke) return kRecordVersion;
-  if (r.stroke.refine_threshold_m > 0.0) return kRecordVersionRefined;
+  if (r.stroke.refine_threshold_m > 0.0) {
+    return r.stroke.refine_local ? kRecordVersionRefinedLocal : kRecordVersionRefined;
+  }
   return r.stroke.long_turns != 0 ? kRecordVersionLongTurns : kRecordVersion;
 }
 
@@ -87,7 +90,8 @@ bool read_stroke_tail(ByteReader& in, std::uint8_t version, StrokeRecord& s) {
       !valid_turns(s.long_turns, s.hand_mask)) {
     return false;
   }
-  if (version != kRecordVersionRefined) return true;
+  if (version != kRecordVersionRefined && version != kRecordVersionRefinedLocal) return true;
+  s.refine_local = version == kRecordVersionRefinedLocal;
   s.refine_threshold_m = in.f64();
   return valid_threshold(s.refine_threshold_m) && s.refine_threshold_m > 0.0;
 }
@@ -98,7 +102,8 @@ Result<std::size_t> encode_record(const JournalRecord& r, std::span<std::byte> o
   if (r.type == RecordType::stroke &&
       (!valid_mask(r.stroke.hand_mask) || r.stroke.method >= kMethodCount ||
        !valid_turns(r.stroke.long_turns, r.stroke.hand_mask) ||
-       !valid_threshold(r.stroke.refine_threshold_m))) {
+       !valid_threshold(r.stroke.refine_threshold_m) ||
+       (r.stroke.refine_local && !(r.stroke.refine_threshold_m > 0.0)))) {
     return StatusCode::invalid_argument;
   }
   if (r.type == RecordType::object_move && r.move.hand > 1) return StatusCode::invalid_argument;
@@ -125,7 +130,7 @@ Result<std::size_t> encode_record(const JournalRecord& r, std::span<std::byte> o
         write_pose(w, r.stroke.end[h]);
       }
       if (record_version(r) != kRecordVersion) w.u8(r.stroke.long_turns);
-      if (record_version(r) == kRecordVersionRefined) w.f64(r.stroke.refine_threshold_m);
+      if (r.stroke.refine_threshold_m > 0.0) w.f64(r.stroke.refine_threshold_m);
       break;
     case RecordType::object_move:
       w.u8(r.move.hand);
@@ -144,7 +149,8 @@ Result<JournalRecord> decode_payload(std::uint8_t version, std::uint8_t type,
                                      std::span<const std::byte> payload) {
   const bool stroke = type == static_cast<std::uint8_t>(RecordType::stroke);
   if (version != kRecordVersion &&
-      !(stroke && (version == kRecordVersionLongTurns || version == kRecordVersionRefined))) {
+      !(stroke && (version == kRecordVersionLongTurns || version == kRecordVersionRefined ||
+                   version == kRecordVersionRefinedLocal))) {
     return StatusCode::data_loss;
   }
   if (payload.size() < kSequenceOnlyBytes) return StatusCode::data_loss;

@@ -3,6 +3,8 @@
 // an AVX2+FMA clone and a baseline (SSE2) clone and picks one at load time
 // (target_clones, an ifunc), so the shipped binary runs on any x86-64 CPU; other
 // targets (aarch64: NEON) get the plain auto-vectorised loop.
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 
 #include "twister/math/warp_kernels.hpp"
@@ -41,6 +43,17 @@ TWISTER_ALWAYS_INLINE void sincos_half(float x, float& s, float& c) {
   q = q * x2 + 4.16666605e-02f;
   q = q * x2 - 0.5f;
   c = 1.0f + x2 * q;
+}
+
+// cos alone (the decay weights).
+TWISTER_ALWAYS_INLINE float cos_quarter(float x) {
+  const float x2 = x * x;
+  float q = -2.62979313e-07f;
+  q = q * x2 + 2.47745993e-05f;
+  q = q * x2 - 1.38886517e-03f;
+  q = q * x2 + 4.16666605e-02f;
+  q = q * x2 - 0.5f;
+  return 1.0f + x2 * q;
 }
 
 // The same for x in [0, pi) (a screw the long way round, angle up to 2 pi,
@@ -229,6 +242,39 @@ const char* simd_kernel_isa() {
 #else
   return "baseline";
 #endif
+}
+
+// Plain loop over restrict columns; sqrt vectorises (this file is built with
+// -fno-math-errno: its argument is never negative).
+TWISTER_SIMD_CLONES
+void decay_weights_simd(const DecaySpan& s, const float grab[3], const float unit[3], float stretch,
+                        float radius) {
+  const float* __restrict x = s.x;
+  const float* __restrict y = s.y;
+  const float* __restrict z = s.z;
+  float* __restrict w = s.w;
+  const float gx = grab[0], gy = grab[1], gz = grab[2];
+  const float ux = unit[0], uy = unit[1], uz = unit[2];
+  constexpr float kHalfPiF = 1.57079632679489662f;
+  const float scale = kHalfPiF / radius;
+  const float c0 = cos_quarter(kHalfPiF);
+  for (std::size_t i = 0; i < s.n; ++i) {
+    float px = x[i] - gx;
+    float py = y[i] - gy;
+    float pz = z[i] - gz;
+    // Branch-free (a select or compare kept this loop scalar): max(proj, 0) and
+    // min(x, pi/2) from fabs; the polynomial's value at pi/2 (c0, ~1e-8) subtracted so
+    // that the weight outside the radius is exactly 0 (a tiny one would make the warp
+    // kernel compute with denormals).
+    const float proj = px * ux + py * uy + pz * uz;
+    const float k = 0.5f * (proj + std::fabs(proj)) * stretch;
+    px += k * ux;
+    py += k * uy;
+    pz += k * uz;
+    const float arg = std::sqrt(px * px + py * py + pz * pz) * scale;
+    const float c = cos_quarter(0.5f * (arg + kHalfPiF - std::fabs(arg - kHalfPiF))) - c0;
+    w[i] = c * c;
+  }
 }
 
 }  // namespace twister::math

@@ -253,4 +253,78 @@ glm::dvec3 WarpPlan::warp_point(glm::dvec3 p) const {
   return moved;
 }
 
+namespace {
+
+// hand_weight in float over n points: squash towards the other grab, then decay.
+void float_weights(const Frame& grab, const Frame* other, double radius, const float* x,
+                   const float* y, const float* z, float* w, std::size_t n) {
+  const float g[3] = {static_cast<float>(grab.origin.x), static_cast<float>(grab.origin.y),
+                      static_cast<float>(grab.origin.z)};
+  float u[3] = {0.0f, 0.0f, 0.0f};
+  float stretch = 0.0f;  // (r - s) / s along the unit OQ, 0: no squash
+  if (other != nullptr) {
+    const glm::dvec3 oq = other->origin - grab.origin;
+    const double s = glm::length(oq);
+    if (s < radius && s > 0.0) {
+      u[0] = static_cast<float>(oq.x / s);
+      u[1] = static_cast<float>(oq.y / s);
+      u[2] = static_cast<float>(oq.z / s);
+      stretch = static_cast<float>((radius - s) / s);
+    }
+  }
+  decay_weights_simd(DecaySpan{x, y, z, w, n}, g, u, stretch, static_cast<float>(radius));
+}
+
+}  // namespace
+
+bool WarpPlan::warp_points_float(const float* x, const float* y, const float* z, float* out_x,
+                                 float* out_y, float* out_z, std::size_t n) const {
+  if (!built() || method_ == WarpMethod::scodef || n > kFloatChunk) return false;
+  float w1[kFloatChunk];
+  float w2[kFloatChunk];
+  const bool two = hands_ == 2;
+  float_weights(start_[0], two ? &start_[1] : nullptr, radius_, x, y, z, w1, n);
+  if (two) float_weights(start_[1], &start_[0], radius_, x, y, z, w2, n);
+  const KernelSpan s{x, y, z, w1, two ? w2 : w1, out_x, out_y, out_z, n};
+  two ? warp_two_simd(kernel_hands_[0], kernel_hands_[1], s) : warp_one_simd(kernel_hands_[0], s);
+  return true;
+}
+
+// Forward error analysis (docs/refinement.md "The float filter"), u = 2^-24:
+//  - the weight: squash, length, the polynomial cos and its square in float give
+//    |t_f - t| <= ~40 u (relative errors of a few u in d, the argument's pi/2 scale,
+//    6e-9 from the polynomial, doubled by the square); taken as 2^-18 (64 u);
+//  - the kernel's arithmetic (~45 float operations per hand, every intermediate at most
+//    the hand's magnitude A = |p| + |M| + |k X| + |T| + 2 V, V = r + |grab - M| the
+//    farthest point it moves, F and G rounded to float, the polynomial sin/cos at
+//    4e-8): |error| <= ~50 u A per hand; taken as 2^-16 A (256 u A);
+//  - the weight error moves the point by at most |dD/dt| |t_f - t| with
+//    |dD/dt| <= G = 2 (a/2) (2 V + |k X|) + |T|;
+//  - output rounding: 2^-23 extent;
+//  - the point itself may be off by 2^-23 extent (a float midpoint): times the warp's
+//    Lipschitz bound L = 1 + sum (4 + G |grad t|), |grad t| <= pi/(2r) max(1, r/s)
+//    (s: the distance between the grabs, the squash's stretch).
+double WarpPlan::float_error_bound(double extent_m) const {
+  if (!built() || method_ == WarpMethod::scodef) return std::numeric_limits<double>::infinity();
+  constexpr double kWeight = 0x1p-18;
+  constexpr double kKernel = 0x1p-16;
+  double bound = 0x1p-23 * 1.7320508075688772 * extent_m;
+  double lipschitz = 1.0;
+  const double s = hands_ == 2 ? glm::length(start_[1].origin - start_[0].origin) : radius_;
+  const double stretch = s > 0.0 && s < radius_ ? radius_ / s : 1.0;
+  for (std::size_t h = 0; h < hands_; ++h) {
+    const KernelHand& k = kernel_hands_[h];
+    const glm::dvec3 mid(k.mid[0], k.mid[1], k.mid[2]);
+    const double kx =
+        std::abs(k.cot_half) * glm::length(glm::dvec3(k.chord[0], k.chord[1], k.chord[2]));
+    const double shift = glm::length(glm::dvec3(k.shift[0], k.shift[1], k.shift[2]));
+    const double v = radius_ + glm::length(start_[h].origin - mid);
+    const double magnitude = 1.7320508075688772 * extent_m + glm::length(mid) + kx + shift + 2 * v;
+    const double slope = 2.0 * std::abs(k.half_angle) * (2.0 * v + kx) + shift;
+    bound += kKernel * magnitude + kWeight * slope;
+    lipschitz += 4.0 + slope * 0.5 * 3.14159265358979324 / radius_ * stretch;
+  }
+  return bound + 0x1p-23 * 1.7320508075688772 * extent_m * lipschitz;
+}
+
 }  // namespace twister::math

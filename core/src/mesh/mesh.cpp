@@ -44,12 +44,14 @@ Result<std::uint32_t> Mesh::add_triangle(std::uint32_t a, std::uint32_t b, std::
   indices_[base] = a;
   indices_[base + 1] = b;
   indices_[base + 2] = c;
+  ++topology_version_;
   return static_cast<std::uint32_t>(triangle_count_++);
 }
 
 void Mesh::clear() {
   vertex_count_ = 0;
   triangle_count_ = 0;
+  ++topology_version_;
 }
 
 glm::vec3 Mesh::position(std::uint32_t i) const {
@@ -77,14 +79,17 @@ void Mesh::set_triangle(std::uint32_t t, const std::array<std::uint32_t, 3>& v) 
   indices_[base] = v[0];
   indices_[base + 1] = v[1];
   indices_[base + 2] = v[2];
+  ++topology_version_;
 }
 
 Status Mesh::resize(std::size_t vertices, std::size_t triangles) {
   if (vertices > vertex_capacity() || triangles > triangle_capacity()) {
     return StatusCode::resource_exhausted;
   }
+  if (vertices == vertex_count_ && triangles == triangle_count_) return ok_status();
   vertex_count_ = vertices;
   triangle_count_ = triangles;
+  ++topology_version_;
   return ok_status();
 }
 
@@ -98,6 +103,7 @@ Status Mesh::copy_from(const Mesh& other) {
   std::copy_n(other.indices_.begin(), 3 * other.triangle_count_, indices_.begin());
   vertex_count_ = other.vertex_count_;
   triangle_count_ = other.triangle_count_;
+  ++topology_version_;
   return ok_status();
 }
 

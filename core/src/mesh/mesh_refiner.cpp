@@ -7,8 +7,11 @@
 // the edge, and S(v) per vertex, so each edge and vertex is warped once.
 #include "twister/mesh/mesh_refiner.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <glm/geometric.hpp>
+#include <utility>
 
 #include "twister/base/assert.hpp"
 
@@ -18,8 +21,11 @@ namespace {
 constexpr std::uint8_t kUnknown = 0;
 constexpr std::uint8_t kWithin = 1;
 constexpr std::uint8_t kOver = 2;
+constexpr std::uint8_t kBatched = 3;  // in a float batch (settle_in_float only)
 constexpr std::uint8_t kQueued = 1;
 constexpr std::uint8_t kReported = 2;
+constexpr std::uint8_t kPending = 4;  // refine_around: an original triangle still to visit
+constexpr std::uint32_t kNoCorner = 0xffffffffu;
 
 constexpr std::uint32_t next(std::uint32_t i) { return i == 2 ? 0 : i + 1; }
 constexpr std::uint32_t prev(std::uint32_t i) { return i == 0 ? 2 : i - 1; }
@@ -60,21 +66,86 @@ Result<RefineResult> MeshRefiner::refine(Mesh& mesh, const PointWarp& warp, doub
                                          RefineObserver* observer) {
   if (!fits(mesh)) return StatusCode::failed_precondition;
   if (!std::isfinite(threshold_m) || !(threshold_m > 0.0)) return StatusCode::invalid_argument;
-  TWISTER_TRY(adjacency_.build(mesh));
+  TWISTER_TRY(build_adjacency(mesh));
+  local_ = false;
   start(mesh, warp, threshold_m, observer);
   const auto vertices_before = static_cast<std::uint32_t>(mesh.vertex_count());
-  while (!queue_.empty()) {
-    const std::uint32_t t = queue_.front();
-    queue_.pop_front();
-    storage_.triangle_flags[t] &= static_cast<std::uint8_t>(~kQueued);
+  for (std::uint32_t t = 0; t < triangles_before_; ++t) {
+    storage_.triangle_flags[t] = 0;
+    push(t);
+  }
+  run();
+  for (std::uint32_t v = vertices_before; v < mesh.vertex_count(); ++v) (void)warped_of(v);
+  keep_adjacency(mesh);
+  mesh_ = nullptr;
+  return result_;
+}
+
+Result<RefineResult> MeshRefiner::refine_around(Mesh& mesh, const PointWarp& warp,
+                                                double threshold_m,
+                                                std::span<const std::uint32_t> vertices,
+                                                RefineObserver* observer) {
+  if (!fits(mesh)) return StatusCode::failed_precondition;
+  if (!std::isfinite(threshold_m) || !(threshold_m > 0.0)) return StatusCode::invalid_argument;
+  for (const std::uint32_t v : vertices) {
+    if (v >= mesh.vertex_count()) return StatusCode::invalid_argument;
+  }
+  if (!adjacency_current(mesh)) TWISTER_TRY(build_adjacency(mesh));
+  if (!manifold_) return refine(mesh, warp, threshold_m, observer);
+  local_ = true;
+  start(mesh, warp, threshold_m, observer);
+  const auto vertices_before = static_cast<std::uint32_t>(mesh.vertex_count());
+  collect_region(vertices);
+  settle_in_float();
+  run();
+  local_ = false;
+  for (std::uint32_t v = vertices_before; v < mesh.vertex_count(); ++v) (void)warped_of(v);
+  keep_adjacency(mesh);
+  mesh_ = nullptr;
+  return result_;
+}
+
+// The FIFO loop (refine) or the emulation of its order (refine_around).
+void MeshRefiner::run() {
+  std::uint32_t t = 0;
+  while (next_triangle(t)) {
     if (!has_offending_edge(t)) continue;
     const Split s = bisect(t);
     if (s == Split::no_room) break;
     if (s == Split::blocked) ++result_.blocked;
   }
-  for (std::uint32_t v = vertices_before; v < mesh.vertex_count(); ++v) (void)warped_of(v);
-  mesh_ = nullptr;
-  return result_;
+}
+
+// refine() pops the original triangles in index order, then what splits pushed. In
+// refine_around the originals outside the region (never changed before their turn)
+// would be popped without effect there, so only the region's (pending_) and those a
+// split changed before their turn (heap_) are visited, in index order, then the FIFO.
+bool MeshRefiner::next_triangle(std::uint32_t& t) {
+  if (pending_phase_) {
+    const bool from_heap =
+        heap_size_ > 0 && (pending_pos_ == pending_.size() || heap_[0] < pending_[pending_pos_]);
+    if (from_heap) {
+      std::pop_heap(heap_.begin(), heap_.begin() + static_cast<std::ptrdiff_t>(heap_size_),
+                    std::greater<>());
+      t = heap_[--heap_size_];
+    } else if (pending_pos_ < pending_.size()) {
+      t = pending_[pending_pos_++];
+    } else {
+      pending_phase_ = false;
+      cursor_ = triangles_before_;
+    }
+    if (pending_phase_) {
+      cursor_ = t;
+      touch(t);
+      storage_.triangle_flags[t] &= static_cast<std::uint8_t>(~kPending);
+      return true;
+    }
+  }
+  if (queue_.empty()) return false;
+  t = queue_.front();
+  queue_.pop_front();
+  storage_.triangle_flags[t] &= static_cast<std::uint8_t>(~kQueued);
+  return true;
 }
 
 void MeshRefiner::start(Mesh& mesh, const PointWarp& warp, double threshold_m,
@@ -86,15 +157,20 @@ void MeshRefiner::start(Mesh& mesh, const PointWarp& warp, double threshold_m,
   result_ = RefineResult{};
   if (++generation_ == 1) {  // first call, or the stamps wrapped: none is valid
     for (std::uint32_t& s : storage_.warped_stamp) s = 0;
+    for (std::uint32_t& s : storage_.float_stamp) s = 0;
+    reset_triangle_stamps();
   }
   const std::size_t triangles = mesh.triangle_count();
   triangles_before_ = static_cast<std::uint32_t>(triangles);
-  for (std::size_t h = 0; h < 3 * triangles; ++h) storage_.edge_state[h] = kUnknown;
-  queue_.clear();
-  for (std::uint32_t t = 0; t < triangles; ++t) {
-    storage_.triangle_flags[t] = 0;
-    push(t);
+  if (!local_) {
+    for (std::size_t h = 0; h < 3 * triangles; ++h) storage_.edge_state[h] = kUnknown;
   }
+  queue_.clear();
+  pending_phase_ = local_;
+  cursor_ = -1;
+  pending_ = {};
+  pending_pos_ = 0;
+  heap_size_ = 0;
 }
 
 glm::dvec3 MeshRefiner::rest(std::uint32_t v) const { return glm::dvec3(mesh_->position(v)); }
@@ -139,6 +215,7 @@ std::uint32_t MeshRefiner::longest(std::uint32_t t) const {
 }
 
 bool MeshRefiner::offending(std::uint32_t h) {
+  touch(h / 3);
   std::uint8_t state = storage_.edge_state[h];
   if (state == kUnknown) {
     const std::uint32_t a = edge_vertex(h, 0);
@@ -148,7 +225,10 @@ bool MeshRefiner::offending(std::uint32_t h) {
     state = error > threshold_m_ ? kOver : kWithin;
     storage_.edge_state[h] = state;
     const std::uint32_t g = adjacency_.twin(h);
-    if (real_twin(g)) storage_.edge_state[g] = state;
+    if (real_twin(g)) {
+      touch(g / 3);
+      storage_.edge_state[g] = state;
+    }
   }
   return state == kOver;
 }
@@ -201,6 +281,7 @@ void MeshRefiner::split(std::uint32_t h) {
   const Result<std::uint32_t> added = mesh_->add_vertex(glm::vec3(mid));
   TWISTER_ASSERT(added.ok());  // room() was checked
   const std::uint32_t m = *added;
+  storage_.adjacency.vertex_offsets[m] = h / 3;  // m's corner
   const std::uint32_t a = edge_vertex(h, 0);
   const std::uint32_t g = adjacency_.twin(h);
   const std::uint32_t t_new = split_one(h, m);
@@ -225,6 +306,7 @@ void MeshRefiner::split(std::uint32_t h) {
 std::uint32_t MeshRefiner::split_one(std::uint32_t h, std::uint32_t m) {
   const std::uint32_t t = h / 3;
   const std::uint32_t i = h % 3;
+  touch(t);
   changing(t);
   std::array<std::uint32_t, 3> v = mesh_->triangle(t);
   std::array<std::uint32_t, 3> w = v;
@@ -232,6 +314,10 @@ std::uint32_t MeshRefiner::split_one(std::uint32_t h, std::uint32_t m) {
   const Result<std::uint32_t> added = mesh_->add_triangle(w[0], w[1], w[2]);
   TWISTER_ASSERT(added.ok());  // room() was checked
   const std::uint32_t n = *added;
+  touch(n);
+  // b leaves t for n: keep its corner on one of its triangles.
+  std::uint32_t& corner_b = storage_.adjacency.vertex_offsets[v[next(i)]];
+  if (corner_b == t) corner_b = n;
   v[next(i)] = m;
   mesh_->set_triangle(t, v);
   ++result_.triangles_added;
@@ -249,6 +335,7 @@ std::uint32_t MeshRefiner::split_one(std::uint32_t h, std::uint32_t m) {
 }
 
 void MeshRefiner::changing(std::uint32_t t) {
+  touch(t);
   if (t >= triangles_before_ || (storage_.triangle_flags[t] & kReported) != 0) return;
   storage_.triangle_flags[t] |= kReported;
   ++result_.triangles_changed;
@@ -256,11 +343,296 @@ void MeshRefiner::changing(std::uint32_t t) {
 }
 
 void MeshRefiner::push(std::uint32_t t) {
-  if ((storage_.triangle_flags[t] & kQueued) != 0) return;
-  storage_.triangle_flags[t] |= kQueued;
+  touch(t);
+  std::uint8_t& flags = storage_.triangle_flags[t];
+  if (pending_phase_ && t<triangles_before_&& static_cast<std::int64_t>(t)> cursor_) {
+    // refine() still holds t at its index in the FIFO: visit it there.
+    if ((flags & kPending) != 0) return;
+    flags |= kPending;
+    heap_[heap_size_++] = t;
+    std::push_heap(heap_.begin(), heap_.begin() + static_cast<std::ptrdiff_t>(heap_size_),
+                   std::greater<>());
+    return;
+  }
+  if ((flags & kQueued) != 0) return;
+  flags |= kQueued;
   // At most one entry per triangle (kQueued) and fits() saw room for every triangle.
   const Status queued = queue_.push(t);
   TWISTER_DEBUG_ASSERT(queued.ok());
+}
+
+// refine_around: a triangle's flags and edge verdicts are of this call once touched.
+void MeshRefiner::touch(std::uint32_t t) {
+  if (!local_ || stamps_[t] == generation_) return;
+  stamps_[t] = generation_;
+  storage_.triangle_flags[t] = 0;
+  storage_.edge_state[3 * std::size_t{t}] = kUnknown;
+  storage_.edge_state[3 * std::size_t{t} + 1] = kUnknown;
+  storage_.edge_state[3 * std::size_t{t} + 2] = kUnknown;
+}
+
+void MeshRefiner::reset_triangle_stamps() {
+  for (std::uint32_t& s : stamps_) s = 0;
+}
+
+// Twins from scratch (O(triangles x valence)); then the vertex -> triangle table
+// becomes one corner triangle per vertex, the rest of the scratch the stamps and
+// lists of refine_around, and the mesh is checked for what local refinement needs.
+Status MeshRefiner::build_adjacency(const Mesh& mesh) {
+  adjacency_mesh_ = nullptr;
+  TWISTER_TRY(adjacency_.build(mesh));
+  const std::size_t n = mesh.vertex_count();
+  std::span<std::uint32_t> offsets = storage_.adjacency.vertex_offsets;
+  std::span<std::uint32_t> incident = storage_.adjacency.incident;
+  for (std::size_t v = 0; v < n; ++v) {
+    offsets[v] = offsets[v] < offsets[v + 1] ? incident[offsets[v]] : kNoCorner;
+  }
+  const std::size_t capacity = mesh.triangle_capacity();
+  stamps_ = incident.first(capacity);
+  reset_triangle_stamps();
+  // Manifold: no edge on more than two triangles, and each vertex's triangles are one
+  // fan around it (the fans of all vertices cover every corner once).
+  const std::size_t triangles = mesh.triangle_count();
+  manifold_ = true;
+  for (std::size_t h = 0; h < 3 * triangles && manifold_; ++h) {
+    manifold_ = adjacency_.twin(static_cast<std::uint32_t>(h)) != kNonManifold;
+  }
+  if (manifold_) {
+    const Mesh* saved = mesh_;
+    mesh_ = const_cast<Mesh*>(&mesh);  // read only: for_fan reads triangles
+    std::size_t corners = 0;
+    for (std::uint32_t v = 0; v < n && manifold_; ++v) {
+      const std::uint32_t k = for_fan(v, [](std::uint32_t) {});
+      if (k == kNoCorner) manifold_ = false;
+      corners += k;
+    }
+    mesh_ = const_cast<Mesh*>(saved);
+    manifold_ = manifold_ && corners == 3 * triangles;
+  }
+  return ok_status();
+}
+
+bool MeshRefiner::adjacency_current(const Mesh& mesh) const {
+  return adjacency_mesh_ == &mesh && adjacency_version_ == mesh.topology_version() &&
+         adjacency_vertices_ == mesh.vertex_count();
+}
+
+void MeshRefiner::keep_adjacency(const Mesh& mesh) {
+  adjacency_mesh_ = &mesh;
+  adjacency_version_ = mesh.topology_version();
+  adjacency_vertices_ = mesh.vertex_count();
+}
+
+std::uint32_t MeshRefiner::slot(std::uint32_t t, std::uint32_t v) const {
+  const std::uint32_t* tv = mesh_->triangle_indices().data() + 3 * std::size_t{t};
+  return tv[0] == v ? 0 : tv[1] == v ? 1 : 2;
+}
+
+// Calls f(t) for every triangle around v (walking across the twins of the edges at
+// v, both ways when the fan is open); returns how many, or kNoCorner when the walk
+// meets a non-manifold edge or does not close within the mesh's triangle count.
+template <typename F>
+std::uint32_t MeshRefiner::for_fan(std::uint32_t v, F&& f) const {
+  const std::uint32_t t0 = storage_.adjacency.vertex_offsets[v];
+  if (t0 == kNoCorner) return 0;
+  const auto limit = static_cast<std::uint32_t>(mesh_->triangle_count());
+  const std::uint32_t j0 = slot(t0, v);
+  std::uint32_t count = 0;
+  f(t0);
+  ++count;
+  // Two ways out of t0 at v: edge (v, next) and edge (prev, v).
+  for (const std::uint32_t first_exit : {3 * t0 + j0, 3 * t0 + prev(j0)}) {
+    std::uint32_t exit = first_exit;
+    for (;;) {
+      const std::uint32_t g = adjacency_.twin(exit);
+      if (g == kBoundary) break;
+      if (g == kNonManifold) return kNoCorner;
+      const std::uint32_t u = g / 3;
+      if (u == t0) return count;  // closed fan: both ways done
+      if (++count > limit) return kNoCorner;
+      f(u);
+      const std::uint32_t j = slot(u, v);
+      exit = 3 * u + j == g ? 3 * u + prev(j) : 3 * u + j;
+    }
+  }
+  return count;
+}
+
+// The region: every triangle with a vertex in `vertices`, in ascending index (a
+// radix sort over the scratch), each flagged kPending.
+void MeshRefiner::collect_region(std::span<const std::uint32_t> vertices) {
+  const std::size_t capacity = stamps_.size();
+  std::span<std::uint32_t> a = storage_.adjacency.incident.subspan(capacity, capacity);
+  std::span<std::uint32_t> b = storage_.adjacency.incident.subspan(2 * capacity, capacity);
+  std::size_t count = 0;
+  for (const std::uint32_t v : vertices) {
+    (void)for_fan(v, [&](std::uint32_t t) {
+      touch(t);
+      std::uint8_t& flags = storage_.triangle_flags[t];
+      if ((flags & kPending) != 0) return;
+      flags |= kPending;
+      a[count++] = t;
+    });
+  }
+  constexpr std::uint32_t kBits = 11;
+  std::array<std::uint32_t, 1u << kBits> buckets{};
+  for (std::uint32_t shift = 0; shift < 32 && (triangles_before_ >> shift) != 0; shift += kBits) {
+    buckets.fill(0);
+    for (std::size_t k = 0; k < count; ++k) ++buckets[(a[k] >> shift) & ((1u << kBits) - 1)];
+    std::uint32_t sum = 0;
+    for (std::uint32_t& c : buckets) {
+      const std::uint32_t here = c;
+      c = sum;
+      sum += here;
+    }
+    for (std::size_t k = 0; k < count; ++k)
+      b[buckets[(a[k] >> shift) & ((1u << kBits) - 1)]++] = a[k];
+    std::swap(a, b);
+  }
+  pending_ = a.first(count);
+  heap_ = b;
+  pending_pos_ = 0;
+  heap_size_ = 0;
+}
+
+// The float filter: every edge of the region's triangles evaluated in single precision
+// in batches (S at both ends and at the float midpoint); an edge whose float error is
+// at most threshold - 2 delta - slack (delta = the warp's float_error_m bound for the
+// batch, slack for computing the error itself) is within the threshold in double too,
+// so its verdict is cached as refine() would have computed it. Every other edge is
+// left to the double criterion (docs/refinement.md "The float filter").
+struct MeshRefiner::FloatBatch {
+  // Without the vertex cache: kEdges edges, their ends and midpoints in the thirds of
+  // the columns; with it: up to 3 kEdges midpoints.
+  static constexpr std::size_t kEdges = PointWarp::kFloatBatch / 3;
+  std::array<std::uint32_t, 3 * kEdges> edges{};
+  std::array<std::array<std::uint32_t, 2>, 3 * kEdges> ends{};
+  std::array<float, 3 * kEdges> x{}, y{}, z{}, ox{}, oy{}, oz{};
+  std::size_t n = 0;
+  float extent = 0.0f;
+  bool cached = false;
+};
+
+struct MeshRefiner::VertexBatch {
+  static constexpr std::size_t kSize = PointWarp::kFloatBatch;
+  std::array<std::uint32_t, kSize> vertices{};
+  std::array<float, kSize> x{}, y{}, z{}, ox{}, oy{}, oz{};
+  std::size_t n = 0;
+  float extent = 0.0f;
+  bool fast = true;
+};
+
+// S in float of a batch of vertices into the float cache (and the bound for them).
+void MeshRefiner::warp_vertices(VertexBatch& b) {
+  if (b.n == 0) return;
+  b.fast = b.fast && warp_->warp_float(b.x.data(), b.y.data(), b.z.data(), b.ox.data(), b.oy.data(),
+                                       b.oz.data(), b.n);
+  if (b.fast) vertex_error_ = std::max(vertex_error_, warp_->float_error_m(b.extent));
+  for (std::size_t k = 0; k < b.n; ++k) {
+    const std::uint32_t v = b.vertices[k];
+    storage_.float_x[v] = b.ox[k];
+    storage_.float_y[v] = b.oy[k];
+    storage_.float_z[v] = b.oz[k];
+  }
+  b.n = 0;
+  b.extent = 0.0f;
+}
+
+void MeshRefiner::settle_in_float() {
+  settled_in_float_ = 0;
+  const std::span<const std::uint32_t> indices = mesh_->triangle_indices();
+  const std::span<const float> px = std::as_const(*mesh_).x();
+  const std::span<const float> py = std::as_const(*mesh_).y();
+  const std::span<const float> pz = std::as_const(*mesh_).z();
+  // S at every vertex of the region once (when the storage has the float cache).
+  const bool cached = storage_.float_stamp.size() >= mesh_->vertex_capacity() &&
+                      storage_.float_x.size() >= mesh_->vertex_capacity() &&
+                      storage_.float_y.size() >= mesh_->vertex_capacity() &&
+                      storage_.float_z.size() >= mesh_->vertex_capacity();
+  vertex_error_ = 0.0;
+  bool vertices_fast = true;
+  if (cached) {
+    VertexBatch vb;
+    for (const std::uint32_t t : pending_) {
+      for (std::size_t j = 3 * std::size_t{t}; j < 3 * std::size_t{t} + 3; ++j) {
+        const std::uint32_t v = indices[j];
+        if (storage_.float_stamp[v] == generation_) continue;
+        storage_.float_stamp[v] = generation_;
+        const std::size_t k = vb.n;
+        vb.vertices[k] = v;
+        vb.x[k] = px[v], vb.y[k] = py[v], vb.z[k] = pz[v];
+        vb.extent = std::max({vb.extent, std::abs(px[v]), std::abs(py[v]), std::abs(pz[v])});
+        if (++vb.n == VertexBatch::kSize) warp_vertices(vb);
+      }
+    }
+    warp_vertices(vb);
+    vertices_fast = vb.fast;
+  }
+  if (!vertices_fast) return;  // the warp offers no float path
+  FloatBatch b;
+  b.cached = cached;
+  for (const std::uint32_t t : pending_) {
+    for (std::uint32_t h = 3 * t; h < 3 * t + 3; ++h) {
+      if (storage_.edge_state[h] != kUnknown) continue;
+      const std::uint32_t va = indices[h];
+      const std::uint32_t vb = indices[h % 3 == 2 ? h - 2 : h + 1];
+      const glm::vec3 pa(px[va], py[va], pz[va]);
+      const glm::vec3 pb(px[vb], py[vb], pz[vb]);
+      const glm::vec3 pm = (pa + pb) * 0.5f;
+      const std::size_t k = b.n;
+      b.edges[k] = h;
+      b.ends[k] = {va, vb};
+      b.x[k] = pm.x, b.y[k] = pm.y, b.z[k] = pm.z;
+      if (!cached) {
+        b.x[FloatBatch::kEdges + k] = pa.x, b.y[FloatBatch::kEdges + k] = pa.y;
+        b.z[FloatBatch::kEdges + k] = pa.z;
+        b.x[2 * FloatBatch::kEdges + k] = pb.x, b.y[2 * FloatBatch::kEdges + k] = pb.y;
+        b.z[2 * FloatBatch::kEdges + k] = pb.z;
+      }
+      b.extent = std::max({b.extent, std::abs(pa.x), std::abs(pa.y), std::abs(pa.z), std::abs(pb.x),
+                           std::abs(pb.y), std::abs(pb.z)});
+      storage_.edge_state[h] = kBatched;  // the twin is not batched again
+      const std::uint32_t g = adjacency_.twin(h);
+      if (real_twin(g)) {
+        touch(g / 3);
+        storage_.edge_state[g] = kBatched;
+      }
+      if (++b.n == (cached ? 3 * FloatBatch::kEdges : FloatBatch::kEdges)) settle_batch(b);
+    }
+  }
+  settle_batch(b);
+}
+
+void MeshRefiner::settle_batch(FloatBatch& b) {
+  if (b.n == 0) return;
+  constexpr std::size_t e = FloatBatch::kEdges;
+  // Unused slots are harmless (evaluated, ignored).
+  const std::size_t points = b.cached ? b.n : 3 * e;
+  const bool fast = warp_->warp_float(b.x.data(), b.y.data(), b.z.data(), b.ox.data(), b.oy.data(),
+                                      b.oz.data(), points);
+  const double delta = fast ? warp_->float_error_m(b.extent) : 0.0;
+  // |e_float - e_double| <= (delta_a + delta_b) / 2 + delta_m.
+  const double ends_error = b.cached ? vertex_error_ : delta;
+  const double limit = threshold_m_ - ends_error - delta - 0x1p-40 * (1.0 + b.extent);
+  for (std::size_t k = 0; k < b.n; ++k) {
+    const std::uint32_t h = b.edges[k];
+    const auto [va, vb] = b.ends[k];
+    const glm::dvec3 sm(b.ox[k], b.oy[k], b.oz[k]);
+    const glm::dvec3 sa =
+        b.cached ? glm::dvec3(storage_.float_x[va], storage_.float_y[va], storage_.float_z[va])
+                 : glm::dvec3(b.ox[e + k], b.oy[e + k], b.oz[e + k]);
+    const glm::dvec3 sb =
+        b.cached ? glm::dvec3(storage_.float_x[vb], storage_.float_y[vb], storage_.float_z[vb])
+                 : glm::dvec3(b.ox[2 * e + k], b.oy[2 * e + k], b.oz[2 * e + k]);
+    const bool within = fast && limit > 0.0 && glm::length(0.5 * (sa + sb) - sm) <= limit;
+    const std::uint8_t state = within ? kWithin : kUnknown;
+    storage_.edge_state[h] = state;
+    const std::uint32_t g = adjacency_.twin(h);
+    if (real_twin(g)) storage_.edge_state[g] = state;
+    if (within) ++settled_in_float_;
+  }
+  b.n = 0;
+  b.extent = 0.0f;
 }
 
 }  // namespace twister::mesh

@@ -15,6 +15,13 @@ class PlanWarp final : public mesh::PointWarp {
 
  private:
   glm::dvec3 do_warp(glm::dvec3 rest_m) const override { return plan_.warp_point(rest_m); }
+  bool do_warp_float(const float* x, const float* y, const float* z, float* ox, float* oy,
+                     float* oz, std::size_t n) const override {
+    return plan_.warp_points_float(x, y, z, ox, oy, oz, n);
+  }
+  double do_float_error_m(double extent_m) const override {
+    return plan_.float_error_bound(extent_m);
+  }
   const math::WarpPlan& plan_;
 };
 
@@ -50,7 +57,7 @@ double CommitRefinement::live_threshold() const {
 }
 
 RefineReport CommitRefinement::refine(const math::WarpPlan& plan, double threshold_m,
-                                      UndoHistory& undo) {
+                                      UndoHistory& undo, bool local) {
   RefineReport report;
   if (!(threshold_m > 0.0) || !std::isfinite(threshold_m)) return report;
   mesh::Mesh& m = mesh_.mesh();
@@ -58,7 +65,9 @@ RefineReport CommitRefinement::refine(const math::WarpPlan& plan, double thresho
   const auto triangles = static_cast<std::uint32_t>(m.triangle_count());
   UndoTriangles observer(undo);
   const PlanWarp warp(plan);
-  const Result<mesh::RefineResult> refined = refiner_.refine(m, warp, threshold_m, &observer);
+  const Result<mesh::RefineResult> refined =
+      local ? refiner_.refine_around(m, warp, threshold_m, plan.indices(), &observer)
+            : refiner_.refine(m, warp, threshold_m, &observer);
   TWISTER_ASSERT(refined.ok());  // available() and a valid threshold
   report.result = *refined;
   report.ran = true;

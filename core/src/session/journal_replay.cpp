@@ -60,7 +60,7 @@ Status JournalReplay::apply_stroke(const journal::StrokeRecord& s) {
   // The screws from the poses alone (and the turn sense the record gives): the same
   // numbers the live stroke computed, minimal or unwrapped.
   TWISTER_TRY(plan_.update_turns(end, long_turns));
-  TWISTER_TRY(history_.apply_stroke(plan_, s.refine_threshold_m));
+  TWISTER_TRY(history_.apply_stroke(plan_, s.refine_threshold_m, s.refine_local));
   chain_open_ = s.refine_threshold_m == 0.0;  // a refined commit ended its chain
   chain_step_ = s.chain_step;
   ++stats_.strokes;

@@ -39,8 +39,9 @@ CommitOutcome SessionHistory::do_commit(const math::WarpPlan& plan,
   r.type = journal::RecordType::stroke;
   r.stroke = stroke;
   r.stroke.refine_threshold_m = threshold;
+  r.stroke.refine_local = threshold > 0.0 && refinement_->local();
   if (const Status saved = append(r); !saved.ok()) return {saved, sequence};
-  commit_live(plan, threshold, sequence, &out);
+  commit_live(plan, threshold, r.stroke.refine_local, sequence, &out);
   return {ok_status(), sequence};
 }
 
@@ -74,8 +75,9 @@ Status SessionHistory::commit_history_step(journal::RecordType type) {
   return saved;
 }
 
-Status SessionHistory::apply_stroke(const math::WarpPlan& plan, double refine_threshold_m) {
-  return apply_plan(plan, refine_threshold_m, nullptr);
+Status SessionHistory::apply_stroke(const math::WarpPlan& plan, double refine_threshold_m,
+                                    bool refine_local) {
+  return apply_plan(plan, refine_threshold_m, refine_local, nullptr);
 }
 
 void SessionHistory::apply_move(const math::Frame& before, const math::Frame& after) {
@@ -94,24 +96,24 @@ Status SessionHistory::apply_history_step(journal::RecordType type) {
 }
 
 Status SessionHistory::apply_plan(const math::WarpPlan& plan, double refine_threshold_m,
-                                  SessionEvents* out) {
+                                  bool refine_local, SessionEvents* out) {
   if (refine_threshold_m > 0.0 && (refinement_ == nullptr || !refinement_->available())) {
     return StatusCode::failed_precondition;
   }
   TWISTER_TRY(plan.apply(mesh_.rest(), mesh_.live()));
-  commit_live(plan, refine_threshold_m, next_sequence_, out);
+  commit_live(plan, refine_threshold_m, refine_local, next_sequence_, out);
   return ok_status();
 }
 
 void SessionHistory::commit_live(const math::WarpPlan& plan, double refine_threshold_m,
-                                 std::uint32_t sequence, SessionEvents* out) {
+                                 bool refine_local, std::uint32_t sequence, SessionEvents* out) {
   const math::VertexColumns live = mesh_.live();
   mesh::Mesh& mesh = mesh_.mesh();
   history_.begin_entry();
   // Refinement first: it needs the rest positions the plan's vertices still hold.
-  const RefineReport refined = refinement_ != nullptr
-                                   ? refinement_->refine(plan, refine_threshold_m, history_)
-                                   : RefineReport{};
+  const RefineReport refined =
+      refinement_ != nullptr ? refinement_->refine(plan, refine_threshold_m, history_, refine_local)
+                             : RefineReport{};
   bool undoable = refined.undoable;
   for (const std::uint32_t i : plan.indices()) {
     const glm::vec3 after{live.x[i], live.y[i], live.z[i]};

@@ -49,6 +49,32 @@ TEST(JournalRefined, VersionThreeOnlyWhenRefined) {
   EXPECT_EQ(*decoded, stroke(3, 0, 0.002));
 }
 
+// Issue 24: a stroke refined over its region only is version 4, version 3's bytes
+// otherwise; it decodes with refine_local set; a region flag without a threshold is
+// not a record.
+TEST(JournalRefined, VersionFourIsVersionThreeRefinedLocally) {
+  std::array<std::byte, kMaxRecordBytes> whole{};
+  std::array<std::byte, kMaxRecordBytes> local{};
+  JournalRecord r = stroke(3, 1, 0.002);
+  const auto whole_n = encode_record(r, whole);
+  r.stroke.refine_local = true;
+  const auto local_n = encode_record(r, local);
+  ASSERT_TRUE(whole_n.ok() && local_n.ok());
+  EXPECT_EQ(std::to_integer<int>(whole[4]), kRecordVersionRefined);
+  EXPECT_EQ(std::to_integer<int>(local[4]), kRecordVersionRefinedLocal);
+  ASSERT_EQ(*whole_n, *local_n);
+  EXPECT_EQ(0, std::memcmp(whole.data() + 5, local.data() + 5, *local_n - 5 - kRecordCrcBytes));
+  const auto decoded = decode_payload(kRecordVersionRefinedLocal, 1, payload_of(local, *local_n));
+  ASSERT_TRUE(decoded.ok());
+  EXPECT_EQ(*decoded, r);
+  const auto as_three = decode_payload(kRecordVersionRefined, 1, payload_of(whole, *whole_n));
+  ASSERT_TRUE(as_three.ok());
+  EXPECT_FALSE(as_three->stroke.refine_local);
+  JournalRecord no_threshold = stroke(1, 0, 0.0);
+  no_threshold.stroke.refine_local = true;
+  EXPECT_EQ(encode_record(no_threshold, local).status().code(), StatusCode::invalid_argument);
+}
+
 TEST(JournalRefined, RejectsBadThresholdsAndNonCanonicalRecords) {
   std::array<std::byte, kMaxRecordBytes> buf{};
   EXPECT_EQ(encode_record(stroke(1, 0, -1.0), buf).status().code(), StatusCode::invalid_argument);

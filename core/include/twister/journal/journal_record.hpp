@@ -13,7 +13,8 @@
 // than replaying the turn the short way round. A stroke whose commit refined the
 // mesh (refine_threshold_m > 0) is version 3: the long_turns byte (0 allowed), then
 // the threshold (f64, metres), so a replay refines exactly as the live commit did
-// whatever the station's configuration is at replay time. Versions 1 and 2 read as
+// whatever the station's configuration is at replay time. Version 4 is version 3
+// refined over the stroke's region only (refine_local). Versions 1 and 2 read as
 // not refined, so journals written before refinement replay as they did.
 // Poses are in the object frame of the time (metres; U, V unit axes, W = U x V).
 #pragma once
@@ -37,6 +38,9 @@ inline constexpr std::uint8_t kRecordVersion = 1;
 inline constexpr std::uint8_t kRecordVersionLongTurns = 2;
 // A stroke record whose commit refined the mesh.
 inline constexpr std::uint8_t kRecordVersionRefined = 3;
+// A stroke refined over the triangles its weights touch (refine_local): version 3's
+// payload, refined by mesh::MeshRefiner::refine_around at replay (docs/refinement.md).
+inline constexpr std::uint8_t kRecordVersionRefinedLocal = 4;
 inline constexpr std::size_t kRecordHeaderBytes = 8;
 inline constexpr std::size_t kRecordCrcBytes = 4;
 inline constexpr std::size_t kMaxPayloadBytes = 512;
@@ -68,6 +72,9 @@ struct StrokeRecord {
   // > 0: the commit refined the mesh until every edge's midpoint error under the warp
   // was at most this (metres; version 3). 0: not refined (versions 1 and 2).
   double refine_threshold_m = 0.0;
+  // With a threshold: refined over the triangles the stroke's weights touch and their
+  // conforming closure (version 4) rather than the whole mesh (version 3).
+  bool refine_local = false;
   std::array<Pose, 2> start{};  // per hand, meaningful where hand_mask says
   std::array<Pose, 2> end{};
   friend bool operator==(const StrokeRecord&, const StrokeRecord&) = default;

@@ -46,6 +46,19 @@ struct KernelSpan {
 void warp_one_scalar(const KernelHand& h1, const KernelSpan& s);
 void warp_two_scalar(const KernelHand& h1, const KernelHand& h2, const KernelSpan& s);
 void warp_one_simd(const KernelHand& h1, const KernelSpan& s);
+// The decay weight of one hand (docs/math.md §4-§5) for n points in single precision:
+// squashed by `stretch` along the unit `unit` where (p - grab).unit > 0 (0: no squash),
+// then cos^2(pi/2 d / radius) inside the radius, 0 outside (polynomial cos). The
+// adaptive refinement's float filter (WarpPlan::warp_points_float).
+struct DecaySpan {
+  const float* x = nullptr;
+  const float* y = nullptr;
+  const float* z = nullptr;
+  float* w = nullptr;
+  std::size_t n = 0;
+};
+void decay_weights_simd(const DecaySpan& s, const float grab[3], const float unit[3], float stretch,
+                        float radius);
 void warp_two_simd(const KernelHand& h1, const KernelHand& h2, const KernelSpan& s);
 
 // Name of the instruction set the simd kernel dispatches to on this CPU

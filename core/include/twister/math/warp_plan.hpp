@@ -99,6 +99,16 @@ class WarpPlan {
   // a rest position (adaptive refinement, CLI checks). Identity when not built.
   glm::dvec3 warp_point(glm::dvec3 p) const;
 
+  // warp_point for n points in single precision (weights from a float polynomial decay,
+  // then the simd kernel): the adaptive refinement's filter. False (nothing written)
+  // for scodef or when not built. n <= kFloatChunk.
+  static constexpr std::size_t kFloatChunk = 256;
+  bool warp_points_float(const float* x, const float* y, const float* z, float* out_x, float* out_y,
+                         float* out_z, std::size_t n) const;
+  // A bound on |warp_points_float(p) - warp_point(p)| (metres) for every point with
+  // |p| <= extent_m (each coordinate; docs/refinement.md "The float filter").
+  double float_error_bound(double extent_m) const;
+
   // Kernel used by apply() (default simd); scalar is the reference.
   void set_kernel(KernelKind kind) { kernel_ = kind; }
   KernelKind kernel() const { return kernel_; }

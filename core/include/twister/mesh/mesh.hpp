@@ -67,6 +67,12 @@ class Mesh {
   // indices: equal checksums <=> (practically) bit-identical meshes.
   std::uint64_t checksum() const;
 
+  // Changes with every change of the triangles or the counts (add_triangle,
+  // set_triangle, resize, copy_from, clear; not positions, not add_vertex): a
+  // structure built from the topology (the refiner's adjacency) is still valid while
+  // it is the same. Not part of the checksum.
+  std::uint64_t topology_version() const { return topology_version_; }
+
  private:
   std::span<float> x_;
   std::span<float> y_;
@@ -74,6 +80,7 @@ class Mesh {
   std::span<std::uint32_t> indices_;
   std::size_t vertex_count_ = 0;
   std::size_t triangle_count_ = 0;
+  std::uint64_t topology_version_ = 0;
 };
 
 // A Mesh owning its storage. Large: place it in static storage or the arena.

@@ -77,12 +77,19 @@ struct MeshRefinerStorage {
   std::span<std::uint8_t> edge_state;      // 3 per triangle of capacity
   std::span<std::uint8_t> triangle_flags;  // per triangle of capacity
   std::span<std::uint32_t> queue;          // per triangle of capacity
+  // Optional (refine_around's float filter; empty: S in float per edge end instead):
+  // per vertex of capacity, S in float and its stamp.
+  std::span<float> float_x{};
+  std::span<float> float_y{};
+  std::span<float> float_z{};
+  std::span<std::uint32_t> float_stamp{};
 };
 
 // Bytes of MeshRefinerStorage per vertex and per triangle of capacity.
-// (S cache and its stamp, the vertex table; twins, incidence, edge states, flags, queue)
+// (S cache and its stamp, the vertex table, S in float and its stamp; twins, incidence,
+// edge states, flags, queue)
 inline constexpr std::size_t kRefinerBytesPerVertex =
-    3 * sizeof(double) + 2 * sizeof(std::uint32_t);
+    3 * sizeof(double) + 2 * sizeof(std::uint32_t) + 3 * sizeof(float) + sizeof(std::uint32_t);
 inline constexpr std::size_t kRefinerBytesPerTriangle =
     6 * sizeof(std::uint32_t) + 3 + 1 + sizeof(std::uint32_t);
 
@@ -102,6 +109,22 @@ class MeshRefiner {
   // threshold is not a finite number > 0. Nothing changes on error.
   Result<RefineResult> refine(Mesh& mesh, const PointWarp& warp, double threshold_m,
                               RefineObserver* observer = nullptr);
+
+  // The same refinement over the triangles that have a vertex in `vertices` (the
+  // stroke's influenced vertices) and whatever their splits reach (the longest-edge
+  // propagation paths): cost proportional to the region, not the mesh. The edge-
+  // triangle adjacency persists between calls while the mesh's topology_version()
+  // and vertex count are what the last call left (else it is rebuilt once, O(mesh)).
+  // Order: the region's triangles in ascending index, a triangle a split changes
+  // before its index is reached visited there, then a FIFO (exactly the order
+  // refine() would use), so the result is bit-identical to refine() whenever every
+  // edge over the threshold at the start has a triangle in the region
+  // (docs/refinement.md "Local refinement"). A mesh with an edge shared by more than
+  // two triangles or a vertex whose triangles are not one fan is refined by refine().
+  // Errors as refine().
+  Result<RefineResult> refine_around(Mesh& mesh, const PointWarp& warp, double threshold_m,
+                                     std::span<const std::uint32_t> vertices,
+                                     RefineObserver* observer = nullptr);
 
   // S of vertex v (rest position as of the last refine()); valid for every vertex
   // that refine() added (asserted).
@@ -127,6 +150,24 @@ class MeshRefiner {
   std::uint32_t split_one(std::uint32_t h, std::uint32_t m);
   void changing(std::uint32_t t);
   void push(std::uint32_t t);
+  void run();
+  // Persistent adjacency (refine_around).
+  Status build_adjacency(const Mesh& mesh);
+  bool adjacency_current(const Mesh& mesh) const;
+  void keep_adjacency(const Mesh& mesh);
+  std::uint32_t slot(std::uint32_t t, std::uint32_t v) const;
+  template <typename F>
+  std::uint32_t for_fan(std::uint32_t v, F&& f) const;
+  void touch(std::uint32_t t);
+  void reset_triangle_stamps();
+  void collect_region(std::span<const std::uint32_t> vertices);
+  void settle_in_float();
+  struct FloatBatch;
+  void settle_batch(FloatBatch& b);
+  struct VertexBatch;
+  void warp_vertices(VertexBatch& b);
+  double vertex_error_ = 0.0;  // the float filter's bound on the cached vertices
+  bool next_triangle(std::uint32_t& t);
 
   MeshRefinerStorage storage_;
   TriangleAdjacency adjacency_;
@@ -139,6 +180,27 @@ class MeshRefiner {
   std::uint32_t triangles_before_ = 0;
   SpanRing<std::uint32_t> queue_;  // triangles to look at (kQueued), over storage_.queue
   RefineResult result_{};
+  // refine_around: the region's original triangles still to visit in index order
+  // (sorted list + a min-heap of those a split changed before their turn), in the
+  // adjacency's scratch after build (stamps, list, heap: one triangle capacity each).
+  bool local_ = false;
+  bool pending_phase_ = false;
+  std::int64_t cursor_ = -1;  // the original triangle visited last
+  std::span<std::uint32_t> stamps_;
+  std::span<std::uint32_t> pending_;
+  std::size_t pending_pos_ = 0;
+  std::span<std::uint32_t> heap_;
+  std::size_t heap_size_ = 0;
+  // The adjacency (twins, a corner triangle per vertex) is current for this mesh.
+  const Mesh* adjacency_mesh_ = nullptr;
+  std::uint64_t adjacency_version_ = 0;
+  std::size_t adjacency_vertices_ = 0;
+  bool manifold_ = false;               // every edge has <= 2 triangles, every vertex one fan
+  std::uint32_t settled_in_float_ = 0;  // edges the last refine_around settled in float
+ public:
+  // Edges the last refine_around() found within the threshold by the float filter
+  // alone (the rest of its verdicts were computed in double).
+  std::uint32_t settled_in_float() const { return settled_in_float_; }
 };
 
 namespace internal {
@@ -154,6 +216,10 @@ struct MeshRefinerArrays {
   std::array<std::uint8_t, 3 * kTriangles> edge_state{};
   std::array<std::uint8_t, kTriangles> triangle_flags{};
   std::array<std::uint32_t, kTriangles> queue{};
+  std::array<float, kVertices> float_x{};
+  std::array<float, kVertices> float_y{};
+  std::array<float, kVertices> float_z{};
+  std::array<std::uint32_t, kVertices> float_stamp{};
 
   MeshRefinerStorage spans() {
     return {{twins, vertex_offsets, incident},
@@ -163,7 +229,11 @@ struct MeshRefinerArrays {
             warped_stamp,
             edge_state,
             triangle_flags,
-            queue};
+            queue,
+            float_x,
+            float_y,
+            float_z,
+            float_stamp};
   }
 };
 }  // namespace internal

@@ -38,6 +38,10 @@ struct RefineConfig {
   // the radius: the deviation a sculptor sees on the model does not shrink with the
   // hand's ball (docs/refinement.md).
   double threshold_m = 0.001;
+  // Refine over the triangles the stroke's weights touch (and their conforming
+  // closure) rather than the whole mesh: cost proportional to the stroke, recorded
+  // as a version 4 stroke (docs/refinement.md "Local refinement").
+  bool local = true;
 };
 
 // What one commit's refinement did.
@@ -82,7 +86,12 @@ class CommitRefinement {
   // yet in the mesh, the undo entry open): refines the rest mesh to `threshold_m`
   // (0 or not finite: nothing), places the new vertices and records the topology in
   // `undo`. A threshold > 0 needs available() (asserted).
-  RefineReport refine(const math::WarpPlan& plan, double threshold_m, UndoHistory& undo);
+  // `local`: mesh::MeshRefiner::refine_around the plan's vertices (else the whole mesh).
+  RefineReport refine(const math::WarpPlan& plan, double threshold_m, UndoHistory& undo,
+                      bool local = false);
+
+  // New commits refine locally (RefineConfig::local).
+  bool local() const { return config_.local; }
 
   RefineStatus status() const;
 

@@ -65,7 +65,9 @@ class SessionHistory final : public StrokeCommitSink {
   // the record's threshold (0: not refined); errors of WarpPlan::apply, or
   // failed_precondition for a threshold without refinement storage (then nothing
   // changed).
-  Status apply_stroke(const math::WarpPlan& plan, double refine_threshold_m = 0.0);
+  // `refine_local`: refined over the stroke's region (a version 4 record).
+  Status apply_stroke(const math::WarpPlan& plan, double refine_threshold_m = 0.0,
+                      bool refine_local = false);
   // An undo entry for an object move (the caller sets the pose).
   void apply_move(const math::Frame& before, const math::Frame& after);
   // Undo or redo without a record; errors as commit_history_step.
@@ -83,12 +85,13 @@ class SessionHistory final : public StrokeCommitSink {
                           SessionEvents& out, bool plan_goes_on) override;
   // The commit of a warp, live and replayed alike: the plan applied to the live
   // columns, then commit_live().
-  Status apply_plan(const math::WarpPlan& plan, double refine_threshold_m, SessionEvents* out);
+  Status apply_plan(const math::WarpPlan& plan, double refine_threshold_m, bool refine_local,
+                    SessionEvents* out);
   // The mesh refined at rest (when `refine_threshold_m` > 0), the live columns of the
   // plan's vertices into the mesh, one undo entry (a history_overflow event with
   // `sequence` when it is too large to undo; refined / refine_stopped events).
-  void commit_live(const math::WarpPlan& plan, double refine_threshold_m, std::uint32_t sequence,
-                   SessionEvents* out);
+  void commit_live(const math::WarpPlan& plan, double refine_threshold_m, bool refine_local,
+                   std::uint32_t sequence, SessionEvents* out);
   // Gives `record` the next sequence and appends and syncs it (when journaling); the
   // sequence advances only when it is durable. io_error: not saved.
   Status append(journal::JournalRecord& record);

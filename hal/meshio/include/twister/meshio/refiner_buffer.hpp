@@ -23,12 +23,27 @@ class RefinerBuffer {
         stamp_(vertex_capacity),
         edge_state_(3 * triangle_capacity),
         flags_(triangle_capacity),
-        queue_(triangle_capacity) {}
+        queue_(triangle_capacity),
+        fx_(vertex_capacity),
+        fy_(vertex_capacity),
+        fz_(vertex_capacity),
+        float_stamp_(vertex_capacity) {}
   RefinerBuffer(const RefinerBuffer&) = delete;
   RefinerBuffer& operator=(const RefinerBuffer&) = delete;
 
   mesh::MeshRefinerStorage storage() {
-    return {{twins_, offsets_, incident_}, wx_, wy_, wz_, stamp_, edge_state_, flags_, queue_};
+    return {{twins_, offsets_, incident_},
+            wx_,
+            wy_,
+            wz_,
+            stamp_,
+            edge_state_,
+            flags_,
+            queue_,
+            fx_,
+            fy_,
+            fz_,
+            float_stamp_};
   }
 
  private:
@@ -37,6 +52,8 @@ class RefinerBuffer {
   std::vector<std::uint32_t> stamp_;
   std::vector<std::uint8_t> edge_state_, flags_;
   std::vector<std::uint32_t> queue_;
+  std::vector<float> fx_, fy_, fz_;
+  std::vector<std::uint32_t> float_stamp_;
 };
 
 }  // namespace twister::meshio
