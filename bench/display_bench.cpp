@@ -4,6 +4,9 @@
 //   CuesHud/<n>      a two-hand stroke: warp in the shader with warped normals,
 //                    weights, both hands' glyphs and spheres, the pink axes and
 //                    yellow trajectories, the HUD (SceneView::draw, as twister-bridge);
+//   CuesHudRefined/<n> the same stroke with the commit's refinement threshold
+//                    (0.5 mm on the 0.2 m sphere): the live preview refined by the
+//                    tessellation program every frame (issue 24);
 //   CuesHudMoving/<n> before a grab with both hands moving every frame: the weight
 //                    preview (a WarpPlan on the whole mesh) rebuilt per frame, plus
 //                    cues and HUD.
@@ -111,7 +114,8 @@ void BM_Plain(benchmark::State& state) {
   state.counters["vertices"] = static_cast<double>(d->renderer.vertex_count());
 }
 
-void BM_CuesHud(benchmark::State& state) {
+// A two-hand stroke on the sphere, refined live to `threshold_m` (0: not refined).
+void draw_stroke(benchmark::State& state, const char* name, float threshold_m) {
   auto d = make_display(state.range(0));
   if (!d) return state.SkipWithError("no offscreen GL context");
   const std::array<math::Frame, 2> start{math::identity_frame({0.0, -0.1, 0.0}),
@@ -121,15 +125,28 @@ void BM_CuesHud(benchmark::State& state) {
   };
   const std::array<math::Frame, 2> end{turned({0.02, -0.14, -0.03}, 0.7),
                                        turned({0.02, 0.14, -0.03}, -0.7)};
-  const auto live =
-      bridge::make_live_messages(1, 1, math::WarpMethod::twister, 0.08, 3, start, end);
+  auto live = bridge::make_live_messages(1, 1, math::WarpMethod::twister, 0.08, 3, start, end);
+  live.stroke.refine_threshold_m = threshold_m;
   (void)d->app->replica().apply(live.stroke);
   (void)d->app->replica().apply(live.hands);
   d->app->step();
+  if ((threshold_m > 0.0F) != d->renderer.refining_live()) {
+    return state.SkipWithError("the refined program is not what draws");
+  }
   const auto t0 = std::chrono::steady_clock::now();
   for (auto _ : state) d->app->draw();
-  record(state, "CuesHud",
+  record(state, name,
          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  if (threshold_m > 0.0F) {
+    state.counters["preview_triangles"] =
+        static_cast<double>(d->renderer.capture_live_surface().rest.size() / 3);
+  }
+}
+
+void BM_CuesHud(benchmark::State& state) { draw_stroke(state, "CuesHud", 0.0F); }
+
+void BM_CuesHudRefined(benchmark::State& state) {
+  draw_stroke(state, "CuesHudRefined", 0.0005F);
 }
 
 void BM_CuesHudMoving(benchmark::State& state) {
@@ -165,6 +182,12 @@ BENCHMARK(BM_CuesHud)
     ->Unit(benchmark::kMillisecond)
     ->MinTime(2.0)
     ->UseRealTime();
+BENCHMARK(BM_CuesHudRefined)
+    ->Arg(30000)
+    ->Arg(100000)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(2.0)
+    ->UseRealTime();
 BENCHMARK(BM_CuesHudMoving)
     ->Arg(30000)
     ->Arg(100000)
@@ -182,7 +205,7 @@ int main(int argc, char** argv) {
   for (const char* n : {"30000", "100000"}) {
     const double plain = seconds_per_frame()[std::string("Plain/") + n];
     if (plain <= 0.0) continue;
-    for (const char* row : {"CuesHud", "CuesHudMoving"}) {
+    for (const char* row : {"CuesHud", "CuesHudRefined", "CuesHudMoving"}) {
       const double t = seconds_per_frame()[std::string(row) + "/" + n];
       std::printf("ratio %s/%s vs Plain/%s: %.2f (%.2f ms vs %.2f ms per frame)\n", row, n, n,
                   t / plain, 1e3 * t, 1e3 * plain);

@@ -171,7 +171,7 @@ void BridgeApp::refresh_display() {
   bool uploaded = false;
   if (replica_.mesh_changed() || (display_mesh_live_ && !cpu_live)) {
     const bool first = shown_version_ == 0;
-    renderer_->set_mesh(replica_.mesh(), replica_.normals(), !first);
+    renderer_->set_mesh(replica_.mesh(), replica_.shading(), !first);
     replica_.clear_mesh_changed();
     shown_version_ = replica_.version();
     display_mesh_live_ = false;

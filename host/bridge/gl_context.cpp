@@ -92,14 +92,19 @@ hal::Expected<std::unique_ptr<GlContext>> make_offscreen_context(int width, int 
   if (eglChooseConfig(display, config_attribs, &config, 1, &count) != EGL_TRUE || count == 0) {
     config = nullptr;  // surfaceless needs no config (EGL_KHR_no_config_context)
   }
-  const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
-                                    3,
-                                    EGL_CONTEXT_MINOR_VERSION,
-                                    3,
-                                    EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                    EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                    EGL_NONE};
-  EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attribs);
+  // 4.1 core for the refined live preview (tessellation), else 3.3 core.
+  EGLContext context = EGL_NO_CONTEXT;
+  for (const EGLint version : {41, 33}) {
+    const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                      version / 10,
+                                      EGL_CONTEXT_MINOR_VERSION,
+                                      version % 10,
+                                      EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                      EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                      EGL_NONE};
+    context = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attribs);
+    if (context != EGL_NO_CONTEXT) break;
+  }
   if (context == EGL_NO_CONTEXT) {
     eglTerminate(display);
     return unavailable("EGL: cannot create an OpenGL 3.3 core context");
@@ -117,8 +122,6 @@ hal::Expected<std::unique_ptr<GlContext>> make_window_context(int width, int hei
   if (glfwInit() != GLFW_TRUE) {
     return unavailable("GLFW: cannot initialise (no display? use --offscreen)");
   }
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   GLFWmonitor* monitor = nullptr;
   if (kiosk) {
@@ -129,7 +132,14 @@ hal::Expected<std::unique_ptr<GlContext>> make_window_context(int width, int hei
       height = mode->height;
     }
   }
-  GLFWwindow* window = glfwCreateWindow(width, height, "Twister", monitor, nullptr);
+  // 4.1 core for the refined live preview (tessellation), else 3.3 core.
+  GLFWwindow* window = nullptr;
+  for (const int version : {41, 33}) {
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, version / 10);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, version % 10);
+    window = glfwCreateWindow(width, height, "Twister", monitor, nullptr);
+    if (window != nullptr) break;
+  }
   if (window == nullptr) {
     glfwTerminate();
     return unavailable("GLFW: cannot open an OpenGL 3.3 core window");

@@ -36,17 +36,20 @@ int add_accessor(tinygltf::Model& model, int view, int component, std::size_t co
 
 }  // namespace
 
-hal::Expected<std::string> gltf_bytes(const MeshData& m, const std::vector<float>& normals,
-                                      bool binary) {
+hal::Expected<std::string> gltf_bytes(const MeshData& m, const ShadedMesh& shaded, bool binary) {
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "twister-bridge";
   model.buffers.resize(1);
-  std::vector<float> positions(3 * m.vertex_count());
+  // One glTF vertex per drawn vertex: a crease's two sides keep their own normals.
+  const std::size_t count = shaded.vertex_count();
+  const std::vector<float>& normals = shaded.normals;
+  std::vector<float> positions(3 * count);
   std::vector<double> lo(3, 1e300);
   std::vector<double> hi(3, -1e300);
-  for (std::size_t i = 0; i < m.vertex_count(); ++i) {
-    const float p[3] = {m.x[i], m.y[i], m.z[i]};
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::uint32_t v = shaded.source[i];
+    const float p[3] = {m.x[v], m.y[v], m.z[v]};
     for (std::size_t k = 0; k < 3; ++k) {
       positions[3 * i + k] = p[k];
       lo[k] = std::min(lo[k], static_cast<double>(p[k]));
@@ -57,18 +60,19 @@ hal::Expected<std::string> gltf_bytes(const MeshData& m, const std::vector<float
                                 TINYGLTF_TARGET_ARRAY_BUFFER);
   const int normal_view =
       add_view(model, normals.data(), normals.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
-  const int index_view = add_view(model, m.indices.data(), m.indices.size() * sizeof(std::uint32_t),
-                                  TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  const int index_view =
+      add_view(model, shaded.indices.data(), shaded.indices.size() * sizeof(std::uint32_t),
+               TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
   tinygltf::Primitive primitive;
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
   primitive.attributes["POSITION"] = add_accessor(model, pos_view, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                                  m.vertex_count(), TINYGLTF_TYPE_VEC3);
+                                                  count, TINYGLTF_TYPE_VEC3);
   model.accessors.back().minValues = lo;  // required for POSITION
   model.accessors.back().maxValues = hi;
   primitive.attributes["NORMAL"] = add_accessor(model, normal_view, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                                m.vertex_count(), TINYGLTF_TYPE_VEC3);
+                                                count, TINYGLTF_TYPE_VEC3);
   primitive.indices = add_accessor(model, index_view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
-                                   m.indices.size(), TINYGLTF_TYPE_SCALAR);
+                                   shaded.indices.size(), TINYGLTF_TYPE_SCALAR);
   tinygltf::Mesh mesh;
   mesh.name = "twister";
   mesh.primitives.push_back(primitive);

@@ -12,8 +12,8 @@
 namespace twister::bridge {
 
 // The file's bytes: `binary` .glb, otherwise .gltf with the buffer embedded as a
-// data URI. `normals`: 3 per vertex. Error io_error when tinygltf cannot write.
-hal::Expected<std::string> gltf_bytes(const MeshData& mesh, const std::vector<float>& normals,
-                                      bool binary);
+// data URI. `shaded`: the mesh's crease-aware shading (its drawn vertices become
+// the file's vertices). Error io_error when tinygltf cannot write.
+hal::Expected<std::string> gltf_bytes(const MeshData& mesh, const ShadedMesh& shaded, bool binary);
 
 }  // namespace twister::bridge

@@ -108,6 +108,14 @@ HudText HudModel::update(const SceneReplica& r, const HudInput& in) {
                                    r.mesh().vertex_count(), r.mesh().triangle_count(), in.fps)
                           : format("display: %zu vertices, %zu triangles", r.mesh().vertex_count(),
                                    r.mesh().triangle_count()));
+  if (in.preview != HudInput::Preview::none) {
+    const double mm = 1e3 * r.live().refine_threshold_m;
+    out.lines.push_back(in.preview == HudInput::Preview::refined
+                            ? format("live preview: refined to %.2f mm as the commit will be", mm)
+                            : format("live preview: unrefined (needs OpenGL 4); the commit "
+                                     "refines to %.2f mm",
+                                     mm));
+  }
   // Capacity reached: a refined commit was stopped by the mesh's capacity (for
   // kShowS after the count grows), or this display refused a mesh above its limits.
   const std::uint64_t stops = r.has_status() ? r.station_status().capacity_stops : 0;

@@ -11,7 +11,6 @@
 #include "twister/hal/output_file.hpp"
 #include "twister/hal/posix_file_sink.hpp"
 #include "twister/meshio/obj_file.hpp"
-#include "vertex_normals.hpp"
 
 namespace twister::bridge {
 namespace {
@@ -79,13 +78,13 @@ hal::Expected<void> check_export_path(const std::string& path, bool force) {
 }
 
 hal::Expected<void> export_mesh(const std::string& path, const MeshData& m,
-                                const std::vector<float>& normals, bool force) {
+                                const ShadedMesh& shaded, bool force) {
   if (path.ends_with(".ply")) return export_ply(path, m, force);
   if (path.ends_with(".glb") || path.ends_with(".gltf")) {
-    std::vector<float> computed;
-    if (normals.size() != 3 * m.vertex_count()) compute_vertex_normals(m, computed);
-    hal::Expected<std::string> bytes = gltf_bytes(
-        m, normals.size() == 3 * m.vertex_count() ? normals : computed, path.ends_with(".glb"));
+    if (shaded.mesh_vertices != m.vertex_count()) {
+      return hal::make_error(StatusCode::invalid_argument, "shading of another mesh: " + path);
+    }
+    hal::Expected<std::string> bytes = gltf_bytes(m, shaded, path.ends_with(".glb"));
     if (!bytes) return bytes.error();
     return write_file(path, *bytes, force);
   }
@@ -98,6 +97,10 @@ hal::Expected<void> export_mesh(const std::string& path, const MeshData& m,
     return hal::make_error(StatusCode::invalid_argument, "triangle index out of range: " + path);
   }
   return meshio::save_obj(path, core->mesh(), force);
+}
+
+hal::Expected<void> export_mesh(const std::string& path, const MeshData& m, bool force) {
+  return export_mesh(path, m, shade_with_creases(m, kDefaultCreaseAngleDeg), force);
 }
 
 }  // namespace twister::bridge

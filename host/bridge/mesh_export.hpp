@@ -20,11 +20,14 @@ namespace twister::bridge {
 // never a journal, checkpoint or locked file).
 hal::Expected<void> check_export_path(const std::string& path, bool force = false);
 
-// Writes `mesh` to `path`; `normals` (3 per vertex, e.g. SceneReplica::normals())
-// go into glTF, computed when empty. Errors: invalid_argument (unknown extension,
-// triangle index out of range), io_error (cannot open or write); the message names
-// the path.
+// Writes `mesh` to `path`; glTF gets `shaded`'s crease-aware normals (e.g.
+// SceneReplica::shading(): a crease's two sides are separate vertices); OBJ and PLY
+// carry positions and triangles only. Errors: invalid_argument (unknown extension,
+// triangle index out of range, shading of another mesh), io_error (cannot open or
+// write); the message names the path.
 hal::Expected<void> export_mesh(const std::string& path, const MeshData& mesh,
-                                const std::vector<float>& normals = {}, bool force = false);
+                                const ShadedMesh& shaded, bool force = false);
+// The same with the default crease angle.
+hal::Expected<void> export_mesh(const std::string& path, const MeshData& mesh, bool force = false);
 
 }  // namespace twister::bridge

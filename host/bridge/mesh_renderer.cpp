@@ -7,32 +7,40 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "crease_shading.hpp"
 #include "gl_program.hpp"
 #include "mesh_shaders.hpp"
 #include "twister/math/warp_plan.hpp"
-#include "vertex_normals.hpp"
 
 namespace twister::bridge {
 namespace {
 
-// x0 y0 z0 x1 y1 z1 ... for the position buffer.
-std::vector<float> interleaved_positions(const MeshData& mesh) {
-  std::vector<float> pos(3 * mesh.vertex_count());
-  for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
-    pos[3 * i] = mesh.x[i];
-    pos[3 * i + 1] = mesh.y[i];
-    pos[3 * i + 2] = mesh.z[i];
+// x0 y0 z0 x1 y1 z1 ... of the drawn vertices, for the position buffer.
+std::vector<float> interleaved_positions(const MeshData& mesh, const ShadedMesh& shaded) {
+  std::vector<float> pos(3 * shaded.vertex_count());
+  for (std::size_t i = 0; i < shaded.vertex_count(); ++i) {
+    const std::uint32_t v = shaded.source[i];
+    pos[3 * i] = mesh.x[v];
+    pos[3 * i + 1] = mesh.y[v];
+    pos[3 * i + 2] = mesh.z[v];
   }
   return pos;
 }
 
+constexpr const char* kGlsl330 = "#version 330 core\n";
+constexpr const char* kGlsl400 = "#version 400 core\n";
+// Transform feedback of both programs (capture_live_surface).
+const std::vector<const char*> kFeedback{"v_rest", "v_object"};
+
 }  // namespace
 
 MeshRenderer::~MeshRenderer() {
-  if (program_ != 0) glDeleteProgram(program_);
+  if (plain_.id != 0) glDeleteProgram(plain_.id);
+  if (refined_.id != 0) glDeleteProgram(refined_.id);
   if (vao_ != 0) {
     glDeleteBuffers(static_cast<GLsizei>(vbo_.size()), vbo_.data());
     glDeleteBuffers(1, &ebo_);
+    glDeleteBuffers(1, &live_ebo_);
     glDeleteVertexArrays(1, &vao_);
   }
   if (fbo_ != 0) glDeleteFramebuffers(1, &fbo_);
@@ -40,29 +48,34 @@ MeshRenderer::~MeshRenderer() {
   if (color_rb_ != 0) glDeleteRenderbuffers(2, rbs);
 }
 
-void MeshRenderer::find_uniforms() {
-  const auto at = [this](const std::string& name) {
-    return glGetUniformLocation(program_, name.c_str());
+MeshRenderer::Uniforms MeshRenderer::find_uniforms(unsigned program) {
+  const auto at = [program](const std::string& name) {
+    return glGetUniformLocation(program, name.c_str());
   };
-  uniforms_.view_proj = at("u_view_proj");
-  uniforms_.model = at("u_model");
-  uniforms_.eye = at("u_eye");
-  uniforms_.light0 = at("u_light0");
-  uniforms_.light1 = at("u_light1");
-  uniforms_.show_weights = at("u_show_weights");
-  uniforms_.hand_mask = at("u_hand_mask");
-  uniforms_.eps = at("u_eps");
-  uniforms_.tint[0] = at("u_tint[0]");
-  uniforms_.tint[1] = at("u_tint[1]");
+  Uniforms u;
+  u.view_proj = at("u_view_proj");
+  u.model = at("u_model");
+  u.eye = at("u_eye");
+  u.light0 = at("u_light0");
+  u.light1 = at("u_light1");
+  u.show_weights = at("u_show_weights");
+  u.hand_mask = at("u_hand_mask");
+  u.eps = at("u_eps");
+  u.radius = at("u_radius");
+  u.threshold = at("u_threshold");
+  u.max_level = at("u_max_level");
   const char* names[] = {"u_axis", "u_mid", "u_chord", "u_axc", "u_shift"};
   for (std::size_t h = 0; h < 2; ++h) {
     const auto element = [h](const char* name) {
       return std::string(name) + "[" + std::to_string(h) + "]";
     };
-    for (std::size_t k = 0; k < 5; ++k) uniforms_.hand_vec3[h][k] = at(element(names[k]));
-    uniforms_.half[h] = at(element("u_half"));
-    uniforms_.cot[h] = at(element("u_cot"));
+    u.tint[h] = at(element("u_tint"));
+    for (std::size_t k = 0; k < 5; ++k) u.hand_vec3[h][k] = at(element(names[k]));
+    u.half[h] = at(element("u_half"));
+    u.cot[h] = at(element("u_cot"));
+    u.grab[h] = at(element("u_grab"));
   }
+  return u;
 }
 
 void MeshRenderer::create_fbo(int width, int height) {
@@ -83,13 +96,34 @@ hal::Expected<void> MeshRenderer::init(int width, int height, bool offscreen,
   width_ = width;
   height_ = height;
   camera_.set_view(view);
-  hal::Expected<unsigned> program = build_gl_program(shaders::kMeshVertex, shaders::kMeshFragment);
+  ShaderSources plain;
+  plain.vertex = std::string(kGlsl330) + shaders::kWarpLibrary + shaders::kPlainVertex;
+  plain.fragment = std::string(kGlsl330) + shaders::kMeshFragment;
+  plain.feedback = kFeedback;
+  hal::Expected<unsigned> program = build_gl_program(plain);
   if (!program) return program.error();
-  program_ = *program;
-  find_uniforms();
+  plain_ = {*program, find_uniforms(*program)};
+  // The refined live preview needs tessellation (GL 4.0); without it the plain
+  // program draws the live stroke too.
+  if (epoxy_gl_version() >= 40) {
+    ShaderSources refined;
+    refined.vertex = std::string(kGlsl400) + shaders::kRefinedVertex;
+    refined.tess_control = std::string(kGlsl400) + shaders::kWarpLibrary + shaders::kRefinedControl;
+    refined.tess_evaluation =
+        std::string(kGlsl400) + shaders::kWarpLibrary + shaders::kRefinedEvaluation;
+    refined.fragment = std::string(kGlsl400) + shaders::kMeshFragment;
+    refined.feedback = kFeedback;
+    hal::Expected<unsigned> tess = build_gl_program(refined);
+    if (!tess) return tess.error();
+    refined_ = {*tess, find_uniforms(*tess)};
+    GLint max_level = 0;
+    glGetIntegerv(GL_MAX_TESS_GEN_LEVEL, &max_level);
+    max_level_ = static_cast<float>(std::clamp(max_level, 1, 64));
+  }
   glGenVertexArrays(1, &vao_);
   glGenBuffers(static_cast<GLsizei>(vbo_.size()), vbo_.data());
   glGenBuffers(1, &ebo_);
+  glGenBuffers(1, &live_ebo_);
   glBindVertexArray(vao_);
   const GLint sizes[] = {3, 2, 3, 3, 3};
   for (GLuint a = 0; a < vbo_.size(); ++a) {
@@ -122,13 +156,24 @@ void MeshRenderer::upload(unsigned buffer, const std::vector<float>& data,
   }
 }
 
-void MeshRenderer::set_mesh(const MeshData& mesh, const std::vector<float>& normals,
-                            bool keep_camera) {
-  vertex_count_ = mesh.vertex_count();
-  if (!keep_camera && vertex_count_ > 0) {
+std::vector<float> MeshRenderer::drawn(const std::vector<float>& per_vertex,
+                                       std::size_t columns) const {
+  if (shaded_.identity()) return per_vertex;
+  return to_drawn(shaded_, per_vertex, columns);
+}
+
+void MeshRenderer::set_mesh(const MeshData& mesh, bool keep_camera) {
+  set_mesh(mesh, shade_with_creases(mesh, kDefaultCreaseAngleDeg), keep_camera);
+}
+
+void MeshRenderer::set_mesh(const MeshData& mesh, const ShadedMesh& shaded, bool keep_camera) {
+  shaded_ = shaded;
+  mesh_vertices_ = mesh.vertex_count();
+  vertex_count_ = shaded.vertex_count();
+  if (!keep_camera && mesh_vertices_ > 0) {
     glm::vec3 lo(1e30F);
     glm::vec3 hi(-1e30F);
-    for (std::size_t i = 0; i < vertex_count_; ++i) {
+    for (std::size_t i = 0; i < mesh_vertices_; ++i) {
       const glm::vec3 p(mesh.x[i], mesh.y[i], mesh.z[i]);
       lo = glm::min(lo, p);
       hi = glm::max(hi, p);
@@ -138,50 +183,45 @@ void MeshRenderer::set_mesh(const MeshData& mesh, const std::vector<float>& norm
     camera_.frame(glm::vec3(model_ * glm::vec4(centre_, 1.0F)), radius_);
   }
   glBindVertexArray(vao_);
-  upload(vbo_[0], interleaved_positions(mesh), 3);
+  upload(vbo_[0], interleaved_positions(mesh, shaded_), 3);
   upload(vbo_[1], {}, 2);
-  if (normals.size() == 3 * vertex_count_) {
-    upload(vbo_[2], normals, 3);
-  } else {
-    std::vector<float> computed;
-    compute_vertex_normals(mesh, computed);
-    upload(vbo_[2], computed, 3);
-  }
+  upload(vbo_[2], shaded_.normals, 3);
   upload(vbo_[3], {}, 3);
   upload(vbo_[4], {}, 3);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);
   glBufferData(GL_ELEMENT_ARRAY_BUFFER,
-               static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
-               mesh.indices.data(), GL_STATIC_DRAW);
-  index_count_ = mesh.indices.size();
+               static_cast<GLsizeiptr>(shaded_.indices.size() * sizeof(std::uint32_t)),
+               shaded_.indices.data(), GL_STATIC_DRAW);
+  index_count_ = shaded_.indices.size();
+  split_radius_ = -1.0F;
 }
 
 void MeshRenderer::set_positions(const MeshData& mesh) {
-  const std::vector<float> pos = interleaved_positions(mesh);
+  const std::vector<float> pos = interleaved_positions(mesh, shaded_);
   glBindBuffer(GL_ARRAY_BUFFER, vbo_[0]);
   glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(pos.size() * sizeof(float)),
                   pos.data());
-  std::vector<float> normals;
-  compute_vertex_normals(mesh, normals);
+  shade_normals(mesh, shaded_);
   glBindBuffer(GL_ARRAY_BUFFER, vbo_[2]);
-  glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(normals.size() * sizeof(float)),
-                  normals.data());
+  glBufferSubData(GL_ARRAY_BUFFER, 0,
+                  static_cast<GLsizeiptr>(shaded_.normals.size() * sizeof(float)),
+                  shaded_.normals.data());
 }
 
 void MeshRenderer::set_weights(const std::vector<float>& w1, const std::vector<float>& w2,
                                std::array<std::uint8_t, 2> colour_hand) {
   colour_hand_ = colour_hand;
-  std::vector<float> w(2 * vertex_count_, 0.0F);
-  for (std::size_t i = 0; i < vertex_count_ && i < w1.size() && i < w2.size(); ++i) {
+  std::vector<float> w(2 * mesh_vertices_, 0.0F);
+  for (std::size_t i = 0; i < mesh_vertices_ && i < w1.size() && i < w2.size(); ++i) {
     w[2 * i] = w1[i];
     w[2 * i + 1] = w2[i];
   }
-  upload(vbo_[1], w, 2);
+  upload(vbo_[1], drawn(w, 2), 2);
 }
 
 void MeshRenderer::set_gradients(const std::vector<float>& g1, const std::vector<float>& g2) {
-  upload(vbo_[3], g1, 3);
-  upload(vbo_[4], g2, 3);
+  upload(vbo_[3], drawn(g1, 3), 3);
+  upload(vbo_[4], drawn(g2, 3), 3);
 }
 
 void MeshRenderer::set_object_pose(const math::Frame& pose) {
@@ -195,6 +235,8 @@ void MeshRenderer::set_live(const LiveState* live) {
   if (live->method == math::WarpMethod::scodef) return;  // CPU path (positions uploaded)
   // Plan hands: hand k uses the k-th weight column.
   hand_mask_ = static_cast<int>((1u << live->hands.size()) - 1u);
+  stroke_radius_ = static_cast<float>(live->radius_m);
+  threshold_ = static_cast<float>(live->refine_threshold_m);
   // The kernels' per-hand constants, rounded to float for the shader uniforms.
   for (std::size_t h = 0; h < link::kLinkHands; ++h) {
     float* k = hands_[h];
@@ -202,6 +244,7 @@ void MeshRenderer::set_live(const LiveState* live) {
     if (h >= live->hands.size()) continue;
     math::KernelHand kh;
     const LiveHand& lh = live->hands[h];
+    grab_[h] = glm::vec3(lh.start.origin);
     math::fill_kernel_hand(kh, lh.screw, lh.start, lh.end, live->method);
     const double* columns[] = {kh.axis, kh.mid, kh.chord, kh.axis_x_chord, kh.shift};
     for (std::size_t c = 0; c < 5; ++c) {
@@ -220,37 +263,155 @@ void MeshRenderer::begin_frame() {
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 }
 
-void MeshRenderer::draw_mesh() {
+bool MeshRenderer::refining_live() const {
+  return refined_.id != 0 && allow_refinement_ && hand_mask_ != 0 && threshold_ > 0.0F;
+}
+
+void MeshRenderer::use(const Program& program) {
+  const Uniforms& u = program.u;
   const glm::vec3 eye = camera_.eye();
   const glm::vec3 dir = camera_.direction();
   const glm::vec3 up = camera_.up();
   const glm::mat4 view_proj = camera_.projection(width_, height_) * camera_.view_matrix();
-  glEnable(GL_DEPTH_TEST);
-  glDisable(GL_BLEND);
-  glUseProgram(program_);
-  glUniformMatrix4fv(uniforms_.view_proj, 1, GL_FALSE, glm::value_ptr(view_proj));
-  glUniformMatrix4fv(uniforms_.model, 1, GL_FALSE, glm::value_ptr(model_));
-  glUniform3fv(uniforms_.eye, 1, glm::value_ptr(eye));
+  glUseProgram(program.id);
+  glUniformMatrix4fv(u.view_proj, 1, GL_FALSE, glm::value_ptr(view_proj));
+  glUniformMatrix4fv(u.model, 1, GL_FALSE, glm::value_ptr(model_));
+  glUniform3fv(u.eye, 1, glm::value_ptr(eye));
   const glm::vec3 right = glm::normalize(glm::cross(-dir, up));
   const glm::vec3 l0 = glm::normalize(dir + 0.8F * up + 0.6F * right);
   const glm::vec3 l1 = glm::normalize(-dir + 0.3F * up - 0.8F * right);
-  glUniform3fv(uniforms_.light0, 1, glm::value_ptr(l0));
-  glUniform3fv(uniforms_.light1, 1, glm::value_ptr(l1));
-  glUniform1i(uniforms_.show_weights, show_weights_ ? 1 : 0);
-  glUniform1i(uniforms_.hand_mask, hand_mask_);
-  glUniform1f(uniforms_.eps, 1e-3F * radius_);
-  for (std::size_t c = 0; c < 2; ++c) {
-    glUniform3fv(uniforms_.tint[c], 1, kHandColours[colour_hand_[c] & 1u].data());
-  }
+  glUniform3fv(u.light0, 1, glm::value_ptr(l0));
+  glUniform3fv(u.light1, 1, glm::value_ptr(l1));
+  glUniform1i(u.show_weights, show_weights_ ? 1 : 0);
+  glUniform1i(u.hand_mask, hand_mask_);
+  glUniform1f(u.eps, 1e-3F * radius_);
+  glUniform1f(u.radius, stroke_radius_);
+  glUniform1f(u.threshold, threshold_);
+  glUniform1f(u.max_level, max_level_);
   for (std::size_t h = 0; h < 2; ++h) {
-    for (std::size_t k = 0; k < 5; ++k) {
-      glUniform3fv(uniforms_.hand_vec3[h][k], 1, &hands_[h][3 * k]);
-    }
-    glUniform1f(uniforms_.half[h], hands_[h][15]);
-    glUniform1f(uniforms_.cot[h], hands_[h][16]);
+    glUniform3fv(u.tint[h], 1, kHandColours[colour_hand_[h] & 1u].data());
+    for (std::size_t k = 0; k < 5; ++k) glUniform3fv(u.hand_vec3[h][k], 1, &hands_[h][3 * k]);
+    glUniform1f(u.half[h], hands_[h][15]);
+    glUniform1f(u.cot[h], hands_[h][16]);
+    glUniform3fv(u.grab[h], 1, glm::value_ptr(grab_[h]));
   }
   glBindVertexArray(vao_);
-  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(index_count_), GL_UNSIGNED_INT, nullptr);
+}
+
+void MeshRenderer::split_live_triangles() {
+  if (split_radius_ == stroke_radius_ && split_grab_ == grab_ && split_mask_ == hand_mask_) return;
+  split_radius_ = stroke_radius_;
+  split_grab_ = grab_;
+  split_mask_ = hand_mask_;
+  // The tessellation control shader's own test (mesh_shaders.hpp influenced()).
+  std::vector<float> pos(3 * vertex_count_);
+  glBindBuffer(GL_ARRAY_BUFFER, vbo_[0]);
+  glGetBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(pos.size() * sizeof(float)),
+                     pos.data());
+  const auto at = [&pos](std::uint32_t v) {
+    return glm::vec3(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2]);
+  };
+  std::vector<std::uint32_t> reached;
+  std::vector<std::uint32_t> rest;
+  reached.reserve(shaded_.indices.size());
+  rest.reserve(shaded_.indices.size());
+  for (std::size_t t = 0; t + 3 <= shaded_.indices.size(); t += 3) {
+    const std::uint32_t* i = &shaded_.indices[t];
+    const glm::vec3 a = at(i[0]), b = at(i[1]), c = at(i[2]);
+    const glm::vec3 m = (a + b + c) / 3.0F;
+    const float reach = stroke_radius_ + std::max({glm::length(a - m), glm::length(b - m),
+                                                   glm::length(c - m)});
+    bool in = false;
+    for (std::size_t h = 0; h < 2; ++h) {
+      in = in || ((hand_mask_ & (1 << h)) != 0 && glm::length(m - grab_[h]) < reach);
+    }
+    (in ? reached : rest).insert((in ? reached : rest).end(), i, i + 3);
+  }
+  live_reached_ = reached.size();
+  reached.insert(reached.end(), rest.begin(), rest.end());
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, live_ebo_);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+               static_cast<GLsizeiptr>(reached.size() * sizeof(std::uint32_t)), reached.data(),
+               GL_DYNAMIC_DRAW);
+}
+
+void MeshRenderer::draw_range(const Program& program, bool patches, std::size_t first,
+                              std::size_t count) {
+  if (count == 0) return;
+  use(program);
+  if (patches) glPatchParameteri(GL_PATCH_VERTICES, 3);
+  glDrawElements(patches ? GL_PATCHES : GL_TRIANGLES, static_cast<GLsizei>(count),
+                 GL_UNSIGNED_INT,
+                 reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));  // NOLINT
+}
+
+void MeshRenderer::draw_mesh() {
+  glEnable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  if (!refining_live()) {
+    glBindVertexArray(vao_);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);
+    draw_range(plain_, false, 0, index_count_);
+    return;
+  }
+  // What the balls can reach is refined; the rest is the mesh itself (the warp is
+  // the identity there, and so are the shared edges' points on both sides).
+  glBindVertexArray(vao_);
+  split_live_triangles();
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, live_ebo_);
+  draw_range(refined_, true, 0, live_reached_);
+  draw_range(plain_, false, live_reached_, index_count_ - live_reached_);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);
+}
+
+MeshRenderer::Surface MeshRenderer::capture_live_surface() {
+  Surface out;
+  const auto capture = [this, &out](const Program& program, bool patches, std::size_t first,
+                                    std::size_t count) {
+    if (count == 0) return;
+    glEnable(GL_RASTERIZER_DISCARD);
+    // First how many triangles the preview makes, then exactly that much room.
+    GLuint query = 0;
+    glGenQueries(1, &query);
+    glBeginQuery(GL_PRIMITIVES_GENERATED, query);
+    draw_range(program, patches, first, count);
+    glEndQuery(GL_PRIMITIVES_GENERATED);
+    GLuint triangles = 0;
+    glGetQueryObjectuiv(query, GL_QUERY_RESULT, &triangles);
+    glDeleteQueries(1, &query);
+    const std::size_t floats = std::size_t{triangles} * 3 * 6;  // rest, warped per corner
+    GLuint buffer = 0;
+    glGenBuffers(1, &buffer);
+    glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, buffer);
+    glBufferData(GL_TRANSFORM_FEEDBACK_BUFFER, static_cast<GLsizeiptr>(floats * sizeof(float)),
+                 nullptr, GL_STATIC_READ);
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, buffer);
+    glBeginTransformFeedback(GL_TRIANGLES);
+    draw_range(program, patches, first, count);
+    glEndTransformFeedback();
+    glDisable(GL_RASTERIZER_DISCARD);
+    std::vector<float> data(floats);
+    glGetBufferSubData(GL_TRANSFORM_FEEDBACK_BUFFER, 0,
+                       static_cast<GLsizeiptr>(floats * sizeof(float)), data.data());
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+    glDeleteBuffers(1, &buffer);
+    for (std::size_t i = 0; i + 6 <= floats; i += 6) {
+      out.rest.emplace_back(data[i], data[i + 1], data[i + 2]);
+      out.warped.emplace_back(data[i + 3], data[i + 4], data[i + 5]);
+    }
+  };
+  glBindVertexArray(vao_);
+  if (!refining_live()) {
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);
+    capture(plain_, false, 0, index_count_);
+    return out;
+  }
+  split_live_triangles();
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, live_ebo_);
+  capture(refined_, true, 0, live_reached_);
+  capture(plain_, false, live_reached_, index_count_ - live_reached_);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);
+  return out;
 }
 
 void MeshRenderer::end_frame() { glFinish(); }

@@ -1,12 +1,15 @@
-// MeshRenderer: draws the replica's mesh with OpenGL 3.3 core into an FBO
-// (offscreen, readable) or the default framebuffer (window). The live stroke is
-// applied in the vertex shader: per vertex the two weights (attribute), per hand
-// the screw constants (uniforms, the same terms as core's scalar kernel), the
-// displacements of both hands summed. Smooth shading from vertex normals (the
-// replica's); while warping, the shader turns them with the warp (mesh_shaders.hpp).
-// Weights tint the surface with each hand's colour (red hand 1, green hand 2).
-// The model is drawn at the object pose; the camera (camera.hpp) frames it.
-// Needs a current context.
+// MeshRenderer: draws the replica's mesh with OpenGL (3.3 core; 4.0 for the refined
+// live preview) into an FBO (offscreen, readable) or the default framebuffer
+// (window). The live stroke is applied in the shaders: per hand the screw constants
+// (uniforms, the same terms as core's scalar kernel), the displacements of both
+// hands summed. On a GL 4 context with a refinement threshold from the station the
+// live preview is refined per frame by tessellation with the commit's criterion, so
+// it is as smooth as the commit will be (mesh_shaders.hpp); otherwise the mesh's own
+// vertices are warped (refining_live() says which). Crease-aware shading
+// (crease_shading.hpp): sharp edges keep a normal per side; while warping, the
+// shaders turn the normals with the warp. Weights tint the surface with each hand's
+// colour (red hand 1, green hand 2). The model is drawn at the object pose; the
+// camera (camera.hpp) frames it. Needs a current context.
 #pragma once
 
 #include <array>
@@ -35,10 +38,11 @@ class MeshRenderer {
   // Compiles the shaders; with `offscreen`, renders into a width x height FBO.
   // Error not_supported: a shader does not compile or link, or the FBO is incomplete.
   hal::Expected<void> init(int width, int height, bool offscreen, const ViewConfig& view);
-  // New rest mesh with its vertex normals (3 per vertex; computed here when empty);
-  // resets weights and frames the camera unless keep_camera.
-  void set_mesh(const MeshData& mesh, const std::vector<float>& normals, bool keep_camera);
-  void set_mesh(const MeshData& mesh, bool keep_camera) { set_mesh(mesh, {}, keep_camera); }
+  // New rest mesh with its shading (SceneReplica::shading()); resets weights and
+  // frames the camera unless keep_camera.
+  void set_mesh(const MeshData& mesh, const ShadedMesh& shaded, bool keep_camera);
+  // The same, shaded here with the default crease angle.
+  void set_mesh(const MeshData& mesh, bool keep_camera);
   // New positions for the mesh of the last set_mesh (same vertex count; triangles,
   // weights and camera kept): the CPU-warped preview; normals recomputed from them.
   void set_positions(const MeshData& mesh);
@@ -50,6 +54,19 @@ class MeshRenderer {
   void set_gradients(const std::vector<float>& g1, const std::vector<float>& g2);
   // Hand uniforms from the replica's live stroke (scodef: no shader warp, see set_mesh).
   void set_live(const LiveState* live);
+  // The context runs the refined live preview (GL 4 tessellation); `allow` false
+  // keeps the GL 3.3 path (tests, --no-live-refine).
+  bool can_refine_live() const { return refined_.id != 0; }
+  void allow_live_refinement(bool allow) { allow_refinement_ = allow; }
+  // The live stroke is drawn refined (a GL 4 context, a shader warp, a threshold).
+  bool refining_live() const;
+  // The surface the live preview draws, as triangles (3 corners each, object frame):
+  // rest and warped positions, read back by transform feedback (tests, checks).
+  struct Surface {
+    std::vector<glm::vec3> rest;
+    std::vector<glm::vec3> warped;
+  };
+  Surface capture_live_surface();
   // Tint by the weights (before a grab, and during one).
   void set_show_weights(bool show) { show_weights_ = show; }
   // The object frame in the world (the model matrix).
@@ -70,7 +87,8 @@ class MeshRenderer {
   }
   // RGBA rows top to bottom.
   std::vector<std::uint8_t> read_rgba() const;
-  std::size_t vertex_count() const { return vertex_count_; }
+  std::size_t vertex_count() const { return mesh_vertices_; }  // the mesh's
+  std::size_t drawn_vertex_count() const { return vertex_count_; }  // with crease splits
   int width() const { return width_; }
   int height() const { return height_; }
   Camera& camera() { return camera_; }
@@ -80,11 +98,37 @@ class MeshRenderer {
   float model_radius() const { return radius_; }
 
  private:
+  // Uniform locations of one program, looked up once in init().
+  struct Uniforms {
+    int view_proj = -1, model = -1, eye = -1, light0 = -1, light1 = -1, show_weights = -1;
+    int hand_mask = -1, eps = -1, radius = -1, threshold = -1, max_level = -1;
+    int tint[2] = {-1, -1};
+    int hand_vec3[2][5] = {};  // u_axis, u_mid, u_chord, u_axc, u_shift of each hand
+    int half[2] = {};
+    int cot[2] = {};
+    int grab[2] = {-1, -1};
+  };
+  struct Program {
+    unsigned id = 0;
+    Uniforms u;
+  };
   void upload(unsigned buffer, const std::vector<float>& data, std::size_t floats_per_vertex);
-  void find_uniforms();
+  static Uniforms find_uniforms(unsigned program);
+  void use(const Program& program);
   void create_fbo(int width, int height);
+  // The per-vertex input of the mesh as the drawn vertices' (crease splits copied).
+  std::vector<float> drawn(const std::vector<float>& per_vertex, std::size_t columns) const;
+  // The triangles the stroke's balls can reach first, in live_ebo_ (live_reached_
+  // of them): only those go through tessellation; kept per grab points and radius.
+  void split_live_triangles();
+  // Draws (and with `feedback`, captures) indices [first, first + count) of the
+  // bound element buffer with `program`.
+  void draw_range(const Program& program, bool patches, std::size_t first, std::size_t count);
 
-  unsigned program_ = 0;
+  Program plain_;
+  Program refined_;  // 0 without GL 4 tessellation
+  bool allow_refinement_ = true;
+  float max_level_ = 1.0F;
   unsigned vao_ = 0;
   // Positions, weights, normals, gradient 1, gradient 2 (attributes 0..4).
   std::array<unsigned, 5> vbo_{};
@@ -94,26 +138,28 @@ class MeshRenderer {
   unsigned depth_rb_ = 0;
   int width_ = 0;
   int height_ = 0;
+  ShadedMesh shaded_;  // drawn vertices of the current mesh
+  unsigned live_ebo_ = 0;
+  std::size_t live_reached_ = 0;  // triangles (first in live_ebo_) the balls can reach
+  std::array<glm::vec3, 2> split_grab_{};
+  float split_radius_ = -1.0F;  // < 0: live_ebo_ is stale
+  int split_mask_ = 0;
   std::size_t index_count_ = 0;
   std::size_t vertex_count_ = 0;
+  std::size_t mesh_vertices_ = 0;
   glm::vec3 centre_{0.0F};
   float radius_ = 1.0F;
   Camera camera_;
   glm::mat4 model_{1.0F};
-  // Per hand: axis, mid, chord, axis x chord, shift (3 each), half angle, cot half.
+  // The live stroke: per hand axis, mid, chord, axis x chord, shift (3 each), half
+  // angle, cot half; grab points, radius, the commit's threshold.
   float hands_[2][17] = {};
   int hand_mask_ = 0;
+  std::array<glm::vec3, 2> grab_{};
+  float stroke_radius_ = 1.0F;
+  float threshold_ = 0.0F;
   bool show_weights_ = false;
   std::array<std::uint8_t, 2> colour_hand_{0, 1};
-  // Uniform locations, looked up once in init().
-  struct Uniforms {
-    int view_proj = -1, model = -1, eye = -1, light0 = -1, light1 = -1, show_weights = -1;
-    int hand_mask = -1, eps = -1;
-    int tint[2] = {-1, -1};
-    int hand_vec3[2][5] = {};  // u_axis, u_mid, u_chord, u_axc, u_shift of each hand
-    int half[2] = {};
-    int cot[2] = {};
-  } uniforms_;
 };
 
 }  // namespace twister::bridge

@@ -188,7 +188,7 @@ int export_final_mesh(const std::string& path, bool force, const BridgeApp& app)
     return kExitFailure;
   }
   if (const Expected<void> done =
-          twister::bridge::export_mesh(path, app.replica().mesh(), app.replica().normals(), force);
+          twister::bridge::export_mesh(path, app.replica().mesh(), app.replica().shading(), force);
       !done) {
     logger().error("export", "%s", done.error().message.c_str());
     return kExitFailure;

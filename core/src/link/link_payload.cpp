@@ -75,6 +75,7 @@ void write_stroke(ByteWriter& w, const StrokeBegin& s) {
   for (std::size_t h = 0; h < kLinkHands; ++h) {
     if ((s.hand_mask & (1u << h)) != 0) write_pose(w, s.start[h]);
   }
+  w.f32(s.refine_threshold_m);
 }
 
 bool read_stroke(ByteReader& r, StrokeBegin& s) {
@@ -89,7 +90,8 @@ bool read_stroke(ByteReader& r, StrokeBegin& s) {
   for (std::size_t h = 0; h < kLinkHands; ++h) {
     s.start[h] = (s.hand_mask & (1u << h)) != 0 ? read_pose(r, bad) : Pose{};
   }
-  return !bad;
+  s.refine_threshold_m = r.f32();
+  return !bad && std::isfinite(s.refine_threshold_m) && s.refine_threshold_m >= 0.0F;
 }
 
 void write_hands(ByteWriter& w, const Hands& l) {

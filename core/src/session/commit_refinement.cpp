@@ -51,6 +51,11 @@ double CommitRefinement::threshold_for(const journal::StrokeRecord& stroke,
   return config_.threshold_m;
 }
 
+double CommitRefinement::live_threshold() const {
+  if (!config_.enabled || !refiner_.fits(mesh_.mesh()) || !(config_.threshold_m > 0.0)) return 0.0;
+  return config_.threshold_m;
+}
+
 RefineReport CommitRefinement::refine(const math::WarpPlan& plan, double threshold_m,
                                       UndoHistory& undo, bool local) {
   RefineReport report;

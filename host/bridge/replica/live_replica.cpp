@@ -139,6 +139,7 @@ void SceneReplica::update_live(const link::Hands& h) {
   live_.method = static_cast<math::WarpMethod>(stroke_.method);
   live_.hand_mask = stroke_.hand_mask;
   live_.radius_m = stroke_.radius_m;
+  live_.refine_threshold_m = stroke_.refine_threshold_m;
   live_.hands.clear();
   for (std::size_t k = 0; k < link::kLinkHands; ++k) {
     if ((stroke_.hand_mask & (1u << k)) == 0) continue;
@@ -210,8 +211,11 @@ LiveMessages make_live_messages(std::uint32_t mesh_version, std::uint32_t stroke
                                 const std::array<math::Frame, 2>& end,
                                 const std::array<math::Screw, 2>* screws) {
   LiveMessages out;
-  out.stroke = link::StrokeBegin{stroke,    mesh_version, static_cast<std::uint8_t>(method),
-                                 hand_mask, radius_m,     {}};
+  out.stroke.stroke = stroke;
+  out.stroke.mesh_version = mesh_version;
+  out.stroke.method = static_cast<std::uint8_t>(method);
+  out.stroke.hand_mask = hand_mask;
+  out.stroke.radius_m = radius_m;
   out.hands.stroke = static_cast<std::uint16_t>(stroke);
   out.hands.flags = link::kStrokeActive;
   out.hands.radius_m = static_cast<float>(radius_m);

@@ -9,7 +9,6 @@
 #include "replica_plan.hpp"
 #include "twister/link/math_conversion.hpp"
 #include "twister/mesh/mesh.hpp"
-#include "vertex_normals.hpp"
 
 namespace twister::bridge {
 
@@ -37,6 +36,13 @@ std::optional<std::uint64_t> mesh_checksum(const MeshData& m) {
 SceneReplica::SceneReplica(ReplicaLimits limits) : limits_(limits) {}
 SceneReplica::~SceneReplica() = default;
 SceneReplica::SceneReplica(SceneReplica&&) noexcept = default;
+
+void SceneReplica::set_crease_angle(float degrees) {
+  crease_angle_deg_ = degrees;
+  if (!has_mesh()) return;
+  shaded_ = shade_with_creases(mesh_, crease_angle_deg_);
+  mesh_changed_ = true;  // drawn again with the new shading
+}
 SceneReplica& SceneReplica::operator=(SceneReplica&&) noexcept = default;
 
 std::optional<link::ResendRequest> SceneReplica::request() {
@@ -133,7 +139,7 @@ void SceneReplica::end(const link::MeshEnd& e, std::optional<link::ResendRequest
   }
   mesh_ = std::move(staged_);
   staged_ = MeshData{};
-  compute_vertex_normals(mesh_, normals_);
+  shaded_ = shade_with_creases(mesh_, crease_angle_deg_);
   version_ = e.version;
   checksum_ = *sum;
   mesh_changed_ = true;

@@ -1,5 +1,5 @@
 // SceneReplica: the bridge's copy of the station's scene, built from link messages
-// (protocol 2, docs/link-protocol.md), with no OpenGL (its own library, also built
+// (protocol 3, docs/link-protocol.md), with no OpenGL (its own library, also built
 // by the fuzz preset):
 //   - the mesh at a version: a full mesh or a commit's change set is staged and
 //     becomes the displayed mesh only when its mesh_end checksum matches; a
@@ -27,22 +27,11 @@
 #include "twister/math/frame.hpp"
 #include "twister/math/screw.hpp"
 #include "twister/math/warp_method.hpp"
-#include "twister/meshio/mesh_buffer.hpp"
+#include "crease_shading.hpp"
+#include "mesh_data.hpp"
 
 namespace twister::bridge {
 
-struct MeshData {
-  std::vector<float> x, y, z;
-  std::vector<std::uint32_t> indices;  // 3 per triangle
-  std::size_t vertex_count() const { return x.size(); }
-  std::size_t triangle_count() const { return indices.size() / 3; }
-};
-
-// The data as a core mesh::Mesh (for the station's checksum and OBJ writer); null
-// when a triangle index is out of range.
-std::unique_ptr<meshio::MeshBuffer> to_core_mesh(const MeshData& mesh);
-// mesh::Mesh::checksum() of the data; nullopt when a triangle index is out of range.
-std::optional<std::uint64_t> mesh_checksum(const MeshData& mesh);
 
 // The largest mesh the bridge accepts (twister-bridge --max-vertices/--max-triangles).
 struct ReplicaLimits {
@@ -92,6 +81,7 @@ struct LiveState {
   std::uint8_t hand_mask = 0;  // session hands in the stroke (bit h)
   std::uint32_t stroke = 0;
   double radius_m = 0.0;
+  double refine_threshold_m = 0.0;  // the commit's refinement (0: none): the preview's too
   InlineVector<LiveHand, link::kLinkHands> hands;  // the plan's hands, in plan order
   std::vector<float> weight1, weight2;  // per vertex, plan hands 0 and 1 (0 = not influenced)
   // Per vertex (x y z each), the gradient of weight1 / weight2 at the rest position
@@ -117,9 +107,11 @@ class SceneReplica {
   std::uint32_t version() const { return version_; }
   std::uint64_t checksum() const { return checksum_; }
   const MeshData& mesh() const { return mesh_; }
-  // Smooth-shading normals of mesh() (compute_vertex_normals), kept with each
-  // verified version: 3 floats per vertex.
-  const std::vector<float>& normals() const { return normals_; }
+  // Crease-aware shading of mesh() (crease_shading.hpp), kept with each verified
+  // version: drawn vertices, their triangles and normals.
+  const ShadedMesh& shading() const { return shaded_; }
+  // The crease angle of shading() (degrees; default kDefaultCreaseAngleDeg).
+  void set_crease_angle(float degrees);
   bool mesh_changed() const { return mesh_changed_; }
   void clear_mesh_changed() { mesh_changed_ = false; }
   LiveState& live() { return live_; }
@@ -153,7 +145,8 @@ class SceneReplica {
 
   ReplicaLimits limits_;
   MeshData mesh_;
-  std::vector<float> normals_;
+  ShadedMesh shaded_;
+  float crease_angle_deg_ = kDefaultCreaseAngleDeg;
   std::uint32_t version_ = 0;
   std::uint64_t checksum_ = 0;
   bool mesh_changed_ = false;

@@ -75,6 +75,30 @@ TEST(HudModel, StrokeNotSavedStaysUpForTenSecondsAfterTheCountGrows) {
   EXPECT_NE(t.lines.back().find("60.0 fps"), std::string::npos) << t.lines.back();
 }
 
+// Issue 24: a live stroke the commit refines says how the preview is drawn.
+TEST(HudModel, TheLivePreviewLineSaysRefinedOrWhyNot) {
+  SceneReplica r;
+  load_mesh(r, sphere_mesh(0.1F, 24, 32));
+  const std::array<math::Frame, 2> start{math::identity_frame({0.0, -0.1, 0.0}), {}};
+  LiveMessages live = make_live_messages(1, 1, math::WarpMethod::twister, 0.08, 1, start, start);
+  live.stroke.refine_threshold_m = 0.0005F;
+  (void)r.apply(live.stroke);
+  (void)r.apply(live.hands);
+  ASSERT_TRUE(r.live().active);
+  HudModel hud;
+  HudInput in;
+  in.preview = HudInput::Preview::refined;
+  const auto has = [](const HudText& t, const char* text) {
+    return std::any_of(t.lines.begin(), t.lines.end(),
+                       [&](const std::string& l) { return l.find(text) != std::string::npos; });
+  };
+  EXPECT_TRUE(has(hud.update(r, in), "live preview: refined to 0.50 mm"));
+  in.preview = HudInput::Preview::unrefined;
+  EXPECT_TRUE(has(hud.update(r, in), "live preview: unrefined (needs OpenGL 4)"));
+  in.preview = HudInput::Preview::none;
+  EXPECT_FALSE(has(hud.update(r, in), "live preview"));
+}
+
 // Offscreen (issue 27): a picture is drawn when a message calls for it, so the
 // HUD shows no frame rate and no per-second hands rate (SceneView passes fps 0 and
 // a negative rate); the window's lines keep both.

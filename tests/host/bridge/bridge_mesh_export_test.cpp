@@ -3,6 +3,8 @@
 // positions, triangles and unit normals; unknown formats and unwritable paths are
 // refused by the start-up check.
 #include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
 #include <tiny_gltf.h>
 #include <unistd.h>
 
@@ -78,8 +80,12 @@ std::vector<T> accessor_data(const tinygltf::Model& model, int index, std::size_
   return out;
 }
 
-TEST(BridgeMeshExport, GlbReloadsWithTheSamePositionsTrianglesAndNormals) {
+// A tetrahedron's edges are all creases (its faces meet at 109.5 degrees between
+// normals): each corner is three glTF vertices, each face flat-shaded.
+TEST(BridgeMeshExport, GlbReloadsWithTheSamePositionsTrianglesAndCreaseNormals) {
   const MeshData m = tetra();
+  const ShadedMesh shaded = shade_with_creases(m, kDefaultCreaseAngleDeg);
+  ASSERT_EQ(shaded.vertex_count(), 12u);
   const std::string path = temp("m.glb");
   ASSERT_TRUE(check_export_path(path));
   const hal::Expected<void> exported = export_mesh(path, m);
@@ -93,22 +99,31 @@ TEST(BridgeMeshExport, GlbReloadsWithTheSamePositionsTrianglesAndNormals) {
   const tinygltf::Primitive& p = model.meshes[0].primitives.at(0);
   EXPECT_EQ(p.mode, TINYGLTF_MODE_TRIANGLES);
   const auto pos = accessor_data<float>(model, p.attributes.at("POSITION"), 3);
-  ASSERT_EQ(pos.size(), 3 * m.vertex_count());
-  for (std::size_t i = 0; i < m.vertex_count(); ++i) {
-    EXPECT_EQ(pos[3 * i], m.x[i]);
-    EXPECT_EQ(pos[3 * i + 1], m.y[i]);
-    EXPECT_EQ(pos[3 * i + 2], m.z[i]);
+  ASSERT_EQ(pos.size(), 3 * shaded.vertex_count());
+  for (std::size_t i = 0; i < shaded.vertex_count(); ++i) {
+    const std::uint32_t v = shaded.source[i];
+    EXPECT_EQ(pos[3 * i], m.x[v]);
+    EXPECT_EQ(pos[3 * i + 1], m.y[v]);
+    EXPECT_EQ(pos[3 * i + 2], m.z[v]);
   }
   const auto indices = accessor_data<std::uint32_t>(model, p.indices, 1);
-  EXPECT_EQ(indices, m.indices);
-  EXPECT_EQ(indices.size() / 3, m.triangle_count());
+  ASSERT_EQ(indices.size(), m.indices.size());
+  for (std::size_t c = 0; c < indices.size(); ++c) {
+    EXPECT_EQ(shaded.source[indices[c]], m.indices[c]);  // the same triangles
+  }
   const auto normals = accessor_data<float>(model, p.attributes.at("NORMAL"), 3);
   ASSERT_EQ(normals.size(), pos.size());
-  for (std::size_t i = 0; i < m.vertex_count(); ++i) {
-    const float len =
-        std::sqrt(normals[3 * i] * normals[3 * i] + normals[3 * i + 1] * normals[3 * i + 1] +
-                  normals[3 * i + 2] * normals[3 * i + 2]);
-    EXPECT_NEAR(len, 1.0F, 1e-5F);
+  for (std::size_t t = 0; t < m.triangle_count(); ++t) {
+    const auto at = [&](std::size_t c) {
+      const std::size_t i = indices[3 * t + c];
+      return glm::vec3(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]);
+    };
+    const glm::vec3 face = glm::normalize(glm::cross(at(1) - at(0), at(2) - at(0)));
+    for (std::size_t c = 0; c < 3; ++c) {
+      const std::size_t i = indices[3 * t + c];
+      const glm::vec3 n(normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]);
+      EXPECT_NEAR(glm::dot(n, face), 1.0F, 1e-5F);  // flat: the face's own normal
+    }
   }
   std::filesystem::remove(path);
 }

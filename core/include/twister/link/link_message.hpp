@@ -1,4 +1,4 @@
-// Link messages between twister-station and twister-bridge (protocol version 2,
+// Link messages between twister-station and twister-bridge (protocol version 3,
 // docs/link-protocol.md). Each message type is its own small struct naming its
 // MessageType (kType); one frame on the wire carries one of them (see
 // link_codec.hpp for the framing). LinkMessage, a std::variant of all thirteen, is
@@ -19,7 +19,7 @@
 
 namespace twister::link {
 
-inline constexpr std::uint8_t kProtocolVersion = 2;
+inline constexpr std::uint8_t kProtocolVersion = 3;
 // Largest payload (version byte .. last body byte, without CRC) of one frame.
 inline constexpr std::size_t kMaxPayload = 4096;
 inline constexpr std::size_t kMaxVerticesPerChunk = 200;   // 16 bytes each
@@ -140,6 +140,9 @@ struct StrokeBegin {
   std::uint32_t mesh_version = 0;  // the rest mesh it warps
   std::uint8_t method = 0;         // math::WarpMethod
   std::uint8_t hand_mask = 0;      // session hands in the segment (bit h), 1..3
+  // The refinement threshold the segment's commit refines with (metres; 0: the
+  // commit is not refined): the display refines its live preview to the same.
+  float refine_threshold_m = 0.0F;
   double radius_m = 0.0;
   std::array<twister::Pose, kLinkHands> start{};  // exact; per session hand in hand_mask
 };

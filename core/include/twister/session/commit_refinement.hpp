@@ -75,6 +75,9 @@ class CommitRefinement {
 
   // The threshold a commit of `stroke` refines with and records (0: not refined).
   double threshold_for(const journal::StrokeRecord& stroke, bool plan_goes_on) const;
+  // The threshold the live preview refines to: the one a stroke's commit uses when
+  // refinement is on and fits the mesh (0: commits are not refined).
+  double live_threshold() const;
 
   // The storage fits the mesh's capacities: a threshold > 0 can be honoured.
   bool available() const { return refiner_.fits(mesh_.mesh()); }

@@ -163,7 +163,11 @@ class SculptSession {
   const input::HandButtons& hand_buttons(std::uint8_t hand) const { return buttons_.hand(hand); }
   float radius_m() const { return machine_.radius_m(); }
   const input::InteractionMachine& machine() const { return machine_; }
-  LiveWarp live() const { return strokes_.live(); }
+  LiveWarp live() const {
+    LiveWarp w = strokes_.live();
+    w.refine_threshold_m = refinement_.live_threshold();
+    return w;
+  }
   // The open stroke's warped positions where live().plan->indices() (see
   // StrokeController::live_positions()).
   math::ConstVertexColumns live_positions() const { return strokes_.live_positions(); }

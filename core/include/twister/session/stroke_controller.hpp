@@ -54,6 +54,7 @@ struct LiveWarp {
   bool active = false;
   std::uint8_t hand_mask = 0;            // session hands in the stroke (bit h)
   const math::WarpPlan* plan = nullptr;  // indices, weights, screws, start/end frames
+  double refine_threshold_m = 0.0;       // the commit's refinement (0: none), for the preview
 };
 
 class StrokeController {
