@@ -67,7 +67,7 @@ Result<RefineResult> MeshRefiner::refine(Mesh& mesh, const PointWarp& warp, doub
   if (!fits(mesh)) return StatusCode::failed_precondition;
   if (!std::isfinite(threshold_m) || !(threshold_m > 0.0)) return StatusCode::invalid_argument;
   TWISTER_TRY(build_adjacency(mesh));
-  local_ = false;
+  region_.local = false;
   start(mesh, warp, threshold_m, observer);
   const auto vertices_before = static_cast<std::uint32_t>(mesh.vertex_count());
   for (std::uint32_t t = 0; t < triangles_before_; ++t) {
@@ -91,14 +91,14 @@ Result<RefineResult> MeshRefiner::refine_around(Mesh& mesh, const PointWarp& war
     if (v >= mesh.vertex_count()) return StatusCode::invalid_argument;
   }
   if (!adjacency_current(mesh)) TWISTER_TRY(build_adjacency(mesh));
-  if (!manifold_) return refine(mesh, warp, threshold_m, observer);
-  local_ = true;
+  if (!adjacency_key_.manifold) return refine(mesh, warp, threshold_m, observer);
+  region_.local = true;
   start(mesh, warp, threshold_m, observer);
   const auto vertices_before = static_cast<std::uint32_t>(mesh.vertex_count());
   collect_region(vertices);
   settle_in_float();
   run();
-  local_ = false;
+  region_.local = false;
   for (std::uint32_t v = vertices_before; v < mesh.vertex_count(); ++v) (void)warped_of(v);
   keep_adjacency(mesh);
   mesh_ = nullptr;
@@ -118,24 +118,26 @@ void MeshRefiner::run() {
 
 // refine() pops the original triangles in index order, then what splits pushed. In
 // refine_around the originals outside the region (never changed before their turn)
-// would be popped without effect there, so only the region's (pending_) and those a
-// split changed before their turn (heap_) are visited, in index order, then the FIFO.
+// would be popped without effect there, so only the region's (region_.pending) and those a
+// split changed before their turn (region_.heap) are visited, in index order, then the FIFO.
 bool MeshRefiner::next_triangle(std::uint32_t& t) {
-  if (pending_phase_) {
+  if (region_.pending_phase) {
     const bool from_heap =
-        heap_size_ > 0 && (pending_pos_ == pending_.size() || heap_[0] < pending_[pending_pos_]);
+        region_.heap_size > 0 && (region_.pending_pos == region_.pending.size() ||
+                                  region_.heap[0] < region_.pending[region_.pending_pos]);
     if (from_heap) {
-      std::pop_heap(heap_.begin(), heap_.begin() + static_cast<std::ptrdiff_t>(heap_size_),
+      std::pop_heap(region_.heap.begin(),
+                    region_.heap.begin() + static_cast<std::ptrdiff_t>(region_.heap_size),
                     std::greater<>());
-      t = heap_[--heap_size_];
-    } else if (pending_pos_ < pending_.size()) {
-      t = pending_[pending_pos_++];
+      t = region_.heap[--region_.heap_size];
+    } else if (region_.pending_pos < region_.pending.size()) {
+      t = region_.pending[region_.pending_pos++];
     } else {
-      pending_phase_ = false;
-      cursor_ = triangles_before_;
+      region_.pending_phase = false;
+      region_.cursor = triangles_before_;
     }
-    if (pending_phase_) {
-      cursor_ = t;
+    if (region_.pending_phase) {
+      region_.cursor = t;
       touch(t);
       storage_.triangle_flags[t] &= static_cast<std::uint8_t>(~kPending);
       return true;
@@ -162,15 +164,15 @@ void MeshRefiner::start(Mesh& mesh, const PointWarp& warp, double threshold_m,
   }
   const std::size_t triangles = mesh.triangle_count();
   triangles_before_ = static_cast<std::uint32_t>(triangles);
-  if (!local_) {
+  if (!region_.local) {
     for (std::size_t h = 0; h < 3 * triangles; ++h) storage_.edge_state[h] = kUnknown;
   }
   queue_.clear();
-  pending_phase_ = local_;
-  cursor_ = -1;
-  pending_ = {};
-  pending_pos_ = 0;
-  heap_size_ = 0;
+  region_.pending_phase = region_.local;
+  region_.cursor = -1;
+  region_.pending = {};
+  region_.pending_pos = 0;
+  region_.heap_size = 0;
 }
 
 glm::dvec3 MeshRefiner::rest(std::uint32_t v) const { return glm::dvec3(mesh_->position(v)); }
@@ -345,12 +347,13 @@ void MeshRefiner::changing(std::uint32_t t) {
 void MeshRefiner::push(std::uint32_t t) {
   touch(t);
   std::uint8_t& flags = storage_.triangle_flags[t];
-  if (pending_phase_ && t<triangles_before_&& static_cast<std::int64_t>(t)> cursor_) {
+  if (region_.pending_phase && t<triangles_before_&& static_cast<std::int64_t>(t)> region_.cursor) {
     // refine() still holds t at its index in the FIFO: visit it there.
     if ((flags & kPending) != 0) return;
     flags |= kPending;
-    heap_[heap_size_++] = t;
-    std::push_heap(heap_.begin(), heap_.begin() + static_cast<std::ptrdiff_t>(heap_size_),
+    region_.heap[region_.heap_size++] = t;
+    std::push_heap(region_.heap.begin(),
+                   region_.heap.begin() + static_cast<std::ptrdiff_t>(region_.heap_size),
                    std::greater<>());
     return;
   }
@@ -363,8 +366,8 @@ void MeshRefiner::push(std::uint32_t t) {
 
 // refine_around: a triangle's flags and edge verdicts are of this call once touched.
 void MeshRefiner::touch(std::uint32_t t) {
-  if (!local_ || stamps_[t] == generation_) return;
-  stamps_[t] = generation_;
+  if (!region_.local || region_.stamps[t] == generation_) return;
+  region_.stamps[t] = generation_;
   storage_.triangle_flags[t] = 0;
   storage_.edge_state[3 * std::size_t{t}] = kUnknown;
   storage_.edge_state[3 * std::size_t{t} + 1] = kUnknown;
@@ -372,14 +375,14 @@ void MeshRefiner::touch(std::uint32_t t) {
 }
 
 void MeshRefiner::reset_triangle_stamps() {
-  for (std::uint32_t& s : stamps_) s = 0;
+  for (std::uint32_t& s : region_.stamps) s = 0;
 }
 
 // Twins from scratch (O(triangles x valence)); then the vertex -> triangle table
 // becomes one corner triangle per vertex, the rest of the scratch the stamps and
 // lists of refine_around, and the mesh is checked for what local refinement needs.
 Status MeshRefiner::build_adjacency(const Mesh& mesh) {
-  adjacency_mesh_ = nullptr;
+  adjacency_key_.mesh = nullptr;
   TWISTER_TRY(adjacency_.build(mesh));
   const std::size_t n = mesh.vertex_count();
   std::span<std::uint32_t> offsets = storage_.adjacency.vertex_offsets;
@@ -388,39 +391,39 @@ Status MeshRefiner::build_adjacency(const Mesh& mesh) {
     offsets[v] = offsets[v] < offsets[v + 1] ? incident[offsets[v]] : kNoCorner;
   }
   const std::size_t capacity = mesh.triangle_capacity();
-  stamps_ = incident.first(capacity);
+  region_.stamps = incident.first(capacity);
   reset_triangle_stamps();
   // Manifold: no edge on more than two triangles, and each vertex's triangles are one
   // fan around it (the fans of all vertices cover every corner once).
   const std::size_t triangles = mesh.triangle_count();
-  manifold_ = true;
-  for (std::size_t h = 0; h < 3 * triangles && manifold_; ++h) {
-    manifold_ = adjacency_.twin(static_cast<std::uint32_t>(h)) != kNonManifold;
+  adjacency_key_.manifold = true;
+  for (std::size_t h = 0; h < 3 * triangles && adjacency_key_.manifold; ++h) {
+    adjacency_key_.manifold = adjacency_.twin(static_cast<std::uint32_t>(h)) != kNonManifold;
   }
-  if (manifold_) {
+  if (adjacency_key_.manifold) {
     const Mesh* saved = mesh_;
     mesh_ = const_cast<Mesh*>(&mesh);  // read only: for_fan reads triangles
     std::size_t corners = 0;
-    for (std::uint32_t v = 0; v < n && manifold_; ++v) {
+    for (std::uint32_t v = 0; v < n && adjacency_key_.manifold; ++v) {
       const std::uint32_t k = for_fan(v, [](std::uint32_t) {});
-      if (k == kNoCorner) manifold_ = false;
+      if (k == kNoCorner) adjacency_key_.manifold = false;
       corners += k;
     }
     mesh_ = const_cast<Mesh*>(saved);
-    manifold_ = manifold_ && corners == 3 * triangles;
+    adjacency_key_.manifold = adjacency_key_.manifold && corners == 3 * triangles;
   }
   return ok_status();
 }
 
 bool MeshRefiner::adjacency_current(const Mesh& mesh) const {
-  return adjacency_mesh_ == &mesh && adjacency_version_ == mesh.topology_version() &&
-         adjacency_vertices_ == mesh.vertex_count();
+  return adjacency_key_.mesh == &mesh && adjacency_key_.version == mesh.topology_version() &&
+         adjacency_key_.vertices == mesh.vertex_count();
 }
 
 void MeshRefiner::keep_adjacency(const Mesh& mesh) {
-  adjacency_mesh_ = &mesh;
-  adjacency_version_ = mesh.topology_version();
-  adjacency_vertices_ = mesh.vertex_count();
+  adjacency_key_.mesh = &mesh;
+  adjacency_key_.version = mesh.topology_version();
+  adjacency_key_.vertices = mesh.vertex_count();
 }
 
 std::uint32_t MeshRefiner::slot(std::uint32_t t, std::uint32_t v) const {
@@ -461,7 +464,7 @@ std::uint32_t MeshRefiner::for_fan(std::uint32_t v, F&& f) const {
 // The region: every triangle with a vertex in `vertices`, in ascending index (a
 // radix sort over the scratch), each flagged kPending.
 void MeshRefiner::collect_region(std::span<const std::uint32_t> vertices) {
-  const std::size_t capacity = stamps_.size();
+  const std::size_t capacity = region_.stamps.size();
   std::span<std::uint32_t> a = storage_.adjacency.incident.subspan(capacity, capacity);
   std::span<std::uint32_t> b = storage_.adjacency.incident.subspan(2 * capacity, capacity);
   std::size_t count = 0;
@@ -489,10 +492,10 @@ void MeshRefiner::collect_region(std::span<const std::uint32_t> vertices) {
       b[buckets[(a[k] >> shift) & ((1u << kBits) - 1)]++] = a[k];
     std::swap(a, b);
   }
-  pending_ = a.first(count);
-  heap_ = b;
-  pending_pos_ = 0;
-  heap_size_ = 0;
+  region_.pending = a.first(count);
+  region_.heap = b;
+  region_.pending_pos = 0;
+  region_.heap_size = 0;
 }
 
 // The float filter: every edge of the region's triangles evaluated in single precision
@@ -553,7 +556,7 @@ void MeshRefiner::settle_in_float() {
   bool vertices_fast = true;
   if (cached) {
     VertexBatch vb;
-    for (const std::uint32_t t : pending_) {
+    for (const std::uint32_t t : region_.pending) {
       for (std::size_t j = 3 * std::size_t{t}; j < 3 * std::size_t{t} + 3; ++j) {
         const std::uint32_t v = indices[j];
         if (storage_.float_stamp[v] == generation_) continue;
@@ -571,7 +574,7 @@ void MeshRefiner::settle_in_float() {
   if (!vertices_fast) return;  // the warp offers no float path
   FloatBatch b;
   b.cached = cached;
-  for (const std::uint32_t t : pending_) {
+  for (const std::uint32_t t : region_.pending) {
     for (std::uint32_t h = 3 * t; h < 3 * t + 3; ++h) {
       if (storage_.edge_state[h] != kUnknown) continue;
       const std::uint32_t va = indices[h];

@@ -183,19 +183,23 @@ class MeshRefiner {
   // refine_around: the region's original triangles still to visit in index order
   // (sorted list + a min-heap of those a split changed before their turn), in the
   // adjacency's scratch after build (stamps, list, heap: one triangle capacity each).
-  bool local_ = false;
-  bool pending_phase_ = false;
-  std::int64_t cursor_ = -1;  // the original triangle visited last
-  std::span<std::uint32_t> stamps_;
-  std::span<std::uint32_t> pending_;
-  std::size_t pending_pos_ = 0;
-  std::span<std::uint32_t> heap_;
-  std::size_t heap_size_ = 0;
+  struct RegionOrder {
+    bool local = false;
+    bool pending_phase = false;
+    std::int64_t cursor = -1;  // the original triangle visited last
+    std::span<std::uint32_t> stamps;
+    std::span<std::uint32_t> pending;
+    std::size_t pending_pos = 0;
+    std::span<std::uint32_t> heap;
+    std::size_t heap_size = 0;
+  } region_;
   // The adjacency (twins, a corner triangle per vertex) is current for this mesh.
-  const Mesh* adjacency_mesh_ = nullptr;
-  std::uint64_t adjacency_version_ = 0;
-  std::size_t adjacency_vertices_ = 0;
-  bool manifold_ = false;               // every edge has <= 2 triangles, every vertex one fan
+  struct AdjacencyKey {
+    const Mesh* mesh = nullptr;
+    std::uint64_t version = 0;
+    std::size_t vertices = 0;
+    bool manifold = false;  // every edge has <= 2 triangles, every vertex one fan
+  } adjacency_key_;
   std::uint32_t settled_in_float_ = 0;  // edges the last refine_around settled in float
  public:
   // Edges the last refine_around() found within the threshold by the float filter
