@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdio>
 
+#include "cue_geometry.hpp"
 #include "scene_view.hpp"
 
 namespace twister::bridge {
@@ -100,7 +101,8 @@ void BridgeApp::handle_scene(const link::LinkMessage& m) {
                             hands->stroke != static_cast<std::uint16_t>(live.stroke)));
   if (ends_live && live.active && live.stroke != live_pictured_ && !options_.snapshot_dir.empty()) {
     refresh_display();
-    snapshot("live-" + std::to_string(replica_.version() + 1));
+    const std::string path = snapshot("live-" + std::to_string(replica_.version() + 1));
+    if (!path.empty()) write_live_cues(path.substr(0, path.size() - 4) + ".cues");
     live_pictured_ = live.stroke;
   }
   const std::uint64_t commits = replica_.counters().commits;
@@ -255,6 +257,37 @@ void BridgeApp::draw() {
   } else if (renderer_ != nullptr) {
     renderer_->draw();
   }
+}
+
+void BridgeApp::write_live_cues(const std::string& path) const {
+  // Where the live picture's cues are (pixels, top-left origin), for checks of the
+  // picture that need no GL: sim/scenarios/picture_check.py --cues.
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (f == nullptr) return;
+  const Camera& camera = renderer_->camera();
+  const int w = renderer_->width();
+  const int h = renderer_->height();
+  std::fprintf(f,
+               "# %s: the screw axes (axis x0 y0 x1 y1), hand cursors (cursor x y),\n"
+               "# the HUD panel (panel x y w h); pixels, top-left origin\n",
+               path.c_str());
+  for (const auto& [from, to] :
+       drawn_screw_axes(replica_, renderer_->model_matrix(), renderer_->model_radius())) {
+    const auto a = camera.project(from, w, h);
+    const auto b = camera.project(to, w, h);
+    if (a && b) std::fprintf(f, "axis %.1f %.1f %.1f %.1f\n", a->x, a->y, b->x, b->y);
+  }
+  for (const HandView& v : replica_.hands()) {
+    if (!v.present) continue;
+    const glm::vec3 world(renderer_->model_matrix() * glm::vec4(glm::vec3(v.pose.origin), 1.0F));
+    if (const auto p = camera.project(world, w, h))
+      std::fprintf(f, "cursor %.1f %.1f\n", p->x, p->y);
+  }
+  if (view_ != nullptr) {
+    const float* r = view_->hud().panel();
+    std::fprintf(f, "panel %.1f %.1f %.1f %.1f\n", r[0], r[1], r[2], r[3]);
+  }
+  std::fclose(f);
 }
 
 std::string BridgeApp::snapshot(const std::string& name) {

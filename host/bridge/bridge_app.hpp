@@ -126,6 +126,8 @@ class BridgeApp {
       out_.insert(out_.end(), frame.begin(), frame.begin() + static_cast<std::ptrdiff_t>(*n));
   }
   void flush();
+  // Beside a live picture: where its screw axes, cursors and HUD panel are.
+  void write_live_cues(const std::string& path) const;
   void refresh_display();
   void refresh_weights(bool mesh_uploaded);
   std::int64_t now_ms() const { return clock_.now_us() / 1000; }

@@ -81,14 +81,13 @@ void add_stroke(const SceneReplica& r, const glm::mat4& model, float scale,
                 const CueOptions& options, CueScene& out) {
   const LiveState& live = r.live();
   if (!live.active) return;
+  if (options.screw_axes) {
+    for (const auto& [from, to] : drawn_screw_axes(r, model, scale)) {
+      out.lines.add_tube(from, to, kAxisTube * scale, kAxisPink, 12);
+    }
+  }
   for (std::size_t k = 0; k < live.hands.size(); ++k) {
     const LiveHand& hand = live.hands[k];
-    if (options.screw_axes) {
-      if (const auto axis = screw_axis_segment(hand, live.method, kAxisHalfLength * scale)) {
-        out.lines.add_tube(to_world(model, axis->first), to_world(model, axis->second),
-                           kAxisTube * scale, kAxisPink, 12);
-      }
-    }
     if (options.trajectories) {
       const auto path = stroke_trajectory(hand, live.method, kTrajectorySamples);
       for (std::size_t i = 1; i < path.size(); ++i) {
@@ -161,6 +160,20 @@ std::optional<std::pair<glm::dvec3, glm::dvec3>> screw_axis_segment(const LiveHa
   const glm::dvec3 d = hand.screw.axis;
   const glm::dvec3 foot = a + glm::dot(hand.start.origin - a, d) * d;
   return std::make_pair(foot - half_length_m * d, foot + half_length_m * d);
+}
+
+std::vector<std::pair<glm::vec3, glm::vec3>> drawn_screw_axes(const SceneReplica& replica,
+                                                              const glm::mat4& model,
+                                                              float scene_radius_m) {
+  std::vector<std::pair<glm::vec3, glm::vec3>> out;
+  const LiveState& live = replica.live();
+  if (!live.active) return out;
+  for (const LiveHand& hand : live.hands) {
+    if (const auto axis = screw_axis_segment(hand, live.method, kAxisHalfLength * scene_radius_m)) {
+      out.emplace_back(to_world(model, axis->first), to_world(model, axis->second));
+    }
+  }
+  return out;
 }
 
 void build_cues(const SceneReplica& replica, const glm::mat4& model, float scene_radius_m,

@@ -67,6 +67,12 @@ struct CueOptions {
 void build_cues(const SceneReplica& replica, const glm::mat4& model, float scene_radius_m,
                 const CueOptions& options, CueScene& out);
 
+// The screw axes build_cues draws for the live stroke (world frame): one segment per
+// hand whose screw turns (none for a pure translation or scodef).
+std::vector<std::pair<glm::vec3, glm::vec3>> drawn_screw_axes(const SceneReplica& replica,
+                                                              const glm::mat4& model,
+                                                              float scene_radius_m);
+
 // The grab point's path under the stroke's motion, t = 0 .. 1 in `samples` steps
 // (object frame); empty for scodef.
 std::vector<glm::dvec3> stroke_trajectory(const LiveHand& hand, math::WarpMethod method,

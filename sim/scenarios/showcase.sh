@@ -65,9 +65,9 @@ spork() {
     cp "$pics/commit-$((k + 1)).png" "$out/spork-$k.png"
   done
   # Strokes 2 to 5 turn the hands (45, 50, 60, 60 degrees): their live pictures show
-  # the screw axes in pink.
+  # the screw axes in pink, along each axis where the display projected it.
   for k in 2 3 4 5; do
-    check "$pics/live-$((k + 1)).png" --pink 100 --yellow 20
+    check "$pics/live-$((k + 1)).png" --pink 100 --yellow 20 --cues "$pics/live-$((k + 1)).cues"
     cp "$pics/live-$((k + 1)).png" "$out/spork-live-$k.png"
   done
   echo "$out/spork-{0-sphere,1,2,3,4,5}.png $out/spork-live-{2,3,4,5}.png"
