@@ -61,6 +61,8 @@ struct Options {
   twister::bridge::ReplicaLimits limits;  // --max-vertices / --max-triangles
   bool no_cues = false;                   // the model alone (no glyphs, spheres, axes, ...)
   bool no_hud = false;
+  float crease_angle_deg = twister::bridge::kDefaultCreaseAngleDeg;  // --crease-angle
+  bool no_live_refine = false;  // the live stroke unrefined even on OpenGL 4
   std::uint32_t movie_every = 0;  // --movie-every N: frame-<n>.png every N-th hands update
 };
 
@@ -270,6 +272,8 @@ int run(const Options& opt) {
   bridge_options.limits = opt.limits;
   BridgeApp app(*transport.port, clock, &display.renderer, bridge_options, logger());
   app.set_view(&display.view);
+  app.replica().set_crease_angle(opt.crease_angle_deg);
+  display.renderer.allow_live_refinement(!opt.no_live_refine);
   twister::bridge::WindowInput input(app, display.view, options.fixed_camera);
   input.attach(display.context->window());
   int rc = run_loop(opt, app, display, transport.poll_fd(), clock);
@@ -338,6 +342,12 @@ void add_options(CLI::App& cli, Options& opt) {
   cli.add_flag("--no-cues", opt.no_cues,
                "draw the model alone: no hand glyphs, spheres, axes, trajectories (key C)");
   cli.add_flag("--no-hud", opt.no_hud, "no heads-up text or banners (key H)");
+  cli.add_option("--crease-angle", opt.crease_angle_deg,
+                 "an edge whose faces' normals differ by more than this keeps a normal per side "
+                 "(degrees, default 45; 180: every edge smooth)")
+      ->check(CLI::Range(0.0, 180.0));
+  cli.add_flag("--no-live-refine", opt.no_live_refine,
+               "draw the live stroke unrefined even on OpenGL 4 (the commit still refines)");
   cli.add_flag("-q,--quiet", opt.quiet, "same as --log-level warning (which wins if given)");
 }
 
