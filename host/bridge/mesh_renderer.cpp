@@ -97,7 +97,8 @@ hal::Expected<void> MeshRenderer::init(int width, int height, bool offscreen,
   height_ = height;
   camera_.set_view(view);
   ShaderSources plain;
-  plain.vertex = std::string(kGlsl330) + shaders::kWarpLibrary + shaders::kPlainVertex;
+  plain.vertex = std::string(kGlsl330) + shaders::kWarpLibrary + shaders::kSurfaceStage +
+                 shaders::kPlainVertex;
   plain.fragment = std::string(kGlsl330) + shaders::kMeshFragment;
   plain.feedback = kFeedback;
   hal::Expected<unsigned> program = build_gl_program(plain);
@@ -109,8 +110,8 @@ hal::Expected<void> MeshRenderer::init(int width, int height, bool offscreen,
     ShaderSources refined;
     refined.vertex = std::string(kGlsl400) + shaders::kRefinedVertex;
     refined.tess_control = std::string(kGlsl400) + shaders::kWarpLibrary + shaders::kRefinedControl;
-    refined.tess_evaluation =
-        std::string(kGlsl400) + shaders::kWarpLibrary + shaders::kRefinedEvaluation;
+    refined.tess_evaluation = std::string(kGlsl400) + shaders::kWarpLibrary +
+                              shaders::kSurfaceStage + shaders::kRefinedEvaluation;
     refined.fragment = std::string(kGlsl400) + shaders::kMeshFragment;
     refined.feedback = kFeedback;
     hal::Expected<unsigned> tess = build_gl_program(refined);
@@ -183,7 +184,8 @@ void MeshRenderer::set_mesh(const MeshData& mesh, const ShadedMesh& shaded, bool
     camera_.frame(glm::vec3(model_ * glm::vec4(centre_, 1.0F)), radius_);
   }
   glBindVertexArray(vao_);
-  upload(vbo_[0], interleaved_positions(mesh, shaded_), 3);
+  positions_ = interleaved_positions(mesh, shaded_);
+  upload(vbo_[0], positions_, 3);
   upload(vbo_[1], {}, 2);
   upload(vbo_[2], shaded_.normals, 3);
   upload(vbo_[3], {}, 3);
@@ -197,10 +199,10 @@ void MeshRenderer::set_mesh(const MeshData& mesh, const ShadedMesh& shaded, bool
 }
 
 void MeshRenderer::set_positions(const MeshData& mesh) {
-  const std::vector<float> pos = interleaved_positions(mesh, shaded_);
+  positions_ = interleaved_positions(mesh, shaded_);
   glBindBuffer(GL_ARRAY_BUFFER, vbo_[0]);
-  glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(pos.size() * sizeof(float)),
-                  pos.data());
+  glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(positions_.size() * sizeof(float)),
+                  positions_.data());
   shade_normals(mesh, shaded_);
   glBindBuffer(GL_ARRAY_BUFFER, vbo_[2]);
   glBufferSubData(GL_ARRAY_BUFFER, 0,
@@ -303,13 +305,10 @@ void MeshRenderer::split_live_triangles() {
   split_radius_ = stroke_radius_;
   split_grab_ = grab_;
   split_mask_ = hand_mask_;
-  // The tessellation control shader's own test (mesh_shaders.hpp influenced()).
-  std::vector<float> pos(3 * vertex_count_);
-  glBindBuffer(GL_ARRAY_BUFFER, vbo_[0]);
-  glGetBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(pos.size() * sizeof(float)),
-                     pos.data());
-  const auto at = [&pos](std::uint32_t v) {
-    return glm::vec3(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2]);
+  // A hand's weights vanish outside its ball (the squash only shrinks it): a triangle
+  // whose bounding sphere meets no ball stays where it is, and its edges too.
+  const auto at = [this](std::uint32_t v) {
+    return glm::vec3(positions_[3 * v], positions_[3 * v + 1], positions_[3 * v + 2]);
   };
   std::vector<std::uint32_t> reached;
   std::vector<std::uint32_t> rest;
@@ -319,8 +318,8 @@ void MeshRenderer::split_live_triangles() {
     const std::uint32_t* i = &shaded_.indices[t];
     const glm::vec3 a = at(i[0]), b = at(i[1]), c = at(i[2]);
     const glm::vec3 m = (a + b + c) / 3.0F;
-    const float reach = stroke_radius_ + std::max({glm::length(a - m), glm::length(b - m),
-                                                   glm::length(c - m)});
+    const float reach =
+        stroke_radius_ + std::max({glm::length(a - m), glm::length(b - m), glm::length(c - m)});
     bool in = false;
     for (std::size_t h = 0; h < 2; ++h) {
       in = in || ((hand_mask_ & (1 << h)) != 0 && glm::length(m - grab_[h]) < reach);
@@ -340,8 +339,7 @@ void MeshRenderer::draw_range(const Program& program, bool patches, std::size_t 
   if (count == 0) return;
   use(program);
   if (patches) glPatchParameteri(GL_PATCH_VERTICES, 3);
-  glDrawElements(patches ? GL_PATCHES : GL_TRIANGLES, static_cast<GLsizei>(count),
-                 GL_UNSIGNED_INT,
+  glDrawElements(patches ? GL_PATCHES : GL_TRIANGLES, static_cast<GLsizei>(count), GL_UNSIGNED_INT,
                  reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));  // NOLINT
 }
 

@@ -87,7 +87,7 @@ class MeshRenderer {
   }
   // RGBA rows top to bottom.
   std::vector<std::uint8_t> read_rgba() const;
-  std::size_t vertex_count() const { return mesh_vertices_; }  // the mesh's
+  std::size_t vertex_count() const { return mesh_vertices_; }       // the mesh's
   std::size_t drawn_vertex_count() const { return vertex_count_; }  // with crease splits
   int width() const { return width_; }
   int height() const { return height_; }
@@ -138,7 +138,8 @@ class MeshRenderer {
   unsigned depth_rb_ = 0;
   int width_ = 0;
   int height_ = 0;
-  ShadedMesh shaded_;  // drawn vertices of the current mesh
+  ShadedMesh shaded_;             // drawn vertices of the current mesh
+  std::vector<float> positions_;  // theirs, as uploaded (x y z each)
   unsigned live_ebo_ = 0;
   std::size_t live_reached_ = 0;  // triangles (first in live_ebo_) the balls can reach
   std::array<glm::vec3, 2> split_grab_{};

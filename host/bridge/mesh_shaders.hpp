@@ -78,14 +78,15 @@ vec2 weights_at(vec3 p) {
   return vec2(w0, w1);
 }
 vec3 warp_at(vec3 p) { return warp(p, weights_at(p)); }
+// An edge's ends in a fixed order, so both of its patches use the same operands.
+bool before(vec3 a, vec3 b) {
+  return a.x < b.x || (a.x == b.x && (a.y < b.y || (a.y == b.y && a.z < b.z)));
+}
 )";
 
-inline constexpr const char* kPlainVertex = R"(
-layout(location = 0) in vec3 a_pos;
-layout(location = 1) in vec2 a_weight;
-layout(location = 2) in vec3 a_normal;
-layout(location = 3) in vec3 a_grad0;
-layout(location = 4) in vec3 a_grad1;
+// The last vertex stage of both programs (after the warp library): the outputs the
+// fragment shader and transform feedback read, and the warped normal's frame.
+inline constexpr const char* kSurfaceStage = R"(
 uniform mat4 u_view_proj;
 uniform mat4 u_model;
 uniform float u_eps;
@@ -94,25 +95,42 @@ out vec3 v_normal;
 out vec2 v_weight;
 out vec3 v_rest;
 out vec3 v_object;
+// Two unit tangents of the rest surface with normal n (t1 x t2 = n).
+void tangents(vec3 n, out vec3 t1, out vec3 t2) {
+  t1 = normalize(cross(n, abs(n.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0)));
+  t2 = cross(n, t1);
+}
+// Rest point p, warped to q with weights w and normal n (object frame).
+void emit(vec3 p, vec3 q, vec3 n, vec2 w) {
+  vec4 world = u_model * vec4(q, 1.0);
+  v_pos = world.xyz;
+  v_normal = mat3(u_model) * n;
+  v_weight = w;
+  v_rest = p;
+  v_object = q;
+  gl_Position = u_view_proj * world;
+}
+)";
+
+inline constexpr const char* kPlainVertex = R"(
+layout(location = 0) in vec3 a_pos;
+layout(location = 1) in vec2 a_weight;
+layout(location = 2) in vec3 a_normal;
+layout(location = 3) in vec3 a_grad0;
+layout(location = 4) in vec3 a_grad1;
 void main() {
   vec3 p = a_pos;
   vec3 q = warp(p, a_weight);
   vec3 n = a_normal;
   if (u_hand_mask != 0 && (a_weight.x > 0.0 || a_weight.y > 0.0)) {
-    vec3 t1 = normalize(cross(n, abs(n.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0)));
-    vec3 t2 = cross(n, t1);
+    vec3 t1, t2;
+    tangents(n, t1, t2);
     vec3 q1 = warp(p + u_eps * t1, a_weight + u_eps * vec2(dot(a_grad0, t1), dot(a_grad1, t1)));
     vec3 q2 = warp(p + u_eps * t2, a_weight + u_eps * vec2(dot(a_grad0, t2), dot(a_grad1, t2)));
     vec3 m = cross(q1 - q, q2 - q);
     if (dot(m, m) > 0.0) n = normalize(m);
   }
-  vec4 world = u_model * vec4(q, 1.0);
-  v_pos = world.xyz;
-  v_normal = mat3(u_model) * n;
-  v_weight = a_weight;
-  v_rest = p;
-  v_object = q;
-  gl_Position = u_view_proj * world;
+  emit(p, q, n, a_weight);
 }
 )";
 
@@ -142,9 +160,6 @@ uniform float u_max_level;
 // where it bends most (a warp bends unevenly along a long coarse edge). Parts aim
 // at half the threshold. The edge is walked from its lexicographically first end,
 // so both of its patches compute the same level from the same operands.
-bool before(vec3 a, vec3 b) {
-  return a.x < b.x || (a.x == b.x && (a.y < b.y || (a.y == b.y && a.z < b.z)));
-}
 float err(vec3 a, vec3 m, vec3 b) {
   precise vec3 chord = 0.5 * (a + b);
   precise float e = length(chord - m);
@@ -175,14 +190,6 @@ float edge_error(vec3 a, vec3 b, vec3 wa, vec3 wb, out vec3 mid) {
   for (int i = 0; i < 8; i += 2) e = max(e, 16.0 * err(w[i], w[i + 1], w[i + 2]));
   return e;
 }
-// Can any hand's ball reach the triangle? (A hand's weights vanish outside its
-// ball; the squash only shrinks it.) Outside every ball the warp is the identity.
-bool influenced(vec3 a, vec3 b, vec3 c) {
-  vec3 m = (a + b + c) / 3.0;
-  float reach = u_radius + max(length(a - m), max(length(b - m), length(c - m)));
-  return ((u_hand_mask & 1) != 0 && length(m - u_grab[0]) < reach) ||
-         ((u_hand_mask & 2) != 0 && length(m - u_grab[1]) < reach);
-}
 void main() {
   e_pos[gl_InvocationID] = c_pos[gl_InvocationID];
   e_normal[gl_InvocationID] = c_normal[gl_InvocationID];
@@ -190,11 +197,6 @@ void main() {
   vec3 a = c_pos[0];
   vec3 b = c_pos[1];
   vec3 c = c_pos[2];
-  if (!influenced(a, b, c)) {
-    gl_TessLevelOuter[0] = gl_TessLevelOuter[1] = gl_TessLevelOuter[2] = 1.0;
-    gl_TessLevelInner[0] = 1.0;
-    return;
-  }
   vec3 wa = warp_at(a);
   vec3 wb = warp_at(b);
   vec3 wc = warp_at(c);
@@ -227,17 +229,6 @@ inline constexpr const char* kRefinedEvaluation = R"(
 layout(triangles, equal_spacing, ccw) in;
 in vec3 e_pos[];
 in vec3 e_normal[];
-uniform mat4 u_view_proj;
-uniform mat4 u_model;
-uniform float u_eps;
-out vec3 v_pos;
-out vec3 v_normal;
-out vec2 v_weight;
-out vec3 v_rest;
-out vec3 v_object;
-bool before(vec3 a, vec3 b) {
-  return a.x < b.x || (a.x == b.x && (a.y < b.y || (a.y == b.y && a.z < b.z)));
-}
 // A point of the edge (a, b) cut into n parts, the same from both of its patches:
 // k/n from the edge's first end.
 vec3 on_edge(vec3 a, float ta, vec3 b, float n) {
@@ -263,18 +254,12 @@ void main() {
   vec2 w = weights_at(p);
   vec3 q = warp(p, w);
   if (w.x > 0.0 || w.y > 0.0) {
-    vec3 t1 = normalize(cross(n, abs(n.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0)));
-    vec3 t2 = cross(n, t1);
+    vec3 t1, t2;
+    tangents(n, t1, t2);
     vec3 m = cross(warp_at(p + u_eps * t1) - q, warp_at(p + u_eps * t2) - q);
     if (dot(m, m) > 0.0) n = normalize(m);
   }
-  vec4 world = u_model * vec4(q, 1.0);
-  v_pos = world.xyz;
-  v_normal = mat3(u_model) * n;
-  v_weight = w;
-  v_rest = p;
-  v_object = q;
-  gl_Position = u_view_proj * world;
+  emit(p, q, n, w);
 }
 )";
 

@@ -3,27 +3,10 @@
 #include <cmath>
 
 #include "twister/base/assert.hpp"
+#include "twister/session/plan_warp.hpp"
 
 namespace twister::session {
 namespace {
-
-// The plan's warp as the refiner evaluates it: double precision, weights from the
-// rest position (chain step 0: exactly the function the plan's weights came from).
-class PlanWarp final : public mesh::PointWarp {
- public:
-  explicit PlanWarp(const math::WarpPlan& plan) : plan_(plan) {}
-
- private:
-  glm::dvec3 do_warp(glm::dvec3 rest_m) const override { return plan_.warp_point(rest_m); }
-  bool do_warp_float(const float* x, const float* y, const float* z, float* ox, float* oy,
-                     float* oz, std::size_t n) const override {
-    return plan_.warp_points_float(x, y, z, ox, oy, oz, n);
-  }
-  double do_float_error_m(double extent_m) const override {
-    return plan_.float_error_bound(extent_m);
-  }
-  const math::WarpPlan& plan_;
-};
 
 // Records each pre-existing triangle in the open undo entry before it changes.
 class UndoTriangles final : public mesh::RefineObserver {

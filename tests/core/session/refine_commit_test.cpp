@@ -16,6 +16,7 @@
 #include "refine_harness.hpp"
 #include "twister/mesh/mesh_refiner.hpp"
 #include "twister/mesh/vertex_normals.hpp"
+#include "twister/session/plan_warp.hpp"
 
 namespace twister::session {
 namespace {
@@ -25,15 +26,6 @@ using twister::test_support::closed_manifold;
 using twister::test_support::max_midpoint_error;
 
 const double kTurn170 = 170.0 * std::numbers::pi / 180.0;
-
-class PlanWarp final : public mesh::PointWarp {
- public:
-  explicit PlanWarp(const math::WarpPlan& plan) : plan_(plan) {}
-
- private:
-  glm::dvec3 do_warp(glm::dvec3 p) const override { return plan_.warp_point(p); }
-  const math::WarpPlan& plan_;
-};
 
 std::vector<journal::JournalRecord> records_of(RefineStorage& storage) {
   journal::JournalReader reader(storage);

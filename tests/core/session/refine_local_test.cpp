@@ -21,27 +21,12 @@
 #include "twister/meshio/mesh_buffer.hpp"
 #include "twister/meshio/mesh_generator.hpp"
 #include "twister/meshio/refiner_buffer.hpp"
+#include "twister/session/plan_warp.hpp"
 
 namespace twister::session {
 namespace {
 
 using test_support::edge_incidence;
-
-class PlanWarp final : public mesh::PointWarp {
- public:
-  explicit PlanWarp(const math::WarpPlan& plan) : plan_(plan) {}
-
- private:
-  glm::dvec3 do_warp(glm::dvec3 rest_m) const override { return plan_.warp_point(rest_m); }
-  bool do_warp_float(const float* x, const float* y, const float* z, float* ox, float* oy,
-                     float* oz, std::size_t n) const override {
-    return plan_.warp_points_float(x, y, z, ox, oy, oz, n);
-  }
-  double do_float_error_m(double extent_m) const override {
-    return plan_.float_error_bound(extent_m);
-  }
-  const math::WarpPlan& plan_;
-};
 
 math::Frame turned(glm::dvec3 origin, glm::dvec3 axis, double angle) {
   const auto rot = [&](glm::dvec3 p) {
@@ -282,23 +267,33 @@ TEST(RefineLocal, ANonManifoldMeshIsRefinedAsAWhole) {
 
 // The adjacency is rebuilt when the topology changed behind the refiner's back (an
 // undo of a refined commit shrinks and rewrites the mesh), and reused otherwise.
+// A 0.3 m sphere with room for 4,000 more vertices, and a one-hand 2.5 rad twist
+// of its top (radius 0.25 m).
+struct TwistedSphere {
+  static constexpr std::size_t kSpare = 4000;
+  TwistedSphere() {
+    EXPECT_TRUE(meshio::make_sphere(buffer.mesh(), 12, 24, 0.3f).ok());
+    const mesh::Mesh& m = buffer.mesh();
+    const std::array<math::Frame, 1> start{math::identity_frame({0.0, 0.0, 0.3})};
+    const std::array<math::Frame, 1> end{turned({0.0, 0.0, 0.35}, {0, 0, 1}, 2.5)};
+    EXPECT_TRUE(plan.build({m.x(), m.y(), m.z()}, start, 0.25, math::WarpMethod::twister).ok());
+    EXPECT_TRUE(plan.update(end).ok());
+  }
+  meshio::MeshBuffer buffer{meshio::sphere_vertices(12, 24) + kSpare,
+                            meshio::sphere_triangles(12, 24) + 2 * kSpare};
+  math::WarpPlanWithStorage<kSpare> plan;
+};
+
 TEST(RefineLocal, AChangedTopologyIsSeenAndTheResultStaysTheWholeMeshOne) {
-  constexpr std::size_t kSpare = 4000;
-  meshio::MeshBuffer a(meshio::sphere_vertices(12, 24) + kSpare,
-                       meshio::sphere_triangles(12, 24) + 2 * kSpare);
-  ASSERT_TRUE(meshio::make_sphere(a.mesh(), 12, 24, 0.3f).ok());
+  TwistedSphere s;
+  meshio::MeshBuffer& a = s.buffer;
+  math::WarpPlan& plan = s.plan;
   meshio::MeshBuffer b(a.mesh().vertex_capacity(), a.mesh().triangle_capacity());
   ASSERT_TRUE(b.mesh().copy_from(a.mesh()).ok());
   const std::size_t v0 = a.mesh().vertex_count();
   const std::size_t t0 = a.mesh().triangle_count();
   std::vector<std::array<std::uint32_t, 3>> before;
   for (std::uint32_t t = 0; t < t0; ++t) before.push_back(a.mesh().triangle(t));
-  math::WarpPlanWithStorage<4000> plan;
-  const math::ConstVertexColumns rest(a.mesh().x(), a.mesh().y(), a.mesh().z());
-  const std::array<math::Frame, 1> start{math::identity_frame({0.0, 0.0, 0.3})};
-  const std::array<math::Frame, 1> end{turned({0.0, 0.0, 0.35}, {0, 0, 1}, 2.5)};
-  ASSERT_TRUE(plan.build(rest, start, 0.25, math::WarpMethod::twister).ok());
-  ASSERT_TRUE(plan.update(end).ok());
   const PlanWarp warp(plan);
   meshio::RefinerBuffer ra(a.mesh().vertex_capacity(), a.mesh().triangle_capacity());
   meshio::RefinerBuffer rb(a.mesh().vertex_capacity(), a.mesh().triangle_capacity());
@@ -319,20 +314,13 @@ TEST(RefineLocal, AChangedTopologyIsSeenAndTheResultStaysTheWholeMeshOne) {
 }
 
 TEST(RefineLocal, AllocatesNothing) {
-  meshio::MeshBuffer a(meshio::sphere_vertices(12, 24) + 4000,
-                       meshio::sphere_triangles(12, 24) + 8000);
-  ASSERT_TRUE(meshio::make_sphere(a.mesh(), 12, 24, 0.3f).ok());
-  math::WarpPlanWithStorage<4000> plan;
-  const math::ConstVertexColumns rest(a.mesh().x(), a.mesh().y(), a.mesh().z());
-  const std::array<math::Frame, 1> start{math::identity_frame({0.0, 0.0, 0.3})};
-  const std::array<math::Frame, 1> end{turned({0.0, 0.0, 0.35}, {0, 0, 1}, 2.5)};
-  ASSERT_TRUE(plan.build(rest, start, 0.25, math::WarpMethod::twister).ok());
-  ASSERT_TRUE(plan.update(end).ok());
-  const PlanWarp warp(plan);
+  TwistedSphere s;
+  meshio::MeshBuffer& a = s.buffer;
+  const PlanWarp warp(s.plan);
   meshio::RefinerBuffer rb(a.mesh().vertex_capacity(), a.mesh().triangle_capacity());
   mesh::MeshRefiner around(rb.storage());
   Result<mesh::RefineResult> rl = StatusCode::unavailable;
-  EXPECT_NO_ALLOCATIONS(rl = around.refine_around(a.mesh(), warp, 0.0005, plan.indices()));
+  EXPECT_NO_ALLOCATIONS(rl = around.refine_around(a.mesh(), warp, 0.0005, s.plan.indices()));
   ASSERT_TRUE(rl.ok());
   EXPECT_GT(rl->edges_split, 0u);
 }

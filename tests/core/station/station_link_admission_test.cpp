@@ -124,6 +124,12 @@ struct Rig {
       link->poll(*station.session, station.now_us);
     }
   }
+  // A display connects on `wire` (its end `far`) and says `h`.
+  void arrives(test::MemoryWire& wire, Far& far, const Hello& h) {
+    listener.connect(wire);
+    far.send(frame(h));
+    poll();
+  }
   Station station;
   FakeListener listener;
   std::vector<float> x, y, z;
@@ -142,9 +148,7 @@ TEST(LinkPeerSwap, NewDisplaysHelloIsNotSwallowedByTheOldOnesPartialFrame) {
   Rig r;
   test::MemoryWire wa;
   Far a(wa);
-  r.listener.connect(wa);
-  a.send(frame(hello()));
-  r.poll();
+  r.arrives(wa, a, hello());
   ASSERT_TRUE(r.link->peer_synced());
   EXPECT_EQ(count(a.receive(), MessageType::mesh_end), 1u);
   // The old display dies in the middle of a frame.
@@ -153,9 +157,7 @@ TEST(LinkPeerSwap, NewDisplaysHelloIsNotSwallowedByTheOldOnesPartialFrame) {
   r.poll(2);
   test::MemoryWire wb;
   Far b(wb);
-  r.listener.connect(wb);
-  b.send(frame(hello(1, r.station.mesh.checksum())));  // holds our mesh already
-  r.poll();
+  r.arrives(wb, b, hello(1, r.station.mesh.checksum()));  // holds our mesh already
   EXPECT_EQ(r.listener.peer(), &wb);
   const auto told = a.receive();
   ASSERT_FALSE(told.empty());
@@ -174,9 +176,7 @@ TEST(LinkPeerSwap, AYieldingDisplayWaitsWhileAnotherHoldsTheLinkAndComesBackWhen
   Rig r;
   test::MemoryWire wa;
   Far a(wa);
-  r.listener.connect(wa);
-  a.send(frame(hello()));
-  r.poll();
+  r.arrives(wa, a, hello());
   ASSERT_EQ(r.listener.peer(), &wa);
   (void)a.receive();
   // A displaced display tries again, yielding: busy, and the display stays.
@@ -184,9 +184,7 @@ TEST(LinkPeerSwap, AYieldingDisplayWaitsWhileAnotherHoldsTheLinkAndComesBackWhen
   yielding.flags = kHelloYield;
   test::MemoryWire wb;
   Far b(wb);
-  r.listener.connect(wb);
-  b.send(frame(yielding));
-  r.poll();
+  r.arrives(wb, b, yielding);
   EXPECT_EQ(r.listener.peer(), &wa);
   EXPECT_FALSE(wb.up);  // refused and closed; read what was sent before it closed
   wb.up = true;
@@ -202,9 +200,7 @@ TEST(LinkPeerSwap, AYieldingDisplayWaitsWhileAnotherHoldsTheLinkAndComesBackWhen
   ASSERT_FALSE(r.link->connected());
   test::MemoryWire wc;
   Far c(wc);
-  r.listener.connect(wc);
-  c.send(frame(yielding));
-  r.poll();
+  r.arrives(wc, c, yielding);
   EXPECT_EQ(r.listener.peer(), &wc);
   const auto welcome = c.receive();
   EXPECT_EQ(count(welcome, MessageType::hello), 1u);
@@ -263,9 +259,7 @@ TEST(LinkAdmission, OldProtocolAndSilentPeersAreRefusedAndTheDisplayStays) {
   Rig r;
   test::MemoryWire wa;
   Far a(wa);
-  r.listener.connect(wa);
-  a.send(frame(hello()));
-  r.poll();
+  r.arrives(wa, a, hello());
   ASSERT_TRUE(r.link->peer_synced());
   (void)a.receive();
   test::MemoryWire old_wire;

@@ -17,14 +17,15 @@
 #include <numbers>
 
 #include "bridge_test_mesh.hpp"
-#include "gl_context.hpp"
 #include "mesh_renderer.hpp"
+#include "offscreen_renderer.hpp"
 #include "png_writer.hpp"
 #include "refine_harness.hpp"
 #include "scene_replica.hpp"
 #include "twister/math/warp_plan.hpp"
 #include "twister/mesh/mesh_refiner.hpp"
 #include "twister/mesh/vertex_normals.hpp"
+#include "twister/session/plan_warp.hpp"
 
 namespace twister::bridge {
 namespace {
@@ -36,15 +37,6 @@ constexpr int kW = 480;
 constexpr int kH = 360;
 // The largest second difference of luminance (0..255) along a line 4 px apart.
 constexpr double kRoughness = 3.0;
-
-class PlanWarp final : public mesh::PointWarp {
- public:
-  explicit PlanWarp(const math::WarpPlan& plan) : plan_(plan) {}
-
- private:
-  glm::dvec3 do_warp(glm::dvec3 p) const override { return plan_.warp_point(p); }
-  const math::WarpPlan& plan_;
-};
 
 // A 1 m box refined by the 170-degree Figure 6 twist's criterion, positions at rest.
 MeshData refined_box() {
@@ -60,29 +52,19 @@ MeshData refined_box() {
   EXPECT_TRUE(plan->update(end).ok());
   auto refiner =
       std::make_unique<mesh::MeshRefinerWithStorage<kRefineVertices, kRefineTriangles>>();
-  const PlanWarp warp(*plan);
+  const session::PlanWarp warp(*plan);
   EXPECT_TRUE(refiner->refine(box->mesh(), warp, 0.002).ok());
   EXPECT_GT(m.vertex_count(), 1000u);
-  MeshData d;
-  d.x.assign(m.x().begin(), m.x().end());
-  d.y.assign(m.y().begin(), m.y().end());
-  d.z.assign(m.z().begin(), m.z().end());
-  d.indices.assign(m.triangle_indices().begin(), m.triangle_indices().end());
-  return d;
+  return test::to_mesh_data(m);
 }
 
 class CreaseImage : public ::testing::Test {
  protected:
   void SetUp() override {
-    ::unsetenv("DISPLAY");
-    ::unsetenv("WAYLAND_DISPLAY");
-    auto context = make_offscreen_context(kW, kH);
-    ASSERT_TRUE(context) << context.error().message;
-    context_ = std::move(*context);
     ViewConfig view;
     view.azimuth_deg = 30.0F;  // three faces in view: +x, +y and the top (-z is up)
     view.elevation_deg = 30.0F;
-    ASSERT_TRUE(renderer_.init(kW, kH, true, view));
+    ASSERT_TRUE(test::open_offscreen(context_, renderer_, kW, kH, view));
     test::load_mesh(replica_, refined_box());
   }
 
@@ -98,8 +80,10 @@ class CreaseImage : public ::testing::Test {
     std::vector<double> lum;
     for (double x = -0.4; x <= 0.4; x += 0.004) {
       // The top face is z = -0.5 (up is -z), the side face y = +0.5.
-      const glm::vec3 p = into_top ? glm::vec3(x, 0.5 - inside, -0.5) : glm::vec3(x, 0.5, -0.5 + inside);
-      const auto px = renderer_.camera().project(glm::vec3(renderer_.model_matrix() * glm::vec4(p, 1.0F)), kW, kH);
+      const glm::vec3 p =
+          into_top ? glm::vec3(x, 0.5 - inside, -0.5) : glm::vec3(x, 0.5, -0.5 + inside);
+      const auto px = renderer_.camera().project(
+          glm::vec3(renderer_.model_matrix() * glm::vec4(p, 1.0F)), kW, kH);
       if (!px) continue;
       const auto i = (static_cast<std::size_t>(std::lround(px->y)) * kW +
                       static_cast<std::size_t>(std::lround(px->x))) *
@@ -143,8 +127,8 @@ TEST_F(CreaseImage, ARefinedBoxsEdgeShowsNoSawTooth) {
   renderer_.set_mesh(replica_.mesh(), shade_with_creases(replica_.mesh(), 180.0F), true);
   const double top_smooth = roughness(true, 0.01);
   const double side_smooth = roughness(false, 0.01);
-  std::printf("committed: roughness top %.2f side %.2f (averaged normals: %.2f, %.2f)\n", top,
-              side, top_smooth, side_smooth);
+  std::printf("committed: roughness top %.2f side %.2f (averaged normals: %.2f, %.2f)\n", top, side,
+              top_smooth, side_smooth);
   EXPECT_LT(top, kRoughness);
   EXPECT_LT(side, kRoughness);
   EXPECT_GT(std::max(top_smooth, side_smooth), 2 * kRoughness) << "the test would not see it";

@@ -21,8 +21,8 @@
 #include <vector>
 
 #include "bridge_test_mesh.hpp"
-#include "gl_context.hpp"
 #include "mesh_renderer.hpp"
+#include "offscreen_renderer.hpp"
 #include "refine_harness.hpp"
 #include "scene_replica.hpp"
 
@@ -38,15 +38,6 @@ using session::test_support::z_turn;
 
 constexpr int kW = 320;
 constexpr int kH = 240;
-
-MeshData to_data(const mesh::Mesh& m) {
-  MeshData d;
-  d.x.assign(m.x().begin(), m.x().end());
-  d.y.assign(m.y().begin(), m.y().end());
-  d.z.assign(m.z().begin(), m.z().end());
-  d.indices.assign(m.triangle_indices().begin(), m.triangle_indices().end());
-  return d;
-}
 
 // Closest distance from p to triangle (a, b, c) (Ericson, Real-Time Collision
 // Detection 5.1.5).
@@ -76,7 +67,8 @@ double point_triangle(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
 // one, searched up to `reach` (beyond it: reach).
 class SurfaceGrid {
  public:
-  SurfaceGrid(std::vector<glm::dvec3> corners, double reach) : t_(std::move(corners)), cell_(reach) {
+  SurfaceGrid(std::vector<glm::dvec3> corners, double reach)
+      : t_(std::move(corners)), cell_(reach) {
     for (std::size_t k = 0; k + 3 <= t_.size(); k += 3) {
       const glm::dvec3 lo = glm::min(t_[k], glm::min(t_[k + 1], t_[k + 2]));
       const glm::dvec3 hi = glm::max(t_[k], glm::max(t_[k + 1], t_[k + 2]));
@@ -149,7 +141,7 @@ LiveStroke live_of(const session::SculptSession& session) {
 
 // The exact warp of `stroke` on `rest` (core's plan, double precision).
 std::unique_ptr<math::WarpPlanWithStorage<kRefineVertices>> exact_plan(const mesh::Mesh& rest,
-                                                                      const LiveStroke& s) {
+                                                                       const LiveStroke& s) {
   auto plan = std::make_unique<math::WarpPlanWithStorage<kRefineVertices>>();
   EXPECT_TRUE(plan->build({rest.x(), rest.y(), rest.z()}, std::span(s.start).first(s.hands),
                           s.radius, s.method)
@@ -161,20 +153,14 @@ std::unique_ptr<math::WarpPlanWithStorage<kRefineVertices>> exact_plan(const mes
 class LiveRefine : public ::testing::Test {
  protected:
   void SetUp() override {
-    ::unsetenv("DISPLAY");
-    ::unsetenv("WAYLAND_DISPLAY");
-    auto context = make_offscreen_context(kW, kH);
-    ASSERT_TRUE(context) << context.error().message;
-    context_ = std::move(*context);
-    const hal::Expected<void> ready = renderer_.init(kW, kH, true, ViewConfig{});
-    ASSERT_TRUE(ready) << ready.error().message;
+    ASSERT_TRUE(test::open_offscreen(context_, renderer_, kW, kH));
     ASSERT_TRUE(renderer_.can_refine_live()) << "llvmpipe gives GL 4.5 core";
   }
 
   // The display's preview of `stroke` on `rest`, read back (refined or not).
   MeshRenderer::Surface preview(const mesh::Mesh& rest, const LiveStroke& stroke, bool refine) {
     SceneReplica r;
-    test::load_mesh(r, to_data(rest));
+    test::load_mesh(r, test::to_mesh_data(rest));
     LiveMessages live = make_live_messages(1, 1, stroke.method, stroke.radius, stroke.hand_mask,
                                            stroke.start, stroke.end, &stroke.screws);
     live.stroke.refine_threshold_m = static_cast<float>(stroke.threshold);
@@ -259,8 +245,8 @@ TEST_F(LiveRefine, Figure6TwistPreviewAgreesWithTheCommitAndHasNoDeepFacet) {
   std::printf(
       "Figure 6 twist, threshold %.1f mm: preview %zu triangles (coarse %zu), commit %zu; "
       "preview-commit distance %.3f mm; deepest facet %.3f mm refined, %.1f mm unrefined\n",
-      1e3 * kThreshold, refined.rest.size() / 3, coarse.rest.size() / 3,
-      s.mesh().triangle_count(), 1e3 * distance, 1e3 * facet, 1e3 * coarse_facet);
+      1e3 * kThreshold, refined.rest.size() / 3, coarse.rest.size() / 3, s.mesh().triangle_count(),
+      1e3 * distance, 1e3 * facet, 1e3 * coarse_facet);
   EXPECT_LE(distance, 2 * kThreshold);
   EXPECT_LE(facet, 2 * kThreshold);
   EXPECT_GT(coarse_facet, 2 * kThreshold) << "the test would not see an unrefined preview";

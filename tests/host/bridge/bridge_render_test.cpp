@@ -15,6 +15,7 @@
 #include "fakes/fake_clock.hpp"
 #include "gl_context.hpp"
 #include "mesh_renderer.hpp"
+#include "offscreen_renderer.hpp"
 #include "scene_replica.hpp"
 #include "twister/link/math_conversion.hpp"
 #include "twister/math/screw.hpp"
@@ -47,17 +48,7 @@ double coverage_differs(const std::vector<std::uint8_t>& a, const std::vector<st
 
 class BridgeRender : public ::testing::Test {
  protected:
-  void SetUp() override {
-    // Headless on purpose: never a display server, even when one is around.
-    ::unsetenv("DISPLAY");
-    ::unsetenv("WAYLAND_DISPLAY");
-    auto context = make_offscreen_context(kW, kH);
-    ASSERT_TRUE(context) << context.error().message;
-    context_ = std::move(*context);
-    ViewConfig view;
-    const hal::Expected<void> ready = renderer_.init(kW, kH, true, view);
-    ASSERT_TRUE(ready) << ready.error().message;
-  }
+  void SetUp() override { ASSERT_TRUE(test::open_offscreen(context_, renderer_, kW, kH)); }
   std::unique_ptr<GlContext> context_;
   MeshRenderer renderer_;
 };

@@ -15,16 +15,21 @@
 
 namespace twister::bridge::test {
 
-inline MeshData sphere_mesh(float radius_m, std::size_t rings = 48, std::size_t segments = 64) {
-  static mesh::MeshWithStorage<8192, 16384> m;
-  m.clear();
-  EXPECT_TRUE(meshio::make_sphere(m, rings, segments, radius_m).ok());
+// A core mesh as the display holds it.
+inline MeshData to_mesh_data(const mesh::Mesh& m) {
   MeshData d;
   d.x.assign(m.x().begin(), m.x().end());
   d.y.assign(m.y().begin(), m.y().end());
   d.z.assign(m.z().begin(), m.z().end());
   d.indices.assign(m.triangle_indices().begin(), m.triangle_indices().end());
   return d;
+}
+
+inline MeshData sphere_mesh(float radius_m, std::size_t rings = 48, std::size_t segments = 64) {
+  static mesh::MeshWithStorage<8192, 16384> m;
+  m.clear();
+  EXPECT_TRUE(meshio::make_sphere(m, rings, segments, radius_m).ok());
+  return to_mesh_data(m);
 }
 
 // Feeds `m` to the replica as the station would (full mesh, version 1).
