@@ -285,8 +285,24 @@ bool WarpPlan::warp_points_float(const float* x, const float* y, const float* z,
   const bool two = hands_ == 2;
   float_weights(start_[0], two ? &start_[1] : nullptr, radius_, x, y, z, w1, n);
   if (two) float_weights(start_[1], &start_[0], radius_, x, y, z, w2, n);
-  const KernelSpan s{x, y, z, w1, two ? w2 : w1, out_x, out_y, out_z, n};
-  two ? warp_two_simd(kernel_hands_[0], kernel_hands_[1], s) : warp_one_simd(kernel_hands_[0], s);
+  // A batch that only one hand reaches (the usual case: the points of one edge
+  // region lie together) takes that hand's kernel: half the arithmetic, within the
+  // same bound (float_error_bound sums the hands'). "Reaches": a weight above 2^-30;
+  // the float decay leaves ~1e-14 outside the radius, and dropping a weight that small
+  // stays inside the bound's weight term (2^-18 for ~2^-19 of arithmetic error).
+  const auto reached = [n](const float* w) {
+    float most = 0.0f;
+    for (std::size_t i = 0; i < n; ++i) most = std::max(most, w[i]);
+    return most > 0x1p-30f;
+  };
+  if (two && !reached(w2)) {
+    warp_one_simd(kernel_hands_[0], KernelSpan{x, y, z, w1, w1, out_x, out_y, out_z, n});
+  } else if (two && !reached(w1)) {
+    warp_one_simd(kernel_hands_[1], KernelSpan{x, y, z, w2, w2, out_x, out_y, out_z, n});
+  } else {
+    const KernelSpan s{x, y, z, w1, two ? w2 : w1, out_x, out_y, out_z, n};
+    two ? warp_two_simd(kernel_hands_[0], kernel_hands_[1], s) : warp_one_simd(kernel_hands_[0], s);
+  }
   return true;
 }
 

@@ -54,7 +54,9 @@ bool MeshRefiner::fits(const Mesh& mesh) const {
   return adjacency_.fits(mesh) && storage_.warped_x.size() >= v && storage_.warped_y.size() >= v &&
          storage_.warped_z.size() >= v && storage_.warped_stamp.size() >= v &&
          storage_.edge_state.size() >= 3 * t && storage_.triangle_flags.size() >= t &&
-         storage_.queue.size() >= t;
+         storage_.queue.size() >= t && storage_.float_x.size() >= v &&
+         storage_.float_y.size() >= v && storage_.float_z.size() >= v &&
+         storage_.float_stamp.size() >= v;
 }
 
 double MeshRefiner::midpoint_error(glm::dvec3 a, glm::dvec3 b, const PointWarp& warp) {
@@ -84,7 +86,7 @@ Result<RefineResult> MeshRefiner::refine(Mesh& mesh, const PointWarp& warp, doub
 Result<RefineResult> MeshRefiner::refine_around(Mesh& mesh, const PointWarp& warp,
                                                 double threshold_m,
                                                 std::span<const std::uint32_t> vertices,
-                                                RefineObserver* observer) {
+                                                RefineObserver* observer, VertexImages images) {
   if (!fits(mesh)) return StatusCode::failed_precondition;
   if (!std::isfinite(threshold_m) || !(threshold_m > 0.0)) return StatusCode::invalid_argument;
   for (const std::uint32_t v : vertices) {
@@ -95,9 +97,12 @@ Result<RefineResult> MeshRefiner::refine_around(Mesh& mesh, const PointWarp& war
   region_.local = true;
   start(mesh, warp, threshold_m, observer);
   const auto vertices_before = static_cast<std::uint32_t>(mesh.vertex_count());
-  collect_region(vertices);
-  settle_in_float();
-  run();
+  // With every region edge within the threshold nothing can split: the visiting
+  // order (and so the sort) matters only when something is left to the double criterion.
+  if (!collect_and_settle(vertices, images)) {
+    sort_region();
+    run();
+  }
   region_.local = false;
   for (std::uint32_t v = vertices_before; v < mesh.vertex_count(); ++v) (void)warped_of(v);
   keep_adjacency(mesh);
@@ -461,22 +466,67 @@ std::uint32_t MeshRefiner::for_fan(std::uint32_t v, F&& f) const {
   return count;
 }
 
-// The region: every triangle with a vertex in `vertices`, in ascending index (a
-// radix sort over the scratch), each flagged kPending.
+// The manifold fan of v (adjacency_key_.manifold): tri(t, j) for each triangle (j: v's
+// slot in it), edge(h, g) for each edge at v, once (h a half-edge at v, g its twin
+// or kBoundary), walking as for_fan does.
+template <typename Tri, typename Edge>
+void MeshRefiner::walk_fan(std::uint32_t v, Tri&& tri, Edge&& edge) const {
+  const std::uint32_t t0 = storage_.adjacency.vertex_offsets[v];
+  if (t0 == kNoCorner) return;
+  const std::uint32_t j0 = slot(t0, v);
+  tri(t0, j0);
+  for (const std::uint32_t first_exit : {3 * t0 + j0, 3 * t0 + prev(j0)}) {
+    std::uint32_t exit = first_exit;
+    for (;;) {
+      const std::uint32_t g = adjacency_.twin(exit);
+      edge(exit, g);
+      if (!real_twin(g)) break;  // the boundary (a manifold fan has no other end)
+      const std::uint32_t u = g / 3;
+      if (u == t0) return;  // closed: every edge at v crossed once
+      const std::uint32_t j = slot(u, v);
+      tri(u, j);
+      exit = 3 * u + j == g ? 3 * u + prev(j) : 3 * u + j;
+    }
+  }
+}
+
+// The region: every triangle with a vertex in `vertices`, each flagged kPending, in
+// the order the fans are walked (sort_region puts them in ascending index).
 void MeshRefiner::collect_region(std::span<const std::uint32_t> vertices) {
   const std::size_t capacity = region_.stamps.size();
-  std::span<std::uint32_t> a = storage_.adjacency.incident.subspan(capacity, capacity);
-  std::span<std::uint32_t> b = storage_.adjacency.incident.subspan(2 * capacity, capacity);
+  std::span<std::uint32_t> list = storage_.adjacency.incident.subspan(capacity, capacity);
   std::size_t count = 0;
   for (const std::uint32_t v : vertices) {
     (void)for_fan(v, [&](std::uint32_t t) {
-      touch(t);
-      std::uint8_t& flags = storage_.triangle_flags[t];
-      if ((flags & kPending) != 0) return;
-      flags |= kPending;
-      a[count++] = t;
+      if (enter_region(t)) list[count++] = t;
     });
   }
+  set_region(list.first(count));
+}
+
+// Touches t and flags it kPending; false when it already was.
+bool MeshRefiner::enter_region(std::uint32_t t) {
+  touch(t);
+  std::uint8_t& flags = storage_.triangle_flags[t];
+  if ((flags & kPending) != 0) return false;
+  flags |= kPending;
+  return true;
+}
+
+// The region's list (in the scratch's second third; the last third is the heap's).
+void MeshRefiner::set_region(std::span<std::uint32_t> list) {
+  const std::size_t capacity = region_.stamps.size();
+  region_.pending = list;
+  region_.heap = storage_.adjacency.incident.subspan(2 * capacity, capacity);
+  region_.pending_pos = 0;
+  region_.heap_size = 0;
+}
+
+// A radix sort of the region's triangles over the scratch (the list and the heap's room).
+void MeshRefiner::sort_region() {
+  const std::size_t count = region_.pending.size();
+  std::span<std::uint32_t> a = region_.pending;
+  std::span<std::uint32_t> b = region_.heap;
   constexpr std::uint32_t kBits = 11;
   std::array<std::uint32_t, 1u << kBits> buckets{};
   for (std::uint32_t shift = 0; shift < 32 && (triangles_before_ >> shift) != 0; shift += kBits) {
@@ -494,26 +544,22 @@ void MeshRefiner::collect_region(std::span<const std::uint32_t> vertices) {
   }
   region_.pending = a.first(count);
   region_.heap = b;
-  region_.pending_pos = 0;
-  region_.heap_size = 0;
 }
 
 // The float filter: every edge of the region's triangles evaluated in single precision
 // in batches (S at both ends and at the float midpoint); an edge whose float error is
-// at most threshold - 2 delta - slack (delta = the warp's float_error_m bound for the
-// batch, slack for computing the error itself) is within the threshold in double too,
-// so its verdict is cached as refine() would have computed it. Every other edge is
-// left to the double criterion (docs/refinement.md "The float filter").
+// at most threshold - 2 delta - slack (delta = the warp's float_error_m bound, slack for
+// computing the error itself) is within the threshold in double too, so its verdict is
+// cached as refine() would have computed it. Every other edge is left to the double
+// criterion (docs/refinement.md "The float filter").
 struct MeshRefiner::FloatBatch {
-  // Without the vertex cache: kEdges edges, their ends and midpoints in the thirds of
-  // the columns; with it: up to 3 kEdges midpoints.
-  static constexpr std::size_t kEdges = PointWarp::kFloatBatch / 3;
-  std::array<std::uint32_t, 3 * kEdges> edges{};
-  std::array<std::array<std::uint32_t, 2>, 3 * kEdges> ends{};
-  std::array<float, 3 * kEdges> x{}, y{}, z{}, ox{}, oy{}, oz{};
+  static constexpr std::size_t kSize = PointWarp::kFloatBatch;
+  std::array<std::uint32_t, kSize> edges{};
+  std::array<std::uint32_t, kSize> twins{};
+  std::array<float, kSize> x{}, y{}, z{}, ox{}, oy{}, oz{};  // float midpoints, S of them
+  std::array<double, kSize> cx{}, cy{}, cz{};                 // (S(a) + S(b)) / 2 in float
   std::size_t n = 0;
   float extent = 0.0f;
-  bool cached = false;
 };
 
 struct MeshRefiner::VertexBatch {
@@ -530,7 +576,7 @@ void MeshRefiner::warp_vertices(VertexBatch& b) {
   if (b.n == 0) return;
   b.fast = b.fast && warp_->warp_float(b.x.data(), b.y.data(), b.z.data(), b.ox.data(), b.oy.data(),
                                        b.oz.data(), b.n);
-  if (b.fast) vertex_error_ = std::max(vertex_error_, warp_->float_error_m(b.extent));
+  if (b.fast) filter_.error = std::max(filter_.error, warp_->float_error_m(b.extent));
   for (std::size_t k = 0; k < b.n; ++k) {
     const std::uint32_t v = b.vertices[k];
     storage_.float_x[v] = b.ox[k];
@@ -541,98 +587,165 @@ void MeshRefiner::warp_vertices(VertexBatch& b) {
   b.extent = 0.0f;
 }
 
-void MeshRefiner::settle_in_float() {
-  settled_in_float_ = 0;
+// The region and the float filter over it; true when every region edge was settled
+// within the threshold. With the vertices' images given, one pass: the fans of
+// `vertices` are walked once, each edge batched when it is first met, the other
+// region vertices taken as fixed points. Otherwise the region first, then S in float
+// at each of its vertices, then its edges.
+bool MeshRefiner::collect_and_settle(std::span<const std::uint32_t> vertices,
+                                     VertexImages images) {
+  filter_ = FloatFilter{};
+  const std::size_t n = mesh_->vertex_count();
+  FloatBatch b;
+  if (images.x.size() < n || images.y.size() < n || images.z.size() < n) {
+    collect_region(vertices);
+    if (!warp_region_vertices()) return false;  // the warp offers no float batch
+    filter_.images = {storage_.float_x, storage_.float_y, storage_.float_z};
+    for (const std::uint32_t t : region_.pending) batch_edges(t, b);
+    settle_batch(b);
+    return filter_.unsettled == 0;
+  }
+  stamp_images(vertices, images);
+  const std::size_t capacity = region_.stamps.size();
+  std::span<std::uint32_t> list = storage_.adjacency.incident.subspan(capacity, capacity);
+  std::size_t count = 0;
+  const std::uint32_t* tv = mesh_->triangle_indices().data();
+  for (const std::uint32_t v : vertices) {
+    walk_fan(
+        v,
+        [&](std::uint32_t t, std::uint32_t j) {
+          if (!enter_region(t)) return;
+          list[count++] = t;
+          // The edge across from v: batched here when neither end is the stroke's
+          // (else it is an edge at that end, batched from its fan).
+          const std::uint32_t h = 3 * t + next(j);
+          if (!stroke_vertex(tv[h]) && !stroke_vertex(tv[3 * t + prev(j)])) batch_edges_of(h, b);
+        },
+        [&](std::uint32_t h, std::uint32_t g) {
+          // An edge at v, met once in v's fan: batched from its lower end when both
+          // ends are the stroke's.
+          const std::uint32_t a = tv[h];
+          const std::uint32_t w = a == v ? tv[h % 3 == 2 ? h - 2 : h + 1] : a;
+          if (stroke_vertex(w) && w < v) return;
+          touch(h / 3);
+          if (real_twin(g)) touch(g / 3);
+          batch_edge(h, g, b);
+        });
+  }
+  settle_batch(b);
+  set_region(list.first(count));
+  return filter_.unsettled == 0;
+}
+
+// `vertices` stamped as the stroke's (their images given), and the bound for them.
+void MeshRefiner::stamp_images(std::span<const std::uint32_t> vertices, VertexImages images) {
+  const std::span<const float> px = std::as_const(*mesh_).x();
+  const std::span<const float> py = std::as_const(*mesh_).y();
+  const std::span<const float> pz = std::as_const(*mesh_).z();
+  float extent = 0.0f;
+  for (const std::uint32_t v : vertices) {
+    storage_.float_stamp[v] = generation_;
+    extent = std::max({extent, std::abs(px[v]), std::abs(py[v]), std::abs(pz[v])});
+  }
+  filter_.images = images;
+  filter_.error = vertices.empty() ? 0.0 : warp_->float_error_m(extent);
+}
+
+bool MeshRefiner::stroke_vertex(std::uint32_t v) const {
+  return storage_.float_stamp[v] == generation_;
+}
+
+// S in float at every vertex of the region (stamped) by the warp's float batch.
+bool MeshRefiner::warp_region_vertices() {
   const std::span<const std::uint32_t> indices = mesh_->triangle_indices();
   const std::span<const float> px = std::as_const(*mesh_).x();
   const std::span<const float> py = std::as_const(*mesh_).y();
   const std::span<const float> pz = std::as_const(*mesh_).z();
-  // S at every vertex of the region once (when the storage has the float cache).
-  const bool cached = storage_.float_stamp.size() >= mesh_->vertex_capacity() &&
-                      storage_.float_x.size() >= mesh_->vertex_capacity() &&
-                      storage_.float_y.size() >= mesh_->vertex_capacity() &&
-                      storage_.float_z.size() >= mesh_->vertex_capacity();
-  vertex_error_ = 0.0;
-  bool vertices_fast = true;
-  if (cached) {
-    VertexBatch vb;
-    for (const std::uint32_t t : region_.pending) {
-      for (std::size_t j = 3 * std::size_t{t}; j < 3 * std::size_t{t} + 3; ++j) {
-        const std::uint32_t v = indices[j];
-        if (storage_.float_stamp[v] == generation_) continue;
-        storage_.float_stamp[v] = generation_;
-        const std::size_t k = vb.n;
-        vb.vertices[k] = v;
-        vb.x[k] = px[v], vb.y[k] = py[v], vb.z[k] = pz[v];
-        vb.extent = std::max({vb.extent, std::abs(px[v]), std::abs(py[v]), std::abs(pz[v])});
-        if (++vb.n == VertexBatch::kSize) warp_vertices(vb);
-      }
-    }
-    warp_vertices(vb);
-    vertices_fast = vb.fast;
-  }
-  if (!vertices_fast) return;  // the warp offers no float path
-  FloatBatch b;
-  b.cached = cached;
+  VertexBatch vb;
   for (const std::uint32_t t : region_.pending) {
-    for (std::uint32_t h = 3 * t; h < 3 * t + 3; ++h) {
-      if (storage_.edge_state[h] != kUnknown) continue;
-      const std::uint32_t va = indices[h];
-      const std::uint32_t vb = indices[h % 3 == 2 ? h - 2 : h + 1];
-      const glm::vec3 pa(px[va], py[va], pz[va]);
-      const glm::vec3 pb(px[vb], py[vb], pz[vb]);
-      const glm::vec3 pm = (pa + pb) * 0.5f;
-      const std::size_t k = b.n;
-      b.edges[k] = h;
-      b.ends[k] = {va, vb};
-      b.x[k] = pm.x, b.y[k] = pm.y, b.z[k] = pm.z;
-      if (!cached) {
-        b.x[FloatBatch::kEdges + k] = pa.x, b.y[FloatBatch::kEdges + k] = pa.y;
-        b.z[FloatBatch::kEdges + k] = pa.z;
-        b.x[2 * FloatBatch::kEdges + k] = pb.x, b.y[2 * FloatBatch::kEdges + k] = pb.y;
-        b.z[2 * FloatBatch::kEdges + k] = pb.z;
-      }
-      b.extent = std::max({b.extent, std::abs(pa.x), std::abs(pa.y), std::abs(pa.z), std::abs(pb.x),
-                           std::abs(pb.y), std::abs(pb.z)});
-      storage_.edge_state[h] = kBatched;  // the twin is not batched again
-      const std::uint32_t g = adjacency_.twin(h);
-      if (real_twin(g)) {
-        touch(g / 3);
-        storage_.edge_state[g] = kBatched;
-      }
-      if (++b.n == (cached ? 3 * FloatBatch::kEdges : FloatBatch::kEdges)) settle_batch(b);
+    for (std::size_t j = 3 * std::size_t{t}; j < 3 * std::size_t{t} + 3; ++j) {
+      const std::uint32_t v = indices[j];
+      if (storage_.float_stamp[v] == generation_) continue;
+      storage_.float_stamp[v] = generation_;
+      const std::size_t k = vb.n;
+      vb.vertices[k] = v;
+      vb.x[k] = px[v], vb.y[k] = py[v], vb.z[k] = pz[v];
+      vb.extent = std::max({vb.extent, std::abs(px[v]), std::abs(py[v]), std::abs(pz[v])});
+      if (++vb.n == VertexBatch::kSize) warp_vertices(vb);
     }
   }
-  settle_batch(b);
+  warp_vertices(vb);
+  return vb.fast;
+}
+
+// Every edge of t not yet batched or settled (by t or its twin) into the batch.
+void MeshRefiner::batch_edges(std::uint32_t t, FloatBatch& b) {
+  for (std::uint32_t h = 3 * t; h < 3 * t + 3; ++h) batch_edges_of(h, b);
+}
+
+// Edge h into the batch unless it (or its twin) already is; marked so that the
+// twin is not batched again (settle_batch writes the verdicts).
+void MeshRefiner::batch_edges_of(std::uint32_t h, FloatBatch& b) {
+  if (storage_.edge_state[h] != kUnknown) return;
+  const std::uint32_t g = adjacency_.twin(h);
+  storage_.edge_state[h] = kBatched;
+  if (real_twin(g)) {
+    touch(g / 3);
+    storage_.edge_state[g] = kBatched;
+  }
+  batch_edge(h, g, b);
+}
+
+// Edge h (twin g) into the batch: its float midpoint and the mean of its ends' images
+// (the stroke's vertices' images, the other vertices fixed); settled when full.
+void MeshRefiner::batch_edge(std::uint32_t h, std::uint32_t g, FloatBatch& b) {
+  const Mesh& m = *mesh_;
+  const std::uint32_t* tv = m.triangle_indices().data();
+  const std::uint32_t va = tv[h];
+  const std::uint32_t vb = tv[h % 3 == 2 ? h - 2 : h + 1];
+  const float* px = m.x().data();
+  const float* py = m.y().data();
+  const float* pz = m.z().data();
+  const glm::vec3 pa(px[va], py[va], pz[va]);
+  const glm::vec3 pb(px[vb], py[vb], pz[vb]);
+  const glm::vec3 pm = (pa + pb) * 0.5f;
+  const VertexImages& im = filter_.images;
+  const glm::vec3 sa = stroke_vertex(va) ? glm::vec3(im.x[va], im.y[va], im.z[va]) : pa;
+  const glm::vec3 sb = stroke_vertex(vb) ? glm::vec3(im.x[vb], im.y[vb], im.z[vb]) : pb;
+  const std::size_t k = b.n;
+  b.edges[k] = h;
+  b.twins[k] = g;
+  b.x[k] = pm.x, b.y[k] = pm.y, b.z[k] = pm.z;
+  b.cx[k] = 0.5 * (double{sa.x} + double{sb.x});
+  b.cy[k] = 0.5 * (double{sa.y} + double{sb.y});
+  b.cz[k] = 0.5 * (double{sa.z} + double{sb.z});
+  // |exact midpoint| <= |float midpoint| (1 + 2^-23) per coordinate.
+  const glm::vec3 am = glm::abs(pm);
+  b.extent = std::max({b.extent, am.x, am.y, am.z});
+  if (++b.n == FloatBatch::kSize) settle_batch(b);
 }
 
 void MeshRefiner::settle_batch(FloatBatch& b) {
   if (b.n == 0) return;
-  constexpr std::size_t e = FloatBatch::kEdges;
-  // Unused slots are harmless (evaluated, ignored).
-  const std::size_t points = b.cached ? b.n : 3 * e;
   const bool fast = warp_->warp_float(b.x.data(), b.y.data(), b.z.data(), b.ox.data(), b.oy.data(),
-                                      b.oz.data(), points);
-  const double delta = fast ? warp_->float_error_m(b.extent) : 0.0;
-  // |e_float - e_double| <= (delta_a + delta_b) / 2 + delta_m.
-  const double ends_error = b.cached ? vertex_error_ : delta;
-  const double limit = threshold_m_ - ends_error - delta - 0x1p-40 * (1.0 + b.extent);
+                                      b.oz.data(), b.n);
+  const double extent = (1.0 + 0x1p-23) * b.extent;
+  // |e_float - e_double| <= (delta_a + delta_b) / 2 + delta_m (fixed points: delta 0).
+  const double delta = fast ? warp_->float_error_m(extent) : 0.0;
+  const double limit = threshold_m_ - filter_.error - delta - 0x1p-40 * (1.0 + extent);
+  const double limit2 = fast && limit > 0.0 ? limit * limit : -1.0;
+  std::array<std::uint8_t, FloatBatch::kSize> within{};
   for (std::size_t k = 0; k < b.n; ++k) {
-    const std::uint32_t h = b.edges[k];
-    const auto [va, vb] = b.ends[k];
-    const glm::dvec3 sm(b.ox[k], b.oy[k], b.oz[k]);
-    const glm::dvec3 sa =
-        b.cached ? glm::dvec3(storage_.float_x[va], storage_.float_y[va], storage_.float_z[va])
-                 : glm::dvec3(b.ox[e + k], b.oy[e + k], b.oz[e + k]);
-    const glm::dvec3 sb =
-        b.cached ? glm::dvec3(storage_.float_x[vb], storage_.float_y[vb], storage_.float_z[vb])
-                 : glm::dvec3(b.ox[2 * e + k], b.oy[2 * e + k], b.oz[2 * e + k]);
-    const bool within = fast && limit > 0.0 && glm::length(0.5 * (sa + sb) - sm) <= limit;
-    const std::uint8_t state = within ? kWithin : kUnknown;
-    storage_.edge_state[h] = state;
-    const std::uint32_t g = adjacency_.twin(h);
-    if (real_twin(g)) storage_.edge_state[g] = state;
-    if (within) ++settled_in_float_;
+    const double dx = b.cx[k] - double{b.ox[k]};
+    const double dy = b.cy[k] - double{b.oy[k]};
+    const double dz = b.cz[k] - double{b.oz[k]};
+    within[k] = dx * dx + dy * dy + dz * dz <= limit2 ? 1 : 0;
+  }
+  for (std::size_t k = 0; k < b.n; ++k) {
+    const std::uint8_t state = within[k] != 0 ? kWithin : kUnknown;
+    storage_.edge_state[b.edges[k]] = state;
+    if (real_twin(b.twins[k])) storage_.edge_state[b.twins[k]] = state;
+    ++(within[k] != 0 ? filter_.settled : filter_.unsettled);
   }
   b.n = 0;
   b.extent = 0.0f;

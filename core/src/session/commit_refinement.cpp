@@ -1,6 +1,7 @@
 #include "twister/session/commit_refinement.hpp"
 
 #include <cmath>
+#include <utility>
 
 #include "twister/base/assert.hpp"
 #include "twister/session/plan_warp.hpp"
@@ -48,8 +49,12 @@ RefineReport CommitRefinement::refine(const math::WarpPlan& plan, double thresho
   const auto triangles = static_cast<std::uint32_t>(m.triangle_count());
   UndoTriangles observer(undo);
   const PlanWarp warp(plan);
+  // The plan's vertices are already warped into the live columns by the kernel the
+  // float filter would use: the filter takes them instead of warping them again.
+  const math::ConstVertexColumns live = std::as_const(mesh_).live();
   const Result<mesh::RefineResult> refined =
-      local ? refiner_.refine_around(m, warp, threshold_m, plan.indices(), &observer)
+      local ? refiner_.refine_around(m, warp, threshold_m, plan.indices(), &observer,
+                                     {live.x, live.y, live.z})
             : refiner_.refine(m, warp, threshold_m, &observer);
   TWISTER_ASSERT(refined.ok());  // available() and a valid threshold
   report.result = *refined;

@@ -12,6 +12,8 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <set>
+#include <utility>
 #include <vector>
 
 #include "allocation_counter.hpp"
@@ -161,8 +163,21 @@ RC_GTEST_PROP(RefineLocal,
     const auto vg = static_cast<std::uint32_t>(whole->mesh().vertex_count());
     const auto vl = static_cast<std::uint32_t>(local->mesh().vertex_count());
     const auto rg = global.refine(whole->mesh(), warp_global, threshold);
-    const auto rl =
-        around.refine_around(local->mesh(), warp_local, threshold, plan_local.indices());
+    // Half the time with the plan's own float images of its vertices (as a commit
+    // passes its live columns), else the refiner warps them itself.
+    const bool with_images = *rc::gen::arbitrary<bool>();
+    const mesh::Mesh& lm = local->mesh();
+    std::vector<float> ix(lm.x().begin(), lm.x().end());
+    std::vector<float> iy(lm.y().begin(), lm.y().end());
+    std::vector<float> iz(lm.z().begin(), lm.z().end());
+    RC_ASSERT(plan_local.apply(math::ConstVertexColumns(lm.x(), lm.y(), lm.z()),
+                               math::VertexColumns(ix, iy, iz))
+                  .ok());
+    const mesh::VertexImages images =
+        with_images ? mesh::VertexImages{ix, iy, iz} : mesh::VertexImages{};
+    RC_CLASSIFY(with_images, "the plan's images given");
+    const auto rl = around.refine_around(local->mesh(), warp_local, threshold,
+                                         plan_local.indices(), nullptr, images);
     RC_ASSERT(rg.ok());
     RC_ASSERT(rl.ok());
     // Conforming and, where it ran to the end, every region edge within the threshold.
@@ -323,6 +338,42 @@ TEST(RefineLocal, AllocatesNothing) {
   EXPECT_NO_ALLOCATIONS(rl = around.refine_around(a.mesh(), warp, 0.0005, s.plan.indices()));
   ASSERT_TRUE(rl.ok());
   EXPECT_GT(rl->edges_split, 0u);
+}
+
+// A commit's case: the plan's images given and nothing over the threshold. Every
+// region edge is settled in float (no double warp, no visit in index order), in one
+// walk that allocates nothing, and the mesh is left as it was.
+TEST(RefineLocal, WithTheStrokesImagesEveryEdgeWithinIsSettledInFloatAlone) {
+  TwistedSphere s;
+  mesh::Mesh& m = s.buffer.mesh();
+  const std::uint64_t before = m.checksum();
+  std::vector<float> ix(m.x().begin(), m.x().end());
+  std::vector<float> iy(m.y().begin(), m.y().end());
+  std::vector<float> iz(m.z().begin(), m.z().end());
+  ASSERT_TRUE(s.plan.apply(math::ConstVertexColumns(m.x(), m.y(), m.z()),
+                           math::VertexColumns(ix, iy, iz))
+                  .ok());
+  const PlanWarp warp(s.plan);
+  meshio::RefinerBuffer rb(m.vertex_capacity(), m.triangle_capacity());
+  mesh::MeshRefiner around(rb.storage());
+  Result<mesh::RefineResult> rl = StatusCode::unavailable;
+  EXPECT_NO_ALLOCATIONS(
+      rl = around.refine_around(m, warp, 0.05, s.plan.indices(), nullptr, {ix, iy, iz}));
+  ASSERT_TRUE(rl.ok());
+  EXPECT_EQ(rl->edges_split, 0u);
+  EXPECT_EQ(m.checksum(), before);
+  // Every edge of a triangle with a plan vertex, once.
+  std::vector<bool> in(m.vertex_count(), false);
+  for (const std::uint32_t v : s.plan.indices()) in[v] = true;
+  std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
+  for (std::uint32_t t = 0; t < m.triangle_count(); ++t) {
+    const auto tv = m.triangle(t);
+    if (!in[tv[0]] && !in[tv[1]] && !in[tv[2]]) continue;
+    for (int i = 0; i < 3; ++i) {
+      edges.insert(std::minmax(tv[i], tv[(i + 1) % 3]));
+    }
+  }
+  EXPECT_EQ(around.settled_in_float(), edges.size());
 }
 
 }  // namespace

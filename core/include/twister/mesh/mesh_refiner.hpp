@@ -77,12 +77,22 @@ struct MeshRefinerStorage {
   std::span<std::uint8_t> edge_state;      // 3 per triangle of capacity
   std::span<std::uint8_t> triangle_flags;  // per triangle of capacity
   std::span<std::uint32_t> queue;          // per triangle of capacity
-  // Optional (refine_around's float filter; empty: S in float per edge end instead):
-  // per vertex of capacity, S in float and its stamp.
-  std::span<float> float_x{};
-  std::span<float> float_y{};
-  std::span<float> float_z{};
-  std::span<std::uint32_t> float_stamp{};
+  // refine_around's float filter: per vertex of capacity, S in float and a stamp.
+  std::span<float> float_x;
+  std::span<float> float_y;
+  std::span<float> float_z;
+  std::span<std::uint32_t> float_stamp;
+};
+
+// Optional for refine_around: S in float at the rest position of every vertex it is
+// given, indexed by vertex, computed by the warp's float batch or a kernel within the
+// same float_error_m (a commit's live columns), so the float filter warps no vertex.
+// Every vertex not given must be a fixed point of the warp (a stroke's weights are 0
+// there). Empty: the refiner warps the region's vertices itself.
+struct VertexImages {
+  std::span<const float> x{};
+  std::span<const float> y{};
+  std::span<const float> z{};
 };
 
 // Bytes of MeshRefinerStorage per vertex and per triangle of capacity.
@@ -121,10 +131,12 @@ class MeshRefiner {
   // edge over the threshold at the start has a triangle in the region
   // (docs/refinement.md "Local refinement"). A mesh with an edge shared by more than
   // two triangles or a vertex whose triangles are not one fan is refined by refine().
+  // `images` (optional, see VertexImages): S in float of `vertices`.
   // Errors as refine().
   Result<RefineResult> refine_around(Mesh& mesh, const PointWarp& warp, double threshold_m,
                                      std::span<const std::uint32_t> vertices,
-                                     RefineObserver* observer = nullptr);
+                                     RefineObserver* observer = nullptr,
+                                     VertexImages images = {});
 
   // S of vertex v (rest position as of the last refine()); valid for every vertex
   // that refine() added (asserted).
@@ -161,12 +173,23 @@ class MeshRefiner {
   void touch(std::uint32_t t);
   void reset_triangle_stamps();
   void collect_region(std::span<const std::uint32_t> vertices);
-  void settle_in_float();
+  bool enter_region(std::uint32_t t);
+  void set_region(std::span<std::uint32_t> list);
+  void sort_region();
+  // The float filter (docs/refinement.md "The float filter").
+  bool collect_and_settle(std::span<const std::uint32_t> vertices, VertexImages images);
+  void stamp_images(std::span<const std::uint32_t> vertices, VertexImages images);
+  bool stroke_vertex(std::uint32_t v) const;
+  bool warp_region_vertices();
   struct FloatBatch;
+  void batch_edges(std::uint32_t t, FloatBatch& b);
+  void batch_edges_of(std::uint32_t h, FloatBatch& b);
+  void batch_edge(std::uint32_t h, std::uint32_t g, FloatBatch& b);
+  template <typename Tri, typename Edge>
+  void walk_fan(std::uint32_t v, Tri&& tri, Edge&& edge) const;
   void settle_batch(FloatBatch& b);
   struct VertexBatch;
   void warp_vertices(VertexBatch& b);
-  double vertex_error_ = 0.0;  // the float filter's bound on the cached vertices
   bool next_triangle(std::uint32_t& t);
 
   MeshRefinerStorage storage_;
@@ -200,11 +223,18 @@ class MeshRefiner {
     std::size_t vertices = 0;
     bool manifold = false;  // every edge has <= 2 triangles, every vertex one fan
   } adjacency_key_;
-  std::uint32_t settled_in_float_ = 0;  // edges the last refine_around settled in float
+  // The float filter of the last refine_around.
+  struct FloatFilter {
+    VertexImages images;  // S in float at the stamped vertices
+    double error = 0.0;   // bound on |S in float - S in double| there
+    std::uint32_t settled = 0;  // edges found within the threshold in float
+    std::uint32_t unsettled = 0;  // edges left to the double criterion
+  } filter_;
+
  public:
   // Edges the last refine_around() found within the threshold by the float filter
   // alone (the rest of its verdicts were computed in double).
-  std::uint32_t settled_in_float() const { return settled_in_float_; }
+  std::uint32_t settled_in_float() const { return filter_.settled; }
 };
 
 namespace internal {

@@ -32,12 +32,17 @@
 
 namespace twister::session {
 
+// The station's defaults (docs/refinement.md "Configuration" says why): refinement on,
+// 0.5 mm, room for 100,000 more vertices (and twice as many triangles).
+inline constexpr double kDefaultRefineThresholdM = 0.0005;
+inline constexpr std::uint32_t kDefaultSpareVertices = 100'000;
+
 struct RefineConfig {
   bool enabled = false;
   // Absolute, metres: the largest midpoint error an edge may keep. Not relative to
   // the radius: the deviation a sculptor sees on the model does not shrink with the
   // hand's ball (docs/refinement.md).
-  double threshold_m = 0.001;
+  double threshold_m = kDefaultRefineThresholdM;
   // Refine over the triangles the stroke's weights touch (and their conforming
   // closure) rather than the whole mesh: cost proportional to the stroke, recorded
   // as a version 4 stroke (docs/refinement.md "Local refinement").
@@ -82,8 +87,8 @@ class CommitRefinement {
   // The storage fits the mesh's capacities: a threshold > 0 can be honoured.
   bool available() const { return refiner_.fits(mesh_.mesh()); }
 
-  // The hook of a commit of `plan` (warped into the live columns, its positions not
-  // yet in the mesh, the undo entry open): refines the rest mesh to `threshold_m`
+  // The hook of a commit of `plan` (warped into the live columns from the mesh's
+  // positions, which are not yet changed, the undo entry open): refines the rest mesh to `threshold_m`
   // (0 or not finite: nothing), places the new vertices and records the topology in
   // `undo`. A threshold > 0 needs available() (asserted).
   // `local`: mesh::MeshRefiner::refine_around the plan's vertices (else the whole mesh).
