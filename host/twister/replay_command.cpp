@@ -15,6 +15,7 @@
 #include "cli_exit_code.hpp"
 #include "cli_log.hpp"
 #include "model_session.hpp"
+#include "twister/session/commit_refinement.hpp"
 #include "twister/hal/output_file.hpp"
 #include "twister/journal/journal_format.hpp"
 #include "twister/journal/journal_reader.hpp"
@@ -52,7 +53,8 @@ struct Options {
   std::string mesh_out;
   std::size_t undo_changes = session::kDefaultUndoChanges;
   std::size_t undo_entries = session::kDefaultUndoEntries;
-  std::size_t spare_vertices = 0;  // refinement's room: the station's station.spare_vertices
+  // Refinement's room: the station's station.spare_vertices.
+  std::size_t spare_vertices = session::kDefaultSpareVertices;
   bool world = false;
   bool quiet = false;
   bool progress = false;
@@ -215,7 +217,7 @@ void add_replay_command(CLI::App& app, int& exit_code) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--spare-vertices", options->spare_vertices,
                   "Room for refinement beyond the OBJ's vertices, and twice as many triangles "
-                  "(the station's station.spare_vertices; default 0)");
+                  "(the station's station.spare_vertices; default 100000, the station's)");
   cmd->add_flag("--force", options->force,
                 "Replace an existing OBJ at --out (never a journal, checkpoint, a file a "
                 "running station holds, or another kind of file)");

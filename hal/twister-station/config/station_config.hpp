@@ -85,8 +85,9 @@ struct ButtonsConfig {
 struct StationSection {
   std::string journal;                 // append-only stroke journal (fsynced per stroke)
   std::string mesh;                    // initial model (OBJ, metres); relative = to the config file
-  std::uint32_t spare_vertices = 0;    // extra mesh capacity beyond the OBJ's vertices
-                                       // (and twice as many triangles): refinement's room
+  // Extra mesh capacity beyond the OBJ's vertices (and twice as many triangles):
+  // refinement's room. Default: session::kDefaultSpareVertices (a test checks).
+  std::uint32_t spare_vertices = 100'000;
   std::uint32_t loop_timeout_ms = 10;  // poll() timeout of the event loop
   std::uint32_t checkpoint_interval = 256;  // journal records between checkpoints (0: at stop)
 };
@@ -133,8 +134,10 @@ struct SculptConfig {
   double turn_limit_deg = 330.0;        // one stroke turns at most this far (unwrapped)
   std::uint32_t lost_timeout_ms = 500;  // a stroke with tracking lost longer is cancelled
   // Adaptive refinement at commit into station.spare_vertices (docs/refinement.md).
-  bool refine = false;
-  double refine_threshold_m = 0.001;  // largest midpoint error an edge keeps (absolute)
+  bool refine = true;
+  // Largest midpoint error an edge keeps (absolute). Default:
+  // session::kDefaultRefineThresholdM (a test checks).
+  double refine_threshold_m = 0.0005;
   bool buttons_configured = false;    // [sculpt.buttons] given (else the paper's map)
   std::vector<ButtonBindingConfig> buttons;
 };

@@ -39,11 +39,17 @@ ConfigParseResult parse(const std::string& sculpt) {
 }
 
 TEST(RefineStation, SculptKeys) {
+  // The defaults: on at session::kDefaultRefineThresholdM into
+  // session::kDefaultSpareVertices (what `twister replay` assumes too).
   const auto none = parse("");
   ASSERT_TRUE(none.ok());
-  EXPECT_FALSE(none.config.sculpt.refine);
-  EXPECT_EQ(none.config.sculpt.refine_threshold_m, 0.001);
-  EXPECT_FALSE(make_station_setup(none.config)->sculpt.refine.enabled);
+  EXPECT_TRUE(none.config.sculpt.refine);
+  EXPECT_EQ(none.config.sculpt.refine_threshold_m, session::kDefaultRefineThresholdM);
+  EXPECT_EQ(none.config.station.spare_vertices, session::kDefaultSpareVertices);
+  EXPECT_TRUE(make_station_setup(none.config)->sculpt.refine.enabled);
+  const auto off = parse("[sculpt]\nrefine = false\n");
+  ASSERT_TRUE(off.ok());
+  EXPECT_FALSE(make_station_setup(off.config)->sculpt.refine.enabled);
   const auto on = parse("[sculpt]\nrefine = true\nrefine_threshold_m = 0.0025\n");
   ASSERT_TRUE(on.ok());
   const auto setup = make_station_setup(on.config);

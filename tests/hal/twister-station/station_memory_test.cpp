@@ -14,6 +14,7 @@
 #include <filesystem>
 
 #include "station_test_support.hpp"
+#include "twister/session/commit_refinement.hpp"
 #include "twister/meshio/mesh_generator.hpp"
 #include "twister/meshio/obj_file.hpp"
 
@@ -96,12 +97,19 @@ TEST(StationMemory, AMillionVerticesPeakWithinTheBudgetAndUnder256MB) {
     }
     ASSERT_TRUE(meshio::save_obj(dir / "big.obj", sphere.mesh()));
   }
-  const std::string journal = (dir / "j.twj").string();
-  const std::string cfg = (dir / "big.toml").string();
-  station_test::write_file(
-      cfg, "[station]\njournal = \"" + journal + "\"\nmesh = \"" + (dir / "big.obj").string() +
-               "\"\n[tracker]\nbackend = \"sim\"\n[tracker.sim]\nscenario = \"stroke\"\n"
-               "[buttons]\nbackend = \"stylus\"\n[systemd]\nnotify = false\nwatchdog = false\n");
+  // Refinement off and no spare capacity (the 256 MB budget); then the defaults
+  // (refinement on, session::kDefaultSpareVertices).
+  const auto config = [&](const std::string& name, bool refine) {
+    const std::string cfg = (dir / (name + ".toml")).string();
+    station_test::write_file(
+        cfg, "[station]\njournal = \"" + (dir / (name + ".twj")).string() + "\"\nmesh = \"" +
+                 (dir / "big.obj").string() + "\"\n" + (refine ? "" : "spare_vertices = 0\n") +
+                 "[tracker]\nbackend = \"sim\"\n[tracker.sim]\nscenario = \"stroke\"\n"
+                 "[buttons]\nbackend = \"stylus\"\n[systemd]\nnotify = false\nwatchdog = false\n" +
+                 (refine ? "" : "[sculpt]\nrefine = false\n"));
+    return cfg;
+  };
+  const std::string cfg = config("plain", false);
   const std::size_t v = meshio::sphere_vertices(kRings, kSegments);
   const std::size_t t = meshio::sphere_triangles(kRings, kSegments);
   const double budget = static_cast<double>(memory_budget(v, t).total()) / (1 << 20);
@@ -122,6 +130,20 @@ TEST(StationMemory, AMillionVerticesPeakWithinTheBudgetAndUnder256MB) {
   EXPECT_LT(peak_link, budget_link + kAllowanceMb);
   EXPECT_LT(peak, 256.0);
   EXPECT_LT(peak_link, 256.0);
+  // The defaults: the refiner sized for the model and its spare capacity.
+  const std::size_t sv = v + session::kDefaultSpareVertices;
+  const std::size_t st = t + 2 * std::size_t{session::kDefaultSpareVertices};
+  const double refine_budget =
+      static_cast<double>(memory_budget(sv, st, session::kDefaultUndoChanges,
+                                        session::kDefaultUndoEntries, false, true)
+                              .total()) /
+      (1 << 20);
+  const std::string refined = config("refined", true);
+  const double peak_refined = station_peak_mb({"--config", refined});
+  std::printf("1M vertices, refinement on (defaults): peak RSS %.1f MB (budget %.1f MB)\n",
+              peak_refined, refine_budget);
+  EXPECT_GT(peak_refined, refine_budget * 0.9);
+  EXPECT_LT(peak_refined, refine_budget + kAllowanceMb);
   fs::remove_all(dir);
 }
 
