@@ -223,6 +223,16 @@ class SculptSession {
   std::uint32_t normals_sequence_ = 0;  // next_sequence() when they were computed
 };
 
+namespace internal {
+// Three float columns of N each (a clutch chain's start).
+template <std::size_t N>
+struct FloatColumns {
+  std::array<float, N> x{};
+  std::array<float, N> y{};
+  std::array<float, N> z{};
+};
+}  // namespace internal
+
 // A session owning its working memory: kVertices = mesh vertex capacity,
 // kInfluenced = plan capacity, kUndoChanges / kUndoEntries = history size,
 // kTriangles = mesh triangle capacity for refinement (0: no refinement memory; else
@@ -248,9 +258,7 @@ struct SculptStorageArrays {
   std::array<float, kRefineVertices> normal_x{};
   std::array<float, kRefineVertices> normal_y{};
   std::array<float, kRefineVertices> normal_z{};
-  std::array<float, kChainVertices> chain_x{};
-  std::array<float, kChainVertices> chain_y{};
-  std::array<float, kChainVertices> chain_z{};
+  internal::FloatColumns<kChainVertices> chain_start{};
 
   SculptStorage spans() {
     return SculptStorage{live_x,
@@ -262,7 +270,7 @@ struct SculptStorageArrays {
                          refiner.spans(),
                          undo_triangle_changes,
                          mesh::NormalColumns{normal_x, normal_y, normal_z},
-                         math::VertexColumns{chain_x, chain_y, chain_z}};
+                         math::VertexColumns{chain_start.x, chain_start.y, chain_start.z}};
   }
 };
 
