@@ -246,6 +246,9 @@ RC_GTEST_PROP(RefineChain, AChainIsRefinedAtItsEndUnderItsCombinedWarp, ()) {
     RC_ASSERT(records[i].stroke.refine_threshold_m == (i + 1 == records.size() ? threshold : 0.0));
   }
   RC_TAG(records.size() <= 5 ? "2-5 steps" : "6+ steps (two hands)");
+  bool long_turn = false;
+  for (const journal::JournalRecord& r : records) long_turn = long_turn || r.stroke.long_turns != 0;
+  RC_TAG(long_turn ? "a long turn" : "minimal turns");
   for (const journal::JournalRecord& r : records_of(plain.storage)) {
     RC_ASSERT(r.stroke.refine_threshold_m == 0.0);
   }
