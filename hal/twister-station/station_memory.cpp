@@ -32,7 +32,8 @@ MemoryBudget memory_budget(std::size_t vertex_capacity, std::size_t triangle_cap
   if (refine) {
     b.refine = mesh::kRefinerBytesPerVertex * vertex_capacity +
                mesh::kRefinerBytesPerTriangle * triangle_capacity +
-               session::kDefaultUndoTriangleChanges * sizeof(session::TriangleChange);
+               session::kDefaultUndoTriangleChanges * sizeof(session::TriangleChange) +
+               3 * sizeof(float) * vertex_capacity;  // a clutch chain's start
   }
   if (link) {
     b.link = 3 * sizeof(float) * vertex_capacity + 3 * sizeof(std::uint32_t) * triangle_capacity +
@@ -72,11 +73,15 @@ session::SculptStorage WorkMemory::storage() { return storage_; }
 
 RefineMemory::RefineMemory(std::size_t vertex_capacity, std::size_t triangle_capacity)
     : refiner_(vertex_capacity, triangle_capacity),
-      undo_triangles_(session::kDefaultUndoTriangleChanges) {}
+      undo_triangles_(session::kDefaultUndoTriangleChanges),
+      chain_x_(vertex_capacity),
+      chain_y_(vertex_capacity),
+      chain_z_(vertex_capacity) {}
 
 session::SculptStorage RefineMemory::attach(session::SculptStorage storage) {
   storage.refine = refiner_.storage();
   storage.undo_triangle_changes = undo_triangles_;
+  storage.chain_start = math::VertexColumns{chain_x_, chain_y_, chain_z_};
   return storage;
 }
 

@@ -3,8 +3,8 @@
 // warped columns + 12 B warp plan (index + two weights); per triangle 12 B indices;
 // the undo history is fixed: undo_changes x 28 B (one per vertex a commit moves) +
 // undo_entries x 248 B (one per commit); 12 B per vertex of normals; with refinement on
-// ([sculpt] refine) the refiner's 32 B per vertex + 32 B per triangle and the undo pool
-// of refined triangles (262144 x 28 B); with --link the display link adds 12 B per
+// ([sculpt] refine) the refiner's 48 B per vertex + 32 B per triangle, the undo pool
+// of refined triangles (262144 x 28 B) and 12 B per vertex of a clutch chain's start; with --link the display link adds 12 B per
 // vertex + 12 B per triangle (its copy of the mesh) + its frame buffer (512 frames, as
 // DisplayLink::open sizes it).
 // WorkMemory is the core's working memory as ONE arena of exactly
@@ -55,7 +55,8 @@ class WorkMemory {
 };
 
 // Refinement's working memory (only when [sculpt] refine is on): the refiner for the
-// mesh's capacities and the undo pool of refined commits' triangles.
+// mesh's capacities, the undo pool of refined commits' triangles and a clutch chain's
+// start positions (one per vertex: the plan's capacity).
 class RefineMemory {
  public:
   RefineMemory(std::size_t vertex_capacity, std::size_t triangle_capacity);
@@ -65,6 +66,7 @@ class RefineMemory {
  private:
   meshio::RefinerBuffer refiner_;
   std::vector<session::TriangleChange> undo_triangles_;
+  std::vector<float> chain_x_, chain_y_, chain_z_;  // a clutch chain's start (plan capacity)
 };
 
 }  // namespace twister::station_app

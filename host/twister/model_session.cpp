@@ -31,18 +31,19 @@ ModelSession::ModelSession(meshio::ObjMesh model, std::size_t undo_changes,
       refiner_(mesh().vertex_capacity(), mesh().triangle_capacity()),
       triangles_(session::kDefaultUndoTriangleChanges) {
   const std::size_t n = mesh().vertex_capacity();
-  for (auto* v : {&lx_, &ly_, &lz_, &w1_, &w2_}) v->resize(n);
+  for (auto* v : {&lx_, &ly_, &lz_, &w1_, &w2_, &cx_, &cy_, &cz_}) v->resize(n);
   plan_indices_.resize(n);
   changes_.resize(undo_changes);
   entries_.resize(std::max<std::size_t>(undo_entries, 1));
-  const session::SculptStorage work{lx_,
-                                    ly_,
-                                    lz_,
-                                    math::WarpPlanStorage{plan_indices_, w1_, w2_},
-                                    changes_,
-                                    entries_,
-                                    refiner_.storage(),
-                                    triangles_};
+  session::SculptStorage work{lx_,
+                              ly_,
+                              lz_,
+                              math::WarpPlanStorage{plan_indices_, w1_, w2_},
+                              changes_,
+                              entries_,
+                              refiner_.storage(),
+                              triangles_};
+  work.chain_start = math::VertexColumns{cx_, cy_, cz_};  // refined clutch chains replay
   session_ = std::make_unique<session::SculptSession>(session::SculptSessionConfig{}, mesh(), work,
                                                       nullptr);
 }

@@ -43,8 +43,12 @@ Status JournalReplay::apply_stroke(const journal::StrokeRecord& s) {
     end.push_back(s.end[h]).ignore();
   }
   const std::size_t n = start.size();
-  // Only a fresh plan that ends with its commit is refined (CommitRefinement).
-  if (s.refine_threshold_m > 0.0 && s.chain_step != 0) return StatusCode::data_loss;
+  // A refined chain step ends its chain (CommitRefinement): it must continue the
+  // chain replayed here (checked below) and be one the station can compose: not scodef.
+  if (s.refine_threshold_m > 0.0 && s.chain_step != 0 &&
+      static_cast<math::WarpMethod>(s.method) == math::WarpMethod::scodef) {
+    return StatusCode::data_loss;
+  }
   if (s.chain_step == 0) {
     TWISTER_TRY(
         plan_.build(mesh_.rest(), start, s.radius_m, static_cast<math::WarpMethod>(s.method)));
@@ -60,7 +64,7 @@ Status JournalReplay::apply_stroke(const journal::StrokeRecord& s) {
   // The screws from the poses alone (and the turn sense the record gives): the same
   // numbers the live stroke computed, minimal or unwrapped.
   TWISTER_TRY(plan_.update_turns(end, long_turns));
-  TWISTER_TRY(history_.apply_stroke(plan_, s.refine_threshold_m, s.refine_local));
+  TWISTER_TRY(history_.apply_stroke(plan_, s.refine_threshold_m, s.refine_local, s.chain_step));
   chain_open_ = s.refine_threshold_m == 0.0;  // a refined commit ended its chain
   chain_step_ = s.chain_step;
   ++stats_.strokes;

@@ -52,7 +52,7 @@ const char* session_command_name(SessionCommandKind kind) {
 SculptSession::SculptSession(const SculptSessionConfig& config, mesh::Mesh& mesh,
                              SculptStorage storage, journal::JournalWriter* journal)
     : mesh_(mesh, storage.live_x, storage.live_y, storage.live_z),
-      refinement_(mesh_, storage.refine, config.refine),
+      refinement_(mesh_, storage.refine, config.refine, storage.chain_start),
       buttons_(config.debounce, config.buttons),
       machine_(config.interaction),
       plan_(storage.plan),
@@ -79,6 +79,7 @@ void SculptSession::refresh_normals() {
 }
 
 void SculptSession::checkpoint_restored() {
+  refinement_.forget_chain();  // checkpoints hold no chain (taken between strokes)
   normals_sequence_ = history_.next_sequence() + 1;  // whatever they were computed for
   refresh_normals();
 }

@@ -31,7 +31,7 @@ CommitOutcome SessionHistory::do_commit(const math::WarpPlan& plan,
                                         bool plan_goes_on) {
   const std::uint32_t sequence = next_sequence_;
   const double threshold =
-      refinement_ != nullptr ? refinement_->threshold_for(stroke, plan_goes_on) : 0.0;
+      refinement_ != nullptr ? refinement_->threshold_for(plan, stroke, plan_goes_on) : 0.0;
   // The warp into the live columns first (it may fail: nothing is written), then the
   // record, then the mesh: a stroke whose record is not durable never reaches it.
   if (const Status s = plan.apply(mesh_.rest(), mesh_.live()); !s.ok()) return {s, sequence};
@@ -41,7 +41,13 @@ CommitOutcome SessionHistory::do_commit(const math::WarpPlan& plan,
   r.stroke.refine_threshold_m = threshold;
   r.stroke.refine_local = threshold > 0.0 && refinement_->local();
   if (const Status saved = append(r); !saved.ok()) return {saved, sequence};
-  commit_live(plan, threshold, r.stroke.refine_local, sequence, &out);
+  // A chain's start is kept only when its end may refine: it does not change the mesh.
+  const bool keep = plan_goes_on && refinement_ != nullptr && refinement_->live_threshold() > 0.0;
+  commit_live(plan, {threshold, r.stroke.refine_local, stroke.chain_step, keep}, sequence, &out);
+  if (!plan_goes_on && stroke.chain_step != 0 && threshold == 0.0 && refinement_ != nullptr &&
+      refinement_->live_threshold() > 0.0) {
+    refinement_->chain_ended_unrefined();
+  }
   return {ok_status(), sequence};
 }
 
@@ -76,8 +82,8 @@ Status SessionHistory::commit_history_step(journal::RecordType type) {
 }
 
 Status SessionHistory::apply_stroke(const math::WarpPlan& plan, double refine_threshold_m,
-                                    bool refine_local) {
-  return apply_plan(plan, refine_threshold_m, refine_local, nullptr);
+                                    bool refine_local, std::uint16_t chain_step) {
+  return apply_plan(plan, refine_threshold_m, refine_local, chain_step, nullptr);
 }
 
 void SessionHistory::apply_move(const math::Frame& before, const math::Frame& after) {
@@ -91,33 +97,59 @@ Status SessionHistory::apply_history_step(journal::RecordType type) {
   mesh::Mesh& mesh = mesh_.mesh();
   TWISTER_TRY_ASSIGN(const UndoStep step,
                      type == journal::RecordType::undo ? history_.undo(mesh) : history_.redo(mesh));
+  if (refinement_ != nullptr) refinement_->forget_chain();
   if (step.object_move) poses_.set_object(step.object_pose);
   return ok_status();
 }
 
 Status SessionHistory::apply_plan(const math::WarpPlan& plan, double refine_threshold_m,
-                                  bool refine_local, SessionEvents* out) {
+                                  bool refine_local, std::uint16_t chain_step,
+                                  SessionEvents* out) {
   if (refine_threshold_m > 0.0 && (refinement_ == nullptr || !refinement_->available())) {
     return StatusCode::failed_precondition;
   }
+  // A refined chain end needs the chain this session saw from its step 0.
+  if (refine_threshold_m > 0.0 && chain_step != 0 &&
+      !refinement_->chain_refinable(plan, chain_step)) {
+    return StatusCode::failed_precondition;
+  }
   TWISTER_TRY(plan.apply(mesh_.rest(), mesh_.live()));
-  commit_live(plan, refine_threshold_m, refine_local, next_sequence_, out);
+  // Replay cannot know whether a chain follows an unrefined step 0: it keeps its start.
+  const bool keep = refinement_ != nullptr && refinement_->available() && refine_threshold_m == 0.0;
+  commit_live(plan, {refine_threshold_m, refine_local, chain_step, keep}, next_sequence_, out);
   return ok_status();
 }
 
-void SessionHistory::commit_live(const math::WarpPlan& plan, double refine_threshold_m,
-                                 bool refine_local, std::uint32_t sequence, SessionEvents* out) {
+void SessionHistory::commit_live(const math::WarpPlan& plan, const CommitShape& shape,
+                                 std::uint32_t sequence, SessionEvents* out) {
   const math::VertexColumns live = mesh_.live();
   mesh::Mesh& mesh = mesh_.mesh();
   history_.begin_entry();
-  // Refinement first: it needs the rest positions the plan's vertices still hold.
-  const RefineReport refined =
-      refinement_ != nullptr ? refinement_->refine(plan, refine_threshold_m, history_, refine_local)
-                             : RefineReport{};
-  bool undoable = refined.undoable;
+  bool undoable = true;
+  RefineReport refined{};
+  const bool chain_end = shape.refine_threshold_m > 0.0 && shape.chain_step != 0;
+  if (refinement_ != nullptr) {
+    refinement_->note_commit(plan, shape.chain_step, shape.keep_chain);
+    // Refinement first: it needs the rest positions. A chain's end puts its vertices
+    // back at the chain's start, so their undo changes (from where the last step left
+    // them) are recorded before.
+    if (chain_end) {
+      for (const std::uint32_t i : plan.indices()) {
+        const glm::vec3 after{live.x[i], live.y[i], live.z[i]};
+        if (!history_.record(i, mesh.position(i), after).ok()) undoable = false;
+      }
+      refined = refinement_->refine_chain(plan, shape.refine_threshold_m, history_,
+                                          shape.refine_local);
+    } else {
+      refined =
+          refinement_->refine(plan, shape.refine_threshold_m, history_, shape.refine_local);
+    }
+  }
+  undoable = undoable && refined.undoable;
+  const bool recorded = chain_end && refinement_ != nullptr;
   for (const std::uint32_t i : plan.indices()) {
     const glm::vec3 after{live.x[i], live.y[i], live.z[i]};
-    if (!history_.record(i, mesh.position(i), after).ok()) undoable = false;
+    if (!recorded && !history_.record(i, mesh.position(i), after).ok()) undoable = false;
     mesh.set_position(i, after);
   }
   if (!history_.end_entry().ok()) undoable = false;

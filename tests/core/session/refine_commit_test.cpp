@@ -2,7 +2,7 @@
 // coarse box by 170 degrees meets the threshold on every edge against the
 // double-precision warp and stays a closed manifold; at capacity the commit stands,
 // refinement stops conforming and says why; undo/redo restore the topology; freeze
-// steps are not refined; the journal records the threshold; no allocation.
+// steps are not refined (a chain's end is); the journal records the threshold; no allocation.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -153,7 +153,7 @@ TEST(RefineCommit, OffMeansUnrefinedAndVersionOneRecords) {
   EXPECT_EQ(records_of(s.storage).at(0).stroke.refine_threshold_m, 0.0);
 }
 
-TEST(RefineCommit, FreezeStepsAreNotRefinedTheStrokeAfterIs) {
+TEST(RefineCommit, FreezeStepsAreNotRefinedTheChainsEndIs) {
   RefineStation s(3, 15'000, refine_config(0.002));
   s.hand(1, math::identity_frame({0, 0, 0.5}));
   s.button(kGrab1, true);
@@ -162,20 +162,24 @@ TEST(RefineCommit, FreezeStepsAreNotRefinedTheStrokeAfterIs) {
   (void)s.tick();
   s.button(kFreeze1, true);
   (void)s.tick();
+  EXPECT_EQ(s.mesh().vertex_count(), 26u);  // the freeze step (chain step 0): not refined
   s.button(kFreeze1, false);
   (void)s.tick();
   s.hand(1, z_turn({0, 0, 0.5}, 2.5));
   (void)s.tick();
   s.button(kGrab1, false);
   (void)s.tick();
-  EXPECT_EQ(s.mesh().vertex_count(), 26u);  // a clutched stroke: chain steps 0 and 1
+  // The chain's end (step 1): refined under the chain's combined warp.
+  const std::size_t after_chain = s.mesh().vertex_count();
+  EXPECT_GT(after_chain, 26u);
+  EXPECT_EQ(s.session->state().refine.refined_chains, 1u);
   (void)twist_box(s, 1.0);
-  EXPECT_GT(s.mesh().vertex_count(), 26u);
+  EXPECT_GT(s.mesh().vertex_count(), after_chain);
   const auto records = records_of(s.storage);
   ASSERT_EQ(records.size(), 3u);
   EXPECT_EQ(records[0].stroke.refine_threshold_m, 0.0);
   EXPECT_EQ(records[1].stroke.chain_step, 1u);
-  EXPECT_EQ(records[1].stroke.refine_threshold_m, 0.0);
+  EXPECT_EQ(records[1].stroke.refine_threshold_m, 0.002);
   EXPECT_EQ(records[2].stroke.refine_threshold_m, 0.002);
   EXPECT_TRUE(closed_manifold(s.mesh()));
 }

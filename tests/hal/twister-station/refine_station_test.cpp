@@ -208,5 +208,52 @@ TEST(RefineStation, StartUpReplayAndTwisterReplayAgreeOnTheRefinedMesh) {
   ::unlink(journal.c_str());
 }
 
+// A clutch chain (sim/scenarios/freeze_360.scn: hand 0 holds, hand 1 turns a full turn
+// in four clutched quarter turns) refined at its end: the chain's last record carries
+// the threshold, and the station's start-up replay and `twister replay` agree with it.
+TEST(RefineStation, AClutchChainIsRefinedAtItsEndAndReplaysTheSame) {
+  const std::string journal = temp_path("chain.bin");
+  const std::string box = temp_path("chain_box.obj");
+  ::unlink(journal.c_str());
+  const ProcessRun made = run(std::string(TWISTER_CLI_BIN) +
+                              " mesh box -n 12 --size 0.20 --center 0.55 0 0.10 --out " + box);
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  const auto config = [&](const char* scenario) {
+    const std::string path = temp_path(std::string("chain_") + scenario + ".toml");
+    std::ofstream(path) << "[station]\njournal = \"" << journal << "\"\nmesh = \"" << box
+                        << "\"\nspare_vertices = 20000\n[tracker]\nbackend = \"sim\"\n"
+                        << "left_station = 1\nright_station = 2\n[tracker.sim]\n"
+                        << (std::string(scenario) == "idle"
+                                ? std::string("scenario = \"idle\"\n")
+                                : std::string("scenario_file = \"" TWISTER_SIM_SCENARIO_DIR
+                                              "/freeze_360.scn\"\n"))
+                        << "time = \"virtual\"\n[buttons]\nbackend = \"sim\"\n"
+                        << "[sculpt]\nradius_m = 0.45\nrefine = true\nrefine_threshold_m = 0.0005\n";
+    return path;
+  };
+  const ProcessRun live =
+      run(std::string(TWISTER_STATION_BIN) + " --log-level info --config " + config("chain"));
+  ASSERT_EQ(live.exit_code, 0) << live.output;
+  const std::string checksum = final_checksum(live.output);
+  ASSERT_EQ(checksum.size(), 16u) << live.output;
+  const auto records = read_journal(journal);
+  ASSERT_GE(records.size(), 4u);
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    EXPECT_EQ(records[i].stroke.chain_step, i);
+    EXPECT_EQ(records[i].stroke.refine_threshold_m, i + 1 == records.size() ? 0.0005 : 0.0);
+  }
+  EXPECT_THAT(live.output, HasSubstr("refine: journal record " +
+                                     std::to_string(records.size() - 1) + " refined: "));
+  const ProcessRun again =
+      run(std::string(TWISTER_STATION_BIN) + " --config " + config("idle"));
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_EQ(final_checksum(again.output), checksum);
+  const ProcessRun replay = run(std::string(TWISTER_CLI_BIN) + " replay " + journal + " --mesh " +
+                                box + " --spare-vertices 20000 --out " + journal + ".obj");
+  ASSERT_EQ(replay.exit_code, 0) << replay.output;
+  EXPECT_THAT(replay.output, HasSubstr("checksum " + checksum));
+  for (const std::string& f : {journal + ".obj", journal, box}) ::unlink(f.c_str());
+}
+
 }  // namespace
 }  // namespace twister::station_app

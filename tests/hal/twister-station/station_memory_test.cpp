@@ -40,7 +40,8 @@ TEST(StationMemory, TheArenaIsExactlyTheFormula) {
     EXPECT_EQ(memory_budget(v, 2 * v, session::kDefaultUndoChanges, session::kDefaultUndoEntries,
                             false, true)
                   .refine,
-              48 * v + 32 * 2 * v + session::kDefaultUndoTriangleChanges * 28);
+              48 * v + 32 * 2 * v + session::kDefaultUndoTriangleChanges * 28 +
+                  12 * v);  // + a clutch chain's start positions
     EXPECT_EQ(work.arena_bytes(), b.live + b.plan + b.undo + b.normals);
     const session::SculptStorage s = work.storage();
     EXPECT_EQ(s.live_x.size(), v);

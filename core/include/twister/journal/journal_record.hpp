@@ -70,7 +70,9 @@ struct StrokeRecord {
   std::uint8_t long_turns = 0;
   double radius_m = 0.0;
   // > 0: the commit refined the mesh until every edge's midpoint error under the warp
-  // was at most this (metres; version 3). 0: not refined (versions 1 and 2).
+  // was at most this (metres; version 3). 0: not refined (versions 1 and 2). With
+  // chain_step > 0: the commit that ended a clutch chain, refined under the chain's
+  // combined warp (docs/refinement.md "Clutch chains").
   double refine_threshold_m = 0.0;
   // With a threshold: refined over the triangles the stroke's weights touch and their
   // conforming closure (version 4) rather than the whole mesh (version 3).

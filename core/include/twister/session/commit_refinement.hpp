@@ -10,10 +10,13 @@
 // journal on the same mesh (and capacity) refines to the same bits.
 //
 // Which commits refine (threshold_for): refinement on, storage for the mesh, and a
-// plan that ends with this commit and was built for it (chain step 0). A freeze step
-// keeps its plan's vertex set and weights for the next step, and a rebased plan's
-// weights are no function warp_point can evaluate at a new point, so clutched
-// strokes are not refined (docs/refinement.md).
+// plan that ends with this commit. A freeze step (the plan goes on) is never refined:
+// the next step keeps its vertex set and weights. A clutch chain is refined once, at
+// the commit that ends it (chain step > 0), with the chain's combined warp C on the
+// chain-start positions (ClutchChain, ChainWarp): the old vertices keep exactly the
+// positions the unrefined chain gives them, the new ones go to C(rest midpoint).
+// Chains longer than kMaxChainSteps, scodef chains and chains this object did not see
+// begin are committed unrefined (docs/refinement.md "Clutch chains").
 // Capacity: the mesh's spare vertices and triangles (fixed at start). At a capacity
 // the commit still applies, the refinement stops between two splits (conforming)
 // and the report says which capacity (the session turns it into an event).
@@ -23,10 +26,13 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 
 #include "twister/journal/journal_record.hpp"
 #include "twister/math/warp_plan.hpp"
 #include "twister/mesh/mesh_refiner.hpp"
+#include "twister/mesh/point_warp.hpp"
+#include "twister/session/clutch_chain.hpp"
 #include "twister/session/live_mesh.hpp"
 #include "twister/session/undo_history.hpp"
 
@@ -69,17 +75,39 @@ struct RefineStatus {
   mesh::RefineStop last_stop = mesh::RefineStop::done;  // of the last refined commit
   std::uint32_t last_vertices_added = 0;
   std::uint32_t last_blocked = 0;  // edges over the threshold it could not split
+  std::uint64_t refined_chains = 0;      // clutch chains refined at their end
+  std::uint64_t chains_too_long = 0;     // chains ended unrefined: over kMaxChainSteps
 };
 
 class CommitRefinement {
  public:
-  // `mesh` and the storage must outlive this object.
-  CommitRefinement(LiveMesh& mesh, mesh::MeshRefinerStorage storage, const RefineConfig& config);
+  // `mesh` and the storage must outlive this object. `chain_start`: ClutchChain's
+  // columns (plan capacity; empty: clutch chains are committed unrefined).
+  CommitRefinement(LiveMesh& mesh, mesh::MeshRefinerStorage storage, const RefineConfig& config,
+                   math::VertexColumns chain_start = {});
   CommitRefinement(const CommitRefinement&) = delete;
   CommitRefinement& operator=(const CommitRefinement&) = delete;
 
-  // The threshold a commit of `stroke` refines with and records (0: not refined).
-  double threshold_for(const journal::StrokeRecord& stroke, bool plan_goes_on) const;
+  // The threshold a live commit of `plan` as `stroke` refines with and records (0: not
+  // refined). Asked before the commit's note_commit().
+  double threshold_for(const math::WarpPlan& plan, const journal::StrokeRecord& stroke,
+                       bool plan_goes_on) const;
+  // Whether a replayed record's refined chain end can be reproduced (the chain was
+  // seen from its step 0, within kMaxChainSteps, not scodef).
+  bool chain_refinable(const math::WarpPlan& plan, std::uint16_t chain_step) const {
+    return chain_.refinable(plan, chain_step, mesh_.mesh());
+  }
+  // Every commit of a plan, before it changes the mesh: the clutch chain's bookkeeping.
+  // `keep_chain`: a step-0 commit keeps the chain's start (live: its plan goes on and
+  // refinement is on; replay: not refined, so a chain may follow).
+  void note_commit(const math::WarpPlan& plan, std::uint16_t chain_step, bool keep_chain) {
+    chain_.note(plan, chain_step, keep_chain, mesh_.mesh());
+  }
+  // A live chain ended with an unrefined commit although refinement is on: counted
+  // when it was too long (after its note_commit()).
+  void chain_ended_unrefined();
+  // An undo, redo or restored checkpoint: no chain continues across it.
+  void forget_chain() { chain_.forget(); }
   // The threshold the live preview refines to: the one a stroke's commit uses when
   // refinement is on and fits the mesh (0: commits are not refined).
   double live_threshold() const;
@@ -94,6 +122,13 @@ class CommitRefinement {
   // `local`: mesh::MeshRefiner::refine_around the plan's vertices (else the whole mesh).
   RefineReport refine(const math::WarpPlan& plan, double threshold_m, UndoHistory& undo,
                       bool local = false);
+  // The same for the commit that ends a clutch chain (after its note_commit(), with
+  // chain_refinable()): the plan's vertices are put back at the chain's start, the
+  // mesh is refined under the chain's warp C and the new vertices placed at C of their
+  // rest midpoint. The plan's vertices are left at the chain's start: the caller
+  // records their undo changes before and places them after (the live columns).
+  RefineReport refine_chain(const math::WarpPlan& plan, double threshold_m, UndoHistory& undo,
+                            bool local = false);
 
   // New commits refine locally (RefineConfig::local).
   bool local() const { return config_.local; }
@@ -101,10 +136,16 @@ class CommitRefinement {
   RefineStatus status() const;
 
  private:
+  // `images`: S in float of `vertices` when the caller has it (mesh::VertexImages).
+  RefineReport refine_with(const mesh::PointWarp& warp, std::span<const std::uint32_t> vertices,
+                           double threshold_m, UndoHistory& undo, bool local,
+                           mesh::VertexImages images);
+
   LiveMesh& mesh_;
   mesh::MeshRefiner refiner_;
   RefineConfig config_;
   RefineStatus totals_{};
+  ClutchChain chain_;
 };
 
 }  // namespace twister::session

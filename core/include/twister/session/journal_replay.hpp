@@ -6,7 +6,10 @@
 // A stroke record rebuilds the plan from its start poses (chain step 0) or rebases
 // the plan the previous record left (a freeze step: same hands, radius and method,
 // the next chain step), then updates it to the end poses (each hand's screw the long
-// way round where the record's long_turns says so) and commits.
+// way round where the record's long_turns says so) and commits. A refined record
+// with chain step > 0 is the refined end of its clutch chain: refined under the
+// chain's combined warp (failed_precondition when the replaying session has no
+// refinement memory or did not see the chain from its step 0).
 // The plan is shared with the session's StrokeController: records are applied only
 // while no stroke is open (the session checks). No allocation; not thread-safe.
 #pragma once

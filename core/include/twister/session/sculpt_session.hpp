@@ -19,7 +19,8 @@
 // synced before the model changes, and a commit whose record cannot be saved is not
 // made (not_saved; at a freeze press or release the stroke ends there). With
 // refinement on (SculptSessionConfig::refine), a commit that ends its stroke refines
-// the mesh into its spare capacity (CommitRefinement, docs/refinement.md).
+// the mesh into its spare capacity (CommitRefinement, docs/refinement.md); a clutch
+// chain is refined at the commit that ends it, under the chain's combined warp.
 // Commands (undo, redo, warp method) come from buttons (ButtonMap roles and chords)
 // or submit() and run at the end of a step; state() is the display's snapshot.
 //
@@ -101,6 +102,9 @@ struct SculptStorage {
   std::span<TriangleChange> undo_triangle_changes{};
   // Vertex normals kept up to date (optional; each column the mesh's vertex capacity).
   mesh::NormalColumns normals{};
+  // Refinement of clutch chains (optional; each column the plan's capacity; empty: a
+  // chain's end is committed unrefined): the chain-start positions (ClutchChain).
+  math::VertexColumns chain_start{};
 };
 
 class SculptSession {
@@ -219,16 +223,28 @@ class SculptSession {
   std::uint32_t normals_sequence_ = 0;  // next_sequence() when they were computed
 };
 
+namespace internal {
+// Three float columns of N each (a clutch chain's start).
+template <std::size_t N>
+struct FloatColumns {
+  std::array<float, N> x{};
+  std::array<float, N> y{};
+  std::array<float, N> z{};
+};
+}  // namespace internal
+
 // A session owning its working memory: kVertices = mesh vertex capacity,
 // kInfluenced = plan capacity, kUndoChanges / kUndoEntries = history size,
 // kTriangles = mesh triangle capacity for refinement (0: no refinement memory; else
-// also kUndoChanges triangle changes for its undo, and vertex normals).
+// also kUndoChanges triangle changes for its undo, vertex normals and kInfluenced
+// chain-start positions for clutch chains).
 // Large: place it in static storage or the start-up arena.
 template <std::size_t kVertices, std::size_t kInfluenced, std::size_t kUndoChanges,
           std::size_t kUndoEntries, std::size_t kTriangles = 0>
 struct SculptStorageArrays {
   static constexpr std::size_t kRefineVertices = kTriangles == 0 ? 0 : kVertices;
   static constexpr std::size_t kTriangleChanges = kTriangles == 0 ? 0 : kUndoChanges;
+  static constexpr std::size_t kChainVertices = kTriangles == 0 ? 0 : kInfluenced;
   std::array<float, kVertices> live_x{};
   std::array<float, kVertices> live_y{};
   std::array<float, kVertices> live_z{};
@@ -242,6 +258,7 @@ struct SculptStorageArrays {
   std::array<float, kRefineVertices> normal_x{};
   std::array<float, kRefineVertices> normal_y{};
   std::array<float, kRefineVertices> normal_z{};
+  internal::FloatColumns<kChainVertices> chain_start{};
 
   SculptStorage spans() {
     return SculptStorage{live_x,
@@ -252,7 +269,8 @@ struct SculptStorageArrays {
                          undo_entries,
                          refiner.spans(),
                          undo_triangle_changes,
-                         mesh::NormalColumns{normal_x, normal_y, normal_z}};
+                         mesh::NormalColumns{normal_x, normal_y, normal_z},
+                         math::VertexColumns{chain_start.x, chain_start.y, chain_start.z}};
   }
 };
 

@@ -15,7 +15,9 @@
 // (history_overflow event).
 // Refinement (CommitRefinement, optional): a stroke commit whose record carries a
 // threshold refines the mesh in apply_plan, live and replayed alike (refined and,
-// at a capacity, refine_stopped events).
+// at a capacity, refine_stopped events); with a chain step > 0 it is the end of a
+// clutch chain, refined under the chain's combined warp. Every commit tells the
+// refinement its chain step (ClutchChain keeps what a chain's end needs).
 // Memory: the mesh, poses, history storage and journal are the caller's and must
 // outlive this object; no allocation. Not thread-safe.
 #pragma once
@@ -66,8 +68,11 @@ class SessionHistory final : public StrokeCommitSink {
   // failed_precondition for a threshold without refinement storage (then nothing
   // changed).
   // `refine_local`: refined over the stroke's region (a version 4 record).
+  // `chain_step` > 0 with a threshold: the refined end of a clutch chain, which needs
+  // the chain's earlier steps applied here (failed_precondition otherwise, nothing
+  // changed).
   Status apply_stroke(const math::WarpPlan& plan, double refine_threshold_m = 0.0,
-                      bool refine_local = false);
+                      bool refine_local = false, std::uint16_t chain_step = 0);
   // An undo entry for an object move (the caller sets the pose).
   void apply_move(const math::Frame& before, const math::Frame& after);
   // Undo or redo without a record; errors as commit_history_step.
@@ -86,12 +91,21 @@ class SessionHistory final : public StrokeCommitSink {
   // The commit of a warp, live and replayed alike: the plan applied to the live
   // columns, then commit_live().
   Status apply_plan(const math::WarpPlan& plan, double refine_threshold_m, bool refine_local,
-                    SessionEvents* out);
-  // The mesh refined at rest (when `refine_threshold_m` > 0), the live columns of the
-  // plan's vertices into the mesh, one undo entry (a history_overflow event with
-  // `sequence` when it is too large to undo; refined / refine_stopped events).
-  void commit_live(const math::WarpPlan& plan, double refine_threshold_m, bool refine_local,
-                   std::uint32_t sequence, SessionEvents* out);
+                    std::uint16_t chain_step, SessionEvents* out);
+  // The record's shape for the commit: threshold, local, chain step, and whether a
+  // step-0 commit keeps the chain's start (the plan may go on).
+  struct CommitShape {
+    double refine_threshold_m = 0.0;
+    bool refine_local = false;
+    std::uint16_t chain_step = 0;
+    bool keep_chain = false;
+  };
+  // The mesh refined at rest (when the threshold is > 0; a chain's end under the
+  // chain's warp), the live columns of the plan's vertices into the mesh, one undo
+  // entry (a history_overflow event with `sequence` when it is too large to undo;
+  // refined / refine_stopped events).
+  void commit_live(const math::WarpPlan& plan, const CommitShape& shape, std::uint32_t sequence,
+                   SessionEvents* out);
   // Gives `record` the next sequence and appends and syncs it (when journaling); the
   // sequence advances only when it is durable. io_error: not saved.
   Status append(journal::JournalRecord& record);
