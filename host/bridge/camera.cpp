@@ -65,13 +65,17 @@ glm::vec3 Camera::eye() const { return target() + distance() * direction(); }
 
 glm::mat4 Camera::view_matrix() const { return glm::lookAt(eye(), target(), up()); }
 
+float Camera::near_distance() const {
+  // Near and far around the model (plus room for the cues around it).
+  const float d = distance();
+  return std::max(d - 4.0F * radius_, 0.02F * d);
+}
+
 glm::mat4 Camera::projection(int width, int height) const {
   const float d = distance();
-  // Near and far around the model (plus room for the cues around it).
-  const float near_m = std::max(d - 4.0F * radius_, 0.02F * d);
   return glm::perspective(glm::radians(view_.fov_deg),
                           static_cast<float>(width) / static_cast<float>(std::max(height, 1)),
-                          near_m, d + 4.0F * radius_);
+                          near_distance(), d + 4.0F * radius_);
 }
 
 std::optional<glm::vec2> Camera::project(glm::vec3 world, int width, int height) const {

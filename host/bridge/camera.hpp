@@ -49,6 +49,8 @@ class Camera {
   // Unit vector from the target towards the eye.
   glm::vec3 direction() const;
   float distance() const;
+  // The near clipping plane's distance from the eye (projection()).
+  float near_distance() const;
   float scene_radius() const { return radius_; }
   glm::mat4 view_matrix() const;
   glm::mat4 projection(int width, int height) const;

@@ -196,9 +196,11 @@ void MeshRenderer::set_mesh(const MeshData& mesh, const ShadedMesh& shaded, bool
                shaded_.indices.data(), GL_STATIC_DRAW);
   index_count_ = shaded_.indices.size();
   split_radius_ = -1.0F;
+  positions_warped_ = false;
 }
 
 void MeshRenderer::set_positions(const MeshData& mesh) {
+  positions_warped_ = true;
   positions_ = interleaved_positions(mesh, shaded_);
   glBindBuffer(GL_ARRAY_BUFFER, vbo_[0]);
   glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(positions_.size() * sizeof(float)),
@@ -233,8 +235,12 @@ void MeshRenderer::set_object_pose(const math::Frame& pose) {
 
 void MeshRenderer::set_live(const LiveState* live) {
   hand_mask_ = 0;
+  cpu_live_ = false;
   if (live == nullptr || !live->active) return;
-  if (live->method == math::WarpMethod::scodef) return;  // CPU path (positions uploaded)
+  if (live->method == math::WarpMethod::scodef) {  // CPU path (positions uploaded)
+    cpu_live_ = true;
+    return;
+  }
   // Plan hands: hand k uses the k-th weight column.
   hand_mask_ = static_cast<int>((1u << live->hands.size()) - 1u);
   stroke_radius_ = static_cast<float>(live->radius_m);
@@ -343,22 +349,49 @@ void MeshRenderer::draw_range(const Program& program, bool patches, std::size_t 
                  reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));  // NOLINT
 }
 
+bool MeshRenderer::culling_faces() const {
+  if (!allow_culling_ || shaded_.facing == Facing::both_sides || cpu_live_ || positions_warped_) {
+    return false;
+  }
+  // The eye outside the model and the near plane clear of it: a closed surface's
+  // hidden faces are then behind its visible ones. (The model matrix is rigid.)
+  const glm::vec3 centre(model_ * glm::vec4(centre_, 1.0F));
+  const float ahead = glm::dot(centre - camera_.eye(), -camera_.direction());
+  return ahead - radius_ > camera_.near_distance();
+}
+
+void MeshRenderer::cull(Facing facing) {
+  if (facing == Facing::both_sides) {
+    glDisable(GL_CULL_FACE);
+    return;
+  }
+  glEnable(GL_CULL_FACE);
+  glFrontFace(GL_CCW);
+  glCullFace(facing == Facing::front ? GL_BACK : GL_FRONT);
+}
+
 void MeshRenderer::draw_mesh() {
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
-  if (!refining_live()) {
-    glBindVertexArray(vao_);
+  glBindVertexArray(vao_);
+  const Facing rest = culling_faces() ? shaded_.facing : Facing::both_sides;
+  if (!refining_live() && (hand_mask_ == 0 || rest == Facing::both_sides)) {
+    cull(rest);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);
     draw_range(plain_, false, 0, index_count_);
+    cull(Facing::both_sides);
     return;
   }
-  // What the balls can reach is refined; the rest is the mesh itself (the warp is
-  // the identity there, and so are the shared edges' points on both sides).
-  glBindVertexArray(vao_);
+  // What the balls can reach is warped (refined on GL 4), both faces drawn; the rest
+  // is the mesh itself (the warp is the identity there, and so are the shared edges'
+  // points on both sides), culled when the mesh allows.
   split_live_triangles();
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, live_ebo_);
-  draw_range(refined_, true, 0, live_reached_);
+  cull(Facing::both_sides);
+  draw_range(refining_live() ? refined_ : plain_, refining_live(), 0, live_reached_);
+  cull(rest);
   draw_range(plain_, false, live_reached_, index_count_ - live_reached_);
+  cull(Facing::both_sides);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);
 }
 

@@ -67,6 +67,16 @@ class MeshRenderer {
     std::vector<glm::vec3> warped;
   };
   Surface capture_live_surface();
+  // Back-face culling (issue 24's frame cost): a mesh that is closed, manifold and
+  // consistently wound (ShadedMesh::facing) shows an eye outside it only the faces
+  // turned towards it, so the others are not drawn while the eye and the near plane
+  // are clear of the model's bounding sphere. Triangles a live stroke can reach and
+  // a CPU-warped preview (scodef, set_positions) draw both faces: a warp may fold
+  // the surface over. An open or inconsistently wound mesh always draws both faces.
+  // `allow` false draws both faces always (the baseline of benches and tests).
+  void allow_face_culling(bool allow) { allow_culling_ = allow; }
+  // The rest of the mesh (what no live stroke reaches) is drawn culled this frame.
+  bool culling_faces() const;
   // Tint by the weights (before a grab, and during one).
   void set_show_weights(bool show) { show_weights_ = show; }
   // The object frame in the world (the model matrix).
@@ -121,6 +131,8 @@ class MeshRenderer {
   // The triangles the stroke's balls can reach first, in live_ebo_ (live_reached_
   // of them): only those go through tessellation; kept per grab points and radius.
   void split_live_triangles();
+  // Culls the faces `facing` hides (GL_CULL_FACE), or none.
+  static void cull(Facing facing);
   // Draws (and with `feedback`, captures) indices [first, first + count) of the
   // bound element buffer with `program`.
   void draw_range(const Program& program, bool patches, std::size_t first, std::size_t count);
@@ -128,6 +140,9 @@ class MeshRenderer {
   Program plain_;
   Program refined_;  // 0 without GL 4 tessellation
   bool allow_refinement_ = true;
+  bool allow_culling_ = true;
+  bool cpu_live_ = false;           // a live stroke warped on the CPU (scodef)
+  bool positions_warped_ = false;   // set_positions since the last set_mesh
   float max_level_ = 1.0F;
   unsigned vao_ = 0;
   // Positions, weights, normals, gradient 1, gradient 2 (attributes 0..4).

@@ -107,6 +107,7 @@ ShadedMesh shade_with_creases(const MeshData& mesh, float crease_angle_deg) {
     }
   }
   shade_normals(mesh, out);
+  out.facing = surface_facing(mesh);
   return out;
 }
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "mesh_data.hpp"
+#include "surface_facing.hpp"
 
 namespace twister::bridge {
 
@@ -26,6 +27,9 @@ struct ShadedMesh {
   // Drawn vertices are the mesh's own (no crease split anything).
   bool identity() const { return source.size() == mesh_vertices; }
   std::size_t mesh_vertices = 0;
+  // The faces an eye outside the mesh can see (surface_facing.hpp): the renderer
+  // culls the others.
+  Facing facing = Facing::both_sides;
 };
 
 // Groups `mesh`'s fans at `crease_angle_deg` and computes the groups' normals.
