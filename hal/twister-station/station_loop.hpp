@@ -65,7 +65,7 @@ class StationLoop {
   // One pass. false once the loop stops (stop_reason() says why).
   bool step();
   // Ends the run: STOPPING=1, Station::stop() (an open stroke is cancelled), the
-  // display link drained (up to 2 s), the journal flushed; returns the flush status.
+  // display link drained (until 2 s pass without progress), the journal flushed; returns the flush status.
   Status finish();
   // start(), step() until the loop stops, finish(). The flush status, or the
   // start() error as io_error.
