@@ -467,8 +467,8 @@ std::uint32_t MeshRefiner::for_fan(std::uint32_t v, F&& f) const {
 }
 
 // The manifold fan of v (adjacency_key_.manifold): tri(t, j) for each triangle (j: v's
-// slot in it), edge(h, g) for each edge at v, once (h a half-edge at v, g its twin
-// or kBoundary), walking as for_fan does.
+// slot in it), edge(h, g) for each edge at v, once, after tri() of both its triangles
+// (h a half-edge at v, g its twin or kBoundary), walking as for_fan does.
 template <typename Tri, typename Edge>
 void MeshRefiner::walk_fan(std::uint32_t v, Tri&& tri, Edge&& edge) const {
   const std::uint32_t t0 = storage_.adjacency.vertex_offsets[v];
@@ -479,12 +479,18 @@ void MeshRefiner::walk_fan(std::uint32_t v, Tri&& tri, Edge&& edge) const {
     std::uint32_t exit = first_exit;
     for (;;) {
       const std::uint32_t g = adjacency_.twin(exit);
-      edge(exit, g);
-      if (!real_twin(g)) break;  // the boundary (a manifold fan has no other end)
+      if (!real_twin(g)) {  // the boundary (a manifold fan has no other end)
+        edge(exit, g);
+        break;
+      }
       const std::uint32_t u = g / 3;
-      if (u == t0) return;  // closed: every edge at v crossed once
+      if (u == t0) {  // closed: every edge at v crossed once
+        edge(exit, g);
+        return;
+      }
       const std::uint32_t j = slot(u, v);
-      tri(u, j);
+      tri(u, j);  // before the edge into it: an edge sees both its triangles entered
+      edge(exit, g);
       exit = 3 * u + j == g ? 3 * u + prev(j) : 3 * u + j;
     }
   }
@@ -622,14 +628,13 @@ bool MeshRefiner::collect_and_settle(std::span<const std::uint32_t> vertices,
           if (!stroke_vertex(tv[h]) && !stroke_vertex(tv[3 * t + prev(j)])) batch_edges_of(h, b);
         },
         [&](std::uint32_t h, std::uint32_t g) {
-          // An edge at v, met once in v's fan: batched from its lower end when both
-          // ends are the stroke's.
+          // An edge at v, met once in v's fan (both its triangles already entered):
+          // batched from its lower end when both ends are the stroke's.
           const std::uint32_t a = tv[h];
           const std::uint32_t w = a == v ? tv[h % 3 == 2 ? h - 2 : h + 1] : a;
-          if (stroke_vertex(w) && w < v) return;
-          touch(h / 3);
-          if (real_twin(g)) touch(g / 3);
-          batch_edge(h, g, b);
+          const bool both = stroke_vertex(w);
+          if (both && w < v) return;
+          batch_edge(h, g, {v, w}, {true, both}, b);
         });
   }
   settle_batch(b);
@@ -693,16 +698,20 @@ void MeshRefiner::batch_edges_of(std::uint32_t h, FloatBatch& b) {
     touch(g / 3);
     storage_.edge_state[g] = kBatched;
   }
-  batch_edge(h, g, b);
-}
-
-// Edge h (twin g) into the batch: its float midpoint and the mean of its ends' images
-// (the stroke's vertices' images, the other vertices fixed); settled when full.
-void MeshRefiner::batch_edge(std::uint32_t h, std::uint32_t g, FloatBatch& b) {
-  const Mesh& m = *mesh_;
-  const std::uint32_t* tv = m.triangle_indices().data();
+  const std::uint32_t* tv = mesh_->triangle_indices().data();
   const std::uint32_t va = tv[h];
   const std::uint32_t vb = tv[h % 3 == 2 ? h - 2 : h + 1];
+  batch_edge(h, g, {va, vb}, {stroke_vertex(va), stroke_vertex(vb)}, b);
+}
+
+// Edge h (twin g, both triangles touched) into the batch: its float midpoint and the
+// mean of its ends' images (`stroke`: the end is a stroke vertex, with an image; the
+// others are fixed); settled when full.
+void MeshRefiner::batch_edge(std::uint32_t h, std::uint32_t g,
+                             std::array<std::uint32_t, 2> ends, std::array<bool, 2> stroke,
+                             FloatBatch& b) {
+  const Mesh& m = *mesh_;
+  const auto [va, vb] = ends;
   const float* px = m.x().data();
   const float* py = m.y().data();
   const float* pz = m.z().data();
@@ -710,8 +719,8 @@ void MeshRefiner::batch_edge(std::uint32_t h, std::uint32_t g, FloatBatch& b) {
   const glm::vec3 pb(px[vb], py[vb], pz[vb]);
   const glm::vec3 pm = (pa + pb) * 0.5f;
   const VertexImages& im = filter_.images;
-  const glm::vec3 sa = stroke_vertex(va) ? glm::vec3(im.x[va], im.y[va], im.z[va]) : pa;
-  const glm::vec3 sb = stroke_vertex(vb) ? glm::vec3(im.x[vb], im.y[vb], im.z[vb]) : pb;
+  const glm::vec3 sa = stroke[0] ? glm::vec3(im.x[va], im.y[va], im.z[va]) : pa;
+  const glm::vec3 sb = stroke[1] ? glm::vec3(im.x[vb], im.y[vb], im.z[vb]) : pb;
   const std::size_t k = b.n;
   b.edges[k] = h;
   b.twins[k] = g;

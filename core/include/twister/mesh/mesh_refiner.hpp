@@ -184,7 +184,8 @@ class MeshRefiner {
   struct FloatBatch;
   void batch_edges(std::uint32_t t, FloatBatch& b);
   void batch_edges_of(std::uint32_t h, FloatBatch& b);
-  void batch_edge(std::uint32_t h, std::uint32_t g, FloatBatch& b);
+  void batch_edge(std::uint32_t h, std::uint32_t g, std::array<std::uint32_t, 2> ends,
+                  std::array<bool, 2> stroke, FloatBatch& b);
   template <typename Tri, typename Edge>
   void walk_fan(std::uint32_t v, Tri&& tri, Edge&& edge) const;
   void settle_batch(FloatBatch& b);
