@@ -62,6 +62,8 @@ hal::Expected<void> make_sim_tracker(const StationFileConfig& config, Backends& 
   }
   sim::FastrakDeviceConfig device{};
   device.baud = static_cast<int>(config.tracker.serial.baud);
+  // A unit whose binary format is the 16-bit packed one answers `f` with it.
+  device.packed16 = config.tracker.format == RecordFormat::binary16;
   // Scenario time 0 for both: the device powers up at this instant.
   const ports::TimestampUs start_us = out.clock->now_us();
   if (config.buttons.backend == ButtonBackend::sim) {
@@ -118,12 +120,15 @@ hal::Expected<void> make_gpiod_buttons(const GpiodButtonsConfig& config, Backend
   gc.lines = config.lines;
   gc.active_low = config.active_low;
   gc.bias = static_cast<hal::GpiodButtonConfig::Bias>(config.bias);
-  if (const Status s = src->open(gc); !s.ok()) {
+  // A chip that is not there (yet) does not stop the station: it runs without
+  // buttons and the loop opens the chip when it appears (the log and the display say so).
+  const Status s = src->open(gc);
+  if (!s.ok() && s.code() != StatusCode::unavailable) {
     return hal::Error{s, "gpiod: cannot request lines on " + gc.chip + " (" + s.name() +
                              ", errno " + std::to_string(src->last_errno()) + ")"};
   }
   adopt(std::move(src), out.buttons, out.buttons_poll);
-  out.buttons_name = "gpiod " + gc.chip;
+  out.buttons_name = "gpiod " + gc.chip + (s.ok() ? "" : " (missing)");
   return {};
 }
 #endif
@@ -136,11 +141,13 @@ hal::Expected<void> make_hidapi_buttons(const HidapiButtonsConfig& config, Backe
   hc.product_id = config.product_id;
   hc.path = config.path;
   for (const auto& b : config.buttons) hc.buttons.push_back({b.byte, b.mask});
-  if (const Status s = src->open(hc); !s.ok()) {
+  // Not plugged in: the station runs without it and opens it when it appears.
+  const Status s = src->open(hc);
+  if (!s.ok() && s.code() != StatusCode::unavailable) {
     return hal::Error{s, std::string("hidapi: cannot open the button device (") + s.name() + ")"};
   }
   adopt(std::move(src), out.buttons, out.buttons_poll);
-  out.buttons_name = "hidapi";
+  out.buttons_name = std::string("hidapi") + (s.ok() ? "" : " (missing)");
   return {};
 }
 #endif
