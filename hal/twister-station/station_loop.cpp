@@ -125,12 +125,20 @@ void StationLoop::log_events() {
 }
 
 // A missing or vanished button device is tried again every retry interval; the
-// station's next poll sees it connected and says so (buttons_found).
+// station's next poll sees it connected and says so (buttons_found). A device that
+// is there but cannot be opened (a bad line offset, a busy line, permissions) fails
+// every retry: one line when that starts or its reason changes, not one per retry.
 void StationLoop::retry_buttons(ports::TimestampUs now_us) {
   if (backends_.buttons->connected() || now_us - last_button_retry_us_ < config_.button_retry_us)
     return;
   last_button_retry_us_ = now_us;
-  backends_.buttons_poll->reopen().ignore();
+  const Status s = backends_.buttons_poll->reopen();
+  if (!s.ok() && s.code() != StatusCode::unavailable && s.code() != last_retry_code_) {
+    log_.warning("buttons", "device there but cannot be opened (%s); still running without "
+                            "buttons, retrying",
+                 s.name());
+  }
+  last_retry_code_ = s.code();
 }
 
 void StationLoop::pet_watchdog(ports::TimestampUs now_us) {

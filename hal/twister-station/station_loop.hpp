@@ -5,7 +5,8 @@
 //   simulator's clock steps 1 ms per pass instead;
 //   Station::poll(); the display link; the station's events to the log; a reopen
 //   of missing or vanished buttons every reconnect interval (the station runs on
-//   without them); the systemd watchdog.
+//   without them; a device there that cannot be opened is logged once); the systemd
+//   watchdog.
 // It stops on SIGINT, SIGTERM or SIGHUP (all three end the run the same way:
 // Station::stop()'s policy for an open stroke, then the summary), after the run's
 // length (--duration, else the simulator scenario's), or when the core fails. No pass allocates:
@@ -101,6 +102,7 @@ class StationLoop {
   ports::TimestampUs start_us_ = 0;
   ports::TimestampUs last_watchdog_us_ = 0;
   ports::TimestampUs last_button_retry_us_ = 0;
+  StatusCode last_retry_code_ = StatusCode::unavailable;  // of the last button reopen
   std::uint64_t passes_ = 0;
   StopReason stop_reason_ = StopReason::end_of_run;
 };

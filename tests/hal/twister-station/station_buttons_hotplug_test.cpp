@@ -248,5 +248,23 @@ TEST_F(StationButtonsHotplug, MissingAtBootPickedUpWhenAddedAndAStrokeEndsWhenRe
   EXPECT_EQ(core_->counters().events.strokes_committed, 1u);
 }
 
+// A chip that appears but cannot give the configured lines (an offset beyond its 32
+// lines) fails every retry: the station runs on without buttons, and says why once,
+// not every interval.
+TEST_F(StationButtonsHotplug, AChipWithABadOffsetIsLoggedOnceAndTheStationRunsOn) {
+  config_.buttons.gpiod.lines = {5, 6, 7, 8, 9, 40};
+  start();
+  run_ms(600);
+  add_chip();
+  run_ms(2000);  // four retries, each refused by libgpiod (invalid_argument)
+  EXPECT_FALSE(backends_.buttons->connected());
+  EXPECT_TRUE(core_->status().buttons_missing);
+  const std::string log = log_text();
+  EXPECT_EQ(occurrences(log, "buttons: device missing (unavailable)"), 1) << log;
+  EXPECT_EQ(occurrences(log, "buttons: device there but cannot be opened (invalid_argument)"), 1)
+      << log;
+  EXPECT_EQ(occurrences(log, "buttons: device found"), 0) << log;
+}
+
 }  // namespace
 }  // namespace twister::station_app

@@ -25,6 +25,7 @@ class FlakyButtons final : public ports::ButtonSource, public hal::PollSource {
  public:
   bool failing = false;
   bool reopen_works = false;
+  StatusCode reopen_failure = StatusCode::unavailable;  // why a reopen fails
   mutable int poll_fds_calls = 0;
   int reopen_calls = 0;
 
@@ -42,7 +43,7 @@ class FlakyButtons final : public ports::ButtonSource, public hal::PollSource {
   }
   Status do_reopen() override {
     ++reopen_calls;
-    if (!reopen_works) return StatusCode::unavailable;
+    if (!reopen_works) return reopen_failure;
     failing = false;
     connected_ = true;
     return ok_status();
@@ -125,6 +126,30 @@ TEST(StationLoop, FailedButtonsLeaveThePollSetAndAreReopenedEveryRetryInterval) 
   EXPECT_NE(log.find("twister-station: buttons: device found: buttons work again"),
             std::string::npos)
       << log;
+}
+
+TEST(StationLoop, ADeviceThereButNotOpenableIsLoggedOnceNotEveryRetry) {
+  Rig rig;
+  StationLoop loop(*rig.core, rig.backends, rig.display, rig.log, rig.loop_config(7.0));
+  ASSERT_TRUE(loop.start());
+  rig.buttons->failing = true;  // unplugged
+  for (int i = 0; i < 1200; ++i) ASSERT_TRUE(loop.step());
+  rig.buttons->reopen_failure = StatusCode::invalid_argument;  // back, with a bad offset
+  for (int i = 0; i < 2000; ++i) ASSERT_TRUE(loop.step());     // four retries
+  rig.buttons->reopen_failure = StatusCode::unavailable;       // gone again
+  for (int i = 0; i < 1000; ++i) ASSERT_TRUE(loop.step());
+  rig.buttons->reopen_failure = StatusCode::io_error;  // back, busy
+  for (int i = 0; i < 2000; ++i) ASSERT_TRUE(loop.step());
+  EXPECT_EQ(rig.buttons->reopen_calls, 12);
+  EXPECT_FALSE(rig.buttons->connected());
+  const std::string log = rig.log_text();
+  const std::string line = "twister-station: warning: buttons: device there but cannot be opened";
+  auto at = log.find(line + " (invalid_argument); still running without buttons, retrying\n");
+  EXPECT_NE(at, std::string::npos) << log;
+  EXPECT_EQ(log.find(line + " (invalid_argument)", at + 1), std::string::npos) << log;
+  at = log.find(line + " (io_error)");
+  EXPECT_NE(at, std::string::npos) << log;
+  EXPECT_EQ(log.find(line + " (io_error)", at + 1), std::string::npos) << log;
 }
 
 TEST(StationLoop, SigtermThroughTheSignalfdStopsTheLoop) {
