@@ -53,13 +53,11 @@ void Station::drain_buttons(ports::TimestampUs now_us) {
   // The device going or coming: one event each way (the first poll reports one
   // missing at start-up), and the session's strokes follow (lost-tracking path).
   const bool connected = buttons_.connected();
-  if (connected != buttons_connected_) {
-    buttons_connected_ = connected;
-    emit(connected ? session::make_event(session::SessionEventKind::buttons_found, 0)
-                   : session::make_event(session::SessionEventKind::buttons_lost, 0, {}, why),
-         now_us);
-  }
+  if (connected == sculpt_.buttons_connected()) return;
   sculpt_.set_buttons_connected(connected);
+  emit(connected ? session::make_event(session::SessionEventKind::buttons_found, 0)
+                 : session::make_event(session::SessionEventKind::buttons_lost, 0, {}, why),
+       now_us);
 }
 
 Status Station::poll() {
@@ -100,7 +98,7 @@ StationStatus Station::status() const {
     s.turn_limit_rad = std::max(s.turn_limit_rad, static_cast<float>(v.turn_limit_rad));
   }
   s.capacity_stops = state.refine.capacity_stops;
-  s.buttons_missing = !buttons_connected_;
+  s.buttons_missing = !sculpt_.buttons_connected();
   return s;
 }
 

@@ -198,7 +198,6 @@ class Station {
   StationCounters counters_{};
   std::uint64_t records_at_start_ = 0;
   bool started_ = false;
-  bool buttons_connected_ = true;  // as last reported (buttons_lost / buttons_found)
 };
 
 }  // namespace twister::station
