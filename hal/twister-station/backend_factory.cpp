@@ -39,6 +39,21 @@ void adopt(std::unique_ptr<Device> device, std::unique_ptr<Port>& port, hal::Pol
   port = std::move(device);
 }
 
+#if defined(TWISTER_HAVE_HAL_GPIOD) || defined(TWISTER_HAVE_HAL_HIDAPI)
+// A button device that is not there (yet: `opened` is unavailable) does not stop the
+// station: its backend is kept closed, the station runs without buttons and the loop
+// opens it when it appears (the log and the display say so). Any other failure does.
+bool stops_the_station(const Status& opened) {
+  return !opened.ok() && opened.code() != StatusCode::unavailable;
+}
+template <typename Device>
+void adopt_buttons(std::unique_ptr<Device> device, const Status& opened, std::string name,
+                   Backends& out) {
+  adopt(std::move(device), out.buttons, out.buttons_poll);
+  out.buttons_name = std::move(name) + (opened.ok() ? "" : " (missing)");
+}
+#endif
+
 hal::Expected<void> make_sim_tracker(const StationFileConfig& config, Backends& out) {
   const SimTrackerConfig& s = config.tracker.sim;
   auto loaded = s.scenario_file.empty() ? sim::load_builtin_scenario(s.scenario)
@@ -62,6 +77,8 @@ hal::Expected<void> make_sim_tracker(const StationFileConfig& config, Backends& 
   }
   sim::FastrakDeviceConfig device{};
   device.baud = static_cast<int>(config.tracker.serial.baud);
+  // A unit whose binary format is the 16-bit packed one answers `f` with it.
+  device.packed16 = config.tracker.format == RecordFormat::binary16;
   // Scenario time 0 for both: the device powers up at this instant.
   const ports::TimestampUs start_us = out.clock->now_us();
   if (config.buttons.backend == ButtonBackend::sim) {
@@ -118,12 +135,12 @@ hal::Expected<void> make_gpiod_buttons(const GpiodButtonsConfig& config, Backend
   gc.lines = config.lines;
   gc.active_low = config.active_low;
   gc.bias = static_cast<hal::GpiodButtonConfig::Bias>(config.bias);
-  if (const Status s = src->open(gc); !s.ok()) {
+  const Status s = src->open(gc);
+  if (stops_the_station(s)) {
     return hal::Error{s, "gpiod: cannot request lines on " + gc.chip + " (" + s.name() +
                              ", errno " + std::to_string(src->last_errno()) + ")"};
   }
-  adopt(std::move(src), out.buttons, out.buttons_poll);
-  out.buttons_name = "gpiod " + gc.chip;
+  adopt_buttons(std::move(src), s, "gpiod " + gc.chip, out);
   return {};
 }
 #endif
@@ -136,11 +153,11 @@ hal::Expected<void> make_hidapi_buttons(const HidapiButtonsConfig& config, Backe
   hc.product_id = config.product_id;
   hc.path = config.path;
   for (const auto& b : config.buttons) hc.buttons.push_back({b.byte, b.mask});
-  if (const Status s = src->open(hc); !s.ok()) {
+  const Status s = src->open(hc);
+  if (stops_the_station(s)) {
     return hal::Error{s, std::string("hidapi: cannot open the button device (") + s.name() + ")"};
   }
-  adopt(std::move(src), out.buttons, out.buttons_poll);
-  out.buttons_name = "hidapi";
+  adopt_buttons(std::move(src), s, "hidapi", out);
   return {};
 }
 #endif

@@ -32,7 +32,9 @@ struct Backends {
 
 // Builds every backend. Errors name the backend: not_supported ("tracker backend
 // \"usb\" is not built into this binary"), invalid_argument (a combination or
-// scenario that cannot run), or the status of the device that failed to open.
+// scenario that cannot run), or the status of the device that failed to open. A
+// button device that is not there (unavailable) is no error: its backend is built
+// closed (connected() false) and the loop opens it when it appears.
 hal::Expected<Backends> make_backends(const StationFileConfig& config);
 
 // Which backends this binary was built with (for --check and --help).

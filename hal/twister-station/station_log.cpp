@@ -82,8 +82,14 @@ bool log_station_side(const SessionEvent& e, ports::LogSink& log) {
     case K::tracker_lost:
       log.write(level, c, "lost (unplugged, silent or garbled); waiting and re-initialising");
       return true;
-    case K::button_source_error:
-      log.write(level, c, "device failed (%s); reopening", {e.status.name()});
+    case K::buttons_lost:
+      log.write(level, c,
+                "device missing (%s): running without buttons, open strokes end as on lost "
+                "tracking; it is picked up when it appears",
+                {e.status.name()});
+      return true;
+    case K::buttons_found:
+      log.write(level, c, "device found: buttons work again");
       return true;
     case K::refine_stopped:
       log.write(level, c,
@@ -256,7 +262,8 @@ const char* station_event_component(const SessionEvent& e) {
     case K::tracker_streaming:
     case K::tracker_lost:
       return "tracker";
-    case K::button_source_error:
+    case K::buttons_lost:
+    case K::buttons_found:
       return "buttons";
     case K::refined:
     case K::refine_stopped:
@@ -282,7 +289,7 @@ LogLevel station_event_level(const SessionEvent& e) {
   switch (e.kind) {
     case K::not_saved:  // the sculptor's work was lost
       return LogLevel::error;
-    case K::button_source_error:  // reopened by the loop: trouble, not failure
+    case K::buttons_lost:  // the station runs on and picks it up: trouble, not failure
     case K::tracker_lost:
     case K::checkpoint_failed:  // the previous one stays; start-up replays more
     case K::refine_stopped:
@@ -296,6 +303,7 @@ LogLevel station_event_level(const SessionEvent& e) {
       return e.status.code() == StatusCode::io_error ? LogLevel::error : LogLevel::notice;
     case K::journal_recovered:
     case K::tracker_streaming:
+    case K::buttons_found:
     case K::refused:
     case K::radius_set:
     case K::turn_limit_reached:

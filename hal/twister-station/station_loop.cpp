@@ -77,7 +77,7 @@ std::size_t StationLoop::fill_poll_set() {
   std::size_t n = 0;
   fds_[n++] = {signal_fd_, POLLIN, 0};
   n += backends_.tracker_poll->poll_fds(all.subspan(n));
-  if (!buttons_broken_) n += backends_.buttons_poll->poll_fds(all.subspan(n));
+  if (backends_.buttons->connected()) n += backends_.buttons_poll->poll_fds(all.subspan(n));
   n += display_.poll_fds(all.subspan(n));
   return n;
 }
@@ -120,18 +120,25 @@ bool StationLoop::step() {
 
 void StationLoop::log_events() {
   for (auto e = core_.next_event(); e.ok(); e = core_.next_event()) {
-    if (e->kind == session::SessionEventKind::button_source_error) buttons_broken_ = true;
     log_station_event(*e, log_, journal_ != nullptr ? journal_->last_errno() : 0);
   }
 }
 
+// A missing or vanished button device is tried again every retry interval; the
+// station's next poll sees it connected and says so (buttons_found). A device that
+// is there but cannot be opened (a bad line offset, a busy line, permissions) fails
+// every retry: one line when that starts or its reason changes, not one per retry.
 void StationLoop::retry_buttons(ports::TimestampUs now_us) {
-  if (!buttons_broken_ || now_us - last_button_retry_us_ < config_.button_retry_us) return;
+  if (backends_.buttons->connected() || now_us - last_button_retry_us_ < config_.button_retry_us)
+    return;
   last_button_retry_us_ = now_us;
-  if (backends_.buttons_poll->reopen().ok()) {
-    buttons_broken_ = false;
-    log_.notice("buttons", "reopened");
+  const Status s = backends_.buttons_poll->reopen();
+  if (!s.ok() && s.code() != StatusCode::unavailable && s.code() != last_retry_code_) {
+    log_.warning("buttons", "device there but cannot be opened (%s); still running without "
+                            "buttons, retrying",
+                 s.name());
   }
+  last_retry_code_ = s.code();
 }
 
 void StationLoop::pet_watchdog(ports::TimestampUs now_us) {

@@ -1,10 +1,12 @@
 // StationLoop: twister-station's event loop, the program's steady state. One pass:
 //   wait in poll(2) on a fixed set of descriptors (a signalfd for SIGINT/SIGTERM/SIGHUP,
-//   then each backend's PollSource: tracker, buttons unless they failed, display
+//   then each backend's PollSource: tracker, buttons while connected, display
 //   link) for at most loop_timeout_ms, or not at all in virtual time, where the
 //   simulator's clock steps 1 ms per pass instead;
 //   Station::poll(); the display link; the station's events to the log; a reopen
-//   of failed buttons every reconnect interval; the systemd watchdog.
+//   of missing or vanished buttons every reconnect interval (the station runs on
+//   without them; a device there that cannot be opened is logged once); the systemd
+//   watchdog.
 // It stops on SIGINT, SIGTERM or SIGHUP (all three end the run the same way:
 // Station::stop()'s policy for an open stroke, then the summary), after the run's
 // length (--duration, else the simulator scenario's), or when the core fails. No pass allocates:
@@ -100,7 +102,7 @@ class StationLoop {
   ports::TimestampUs start_us_ = 0;
   ports::TimestampUs last_watchdog_us_ = 0;
   ports::TimestampUs last_button_retry_us_ = 0;
-  bool buttons_broken_ = false;
+  StatusCode last_retry_code_ = StatusCode::unavailable;  // of the last button reopen
   std::uint64_t passes_ = 0;
   StopReason stop_reason_ = StopReason::end_of_run;
 };

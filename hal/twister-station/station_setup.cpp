@@ -81,8 +81,11 @@ void set_tracker(const StationFileConfig& config, station::StationConfig& c) {
   using tracker::Item;
   const TrackerConfig& t = config.tracker;
   auto& proto = c.session.protocol;
-  proto.format =
-      t.format == RecordFormat::binary ? tracker::Format::binary : tracker::Format::ascii;
+  // binary16: the 16-bit packed records, selected with `f` like binary (on a unit
+  // whose binary format they are).
+  proto.format = t.format == RecordFormat::binary   ? tracker::Format::binary
+                 : t.format == RecordFormat::ascii  ? tracker::Format::ascii
+                                                    : tracker::Format::binary16;
   proto.units = tracker::Units::inches;
   c.hand_station = {t.left_station, t.right_station};
   const bool stylus = config.buttons.backend == ButtonBackend::stylus;

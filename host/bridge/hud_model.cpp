@@ -59,6 +59,10 @@ double turned_rad(const SceneReplica& r, const link::StatusReport& s) {
   return most;
 }
 
+bool buttons_missing(const link::StatusReport& s) {
+  return s.buttons_state == static_cast<std::uint8_t>(link::ButtonsState::missing);
+}
+
 void station_lines(const SceneReplica& r, std::vector<std::string>& lines) {
   if (!r.has_status()) {
     lines.emplace_back("tracker: no status yet");
@@ -68,8 +72,9 @@ void station_lines(const SceneReplica& r, std::vector<std::string>& lines) {
   const char* state = s.tracker_state == 1   ? "streaming"
                       : s.tracker_state == 2 ? "LOST"
                                              : "starting";
-  lines.push_back(
-      format("tracker: %s, %.0f poses/s", state, static_cast<double>(s.tracker_rate_hz)));
+  lines.push_back(format("tracker: %s, %.0f poses/s   buttons: %s", state,
+                         static_cast<double>(s.tracker_rate_hz),
+                         buttons_missing(s) ? "MISSING" : "present"));
   const double turned = turned_rad(r, s);
   const std::string turn =
       s.turn_limit_rad > 0.0F
@@ -132,6 +137,9 @@ HudText HudModel::update(const SceneReplica& r, const HudInput& in) {
   } else if (r.has_status() && r.station_status().tracker_state == 2) {
     out.banner = "TRACKER LOST";
     out.detail = "no valid poses: check the tracker's cable and power";
+  } else if (r.has_status() && buttons_missing(r.station_status())) {
+    out.banner = "BUTTONS MISSING";
+    out.detail = "the button device is not there: plug it in; the station picks it up";
   } else if (capacity) {
     out.banner = "CAPACITY REACHED";
     out.detail = r.counters().over_capacity > 0

@@ -3,7 +3,8 @@
 //   lines: link state, tracker state and rate, each hand, radius, method, clutch,
 //          the angle turned against the stroke's limit, mesh size, frames per second;
 //   banner: one full-screen message when something needs the sculptor's attention,
-//          the most urgent first: "LINK LOST", "TRACKER LOST", "CAPACITY REACHED",
+//          the most urgent first: "LINK LOST", "TRACKER LOST", "BUTTONS MISSING"
+//          (the station's button device is not there), "CAPACITY REACHED",
 //          "STROKE NOT SAVED" (for kShowS after the count grows). Capacity is
 //          reached when a refined commit was stopped by the mesh's capacity (the
 //          status's capacity_stops grew; also kShowS), or when this display

@@ -30,6 +30,10 @@ Result<ButtonEvent> ButtonDebouncer::poll(ports::TimestampUs now_us) {
   return StatusCode::unavailable;
 }
 
+void ButtonDebouncer::reset() {
+  for (Line& line : lines_) line = Line{};
+}
+
 bool ButtonDebouncer::pressed(std::uint8_t line) const {
   return line < lines_.size() && lines_[line].stable;
 }

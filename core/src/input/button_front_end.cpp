@@ -19,6 +19,16 @@ void ButtonFrontEnd::poll(ports::TimestampUs now_us) {
   }
 }
 
+void ButtonFrontEnd::set_connected(bool connected) {
+  if (connected == connected_) return;
+  connected_ = connected;
+  if (connected) return;
+  debouncer_.reset();
+  held_ = 0;
+  levels_ = {};
+  pressed_as_ = {};
+}
+
 void ButtonFrontEnd::press(std::uint8_t line) {
   const auto bit = static_cast<std::uint16_t>(1u << line);
   const ButtonBinding b = map_.resolve(line, static_cast<std::uint16_t>(held_ & ~bit));

@@ -84,6 +84,7 @@ InteractionMachine::InteractionMachine(const InteractionConfig& config)
 void InteractionMachine::enter(std::uint8_t h, HandState state, ports::TimestampUs now_us) {
   hands_[h].state = state;
   hands_[h].since_us = now_us;
+  if (state == HandState::idle) hands_[h].buttons_gone = false;
 }
 
 bool InteractionMachine::other_hand_grabs_near(std::uint8_t h, glm::vec3 position_m) const {
@@ -94,18 +95,31 @@ bool InteractionMachine::other_hand_grabs_near(std::uint8_t h, glm::vec3 positio
   return glm::distance(other.last_valid_m, position_m) < config_.min_grab_separation_m;
 }
 
+InteractionInputs InteractionMachine::effective(const InteractionInputs& inputs) {
+  InteractionInputs in = inputs;
+  for (std::uint8_t h = 0; h < kHandCount; ++h) {
+    Hand& hand = hands_[h];
+    if (!in.hands[h].buttons_valid && hand.state != HandState::idle) hand.buttons_gone = true;
+    if (!in.hands[h].buttons_valid || hand.buttons_gone) {
+      in.hands[h].pose_valid = false;
+      in.hands[h].buttons = hand.previous;
+    }
+  }
+  return in;
+}
+
 ActionList InteractionMachine::step(const InteractionInputs& inputs, ports::TimestampUs now_us) {
   ActionList out;
-  for (std::uint8_t h = 0; h < kHandCount; ++h) step_hand(h, inputs, now_us, out);
-  step_radius(inputs, out);
-  for (std::uint8_t h = 0; h < kHandCount; ++h) hands_[h].previous = inputs.hands[h].buttons;
+  const InteractionInputs in = effective(inputs);
+  for (std::uint8_t h = 0; h < kHandCount; ++h) step_hand(h, in.hands[h], now_us, out);
+  step_radius(in, out);
+  for (std::uint8_t h = 0; h < kHandCount; ++h) hands_[h].previous = in.hands[h].buttons;
   return out;
 }
 
-void InteractionMachine::step_hand(std::uint8_t h, const InteractionInputs& inputs,
-                                   ports::TimestampUs now_us, ActionList& out) {
+void InteractionMachine::step_hand(std::uint8_t h, const HandInput& in, ports::TimestampUs now_us,
+                                   ActionList& out) {
   Hand& hand = hands_[h];
-  const HandInput& in = inputs.hands[h];
   const HandStep step{h,
                       in,
                       in.buttons.grab && !hand.previous.grab,
@@ -201,7 +215,7 @@ void InteractionMachine::step_dragging_lost(const HandStep& s, ActionList& out) 
     hand.disengaged = false;
     enter(h, HandState::dragging_lost, s.now_us);
     out.push({ActionKind::unfreeze, h, Reason::none, radius_m_});
-  } else if (!hand.disengaged && lost_too_long(s)) {
+  } else if ((!hand.disengaged || hand.buttons_gone) && lost_too_long(s)) {
     end_grab(s, ActionKind::cancel, Reason::tracking_timeout, out);
   }
 }

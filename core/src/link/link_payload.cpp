@@ -127,6 +127,7 @@ void write_status(ByteWriter& w, const StatusReport& s) {
   w.u32(s.triangle_count);
   w.u32(s.triangle_capacity);
   w.u8(s.tracker_state);
+  w.u8(s.buttons_state);
   w.f32(s.tracker_rate_hz);
   w.u8(s.method);
   w.u8(s.clutch);
@@ -135,9 +136,9 @@ void write_status(ByteWriter& w, const StatusReport& s) {
   w.u64(s.strokes_committed);
   w.u64(s.strokes_not_saved);
   w.u64(s.capacity_stops);
-  w.u64(s.live_sent);
-  w.u64(s.live_dropped);
-  w.u64(s.frames_rejected);
+  w.u64(s.traffic.live_sent);
+  w.u64(s.traffic.live_dropped);
+  w.u64(s.traffic.frames_rejected);
 }
 
 bool read_status(ByteReader& r, StatusReport& s) {
@@ -147,6 +148,7 @@ bool read_status(ByteReader& r, StatusReport& s) {
   s.triangle_count = r.u32();
   s.triangle_capacity = r.u32();
   s.tracker_state = r.u8();
+  s.buttons_state = r.u8();
   s.tracker_rate_hz = r.f32();
   s.method = r.u8();
   s.clutch = r.u8();
@@ -155,10 +157,10 @@ bool read_status(ByteReader& r, StatusReport& s) {
   s.strokes_committed = r.u64();
   s.strokes_not_saved = r.u64();
   s.capacity_stops = r.u64();
-  s.live_sent = r.u64();
-  s.live_dropped = r.u64();
-  s.frames_rejected = r.u64();
-  return s.tracker_state <= 2 && s.method <= 2 && s.clutch <= 3 &&
+  s.traffic.live_sent = r.u64();
+  s.traffic.live_dropped = r.u64();
+  s.traffic.frames_rejected = r.u64();
+  return s.tracker_state <= 2 && s.buttons_state <= 1 && s.method <= 2 && s.clutch <= 3 &&
          std::isfinite(s.tracker_rate_hz) && std::isfinite(s.turned_rad) &&
          std::isfinite(s.turn_limit_rad);
 }

@@ -124,6 +124,7 @@ input::InteractionInputs SculptSession::inputs() const {
     in.hands[h].pose_valid = poses_.valid(h);
     in.hands[h].position_m = glm::vec3(poses_.hand_in_world(h).origin);
     in.hands[h].buttons = buttons_.hand(h);
+    in.hands[h].buttons_valid = buttons_.connected();
   }
   return in;
 }

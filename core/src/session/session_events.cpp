@@ -65,8 +65,10 @@ const char* session_event_kind_name(SessionEventKind kind) {
       return "tracker_streaming";
     case K::tracker_lost:
       return "tracker_lost";
-    case K::button_source_error:
-      return "button_source_error";
+    case K::buttons_lost:
+      return "buttons_lost";
+    case K::buttons_found:
+      return "buttons_found";
     case K::checkpoint_written:
       return "checkpoint_written";
     case K::checkpoint_failed:
@@ -117,7 +119,8 @@ std::size_t payload_index(SessionEventKind kind) {
     case K::move_begin:
     case K::engaged:
     case K::tracker_lost:
-    case K::button_source_error:
+    case K::buttons_lost:
+    case K::buttons_found:
     case K::checkpoint_failed:
       break;
   }

@@ -37,24 +37,27 @@ void Station::emit_all(const session::SessionEvents& events, ports::TimestampUs 
 }
 
 void Station::drain_buttons(ports::TimestampUs now_us) {
-  for (int i = 0; i < kMaxEdgesPerPoll; ++i) {
+  Status why = StatusCode::unavailable;  // not there (at start-up)
+  for (int i = 0; i < kMaxEdgesPerPoll && buttons_.connected(); ++i) {
     auto edge = buttons_.poll();
     if (edge.ok()) {
-      buttons_failed_ = false;
       ++counters_.input.button_edges;
       if (!sculpt_.feed_button(*edge).ok()) ++counters_.input.button_errors;
       continue;
     }
     if (edge.status().code() == StatusCode::unavailable) break;
     ++counters_.input.button_errors;
-    if (!buttons_failed_) {
-      emit(
-          session::make_event(session::SessionEventKind::button_source_error, 0, {}, edge.status()),
-          now_us);
-    }
-    buttons_failed_ = true;
+    why = edge.status();  // io_error: it vanished
     break;
   }
+  // The device going or coming: one event each way (the first poll reports one
+  // missing at start-up), and the session's strokes follow (lost-tracking path).
+  const bool connected = buttons_.connected();
+  if (connected == sculpt_.buttons_connected()) return;
+  sculpt_.set_buttons_connected(connected);
+  emit(connected ? session::make_event(session::SessionEventKind::buttons_found, 0)
+                 : session::make_event(session::SessionEventKind::buttons_lost, 0, {}, why),
+       now_us);
 }
 
 Status Station::poll() {
@@ -95,6 +98,7 @@ StationStatus Station::status() const {
     s.turn_limit_rad = std::max(s.turn_limit_rad, static_cast<float>(v.turn_limit_rad));
   }
   s.capacity_stops = state.refine.capacity_stops;
+  s.buttons_missing = !sculpt_.buttons_connected();
   return s;
 }
 

@@ -92,6 +92,7 @@ Result<ports::ButtonEdge> GpiodButtonSource::do_poll() {
     const std::size_t i = (next_line_ + k) % count;
     if ((pfds[i].revents & (POLLERR | POLLHUP | POLLNVAL)) != 0 &&
         (pfds[i].revents & POLLIN) == 0) {
+      close();  // the chip is gone: not connected until reopened
       last_errno_ = ENODEV;
       return StatusCode::io_error;
     }
@@ -99,6 +100,7 @@ Result<ports::ButtonEdge> GpiodButtonSource::do_poll() {
     gpiod_line_event event{};
     if (gpiod_line_event_read_fd(lines_[i].fd, &event) != 0) {
       last_errno_ = errno;
+      close();
       return StatusCode::io_error;
     }
     next_line_ = (i + 1) % count;

@@ -48,7 +48,10 @@ Result<ports::ButtonEdge> HidapiButtonSource::do_poll() {
   // Drain queued reports until one changes a button (or none is left).
   for (;;) {
     const int n = hid_read(device_, report_.data(), report_.size());
-    if (n < 0) return StatusCode::io_error;  // unplugged or read error
+    if (n < 0) {  // unplugged or read error: not connected until reopened
+      close();
+      return StatusCode::io_error;
+    }
     if (n == 0) return StatusCode::unavailable;
     const auto report = std::span(report_.data(), static_cast<std::size_t>(n));
     // pending_ is empty here and holds one edge per button: every edge fits.

@@ -45,8 +45,10 @@ void read_tracker(ConfigReader& root, StationFileConfig& cfg) {
                 std::to_string(tc.left_station) + ")");
   }
   std::string format;
-  if (t.string("format", false, format, {"binary", "ascii"})) {
-    tc.format = format == "binary" ? RecordFormat::binary : RecordFormat::ascii;
+  if (t.string("format", false, format, {"binary", "ascii", "binary16"})) {
+    tc.format = format == "binary"   ? RecordFormat::binary
+                : format == "ascii"  ? RecordFormat::ascii
+                                     : RecordFormat::binary16;
   }
   read_u(t, "reconnect_interval_ms", false, 100, 60000, tc.reconnect_interval_ms);
   read_u(t, "silence_timeout_ms", false, 50, 10000, tc.silence_timeout_ms);

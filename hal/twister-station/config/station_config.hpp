@@ -18,7 +18,7 @@ enum class TrackerBackend : std::uint8_t { serial, usb, sim };
 enum class ButtonBackend : std::uint8_t { gpiod, hidapi, stylus, sim };
 enum class SerialFlowControl : std::uint8_t { none, rtscts, xonxoff };
 enum class GpioBias : std::uint8_t { as_is, disable, pull_up, pull_down };
-enum class RecordFormat : std::uint8_t { binary, ascii };
+enum class RecordFormat : std::uint8_t { binary, ascii, binary16 };
 enum class SimTime : std::uint8_t { virtual_time, real_time };
 
 struct SerialTrackerConfig {

@@ -149,7 +149,8 @@ LinkMessage random_message() {
       s.mesh_version = *rc::gen::arbitrary<std::uint32_t>();
       s.tracker_state = static_cast<std::uint8_t>(*rc::gen::inRange(0, 3));
       s.tracker_rate_hz = random_float();
-      s.live_dropped = *rc::gen::arbitrary<std::uint64_t>();
+      s.traffic.live_dropped = *rc::gen::arbitrary<std::uint64_t>();
+      s.buttons_state = static_cast<std::uint8_t>(*rc::gen::inRange(0, 2));
       s.strokes_not_saved = *rc::gen::arbitrary<std::uint64_t>();
       break;
     }

@@ -108,7 +108,7 @@ TEST(EventCounters, TheOtherKindsCountNothing) {
         SessionEventKind::turn_limit_reached, SessionEventKind::turn_limit_left,
         SessionEventKind::method_changed, SessionEventKind::journal_recovered,
         SessionEventKind::tracker_streaming, SessionEventKind::tracker_lost,
-        SessionEventKind::button_source_error}) {
+        SessionEventKind::buttons_lost, SessionEventKind::buttons_found}) {
     EventCounters c;
     c.count(sample(kind));
     const EventCounters zero;

@@ -25,24 +25,30 @@ class FlakyButtons final : public ports::ButtonSource, public hal::PollSource {
  public:
   bool failing = false;
   bool reopen_works = false;
+  StatusCode reopen_failure = StatusCode::unavailable;  // why a reopen fails
   mutable int poll_fds_calls = 0;
   int reopen_calls = 0;
 
  private:
   Result<ports::ButtonEdge> do_poll() override {
-    return failing ? StatusCode::io_error : StatusCode::unavailable;
+    if (!failing) return StatusCode::unavailable;
+    connected_ = false;
+    return StatusCode::io_error;
   }
   std::uint8_t do_line_count() const override { return 6; }
+  bool do_connected() const override { return connected_; }
   std::size_t do_poll_fds(std::span<pollfd>) const override {
     ++poll_fds_calls;
     return 0;
   }
   Status do_reopen() override {
     ++reopen_calls;
-    if (!reopen_works) return StatusCode::unavailable;
+    if (!reopen_works) return reopen_failure;
     failing = false;
+    connected_ = true;
     return ok_status();
   }
+  bool connected_ = true;
 };
 
 struct Rig {
@@ -113,10 +119,37 @@ TEST(StationLoop, FailedButtonsLeaveThePollSetAndAreReopenedEveryRetryInterval) 
   EXPECT_EQ(loop.stop_reason(), StopReason::end_of_run);
   EXPECT_EQ(loop.passes(), 3000u);  // 3 s of 1 ms virtual steps
   const std::string log = rig.log_text();
-  EXPECT_NE(log.find("twister-station: warning: buttons: device failed (io_error); reopening"),
+  EXPECT_NE(log.find("twister-station: warning: buttons: device missing (io_error): running "
+                     "without buttons"),
             std::string::npos)
       << log;
-  EXPECT_NE(log.find("twister-station: buttons: reopened"), std::string::npos) << log;
+  EXPECT_NE(log.find("twister-station: buttons: device found: buttons work again"),
+            std::string::npos)
+      << log;
+}
+
+TEST(StationLoop, ADeviceThereButNotOpenableIsLoggedOnceNotEveryRetry) {
+  Rig rig;
+  StationLoop loop(*rig.core, rig.backends, rig.display, rig.log, rig.loop_config(7.0));
+  ASSERT_TRUE(loop.start());
+  rig.buttons->failing = true;  // unplugged
+  for (int i = 0; i < 1200; ++i) ASSERT_TRUE(loop.step());
+  rig.buttons->reopen_failure = StatusCode::invalid_argument;  // back, with a bad offset
+  for (int i = 0; i < 2000; ++i) ASSERT_TRUE(loop.step());     // four retries
+  rig.buttons->reopen_failure = StatusCode::unavailable;       // gone again
+  for (int i = 0; i < 1000; ++i) ASSERT_TRUE(loop.step());
+  rig.buttons->reopen_failure = StatusCode::io_error;  // back, busy
+  for (int i = 0; i < 2000; ++i) ASSERT_TRUE(loop.step());
+  EXPECT_EQ(rig.buttons->reopen_calls, 12);
+  EXPECT_FALSE(rig.buttons->connected());
+  const std::string log = rig.log_text();
+  const std::string line = "twister-station: warning: buttons: device there but cannot be opened";
+  auto at = log.find(line + " (invalid_argument); still running without buttons, retrying\n");
+  EXPECT_NE(at, std::string::npos) << log;
+  EXPECT_EQ(log.find(line + " (invalid_argument)", at + 1), std::string::npos) << log;
+  at = log.find(line + " (io_error)");
+  EXPECT_NE(at, std::string::npos) << log;
+  EXPECT_EQ(log.find(line + " (io_error)", at + 1), std::string::npos) << log;
 }
 
 TEST(StationLoop, SigtermThroughTheSignalfdStopsTheLoop) {

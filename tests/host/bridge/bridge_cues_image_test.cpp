@@ -207,7 +207,7 @@ TEST_F(DisplayCues, HudPanelHoldsTheStationsState) {
   expect_live_frame(with);
   const HudText& text = view_->hud_text();
   ASSERT_GE(text.lines.size(), 8u);
-  EXPECT_EQ(text.lines[1], "tracker: streaming, 120 poses/s");
+  EXPECT_EQ(text.lines[1], "tracker: streaming, 120 poses/s   buttons: present");
   EXPECT_TRUE(text.banner.empty()) << text.banner;
   const float* panel = view_->hud().panel();
   ASSERT_GT(panel[2], 100.0F);

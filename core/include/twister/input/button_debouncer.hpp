@@ -49,6 +49,10 @@ class ButtonDebouncer {
   // The debounced (reported) level of a line; false for lines out of range.
   bool pressed(std::uint8_t line) const;
 
+  // Every line released, stable and raw, with no change pending (the device that
+  // drove them is gone: their levels are unknown).
+  void reset();
+
   std::uint8_t line_count() const { return static_cast<std::uint8_t>(lines_.size()); }
 
  private:

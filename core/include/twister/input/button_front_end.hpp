@@ -5,6 +5,9 @@
 // moment) and either raises a level or fires a command; the release lowers the level
 // that press raised. Levels then stay as they are until the next poll; commands() are
 // those of the last poll. Time in microseconds, monotonic. No allocation.
+// set_connected(false) (the button device is gone) releases every line at once, with
+// no command and no debounce wait: what the device's buttons did meanwhile is unknown,
+// so their levels start again from released when it is back.
 #pragma once
 
 #include <array>
@@ -46,6 +49,9 @@ class ButtonFrontEnd {
   // Debounced lines down (bit per line) as of the last poll.
   std::uint16_t held_lines() const { return held_; }
   const ButtonMap& map() const { return map_; }
+  // Whether the button device is there (set by the station from ButtonSource::connected()).
+  void set_connected(bool connected);
+  bool connected() const { return connected_; }
 
  private:
   void press(std::uint8_t line);
@@ -59,6 +65,7 @@ class ButtonFrontEnd {
   std::array<ButtonBinding, kMaxButtonLines> pressed_as_{};
   InlineVector<ButtonCommand, kMaxButtonCommandsPerPoll> commands_;
   std::size_t commands_dropped_ = 0;
+  bool connected_ = true;
 };
 
 }  // namespace twister::input

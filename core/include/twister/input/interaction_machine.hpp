@@ -7,6 +7,12 @@
 // is then. dragging -> dragging_lost when tracking drops: the warp holds at the last
 // valid pose; tracking back within lost_timeout_us resumes, otherwise the stroke is
 // cancelled (not while disengaged: a hand on the clutch may leave the tracked volume).
+// A button device that vanishes (HandInput::buttons_valid false) is lost tracking for
+// every stroke or move open then: the hand's levels hold as they were (no edge can
+// come from a device that is not there), the warp holds at the last valid pose and
+// the stroke is cancelled after lost_timeout_us (tracking_timeout), clutch in or not;
+// such a stroke does not resume even if the device comes back in time (its buttons'
+// levels meanwhile are unknown).
 // moving / moving_lost are the same for the rigid object move.
 // Both hands run the same per-hand machine; the two-handed radius gesture is a
 // small combiner on top (both radius buttons held, both hands idle).
@@ -88,6 +94,7 @@ struct HandInput {
   bool pose_valid = false;
   glm::vec3 position_m{0.0f};  // world frame; ignored when !pose_valid
   HandButtons buttons{};       // debounced levels
+  bool buttons_valid = true;   // false: the button device is missing (levels unknown)
 };
 
 struct InteractionInputs {
@@ -129,6 +136,7 @@ class InteractionMachine {
     HandButtons previous{};
     glm::vec3 last_valid_m{0.0f};
     bool disengaged = false;  // freeze held during the stroke (dragging states only)
+    bool buttons_gone = false;  // its button device vanished during this stroke or move
   };
 
   // One hand's step: its button edges and input, read once before any transition.
@@ -142,8 +150,10 @@ class InteractionMachine {
   };
 
   // step_hand dispatches on the hand's state to one function per HandState.
-  void step_hand(std::uint8_t h, const InteractionInputs& inputs, ports::TimestampUs now_us,
-                 ActionList& out);
+  void step_hand(std::uint8_t h, const HandInput& in, ports::TimestampUs now_us, ActionList& out);
+  // The input as the machine reads it: a hand whose button device is missing (or
+  // vanished during its open stroke or move) is lost, its buttons as they were.
+  InteractionInputs effective(const InteractionInputs& inputs);
   void step_idle(const HandStep& s, ActionList& out);
   void step_dragging(const HandStep& s, ActionList& out);
   void step_dragging_lost(const HandStep& s, ActionList& out);

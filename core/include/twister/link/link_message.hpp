@@ -1,4 +1,4 @@
-// Link messages between twister-station and twister-bridge (protocol version 3,
+// Link messages between twister-station and twister-bridge (protocol version 4,
 // docs/link-protocol.md). Each message type is its own small struct naming its
 // MessageType (kType); one frame on the wire carries one of them (see
 // link_codec.hpp for the framing). LinkMessage, a std::variant of all thirteen, is
@@ -19,7 +19,7 @@
 
 namespace twister::link {
 
-inline constexpr std::uint8_t kProtocolVersion = 3;
+inline constexpr std::uint8_t kProtocolVersion = 4;
 // Largest payload (version byte .. last body byte, without CRC) of one frame.
 inline constexpr std::size_t kMaxPayload = 4096;
 inline constexpr std::size_t kMaxVerticesPerChunk = 200;   // 16 bytes each
@@ -185,6 +185,16 @@ struct ObjectPose {
 // Tracker states in StatusReport.
 enum class TrackerState : std::uint8_t { starting = 0, streaming = 1, lost = 2 };
 
+// Button device states in StatusReport (protocol 4).
+enum class ButtonsState : std::uint8_t { present = 0, missing = 1 };
+
+// The link's own traffic counters in StatusReport (StationLink's, not the session's).
+struct LinkTraffic {
+  std::uint64_t live_sent = 0;
+  std::uint64_t live_dropped = 0;  // no room on the link: the next one replaces it
+  std::uint64_t frames_rejected = 0;
+};
+
 // Station status, about once a second and when something in it changes.
 struct StatusReport {
   static constexpr MessageType kType = MessageType::status;
@@ -194,6 +204,7 @@ struct StatusReport {
   std::uint32_t triangle_count = 0;
   std::uint32_t triangle_capacity = 0;
   std::uint8_t tracker_state = 0;  // TrackerState
+  std::uint8_t buttons_state = 0;  // ButtonsState (protocol 4): the button device missing
   float tracker_rate_hz = 0.0F;    // poses used per second (both hands)
   std::uint8_t method = 0;         // math::WarpMethod of the next stroke
   std::uint8_t clutch = 0;         // bit h: hand h's clutch is in (freeze held)
@@ -202,9 +213,7 @@ struct StatusReport {
   std::uint64_t strokes_committed = 0;
   std::uint64_t strokes_not_saved = 0;  // commits whose journal append failed
   std::uint64_t capacity_stops = 0;     // refined commits stopped by the mesh's capacity
-  std::uint64_t live_sent = 0;
-  std::uint64_t live_dropped = 0;  // no room on the link: the next one replaces it
-  std::uint64_t frames_rejected = 0;
+  LinkTraffic traffic{};
 };
 
 // A command from the display's keyboard, routed by the station into the session's

@@ -118,6 +118,11 @@ class SculptSession {
 
   // Raw button edge from a ports::ButtonSource. out_of_range: unknown line.
   Status feed_button(const ports::ButtonEdge& edge);
+  // Whether the button device is there (ButtonSource::connected()). While it is not,
+  // the hands' open strokes and moves hold and are cancelled after the lost timeout,
+  // as on lost tracking (InteractionMachine); its buttons read released when it is back.
+  void set_buttons_connected(bool connected) { buttons_.set_connected(connected); }
+  bool buttons_connected() const { return buttons_.connected(); }
   // Latest pose of a hand (hand < kHandCount). An invalid sample means "lost".
   // invalid_argument: valid but not an orthonormal frame (treated as lost).
   Status set_hand(std::uint8_t hand, bool valid, const math::Frame& pose_in_world);

@@ -77,7 +77,11 @@ enum class SessionEventKind : std::uint8_t {
   journal_recovered,    // start() -> JournalRecovered
   tracker_streaming,    // the Fastrak session reached streaming -> TrackerStreaming
   tracker_lost,         // streaming stopped (unplug, silence, garbage); re-init follows. none
-  button_source_error,  // the button device failed (status); it is reopened. none
+  buttons_lost,         // the button device is missing (status unavailable: not there at
+                        // start-up) or vanished (io_error); the station runs without it, ends
+                        // the strokes of its buttons as on lost tracking, and opens it again
+                        // when it appears. none
+  buttons_found,        // the button device is back (opened again). none
   checkpoint_written,   // -> CheckpointWritten
   checkpoint_failed,    // writing a checkpoint failed (status); the previous one stays. none
 };

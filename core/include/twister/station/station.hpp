@@ -198,7 +198,6 @@ class Station {
   StationCounters counters_{};
   std::uint64_t records_at_start_ = 0;
   bool started_ = false;
-  bool buttons_failed_ = false;
 };
 
 }  // namespace twister::station

@@ -1,6 +1,7 @@
 // StationStatus: a snapshot of what the display shows about the station besides
 // the mesh and the hands (tracker state and rate, counters, method, clutch, the
-// angle turned against the limit, refinement stopped by the capacity), filled by
+// angle turned against the limit, refinement stopped by the capacity, the button
+// device missing), filled by
 // Station::status() from the session's state and sent by StationLink. Plain data.
 #pragma once
 
@@ -22,6 +23,7 @@ struct StationStatus {
   float turned_rad = 0.0F;           // the most any hand has turned in the open stroke
   float turn_limit_rad = 0.0F;       // one stroke's turn limit
   std::uint64_t capacity_stops = 0;  // refined commits stopped by the mesh's capacity
+  bool buttons_missing = false;      // the button device is not there (ButtonSource::connected())
 };
 
 }  // namespace twister::station

@@ -7,7 +7,9 @@
 // with the config of the last open().
 // Errors: open() -> unavailable (chip missing), io_error (line busy, no permission,
 // bias not supported by the kernel), invalid_argument (bad offsets);
-// poll() -> unavailable (no edge pending), io_error (chip gone).
+// poll() -> unavailable (no edge pending), io_error (chip gone: the lines are released
+// and the source is closed, connected() false, until reopen() finds the chip again),
+// failed_precondition (not open).
 // Only the owning thread may call it.
 #pragma once
 
@@ -50,6 +52,7 @@ class GpiodButtonSource final : public ports::ButtonSource, public PollSource {
  private:
   Result<ports::ButtonEdge> do_poll() override;
   std::uint8_t do_line_count() const override { return static_cast<std::uint8_t>(lines_.size()); }
+  bool do_connected() const override { return !lines_.empty(); }
   std::size_t do_poll_fds(std::span<pollfd> out) const override;
   Status do_reopen() override;
 

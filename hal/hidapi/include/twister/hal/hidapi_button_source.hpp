@@ -7,7 +7,8 @@
 // again with the config of the last open().
 // Errors: open() -> unavailable (no such device), io_error (open failed: permissions),
 // invalid_argument (bad button map); poll() -> unavailable (no edge), io_error
-// (device unplugged: reopen with open()).
+// (device unplugged: it is closed, connected() false, until reopen() finds it again),
+// failed_precondition (not open).
 #pragma once
 
 #include <array>
@@ -47,6 +48,7 @@ class HidapiButtonSource final : public ports::ButtonSource, public PollSource {
   std::uint8_t do_line_count() const override {
     return static_cast<std::uint8_t>(decoder_.button_count());
   }
+  bool do_connected() const override { return device_ != nullptr; }
   std::size_t do_poll_fds(std::span<pollfd>) const override { return 0; }
   Status do_reopen() override;
   ports::ButtonEdge take_pending();
