@@ -113,6 +113,20 @@ std::size_t liberty_size_value(std::size_t body, LibertySizeField field) {
   return field == LibertySizeField::body ? body : body + kLibertyHeaderBytes;
 }
 
+Status to_liberty_config(const FastrakConfig& fastrak, LibertyModel model, LibertyConfig& out) {
+  out = {};
+  out.model = model;
+  out.units = fastrak.units;
+  for (std::size_t i = 0; i < fastrak.stations.size(); ++i) {
+    const ReceiverConfig& st = fastrak.stations[i];
+    out.stations[i].enabled = st.enabled;
+    if (!st.enabled) continue;
+    const Status s = to_liberty_list(st.list, out.stations[i].list);
+    if (!s.ok()) return s;
+  }
+  return Status{};
+}
+
 Status validate(const LibertyConfig& config) {
   bool any = false;
   for (const LibertyStationConfig& st : config.stations) {

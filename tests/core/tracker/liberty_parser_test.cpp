@@ -274,5 +274,19 @@ TEST(LibertyWire, FastrakListsTranslateItemForItem) {
   EXPECT_EQ(out.items[0], L::dcm);
 }
 
+TEST(LibertyWire, FastrakConfigTranslatesStationForStation) {
+  FastrakConfig f;
+  f.units = Units::centimetres;
+  f.stations[1] = {true, OutputList::of({Item::position, Item::euler, Item::crlf})};
+  LibertyConfig c;
+  ASSERT_TRUE(to_liberty_config(f, LibertyModel::patriot, c).ok());
+  EXPECT_EQ(c.model, LibertyModel::patriot);
+  EXPECT_EQ(c.units, Units::centimetres);
+  EXPECT_FALSE(c.stations[0].enabled);
+  EXPECT_TRUE(c.stations[1].enabled);
+  EXPECT_EQ(liberty_body_length(c.stations[1].list), 26u);
+  EXPECT_TRUE(validate(c).ok());
+}
+
 }  // namespace
 }  // namespace twister::tracker

@@ -96,6 +96,11 @@ struct LibertyConfig {
 // The size field a frame of `body` body bytes carries under `config`.
 std::size_t liberty_size_value(std::size_t body, LibertySizeField field);
 
+// The configuration that frames what a Liberty-family unit of `model` sends for a
+// Fastrak configuration: the same stations, units and lists (to_liberty_list).
+// invalid_argument: a list does not translate.
+Status to_liberty_config(const FastrakConfig& fastrak, LibertyModel model, LibertyConfig& out);
+
 // Every enabled list non-empty with supported items and a body <= kLibertyMaxBodyBytes;
 // at least one station enabled.
 // invalid_argument: any of these fails.
