@@ -43,6 +43,7 @@ struct Options {
   std::string filter = "off";
   std::vector<std::string> command_times;  // LETTER=SECONDS
   std::string log_level = "notice";
+  std::string model = "fastrak";
 };
 
 // "O=0.05", "x=1", "^K=3", "all=0": sets the processing time of that command.
@@ -91,6 +92,10 @@ void add_options(CLI::App& app, Options& o) {
   app.add_option("--duration", o.duration_s,
                  "stop after this many seconds (0: run until signalled)")
       ->check(CLI::Range(0.0, 1e9));
+  app.add_option("--model", o.model,
+                 "the unit played: fastrak (default), liberty or patriot (same commands; in "
+                 "binary, frames of docs/liberty-protocol.md)")
+      ->check(CLI::IsMember({"fastrak", "liberty", "patriot"}));
   app.add_option("--log-level", o.log_level, "error | warning | notice (default) | info | debug")
       ->check(CLI::IsMember({"error", "warning", "notice", "info", "debug"}));
 }
@@ -115,6 +120,9 @@ int serve(Options& o, const twister::sim::Scenario& scenario) {
   o.serve.port =
       o.port == "fixed" ? twister::sim::PortKind::fixed : twister::sim::PortKind::usb_adapter;
   o.dev.reset_time_us = static_cast<std::int64_t>(o.reset_s * 1e6);
+  o.dev.model = o.model == "liberty"   ? twister::sim::DeviceModel::liberty
+                : o.model == "patriot" ? twister::sim::DeviceModel::patriot
+                                       : twister::sim::DeviceModel::fastrak;
   if (o.binary) {
     o.dev.start_format =
         o.dev.packed16 ? twister::tracker::Format::binary16 : twister::tracker::Format::binary;

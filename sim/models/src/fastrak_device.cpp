@@ -15,9 +15,23 @@
 
 #include "record_corruption.hpp"
 #include "twister/tracker/fastrak_encoder.hpp"
+#include "twister/tracker/liberty_encoder.hpp"
 #include "twister/tracker/pose_conversion.hpp"
 
 namespace twister::sim {
+
+const char* device_model_name(DeviceModel model) {
+  switch (model) {
+    case DeviceModel::fastrak:
+      return "fastrak";
+    case DeviceModel::liberty:
+      return "liberty";
+    case DeviceModel::patriot:
+      return "patriot";
+  }
+  return "unknown";
+}
+
 namespace {
 
 using tracker::Format;
@@ -255,17 +269,37 @@ void FastrakDevice::queue_record(int station, ports::TimestampUs at) {
   pose.button = s.button;
   pose.status = status_code(station, at, pose.euler_deg);
   counters_.status_letters += pose.status != ' ';
-  std::array<std::byte, tracker::kMaxRecordBytes> buf{};
-  auto n = tracker::encode_record(pose, settings_.protocol, buf);
-  if (!n.ok()) return;
-  std::size_t size = *n;
-  if (faults_.take_corrupt()) {
-    counters_.corrupted_records +=
-        corrupt_record(std::span(buf.data(), size), station, settings_.protocol, rng_);
-  }
+  std::array<std::byte, std::max(tracker::kMaxRecordBytes, tracker::kLibertyMaxFrameBytes)> buf{};
+  std::size_t size = encode_pose(pose, buf);
+  if (size == 0) return;
   if (size > 2 && faults_.take_truncate()) size = 1 + rng_() % (size - 2);
   ++counters_.records;
   queue(std::span<const std::byte>(buf.data(), size), at);
+}
+
+std::size_t FastrakDevice::encode_pose(const tracker::FastrakPose& pose, std::span<std::byte> buf) {
+  const tracker::FastrakConfig& protocol = settings_.protocol;
+  if (config_.model == DeviceModel::fastrak || protocol.format != Format::binary) {
+    auto n = tracker::encode_record(pose, protocol, buf);
+    if (!n.ok()) return 0;
+    if (faults_.take_corrupt()) {
+      counters_.corrupted_records += corrupt_record(buf.first(*n), pose.station, protocol, rng_);
+    }
+    return *n;
+  }
+  tracker::LibertyConfig liberty;
+  const auto model = config_.model == DeviceModel::patriot ? tracker::LibertyModel::patriot
+                                                           : tracker::LibertyModel::liberty;
+  if (!tracker::to_liberty_config(protocol, model, liberty).ok()) return 0;
+  auto n = tracker::encode_liberty_frame(pose, liberty, buf);
+  if (!n.ok()) return 0;
+  // A line hit inside a frame: one bit of a position float (framing cannot see it).
+  const auto& list = liberty.stations[pose.station - 1u].list;
+  if (faults_.take_corrupt() && list.count > 0 && list.items[0] == tracker::LibertyItem::position) {
+    buf[tracker::kLibertyHeaderBytes + rng_() % 12] ^= std::byte{1} << (rng_() % 8);
+    ++counters_.corrupted_records;
+  }
+  return *n;
 }
 
 void FastrakDevice::generate(ports::TimestampUs now, bool stalled) {

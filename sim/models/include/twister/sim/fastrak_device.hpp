@@ -39,10 +39,18 @@
 #include "twister/sim/unit_settings.hpp"
 #include "twister/tracker/fastrak_event.hpp"
 #include "twister/tracker/fastrak_wire.hpp"
+#include "twister/tracker/liberty_wire.hpp"
 
 namespace twister::sim {
 
+// Which unit the model plays. A Liberty or Patriot takes the same commands and sends
+// the same ASCII records here; in binary it frames each record with the family's header
+// (docs/liberty-protocol.md; the ASCII records are an assumption, docs/fastrak.md).
+enum class DeviceModel : std::uint8_t { fastrak, liberty, patriot };
+const char* device_model_name(DeviceModel model);
+
 struct FastrakDeviceConfig {
+  DeviceModel model = DeviceModel::fastrak;
   int baud = 115200;                     // line rate; 10 bits per byte (`o` changes it)
   std::int64_t reset_time_us = 500'000;  // ^Y and power-up (a real unit: 10-20 s)
   bool start_continuous = false;         // power-up mode (the real default is polled)
@@ -130,6 +138,9 @@ class FastrakDevice final : private ReplySink {
   void queue(std::span<const std::byte> bytes, ports::TimestampUs now);
   void queue_noise(std::uint64_t count, ports::TimestampUs now);
   void queue_record(int station, ports::TimestampUs at);
+  // Encodes `pose` as the model frames it (Fastrak record or Liberty-family frame),
+  // corrupting it when a corrupt fault is due; returns the bytes (0: not encodable).
+  std::size_t encode_pose(const tracker::FastrakPose& pose, std::span<std::byte> buf);
   void solve(int station, ports::TimestampUs at);
   // The header status byte of `station` for a record with these Euler angles.
   char status_code(int station, ports::TimestampUs at, const std::array<float, 3>& euler) const;
