@@ -1,0 +1,121 @@
+// Symmetry: a finite group G of orthogonal maps of the object frame acting on the warp
+// (docs/math.md §11). SymmetryGroup holds the group's matrices; SymmetricWarp evaluates
+// the symmetrised warp F(P) = P + sum_h (1/|G_h|) sum_g g.(X_h(w, g^-1 P) - g^-1 P) per
+// point in double, with the several-grab-point squash of §11.3, so F(gP) = gF(P).
+// Double precision, world (object) frame, scene units. No heap, no exceptions.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+#include <span>
+
+#include "twister/base/status.hpp"
+#include "twister/math/frame.hpp"
+#include "twister/math/screw.hpp"
+#include "twister/math/warp_method.hpp"
+
+namespace twister::math {
+
+enum class SymmetryKind : std::uint8_t {
+  none,             // the trivial group
+  mirrors,          // products of reflections in the chosen coordinate planes (2, 4, 8)
+  rotation,         // Cn: n rotations about a coordinate axis
+  rotation_mirror,  // Cnv: Cn and n reflections in planes containing the axis
+};
+
+// Bits of SymmetryGroup::mirrors: the plane x = 0 (reflection x -> -x), y = 0, z = 0.
+inline constexpr std::uint8_t kMirrorX = 1;
+inline constexpr std::uint8_t kMirrorY = 2;
+inline constexpr std::uint8_t kMirrorZ = 4;
+inline constexpr int kMinRotationOrder = 2;
+inline constexpr int kMaxRotationOrder = 12;
+
+class SymmetryGroup {
+ public:
+  static constexpr std::size_t kMaxOrder = 2 * kMaxRotationOrder;
+
+  // The trivial group {I}.
+  SymmetryGroup();
+
+  // The group of the chosen planes (a non-zero combination of kMirrorX/Y/Z).
+  // invalid_argument: planes == 0 or other bits set; the group is then unchanged.
+  Status set_mirrors(std::uint8_t planes);
+  // Cn (with_mirror false) or Cnv about the object frame's axis `axis` (0 x, 1 y, 2 z),
+  // n in [2, 12]. invalid_argument otherwise; the group is then unchanged.
+  Status set_rotation(int axis, int n, bool with_mirror);
+  void set_none();
+
+  SymmetryKind kind() const { return kind_; }
+  std::size_t order() const { return order_; }
+  bool trivial() const { return order_ == 1; }
+  // Element i < order(); element 0 is the identity.
+  const glm::dmat3& element(std::size_t i) const { return elements_[i]; }
+
+ private:
+  std::array<glm::dmat3, kMaxOrder> elements_{};
+  std::size_t order_ = 1;
+  SymmetryKind kind_ = SymmetryKind::none;
+};
+
+class SymmetricWarp {
+ public:
+  static constexpr std::size_t kMaxHands = 2;
+  static constexpr std::size_t kMaxGrabPoints = SymmetryGroup::kMaxOrder * kMaxHands;
+
+  // Starts a grab under `group`: 1 or 2 orthonormal start frames, radius > 0, method
+  // twister or rottran. Grab points within 1e-9 r of their own image are snapped onto
+  // the fixed set (§11.4); start and end origins move by the same vector.
+  // invalid_argument: wrong frame count, a frame not orthonormal, bad radius, scodef,
+  //   or an image of one hand's grab point within 1e-9 r of the other's (§11.4).
+  // On error the warp is empty (identity).
+  Status build(const SymmetryGroup& group, std::span<const Frame> start, double radius,
+               WarpMethod method);
+  // New end poses (same count as build); the minimal screw of each hand, keeping the
+  // previous axis sense at a half turn as WarpPlan::update does (§2.3).
+  // invalid_argument: wrong count or a frame not orthonormal; failed_precondition: not built.
+  Status update(std::span<const Frame> end);
+  void reset();
+
+  // F(p) of §11.2. Identity when not built.
+  glm::dvec3 warp_point(glm::dvec3 p) const;
+  // The weight w_k(p) of grab point k (§11.3).
+  double weight(std::size_t k, glm::dvec3 p) const;
+
+  bool built() const { return hands_ > 0; }
+  std::size_t hand_count() const { return hands_; }
+  // The distinct grab points (all images of all hands, after snapping).
+  std::size_t grab_point_count() const { return points_; }
+  glm::dvec3 grab_point(std::size_t k) const { return point_[k]; }
+  // Index of the grab point g.O_h (g = group element, h = hand).
+  std::size_t grab_point_of(std::size_t hand, std::size_t element) const {
+    return image_[hand * SymmetryGroup::kMaxOrder + element];
+  }
+  // |G_h|: how many elements fix hand h's grab point.
+  std::size_t stabiliser_size(std::size_t hand) const { return stab_[hand]; }
+  // The start frame of hand h after snapping, and its screw.
+  const Frame& start_frame(std::size_t hand) const { return start_[hand]; }
+  const Screw& screw(std::size_t hand) const { return screws_[hand]; }
+  const SymmetryGroup& group() const { return group_; }
+
+ private:
+  glm::dvec3 hand_move(std::size_t hand, double t, glm::dvec3 p) const;
+
+  SymmetryGroup group_{};
+  std::array<glm::dvec3, kMaxGrabPoints> point_{};
+  std::array<std::uint64_t, kMaxGrabPoints> neighbours_{};  // bit j: P_j in P_k's ball
+  std::array<std::uint8_t, kMaxHands * SymmetryGroup::kMaxOrder> image_{};
+  std::array<std::size_t, kMaxHands> stab_{};
+  std::array<glm::dvec3, kMaxHands> shift_{};  // snap of §11.4 (0 unless stab_ > 1)
+  std::array<Frame, kMaxHands> start_{};
+  std::array<Frame, kMaxHands> end_{};
+  std::array<Screw, kMaxHands> screws_{};
+  std::size_t points_ = 0;
+  std::size_t hands_ = 0;
+  double radius_ = 1.0;
+  WarpMethod method_ = WarpMethod::twister;
+};
+
+}  // namespace twister::math

@@ -1,0 +1,213 @@
+#include "twister/math/symmetry.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+#include <numbers>
+#include <optional>
+
+#include "twister/math/decay.hpp"
+#include "twister/math/warp_plan.hpp"  // kCoincidentGrabFraction
+
+namespace twister::math {
+
+namespace {
+
+// Rotation by `angle` about coordinate axis a (columns: images of the basis vectors).
+glm::dmat3 axis_rotation(int a, double angle) {
+  const int b = (a + 1) % 3;
+  const int c = (a + 2) % 3;
+  const double co = std::cos(angle);
+  const double si = std::sin(angle);
+  glm::dmat3 m(0.0);
+  m[a][a] = 1.0;
+  m[b][b] = co;  // e_b -> co e_b + si e_c
+  m[b][c] = si;
+  m[c][b] = -si;  // e_c -> -si e_b + co e_c
+  m[c][c] = co;
+  return m;
+}
+
+}  // namespace
+
+SymmetryGroup::SymmetryGroup() { set_none(); }
+
+void SymmetryGroup::set_none() {
+  elements_[0] = glm::dmat3(1.0);
+  order_ = 1;
+  kind_ = SymmetryKind::none;
+}
+
+Status SymmetryGroup::set_mirrors(std::uint8_t planes) {
+  if (planes == 0 || (planes & ~(kMirrorX | kMirrorY | kMirrorZ)) != 0) {
+    return StatusCode::invalid_argument;
+  }
+  // Element i flips coordinate c when bit c of i is set; only subsets of `planes`.
+  std::size_t n = 0;
+  for (unsigned i = 0; i < 8; ++i) {
+    if ((i & ~static_cast<unsigned>(planes)) != 0) continue;
+    glm::dmat3 m(1.0);
+    for (int c = 0; c < 3; ++c) {
+      if ((i & (1u << c)) != 0) m[c][c] = -1.0;
+    }
+    elements_[n++] = m;
+  }
+  order_ = n;
+  kind_ = SymmetryKind::mirrors;
+  return ok_status();
+}
+
+Status SymmetryGroup::set_rotation(int axis, int n, bool with_mirror) {
+  if (axis < 0 || axis > 2 || n < kMinRotationOrder || n > kMaxRotationOrder) {
+    return StatusCode::invalid_argument;
+  }
+  const auto count = static_cast<std::size_t>(n);
+  elements_[0] = glm::dmat3(1.0);
+  for (std::size_t j = 1; j < count; ++j) {
+    elements_[j] = axis_rotation(axis, 2.0 * std::numbers::pi * static_cast<double>(j) / n);
+  }
+  if (with_mirror) {
+    // The reflection flipping the third coordinate c (the plane of a and b), then each
+    // rotation: reflections in the planes through the axis at angles pi j / n.
+    glm::dmat3 flip(1.0);
+    const int c = (axis + 2) % 3;
+    flip[c][c] = -1.0;
+    for (std::size_t j = 0; j < count; ++j) elements_[count + j] = elements_[j] * flip;
+  }
+  order_ = with_mirror ? 2 * count : count;
+  kind_ = with_mirror ? SymmetryKind::rotation_mirror : SymmetryKind::rotation;
+  return ok_status();
+}
+
+void SymmetricWarp::reset() {
+  hands_ = 0;
+  points_ = 0;
+}
+
+Status SymmetricWarp::build(const SymmetryGroup& group, std::span<const Frame> start,
+                            double radius, WarpMethod method) {
+  reset();
+  if (start.empty() || start.size() > kMaxHands || !std::isfinite(radius) || !(radius > 0.0) ||
+      method == WarpMethod::scodef) {
+    return StatusCode::invalid_argument;
+  }
+  for (const Frame& f : start) {
+    if (!is_orthonormal(f)) return StatusCode::invalid_argument;
+  }
+  const double same = kCoincidentGrabFraction * radius;
+  const std::size_t order = group.order();
+  std::size_t points = 0;
+  for (std::size_t h = 0; h < start.size(); ++h) {
+    // The stabiliser of the grab point, and the snap onto its fixed set (§11.4).
+    const glm::dvec3 o = start[h].origin;
+    glm::dvec3 sum(0.0);
+    std::size_t stab = 0;
+    for (std::size_t g = 0; g < order; ++g) {
+      const glm::dvec3 image = g == 0 ? o : group.element(g) * o;
+      if (glm::length(image - o) <= same) {
+        sum += image;
+        ++stab;
+      }
+    }
+    start_[h] = start[h];
+    if (stab > 1) start_[h].origin = sum / static_cast<double>(stab);
+    shift_[h] = start_[h].origin - o;
+    stab_[h] = stab;
+    const std::size_t first_of_hand = points;
+    for (std::size_t g = 0; g < order; ++g) {
+      const glm::dvec3 image =
+          g == 0 ? start_[h].origin : group.element(g) * start_[h].origin;
+      std::size_t found = points;
+      for (std::size_t k = 0; k < points; ++k) {
+        if (glm::length(point_[k] - image) <= same) {
+          found = k;
+          break;
+        }
+      }
+      if (found < first_of_hand) return StatusCode::invalid_argument;  // the other hand's
+      if (found == points) point_[points++] = image;
+      image_[h * SymmetryGroup::kMaxOrder + g] = static_cast<std::uint8_t>(found);
+    }
+  }
+  for (std::size_t k = 0; k < points; ++k) {
+    neighbours_[k] = 0;
+    for (std::size_t j = 0; j < points; ++j) {
+      if (j != k && glm::length(point_[j] - point_[k]) < radius) neighbours_[k] |= 1ull << j;
+    }
+  }
+  group_ = group;
+  points_ = points;
+  radius_ = radius;
+  method_ = method;
+  hands_ = start.size();
+  for (std::size_t h = 0; h < hands_; ++h) {
+    end_[h] = start_[h];
+    screws_[h] = compute_screw(start_[h], end_[h]);
+  }
+  return ok_status();
+}
+
+Status SymmetricWarp::update(std::span<const Frame> end) {
+  if (!built()) return StatusCode::failed_precondition;
+  if (end.size() != hands_) return StatusCode::invalid_argument;
+  for (const Frame& f : end) {
+    if (!is_orthonormal(f)) return StatusCode::invalid_argument;
+  }
+  for (std::size_t h = 0; h < hands_; ++h) {
+    std::optional<glm::dvec3> previous;
+    if (!screws_[h].pure_translation) previous = screws_[h].axis;
+    end_[h] = end[h];
+    if (stab_[h] > 1) end_[h].origin += shift_[h];
+    screws_[h] = compute_screw(start_[h], end_[h], previous);
+  }
+  return ok_status();
+}
+
+double SymmetricWarp::weight(std::size_t k, glm::dvec3 p) const {
+  const glm::dvec3 grab = point_[k];
+  std::uint64_t others = neighbours_[k];
+  if (others == 0) return decay(glm::length(p - grab), radius_);
+  double w = 1.0;
+  while (others != 0 && w > 0.0) {
+    const auto j = static_cast<std::size_t>(std::countr_zero(others));
+    others &= others - 1;
+    w = std::min(w, decay(glm::length(squash_point(grab, point_[j], radius_, p) - grab), radius_));
+  }
+  return w;
+}
+
+glm::dvec3 SymmetricWarp::hand_move(std::size_t hand, double t, glm::dvec3 p) const {
+  return method_ == WarpMethod::rottran ? rottran_at(screws_[hand], start_[hand], end_[hand], t, p)
+                                        : screw_at(screws_[hand], t, p);
+}
+
+glm::dvec3 SymmetricWarp::warp_point(glm::dvec3 p) const {
+  if (!built()) return p;
+  std::array<double, kMaxGrabPoints> w;
+  for (std::size_t k = 0; k < points_; ++k) w[k] = weight(k, p);
+  glm::dvec3 moved = p;
+  const std::size_t order = group_.order();
+  for (std::size_t h = 0; h < hands_; ++h) {
+    const double share = 1.0 / static_cast<double>(stab_[h]);
+    for (std::size_t g = 0; g < order; ++g) {
+      const double t = w[image_[h * SymmetryGroup::kMaxOrder + g]];
+      if (t <= 0.0) continue;
+      glm::dvec3 d;
+      if (g == 0) {
+        // The identity: exactly WarpPlan::warp_point's operations.
+        d = hand_move(h, t, p) - p;
+      } else {
+        const glm::dmat3& m = group_.element(g);
+        const glm::dvec3 q = glm::transpose(m) * p;
+        d = m * (hand_move(h, t, q) - q);
+      }
+      if (stab_[h] > 1) d *= share;
+      moved += d;
+    }
+  }
+  return moved;
+}
+
+}  // namespace twister::math

@@ -1,0 +1,324 @@
+// Symmetric warp (docs/math.md §11): equivariance F(gP) = gF(P), exact grab points and
+// images, the several-grab-point squash, and the trivial group bit-identical to
+// WarpPlan::warp_point. Label symmetry.
+#include "twister/math/symmetry.hpp"
+
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <numbers>
+#include <vector>
+
+#include "allocation_counter.hpp"
+#include "math_test_support.hpp"
+#include "twister/math/decay.hpp"
+#include "twister/math/warp_plan.hpp"
+
+namespace twister::math {
+namespace {
+
+using test::distance;
+using test::gen_end_frame;
+using test::gen_frame;
+using test::gen_point;
+using test::gen_real;
+
+// Worst errors seen, relative to the scene size, printed at the end.
+double g_worst_equivariance = 0.0;
+double g_worst_grab = 0.0;
+
+struct GroupSpec {
+  int kind = 0;  // 0 mirrors, 1 rotation, 2 rotation with mirror
+  int planes = 1;
+  int axis = 2;
+  int n = 2;
+};
+
+SymmetryGroup make_group(const GroupSpec& s) {
+  SymmetryGroup g;
+  const Status st = s.kind == 0 ? g.set_mirrors(static_cast<std::uint8_t>(s.planes))
+                                : g.set_rotation(s.axis, s.n, s.kind == 2);
+  RC_ASSERT(st.ok());
+  return g;
+}
+
+rc::Gen<GroupSpec> gen_group_of_kind(int kind) {
+  return rc::gen::apply(
+      [kind](int planes, int axis, int n) { return GroupSpec{kind, planes, axis, n}; },
+      rc::gen::inRange(1, 8), rc::gen::inRange(0, 3), rc::gen::inRange(2, 13));
+}
+
+// Moves a grab point onto (placement 2) or near (placement 1, at a distance in
+// [1e-4, 0.3] radius) the fixed set of one of the group's non-identity elements: a
+// mirror plane, several planes, the rotation axis.
+glm::dvec3 place(const GroupSpec& s, glm::dvec3 o, int placement, double offset, int which) {
+  if (placement == 0) return o;
+  auto set = [&](int c, double v) { o[c] = placement == 2 ? 0.0 : (o[c] >= 0 ? v : -v); };
+  if (s.kind == 0) {
+    for (int c = 0; c < 3; ++c) {
+      if ((s.planes & (1 << c)) != 0 && ((which >> c) & 1) == 0) set(c, offset);
+    }
+  } else if (s.kind == 1 || which % 2 == 0) {  // the axis
+    set((s.axis + 1) % 3, offset);
+    set((s.axis + 2) % 3, offset);
+  } else {  // the mirror plane of a and b (c = 0), a plane containing the axis
+    set((s.axis + 2) % 3, offset);
+  }
+  return o;
+}
+
+struct Stroke {
+  std::vector<Frame> start, end;
+  double radius = 1.0;
+  WarpMethod method = WarpMethod::twister;
+  double scale = 1.0;
+};
+
+rc::Gen<Stroke> gen_stroke(const GroupSpec& spec) {
+  return rc::gen::exec([spec] {
+    Stroke s;
+    const int hands = *rc::gen::inRange(1, 3);
+    s.radius = *gen_real(0.2, 1.5);
+    s.method = *rc::gen::element(WarpMethod::twister, WarpMethod::rottran);
+    for (int h = 0; h < hands; ++h) {
+      Frame f = *gen_frame(1.0);
+      const int placement = *rc::gen::inRange(0, 3);
+      const double offset = s.radius * *rc::gen::element(1e-4, 1e-3, 0.01, 0.1, 0.3);
+      f.origin = place(spec, f.origin, placement, offset, *rc::gen::inRange(0, 8));
+      s.start.push_back(f);
+      s.end.push_back(*gen_end_frame(f, 0.5));
+    }
+    s.scale = s.radius;
+    for (std::size_t h = 0; h < s.start.size(); ++h) {
+      s.scale = std::max({s.scale, glm::length(s.start[h].origin), glm::length(s.end[h].origin)});
+    }
+    return s;
+  });
+}
+
+// Where hand h's grab point image g must go (§11.4), computed from the group alone:
+// g.(O + Pi(O' - O)) with O snapped onto the stabiliser's fixed set.
+glm::dvec3 expected_target(const SymmetryGroup& group, const Stroke& s, std::size_t h,
+                           std::size_t g) {
+  const glm::dvec3 o = s.start[h].origin;
+  const glm::dvec3 move = s.end[h].origin - o;
+  glm::dvec3 snapped(0.0), projected(0.0);
+  int stab = 0;
+  for (std::size_t e = 0; e < group.order(); ++e) {
+    if (distance(group.element(e) * o, o) <= kCoincidentGrabFraction * s.radius) {
+      snapped += group.element(e) * o;
+      projected += group.element(e) * move;
+      ++stab;
+    }
+  }
+  return group.element(g) * ((snapped + projected) / static_cast<double>(stab));
+}
+
+void check_stroke(const SymmetryGroup& group, const Stroke& s) {
+  SymmetricWarp warp;
+  const Status built = warp.build(group, s.start, s.radius, s.method);
+  if (!built.ok()) {
+    // Only two hands whose images coincide are refused.
+    RC_ASSERT(built.code() == StatusCode::invalid_argument);
+    RC_ASSERT(s.start.size() == 2u);
+    bool coincide = false;
+    for (std::size_t g = 0; g < group.order(); ++g) {
+      coincide |= distance(group.element(g) * s.start[0].origin, s.start[1].origin) <=
+                  2e-9 * s.radius;
+    }
+    RC_ASSERT(coincide);
+    return;
+  }
+  RC_ASSERT(warp.update(s.end).ok());
+  // Every grab point and image at its target.
+  for (std::size_t h = 0; h < s.start.size(); ++h) {
+    for (std::size_t g = 0; g < group.order(); ++g) {
+      const glm::dvec3 p = group.element(g) * warp.start_frame(h).origin;
+      const double err = distance(warp.warp_point(p), expected_target(group, s, h, g)) / s.scale;
+      g_worst_grab = std::max(g_worst_grab, err);
+      RC_ASSERT(err <= 1e-6);
+    }
+  }
+  // Equivariance at random points, points near the grab points and on the fixed sets.
+  std::vector<glm::dvec3> probes;
+  for (int i = 0; i < 6; ++i) probes.push_back(*gen_point(2.0));
+  for (std::size_t k = 0; k < warp.grab_point_count(); ++k) {
+    probes.push_back(warp.grab_point(k) + *gen_point(0.3 * s.radius));
+  }
+  for (const glm::dvec3& p : probes) {
+    const glm::dvec3 fp = warp.warp_point(p);
+    for (std::size_t g = 1; g < group.order(); ++g) {
+      const glm::dmat3& m = group.element(g);
+      const double err = distance(warp.warp_point(m * p), m * fp) / s.scale;
+      g_worst_equivariance = std::max(g_worst_equivariance, err);
+      RC_ASSERT(err <= 1e-6);
+    }
+  }
+}
+
+TEST(SymmetryGroup, ElementsFormTheGroup) {
+  SymmetryGroup g;
+  EXPECT_TRUE(g.trivial());
+  EXPECT_EQ(g.set_mirrors(0).code(), StatusCode::invalid_argument);
+  EXPECT_EQ(g.set_mirrors(8).code(), StatusCode::invalid_argument);
+  EXPECT_EQ(g.set_rotation(3, 4, false).code(), StatusCode::invalid_argument);
+  EXPECT_EQ(g.set_rotation(2, 1, false).code(), StatusCode::invalid_argument);
+  EXPECT_EQ(g.set_rotation(2, 13, true).code(), StatusCode::invalid_argument);
+  EXPECT_TRUE(g.trivial());
+  struct Case {
+    int kind, planes, axis, n;
+    std::size_t order;
+  };
+  for (const Case c : {Case{0, 1, 0, 0, 2}, Case{0, 3, 0, 0, 4}, Case{0, 7, 0, 0, 8},
+                       Case{1, 0, 2, 6, 6}, Case{2, 0, 0, 12, 24}, Case{2, 0, 1, 2, 4}}) {
+    ASSERT_TRUE((c.kind == 0 ? g.set_mirrors(static_cast<std::uint8_t>(c.planes))
+                             : g.set_rotation(c.axis, c.n, c.kind == 2))
+                    .ok());
+    ASSERT_EQ(g.order(), c.order);
+    EXPECT_EQ(g.element(0), glm::dmat3(1.0));
+    // Orthogonal, and closed under products (each product is an element).
+    for (std::size_t i = 0; i < g.order(); ++i) {
+      const glm::dmat3& a = g.element(i);
+      const glm::dmat3 ata = glm::transpose(a) * a;
+      for (int r = 0; r < 3; ++r) {
+        for (int col = 0; col < 3; ++col) EXPECT_NEAR(ata[col][r], r == col ? 1.0 : 0.0, 1e-15);
+      }
+      for (std::size_t j = 0; j < g.order(); ++j) {
+        const glm::dmat3 ab = a * g.element(j);
+        double best = 1e9;
+        for (std::size_t k = 0; k < g.order(); ++k) {
+          double d = 0.0;
+          for (int col = 0; col < 3; ++col) d += glm::length(ab[col] - g.element(k)[col]);
+          best = std::min(best, d);
+        }
+        EXPECT_LE(best, 1e-14);
+      }
+    }
+  }
+}
+
+RC_GTEST_PROP(SymmetricWarp, MirrorsAreSymmetricAndExact, ()) {
+  const GroupSpec spec = *gen_group_of_kind(0);
+  check_stroke(make_group(spec), *gen_stroke(spec));
+}
+
+RC_GTEST_PROP(SymmetricWarp, RotationsAreSymmetricAndExact, ()) {
+  const GroupSpec spec = *gen_group_of_kind(1);
+  check_stroke(make_group(spec), *gen_stroke(spec));
+}
+
+RC_GTEST_PROP(SymmetricWarp, RotationsWithMirrorAreSymmetricAndExact, ()) {
+  const GroupSpec spec = *gen_group_of_kind(2);
+  check_stroke(make_group(spec), *gen_stroke(spec));
+}
+
+// The trivial group: every bit as WarpPlan::warp_point (both methods, 1 and 2 hands,
+// apart, overlapping and squashed balls).
+RC_GTEST_PROP(SymmetricWarp, TrivialGroupIsBitIdenticalToWarpPlan, ()) {
+  const Stroke s = *gen_stroke(GroupSpec{});
+  WarpPlanWithStorage<4> plan;
+  const ConstVertexColumns none{};
+  const Status plan_built = plan.build(none, s.start, s.radius, s.method);
+  SymmetricWarp warp;
+  const Status built = warp.build(SymmetryGroup{}, s.start, s.radius, s.method);
+  RC_ASSERT(plan_built.code() == built.code());
+  if (!built.ok()) return;
+  RC_ASSERT(plan.update(s.end).ok());
+  RC_ASSERT(warp.update(s.end).ok());
+  for (int i = 0; i < 20; ++i) {
+    const glm::dvec3 p = i < 10 ? *gen_point(2.0)
+                                : s.start[static_cast<std::size_t>(i) % s.start.size()].origin +
+                                      *gen_point(s.radius);
+    const glm::dvec3 a = plan.warp_point(p);
+    const glm::dvec3 b = warp.warp_point(p);
+    RC_ASSERT(std::memcmp(&a, &b, sizeof a) == 0);
+  }
+}
+
+// §11.3: at every grab point exactly one weight is 1 and the others 0; with one other
+// grab point in the ball the weight is the paper's squash (§5).
+TEST(SymmetricWarp, WeightsInterpolateWithSeveralGrabPointsInABall) {
+  SymmetryGroup g;
+  ASSERT_TRUE(g.set_rotation(2, 6, true).ok());
+  // Hand 1 near the axis (its 12 images within one ball), hand 2 near hand 1.
+  const Frame a = identity_frame({0.1, 0.03, 0.2});
+  const Frame b = identity_frame({0.25, -0.05, 0.3});
+  const std::array<Frame, 2> start{a, b};
+  SymmetricWarp warp;
+  ASSERT_TRUE(warp.build(g, start, 0.5, WarpMethod::twister).ok());
+  EXPECT_EQ(warp.grab_point_count(), 24u);
+  for (std::size_t k = 0; k < warp.grab_point_count(); ++k) {
+    for (std::size_t j = 0; j < warp.grab_point_count(); ++j) {
+      const double w = warp.weight(k, warp.grab_point(j));
+      if (j == k) {
+        EXPECT_EQ(w, 1.0);
+      } else {
+        EXPECT_LE(w, 1e-20) << k << " at " << j;
+      }
+    }
+  }
+  // No bump: on the segment between two grab points two weights sum to at most 1.
+  for (std::size_t j = 1; j < warp.grab_point_count(); ++j) {
+    for (int i = 0; i <= 20; ++i) {
+      const glm::dvec3 p = glm::mix(warp.grab_point(0), warp.grab_point(j), i / 20.0);
+      EXPECT_LE(warp.weight(0, p) + warp.weight(j, p), 1.0 + 1e-12);
+    }
+  }
+  // Two hands, no symmetry: the weight is hand_weight (the paper's squash).
+  SymmetricWarp plain;
+  ASSERT_TRUE(plain.build(SymmetryGroup{}, start, 0.5, WarpMethod::twister).ok());
+  const glm::dvec3 p(0.2, 0.0, 0.25);
+  EXPECT_EQ(plain.weight(0, p), hand_weight(a.origin, &b.origin, 0.5, p));
+  EXPECT_EQ(plain.weight(1, p), hand_weight(b.origin, &a.origin, 0.5, p));
+}
+
+// §11.4: a grab point on a mirror plane moves by the projection of its translation,
+// and counts once; a hand on an image of the other is refused.
+TEST(SymmetricWarp, GrabPointOnAPlaneMovesByItsSymmetricPart) {
+  SymmetryGroup g;
+  ASSERT_TRUE(g.set_mirrors(kMirrorX).ok());
+  const Frame start = identity_frame({0.0, 0.2, 0.1});
+  const Frame end = test::rotated(start, {0, 0, 1}, 0.4, {0.3, 0.25, 0.1});
+  SymmetricWarp warp;
+  ASSERT_TRUE(warp.build(g, std::span(&start, 1), 0.5, WarpMethod::twister).ok());
+  ASSERT_TRUE(warp.update(std::span(&end, 1)).ok());
+  EXPECT_EQ(warp.grab_point_count(), 1u);
+  EXPECT_EQ(warp.stabiliser_size(0), 2u);
+  EXPECT_LE(distance(warp.warp_point(start.origin), {0.0, 0.25, 0.1}), 1e-15);
+  // The mirror image of hand 2 is hand 1: refused.
+  const std::array<Frame, 2> mirrored{identity_frame({0.3, 0.1, 0.0}),
+                                      identity_frame({-0.3, 0.1, 0.0})};
+  EXPECT_EQ(warp.build(g, mirrored, 0.5, WarpMethod::twister).code(),
+            StatusCode::invalid_argument);
+  EXPECT_FALSE(warp.built());
+  EXPECT_EQ(warp.build(g, mirrored, 0.5, WarpMethod::scodef).code(),
+            StatusCode::invalid_argument);
+}
+
+TEST(SymmetricWarp, NoHeapAllocation) {
+  SymmetryGroup g;
+  ASSERT_TRUE(g.set_rotation(1, 12, true).ok());
+  const std::array<Frame, 2> start{identity_frame({0.1, 0.0, 0.2}),
+                                   identity_frame({0.3, 0.1, -0.2})};
+  const std::array<Frame, 2> end{test::rotated(start[0], {0, 1, 0}, 1.0, {0.2, 0.1, 0.2}),
+                                 test::rotated(start[1], {1, 0, 0}, 0.5, {0.3, 0.2, -0.2})};
+  static SymmetricWarp warp;
+  glm::dvec3 out(0.0);
+  EXPECT_NO_ALLOCATIONS({
+    (void)warp.build(g, start, 0.4, WarpMethod::twister);
+    (void)warp.update(end);
+    out = warp.warp_point({0.2, 0.1, 0.1});
+  });
+  EXPECT_TRUE(std::isfinite(out.x));
+}
+
+TEST(SymmetricWarp, ReportWorstErrors) {
+  std::printf("symmetry: worst |F(gp) - gF(p)| %.3g, worst grab point error %.3g (x scene size)\n",
+              g_worst_equivariance, g_worst_grab);
+}
+
+}  // namespace
+}  // namespace twister::math
