@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <glm/geometric.hpp>
 #include <optional>
@@ -44,12 +45,57 @@ std::string check_axes(glm::dvec3 u, glm::dvec3 v, const char* which) {
   return msg.str();
 }
 
+constexpr const char* kSymmetryForms =
+    "none | x | y | z | xy | xz | yz | xyz | rotation AXIS N [mirror]";
+
+// The words after `symmetry` (docs/math.md §10): a set of mirror planes, or an n-fold
+// rotation about a coordinate axis, optionally with mirrors through the axis.
+std::optional<std::string> parse_symmetry(const std::vector<std::string>& tok,
+                                          math::SymmetryGroup& group) {
+  if (tok.size() == 2 && tok[1] == "none") {
+    group.set_none();
+    return std::nullopt;
+  }
+  if (tok.size() == 2 && tok[1] != "rotation") {
+    std::uint8_t planes = 0;
+    for (const char ch : tok[1]) {
+      const std::uint8_t bit = ch == 'x' ? math::kMirrorX : ch == 'y' ? math::kMirrorY
+                               : ch == 'z' ? math::kMirrorZ : 0;
+      if (bit == 0 || (planes & bit) != 0) {
+        return "unknown symmetry '" + tok[1] + "' (" + kSymmetryForms + ")";
+      }
+      planes = static_cast<std::uint8_t>(planes | bit);
+    }
+    if (!group.set_mirrors(planes).ok()) return std::string("bad mirror planes");
+    return std::nullopt;
+  }
+  if ((tok.size() == 4 || tok.size() == 5) && tok[1] == "rotation") {
+    const int axis = tok[2] == "x" ? 0 : tok[2] == "y" ? 1 : tok[2] == "z" ? 2 : -1;
+    if (axis < 0) return "rotation axis must be x, y or z, got '" + tok[2] + "'";
+    char* end = nullptr;
+    const long n = std::strtol(tok[3].c_str(), &end, 10);
+    if (end == tok[3].c_str() || *end != '\0' || n < math::kMinRotationOrder ||
+        n > math::kMaxRotationOrder) {
+      return "rotation order must be an integer from 2 to 12, got '" + tok[3] + "'";
+    }
+    if (tok.size() == 5 && tok[4] != "mirror") {
+      return "after the rotation order only 'mirror' may follow, got '" + tok[4] + "'";
+    }
+    if (!group.set_rotation(axis, static_cast<int>(n), tok.size() == 5).ok()) {
+      return std::string("bad rotation");
+    }
+    return std::nullopt;
+  }
+  return std::string("'symmetry' needs ") + kSymmetryForms;
+}
+
 }  // namespace
 
 std::variant<WarpCase, WarpCaseError> parse_warp_case(std::string_view text) {
   WarpCase c;
   int radius_line = 0;
   int method_line = 0;
+  int symmetry_line = 0;
   int line_no = 0;
   std::size_t pos = 0;
   while (pos <= text.size()) {
@@ -89,6 +135,10 @@ std::variant<WarpCase, WarpCaseError> parse_warp_case(std::string_view text) {
       if (!m) return fail("unknown method '" + tok[1] + "' (twister | rottran | scodef)");
       c.method = *m;
       method_line = line_no;
+    } else if (key == "symmetry") {
+      if (symmetry_line != 0) return fail("symmetry given twice");
+      if (auto m = parse_symmetry(tok, c.symmetry)) return fail(*m);
+      symmetry_line = line_no;
     } else if (key == "hand") {
       if (c.start.size() == 2) return fail("a third hand (at most two)");
       if (auto e = numbers(18, v)) return *e;
@@ -103,7 +153,7 @@ std::variant<WarpCase, WarpCaseError> parse_warp_case(std::string_view text) {
       if (auto e = numbers(3, v)) return *e;
       c.points.emplace_back(v[0], v[1], v[2]);
     } else {
-      return fail("unknown keyword '" + key + "' (radius | method | hand | point)");
+      return fail("unknown keyword '" + key + "' (radius | method | symmetry | hand | point)");
     }
   }
   if (radius_line == 0) return WarpCaseError{line_no, "end of input: no radius given"};
@@ -112,6 +162,19 @@ std::variant<WarpCase, WarpCaseError> parse_warp_case(std::string_view text) {
                                  math::kCoincidentGrabFraction * c.radius) {
     return WarpCaseError{c.hand_lines[1],
                          "both hands grab the same point: the squash is undefined"};
+  }
+  if (!c.symmetry.trivial() && c.method == math::WarpMethod::scodef) {
+    return WarpCaseError{symmetry_line, "scodef is not available under a symmetry"};
+  }
+  if (c.start.size() == 2) {
+    for (std::size_t g = 1; g < c.symmetry.order(); ++g) {
+      if (glm::length(c.start[1].origin - c.symmetry.element(g) * c.start[0].origin) <=
+          math::kCoincidentGrabFraction * c.radius) {
+        return WarpCaseError{c.hand_lines[1],
+                             "the second hand grabs an image of the first hand's grab point "
+                             "under the symmetry: the squash is undefined"};
+      }
+    }
   }
   return c;
 }

@@ -12,6 +12,7 @@
 
 #include "cli_exit_code.hpp"
 #include "cli_log.hpp"
+#include "twister/math/symmetry.hpp"
 #include "twister/math/warp_plan.hpp"
 #include "warp_case.hpp"
 
@@ -21,6 +22,25 @@ namespace {
 
 [[nodiscard]] int bad_input(const std::string& source, int line, const std::string& message) {
   return fail(kExitBadInput, source + ":" + std::to_string(line) + ": " + message);
+}
+
+// Under a symmetry (docs/math.md §11) the points are warped in double by
+// math::SymmetricWarp (there is no float kernel per image yet).
+int run_symmetric_warp(const std::string& source, const WarpCase& c) {
+  static math::SymmetricWarp warp;  // about 5 KiB: not on the stack
+  if (const Status s = warp.build(c.symmetry, c.start, c.radius, c.method); !s.ok()) {
+    return bad_input(source, c.hand_lines.back(),
+                     std::string("cannot build the symmetric warp: ") + s.name());
+  }
+  if (const Status s = warp.update(c.end); !s.ok()) {
+    return bad_input(source, c.hand_lines.back(),
+                     std::string("cannot update the warp: ") + s.name());
+  }
+  for (const glm::dvec3& p : c.points) {
+    const glm::dvec3 q = warp.warp_point(p);
+    std::printf("%.9g %.9g %.9g\n", q.x, q.y, q.z);
+  }
+  return kExitOk;
 }
 
 int run_warp(const std::string& path) {
@@ -40,6 +60,7 @@ int run_warp(const std::string& path) {
     return bad_input(source, err->line, err->message);
   }
   const WarpCase& c = std::get<WarpCase>(parsed);
+  if (!c.symmetry.trivial()) return run_symmetric_warp(source, c);
 
   // The station's path: float SoA columns, a plan built once, update, apply.
   const std::size_t n = c.points.size();

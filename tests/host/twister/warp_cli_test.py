@@ -147,7 +147,90 @@ BAD = [
     ("unknown method", "radius 1\nmethod bend\n%s\n" % HAND, 2),
     ("scodef singular", "radius 1\nmethod scodef\nhand 0 0 0 1 0 0 0 1 0 0 0 0 1 0 0 0 1 0\n"
      "hand 0.2 0 0 -1 0 0 0 -1 0 0.2 0 0 -1 0 0 0 -1 0\npoint 0 0 0\n", 4),
+    ("unknown symmetry", "radius 1\nsymmetry xq\n%s\n" % HAND, 2),
+    ("symmetry twice", "radius 1\nsymmetry x\nsymmetry y\n%s\n" % HAND, 3),
+    ("rotation order", "radius 1\nsymmetry rotation z 13\n%s\n" % HAND, 2),
+    ("rotation axis", "radius 1\nsymmetry rotation w 3\n%s\n" % HAND, 2),
+    ("rotation extra word", "radius 1\nsymmetry rotation z 3 mirrors\n%s\n" % HAND, 2),
+    ("scodef under symmetry", "radius 1\nmethod scodef\nsymmetry x\n%s\n" % HAND, 3),
+    ("hand on an image", "radius 1\nsymmetry x\n%s\nhand -0.5 0 0 1 0 0 0 1 0  0.6 0 0 1 0 0 0 1 0\n"
+     % HAND2, 4),
 ]
+
+
+SYMMETRY_TOLERANCE = 1e-6
+
+
+def random_symmetry(rng):
+    kind = rng.choice(["mirrors", "rotation", "rotation_mirror"])
+    if kind == "mirrors":
+        return [rng.choice(["x", "y", "z", "xy", "xz", "yz", "xyz"])]
+    words = ["rotation", rng.choice("xyz"), str(rng.randint(2, 12))]
+    return words + (["mirror"] if kind == "rotation_mirror" else [])
+
+
+def place_on_symmetry(rng, words, o, r):
+    """o moved onto (or near) a plane or the axis of the symmetry, or left alone."""
+    placement = rng.choice(["anywhere", "near", "on"])
+    if placement == "anywhere":
+        return o
+    if words[0] == "rotation":
+        a = "xyz".index(words[1])
+        coords = [(a + 1) % 3, (a + 2) % 3] if rng.random() < 0.5 or len(words) == 3 \
+            else [(a + 2) % 3]  # the axis, or the mirror plane of the axis and the next one
+    else:
+        coords = ["xyz".index(ch) for ch in words[0] if rng.random() < 0.6] or ["xyz".index(words[0][0])]
+    o = list(o)
+    for c in coords:
+        o[c] = 0.0 if placement == "on" else math.copysign(r * 10 ** rng.uniform(-4, -0.5), o[c])
+    return tuple(o)
+
+
+def check_symmetric(twister, cases, seed):
+    """`symmetry` cases against the reference's symmetric warp (docs/math.md §11)."""
+    rng = random.Random(seed)
+    worst = 0.0
+    done = 0
+    while done < cases:
+        words = random_symmetry(rng)
+        group = ref.symmetry_group(words)
+        r = 10 ** rng.uniform(-1, 0.5)
+        hands = []
+        for _ in range(rng.randint(1, 2)):
+            o = place_on_symmetry(rng, words, tuple(rng.uniform(-1.5 * r, 1.5 * r) for _ in range(3)), r)
+            hands.append(make_hand(rng, o, r))
+        method = rng.choice(["twister", "rottran"])
+        points = [ref.mat_vec(g, h.o) for h in hands for g in group]
+        for _ in range(30):
+            if rng.random() < 0.7:
+                c = rng.choice(hands).o
+                points.append(ref.add(c, ref.mul(r * rng.random() ** (1 / 3), random_unit(rng))))
+            else:
+                points.append(tuple(rng.uniform(-3 * r, 3 * r) for _ in range(3)))
+        text = case_text(r, method, hands, points).replace(
+            "method", "symmetry %s\nmethod" % " ".join(words), 1)
+        res = run(twister, text)
+        if res.returncode != 0:
+            if len(hands) == 2 and "image of the first hand" in res.stderr:
+                continue  # images coincide: refused, as it should be
+            print("FAIL: exit %d on a valid symmetric case\n%s%s" % (res.returncode, text, res.stderr))
+            return False
+        got = [tuple(float(x) for x in line.split()) for line in res.stdout.splitlines()]
+        flips_options = [[False, True] if ref.near_half_turn(h) else [False] for h in hands]
+        scale = max([r] + [abs(x) for p in points for x in p] +
+                    [abs(x) for h in hands for x in h.o + h.o2])
+        err = min(max(ref.norm(ref.sub(g, e)) for g, e in zip(got, exp)) / scale
+                  for exp in (ref.symmetric_warp_points(group, hands, r, method, points, list(f))
+                              for f in itertools.product(*flips_options)))
+        worst = max(worst, err)
+        if len(got) != len(points) or err > SYMMETRY_TOLERANCE:
+            print("FAIL: symmetry %s, %s, %d hands: error %.3g of scene scale\n%s" %
+                  (" ".join(words), method, len(hands), err, text))
+            return False
+        done += 1
+    print("ok: %d random symmetric cases, worst error %.3g of scene scale (limit %g)" %
+          (cases, worst, SYMMETRY_TOLERANCE))
+    return True
 
 
 def check_bad(twister):
@@ -188,10 +271,12 @@ def main():
     parser.add_argument("twister")
     parser.add_argument("--cases", type=int, default=300)
     parser.add_argument("--seed", type=int, default=4)
+    parser.add_argument("--symmetric-cases", type=int, default=150)
     args = parser.parse_args()
     ok = check_bad(args.twister)
     ok = check_file_argument(args.twister) and ok
     ok = check_random(args.twister, args.cases, args.seed) and ok
+    ok = check_symmetric(args.twister, args.symmetric_cases, args.seed) and ok
     sys.exit(0 if ok else 1)
 
 

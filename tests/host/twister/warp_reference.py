@@ -9,6 +9,7 @@ directly except for tiny angles. Used by warp_cli_test.py to check `twister warp
 scodef gets the same squash as the other methods: the basis of a constraint of
 hand h at P is phi(sigma_h(P) - C_j) with sigma_h hand h's squash map (§5).
 """
+import functools
 import math
 
 EPS_PURE = 1e-12     # below this angle: pure translation
@@ -174,3 +175,94 @@ def warp_points(hands, r, method, points, flips=None):
 
 def near_half_turn(h):
     return math.pi - screw(h)[2] < HALF_TURN
+
+
+# --- Symmetry (docs/math.md §11) -------------------------------------------------------
+# Group elements as 3x3 row lists; built here from reflections and axis rotations
+# (Householder reflections for the mirrors through an axis), independently of the C++.
+
+def mat_vec(m, v):
+    return tuple(dot(row, v) for row in m)
+
+
+def transpose(m):
+    return [[m[j][i] for j in range(3)] for i in range(3)]
+
+
+def rotation_matrix(k, angle):
+    cols = [rotate(k, angle, e) for e in ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))]
+    return [[cols[j][i] for j in range(3)] for i in range(3)]
+
+
+def householder(n):
+    return [[(1.0 if i == j else 0.0) - 2 * n[i] * n[j] for j in range(3)] for i in range(3)]
+
+
+def symmetry_group(words):
+    """The elements for a case file's `symmetry` words (identity first)."""
+    unit = [(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)]
+    ident = [[1.0 if i == j else 0.0 for j in range(3)] for i in range(3)]
+    if words == ["none"]:
+        return [ident]
+    if words[0] == "rotation":
+        a = "xyz".index(words[1])
+        n = int(words[2])
+        out = [rotation_matrix(unit[a], 2 * math.pi * j / n) for j in range(n)]
+        if len(words) == 4:
+            c = unit[(a + 2) % 3]
+            out += [householder(rotate(unit[a], math.pi * j / n, c)) for j in range(n)]
+        return out
+    out = [ident]
+    for ch in words[0]:
+        refl = householder(unit["xyz".index(ch)])
+        out = out + [[[sum(refl[i][m] * g[m][j] for m in range(3)) for j in range(3)]
+                      for i in range(3)] for g in out]
+    return out
+
+
+def symmetric_warp_points(group, hands, r, method, points, flips=None):
+    """F(P) = P + sum_h (1/|G_h|) sum_g g (X_h(w_k(P), g^T P) - g^T P) with the
+    min-of-squashes weights of §11.3 and the snap of §11.4."""
+    flips = flips or [False] * len(hands)
+    same = 1e-9 * r
+    snapped, stab = [], []
+    for h in hands:
+        fixed = [mat_vec(g, h.o) for g in group if norm(sub(mat_vec(g, h.o), h.o)) <= same]
+        o = mul(1.0 / len(fixed), functools.reduce(add, fixed))
+        shift = sub(o, h.o)
+        snapped.append(Hand(o, h.u, h.v, add(h.o2, shift), h.u2, h.v2))
+        stab.append(len(fixed))
+    grab, image = [], []  # image[h][g] = index of g.O_h in grab
+    for h in snapped:
+        row = []
+        for g in group:
+            p = mat_vec(g, h.o)
+            k = next((i for i, q in enumerate(grab) if norm(sub(q, p)) <= same), None)
+            if k is None:
+                grab.append(p)
+                k = len(grab) - 1
+            row.append(k)
+        image.append(row)
+
+    def w(k, p):
+        near = [q for j, q in enumerate(grab) if j != k and norm(sub(q, grab[k])) < r]
+        if not near:
+            return decay(norm(sub(p, grab[k])), r)
+        return min(decay(norm(sub(squash(grab[k], q, r, p), grab[k])), r) for q in near)
+
+    screws = [screw(h, f) for h, f in zip(snapped, flips)]
+    out = []
+    for p in points:
+        weights = [w(k, p) for k in range(len(grab))]
+        q = p
+        for i, h in enumerate(snapped):
+            for gi, g in enumerate(group):
+                t = weights[image[i][gi]]
+                if t <= 0:
+                    continue
+                x = mat_vec(transpose(g), p)
+                moved = (rottran_at(screws[i], h, t, x) if method == "rottran"
+                         else screw_at(screws[i], t, x))
+                q = add(q, mul(1.0 / stab[i], mat_vec(g, sub(moved, x))))
+        out.append(q)
+    return out
