@@ -59,8 +59,10 @@ std::optional<std::string> parse_symmetry(const std::vector<std::string>& tok,
   if (tok.size() == 2 && tok[1] != "rotation") {
     std::uint8_t planes = 0;
     for (const char ch : tok[1]) {
-      const std::uint8_t bit = ch == 'x' ? math::kMirrorX : ch == 'y' ? math::kMirrorY
-                               : ch == 'z' ? math::kMirrorZ : 0;
+      const std::uint8_t bit = ch == 'x'   ? math::kMirrorX
+                               : ch == 'y' ? math::kMirrorY
+                               : ch == 'z' ? math::kMirrorZ
+                                           : 0;
       if (bit == 0 || (planes & bit) != 0) {
         return "unknown symmetry '" + tok[1] + "' (" + kSymmetryForms + ")";
       }

@@ -17,7 +17,7 @@ namespace twister::cli {
 struct WarpCase {
   double radius = 0.0;
   math::WarpMethod method = math::WarpMethod::twister;
-  math::SymmetryGroup symmetry;  // `symmetry` line (docs/math.md §10, §11); trivial if none
+  math::SymmetryGroup symmetry;    // `symmetry` line (docs/math.md §10, §11); trivial if none
   std::vector<math::Frame> start;  // one per `hand` line, W = U x V
   std::vector<math::Frame> end;
   std::vector<int> hand_lines;  // line number of each hand, for later errors

@@ -86,8 +86,8 @@ void SymmetricWarp::reset() {
   points_ = 0;
 }
 
-Status SymmetricWarp::build(const SymmetryGroup& group, std::span<const Frame> start,
-                            double radius, WarpMethod method) {
+Status SymmetricWarp::build(const SymmetryGroup& group, std::span<const Frame> start, double radius,
+                            WarpMethod method) {
   reset();
   if (start.empty() || start.size() > kMaxHands || !std::isfinite(radius) || !(radius > 0.0) ||
       method == WarpMethod::scodef) {
@@ -117,8 +117,7 @@ Status SymmetricWarp::build(const SymmetryGroup& group, std::span<const Frame> s
     stab_[h] = stab;
     const std::size_t first_of_hand = points;
     for (std::size_t g = 0; g < order; ++g) {
-      const glm::dvec3 image =
-          g == 0 ? start_[h].origin : group.element(g) * start_[h].origin;
+      const glm::dvec3 image = g == 0 ? start_[h].origin : group.element(g) * start_[h].origin;
       std::size_t found = points;
       for (std::size_t k = 0; k < points; ++k) {
         if (glm::length(point_[k] - image) <= same) {

@@ -47,7 +47,9 @@ SymmetryGroup make_group(const GroupSpec& s) {
 
 rc::Gen<GroupSpec> gen_group_of_kind(int kind) {
   return rc::gen::apply(
-      [kind](int planes, int axis, int n) { return GroupSpec{kind, planes, axis, n}; },
+      [kind](int planes, int axis, int n) {
+        return GroupSpec{kind, planes, axis, n};
+      },
       rc::gen::inRange(1, 8), rc::gen::inRange(0, 3), rc::gen::inRange(2, 13));
 }
 
@@ -126,8 +128,8 @@ void check_stroke(const SymmetryGroup& group, const Stroke& s) {
     RC_ASSERT(s.start.size() == 2u);
     bool coincide = false;
     for (std::size_t g = 0; g < group.order(); ++g) {
-      coincide |= distance(group.element(g) * s.start[0].origin, s.start[1].origin) <=
-                  2e-9 * s.radius;
+      coincide |=
+          distance(group.element(g) * s.start[0].origin, s.start[1].origin) <= 2e-9 * s.radius;
     }
     RC_ASSERT(coincide);
     return;
@@ -291,11 +293,9 @@ TEST(SymmetricWarp, GrabPointOnAPlaneMovesByItsSymmetricPart) {
   // The mirror image of hand 2 is hand 1: refused.
   const std::array<Frame, 2> mirrored{identity_frame({0.3, 0.1, 0.0}),
                                       identity_frame({-0.3, 0.1, 0.0})};
-  EXPECT_EQ(warp.build(g, mirrored, 0.5, WarpMethod::twister).code(),
-            StatusCode::invalid_argument);
+  EXPECT_EQ(warp.build(g, mirrored, 0.5, WarpMethod::twister).code(), StatusCode::invalid_argument);
   EXPECT_FALSE(warp.built());
-  EXPECT_EQ(warp.build(g, mirrored, 0.5, WarpMethod::scodef).code(),
-            StatusCode::invalid_argument);
+  EXPECT_EQ(warp.build(g, mirrored, 0.5, WarpMethod::scodef).code(), StatusCode::invalid_argument);
 }
 
 TEST(SymmetricWarp, NoHeapAllocation) {
