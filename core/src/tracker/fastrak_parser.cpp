@@ -66,8 +66,7 @@ FastrakParser::FastrakParser(const FastrakConfig& config) { configure(config).ig
 
 Status FastrakParser::configure(const FastrakConfig& config) {
   config_ = config;
-  pending_len_ = 0;
-  held_ = false;
+  scan_.forget_pending();
   const Status s = validate(config);
   config_ok_ = s.ok();
   for (std::size_t i = 0; i < record_len_.size(); ++i) {
@@ -79,23 +78,13 @@ Status FastrakParser::configure(const FastrakConfig& config) {
   return s;
 }
 
-void FastrakParser::reset() {
-  pending_len_ = 0;
-  dropped_run_ = 0;
-  held_ = false;
-}
+void FastrakParser::reset() { scan_.reset(); }
 
 FastrakParser::Candidate FastrakParser::examine(const std::byte* p, std::size_t avail,
                                                 FastrakEvent& out) const {
   if (ch(p[0]) == kReplyType) return examine_reply(p, avail, out);
   if (can_start(p[0])) return examine_record(p, avail, out);
   return {Verdict::drop, 1};
-}
-
-std::size_t FastrakParser::skip_to_start(const std::byte* p, std::size_t n) const {
-  std::size_t k = 1;
-  while (k < n && !can_start(p[k])) ++k;
-  return k;
 }
 
 bool FastrakParser::can_start(std::byte b) const {
@@ -197,23 +186,7 @@ bool FastrakParser::read_item(Item item, const std::byte* q, FastrakPose& pose,
   return false;
 }
 
-void FastrakParser::drop_bytes(std::size_t n) {
-  dropped_run_ += static_cast<std::uint32_t>(n);
-  counters_.dropped_bytes += n;
-}
-
-Result<FastrakEvent> FastrakParser::emit(const FastrakEvent& ev) {
-  if (dropped_run_ > 0) {
-    // Report the dropped run first; the accepted item follows on the next call.
-    held_ = true;
-    held_event_ = ev;
-    FastrakEvent r{};
-    r.kind = EventKind::resync;
-    r.dropped = dropped_run_;
-    dropped_run_ = 0;
-    ++counters_.resyncs;
-    return r;
-  }
+void FastrakParser::count(const FastrakEvent& ev) {
   switch (ev.kind) {
     case EventKind::pose:
       ++counters_.poses;
@@ -228,96 +201,24 @@ Result<FastrakEvent> FastrakParser::emit(const FastrakEvent& ev) {
     case EventKind::resync:
       break;
   }
-  return ev;
+}
+
+// A record or reply cut off by the end of the stream: its first byte is dropped.
+FastrakParser::Candidate FastrakParser::at_end(const Candidate&, const std::byte*,
+                                               std::size_t) const {
+  return {Verdict::drop, 1};
 }
 
 Result<FastrakEvent> FastrakParser::next(std::span<const std::byte>& input) {
-  if (held_) {
-    held_ = false;
-    return emit(held_event_);
-  }
   if (!config_ok_) {
-    drop_bytes(input.size());
+    scan_.drop(counters_, input.size());
     counters_.bytes += input.size();
     input = input.subspan(input.size());
     return StatusCode::unavailable;
   }
-  FastrakEvent ev;
-  for (;;) {
-    if (pending_len_ > 0) {
-      const Candidate c = examine(pending_.data(), pending_len_, ev);
-      if (c.verdict == Verdict::need_more) {
-        if (input.empty()) return StatusCode::unavailable;
-        const std::size_t n = std::min(c.length - pending_len_, input.size());
-        std::memcpy(pending_.data() + pending_len_, input.data(), n);
-        pending_len_ += n;
-        input = input.subspan(n);
-        counters_.bytes += n;
-        continue;
-      }
-      // A dropped candidate takes with it every following byte that cannot start
-      // anything (examine would drop them one by one), so one shift per resync.
-      const std::size_t used =
-          c.verdict == Verdict::drop ? skip_to_start(pending_.data(), pending_len_) : c.length;
-      std::memmove(pending_.data(), pending_.data() + used, pending_len_ - used);
-      pending_len_ -= used;
-      if (c.verdict == Verdict::drop) {
-        drop_bytes(used);
-        continue;
-      }
-      return emit(ev);
-    }
-    if (input.empty()) return StatusCode::unavailable;
-    // Fast skip of bytes that cannot start anything.
-    if (!can_start(input[0])) {
-      const std::size_t k = skip_to_start(input.data(), input.size());
-      drop_bytes(k);
-      counters_.bytes += k;
-      input = input.subspan(k);
-      continue;
-    }
-    const Candidate c = examine(input.data(), input.size(), ev);
-    if (c.verdict == Verdict::need_more) {
-      std::memcpy(pending_.data(), input.data(), input.size());
-      pending_len_ = input.size();
-      counters_.bytes += input.size();
-      input = input.subspan(input.size());
-      return StatusCode::unavailable;
-    }
-    const std::size_t used = c.verdict == Verdict::drop ? 1 : c.length;
-    counters_.bytes += used;
-    input = input.subspan(used);
-    if (c.verdict == Verdict::drop) {
-      drop_bytes(1);
-      continue;
-    }
-    return emit(ev);
-  }
+  return scan_.next(*this, counters_, input);
 }
 
-Result<FastrakEvent> FastrakParser::finish() {
-  if (held_) {
-    held_ = false;
-    return emit(held_event_);
-  }
-  // No more bytes will come: a candidate still waiting can never complete, but a
-  // shorter record may start inside it.
-  FastrakEvent ev;
-  while (pending_len_ > 0) {
-    const Candidate c = examine(pending_.data(), pending_len_, ev);
-    const std::size_t used = c.verdict == Verdict::accept ? c.length : 1;
-    std::memmove(pending_.data(), pending_.data() + used, pending_len_ - used);
-    pending_len_ -= used;
-    if (c.verdict == Verdict::accept) return emit(ev);
-    drop_bytes(1);
-  }
-  if (dropped_run_ == 0) return StatusCode::unavailable;
-  FastrakEvent r{};
-  r.kind = EventKind::resync;
-  r.dropped = dropped_run_;
-  dropped_run_ = 0;
-  ++counters_.resyncs;
-  return r;
-}
+Result<FastrakEvent> FastrakParser::finish() { return scan_.finish(*this, counters_); }
 
 }  // namespace twister::tracker

@@ -34,8 +34,7 @@ LibertyParser::LibertyParser(const LibertyConfig& config) { configure(config).ig
 
 Status LibertyParser::configure(const LibertyConfig& config) {
   config_ = config;
-  pending_len_ = 0;
-  held_ = false;
+  scan_.forget_pending();
   const Status s = validate(config);
   config_ok_ = s.ok();
   for (std::size_t i = 0; i < body_len_.size(); ++i) {
@@ -46,19 +45,9 @@ Status LibertyParser::configure(const LibertyConfig& config) {
   return s;
 }
 
-void LibertyParser::reset() {
-  pending_len_ = 0;
-  dropped_run_ = 0;
-  held_ = false;
-}
+void LibertyParser::reset() { scan_.reset(); }
 
 bool LibertyParser::can_start(std::byte b) const { return ch(b) == frame_tag(config_.model)[0]; }
-
-std::size_t LibertyParser::skip_to_start(const std::byte* p, std::size_t n) const {
-  std::size_t k = 1;
-  while (k < n && !can_start(p[k])) ++k;
-  return k;
-}
 
 LibertyParser::Candidate LibertyParser::examine(const std::byte* p, std::size_t avail,
                                                 FastrakEvent& out) const {
@@ -151,125 +140,35 @@ LibertyParser::Candidate LibertyParser::decode_body(const std::byte* frame, std:
   return {Verdict::accept, len};
 }
 
-void LibertyParser::drop_bytes(std::size_t n) {
-  dropped_run_ += static_cast<std::uint32_t>(n);
-  counters_.dropped_bytes += n;
-}
-
 void LibertyParser::reject(const Candidate& c) {
   if (!c.tagged) return;
   ++counters_.bad_frames;
   if (c.oversize) ++counters_.oversize;
 }
 
-Result<FastrakEvent> LibertyParser::emit(const FastrakEvent& ev) {
-  if (dropped_run_ > 0) {
-    held_ = true;
-    held_event_ = ev;
-    FastrakEvent r{};
-    r.kind = EventKind::resync;
-    r.dropped = dropped_run_;
-    dropped_run_ = 0;
-    ++counters_.resyncs;
-    return r;
-  }
+void LibertyParser::count(const FastrakEvent& ev) {
   if (ev.kind == EventKind::pose) ++counters_.poses;
   if (ev.kind == EventKind::error) ++counters_.errors;
-  return ev;
+}
+
+// A frame cut off by the end of the stream: its first byte is dropped, and it counts
+// as a bad frame when it began with the model's tag.
+LibertyParser::Candidate LibertyParser::at_end(const Candidate&, const std::byte* p,
+                                               std::size_t n) const {
+  const auto tag = frame_tag(config_.model);
+  return {Verdict::drop, 1, n >= 2 && ch(p[1]) == tag[1], false};
 }
 
 Result<FastrakEvent> LibertyParser::next(std::span<const std::byte>& input) {
-  if (held_) {
-    held_ = false;
-    return emit(held_event_);
-  }
   if (!config_ok_) {
-    drop_bytes(input.size());
+    scan_.drop(counters_, input.size());
     counters_.bytes += input.size();
     input = input.subspan(input.size());
     return StatusCode::unavailable;
   }
-  FastrakEvent ev;
-  for (;;) {
-    if (pending_len_ > 0) {
-      const Candidate c = examine(pending_.data(), pending_len_, ev);
-      if (c.verdict == Verdict::need_more) {
-        if (input.empty()) return StatusCode::unavailable;
-        const std::size_t n = std::min(c.length - pending_len_, input.size());
-        std::memcpy(pending_.data() + pending_len_, input.data(), n);
-        pending_len_ += n;
-        input = input.subspan(n);
-        counters_.bytes += n;
-        continue;
-      }
-      const std::size_t used =
-          c.verdict == Verdict::drop ? skip_to_start(pending_.data(), pending_len_) : c.length;
-      std::memmove(pending_.data(), pending_.data() + used, pending_len_ - used);
-      pending_len_ -= used;
-      if (c.verdict == Verdict::drop) {
-        reject(c);
-        drop_bytes(used);
-        continue;
-      }
-      return emit(ev);
-    }
-    if (input.empty()) return StatusCode::unavailable;
-    if (!can_start(input[0])) {
-      const std::size_t k = skip_to_start(input.data(), input.size());
-      drop_bytes(k);
-      counters_.bytes += k;
-      input = input.subspan(k);
-      continue;
-    }
-    const Candidate c = examine(input.data(), input.size(), ev);
-    if (c.verdict == Verdict::need_more) {
-      // Never more than a header, or a frame whose size passed the bound.
-      std::memcpy(pending_.data(), input.data(), input.size());
-      pending_len_ = input.size();
-      counters_.bytes += input.size();
-      input = input.subspan(input.size());
-      return StatusCode::unavailable;
-    }
-    const std::size_t used = c.verdict == Verdict::drop ? 1 : c.length;
-    counters_.bytes += used;
-    input = input.subspan(used);
-    if (c.verdict == Verdict::drop) {
-      reject(c);
-      drop_bytes(1);
-      continue;
-    }
-    return emit(ev);
-  }
+  return scan_.next(*this, counters_, input);
 }
 
-Result<FastrakEvent> LibertyParser::finish() {
-  if (held_) {
-    held_ = false;
-    return emit(held_event_);
-  }
-  // A candidate still waiting can never complete (a truncated frame, counted as bad when
-  // it began with the tag), but a complete frame may start inside it.
-  const auto tag = frame_tag(config_.model);
-  FastrakEvent ev;
-  while (pending_len_ > 0) {
-    Candidate c = examine(pending_.data(), pending_len_, ev);
-    if (c.verdict == Verdict::need_more) {
-      c = {Verdict::drop, 1, pending_len_ >= 2 && ch(pending_[1]) == tag[1], false};
-    }
-    const std::size_t used = c.verdict == Verdict::accept ? c.length : 1;
-    std::memmove(pending_.data(), pending_.data() + used, pending_len_ - used);
-    pending_len_ -= used;
-    if (c.verdict == Verdict::accept) return emit(ev);
-    reject(c);
-    drop_bytes(1);
-  }
-  if (dropped_run_ == 0) return StatusCode::unavailable;
-  FastrakEvent r{};
-  r.kind = EventKind::resync;
-  r.dropped = dropped_run_;
-  dropped_run_ = 0;
-  ++counters_.resyncs;
-  return r;
-}
+Result<FastrakEvent> LibertyParser::finish() { return scan_.finish(*this, counters_); }
 
 }  // namespace twister::tracker

@@ -11,6 +11,7 @@
 
 #include "twister/base/result.hpp"
 #include "twister/tracker/fastrak_event.hpp"
+#include "twister/tracker/frame_scanner.hpp"
 #include "twister/tracker/fastrak_wire.hpp"
 
 namespace twister::tracker {
@@ -60,7 +61,9 @@ class FastrakParser {
   const FastrakParserCounters& counters() const { return counters_; }
 
  private:
-  enum class Verdict : std::uint8_t { need_more, drop, accept };
+  template <std::size_t>
+  friend class FrameScanner;  // the byte loop, with this parser as its codec
+  using Verdict = FrameVerdict;
   struct Candidate {
     Verdict verdict = Verdict::drop;
     std::size_t length = 0;  // need_more: total bytes needed; accept: bytes consumed
@@ -69,8 +72,9 @@ class FastrakParser {
   Candidate examine(const std::byte* p, std::size_t avail, FastrakEvent& out) const;
   // True when `b` can begin a record (per format) or a reply.
   bool can_start(std::byte b) const;
-  // Bytes from p[0] up to the next one that could start a record or reply (at least 1).
-  std::size_t skip_to_start(const std::byte* p, std::size_t n) const;
+  Candidate at_end(const Candidate& waiting, const std::byte* p, std::size_t n) const;
+  void reject(const Candidate&) {}
+  void count(const FastrakEvent& ev);
   // A data record at p: header checks, then (binary16) unpacking, then decode_record.
   Candidate examine_record(const std::byte* p, std::size_t avail, FastrakEvent& out) const;
   // Items and plausibility of a framed record `rec` (logical bytes) of `station`
@@ -81,17 +85,11 @@ class FastrakParser {
   // false when its bytes are not a valid item.
   bool read_item(Item item, const std::byte* q, FastrakPose& pose, unsigned& dcm_rows) const;
   Candidate examine_reply(const std::byte* p, std::size_t avail, FastrakEvent& out) const;
-  Result<FastrakEvent> emit(const FastrakEvent& ev);
-  void drop_bytes(std::size_t n);
 
   FastrakConfig config_{};
   bool config_ok_ = false;
   std::array<std::size_t, kMaxStations> record_len_{};  // 0 = station disabled
-  std::array<std::byte, kMaxReplyBytes + kMaxRecordBytes> pending_{};
-  std::size_t pending_len_ = 0;
-  std::uint32_t dropped_run_ = 0;
-  bool held_ = false;  // an accepted event waits behind its resync report
-  FastrakEvent held_event_{};
+  FrameScanner<kMaxReplyBytes + kMaxRecordBytes> scan_;
   FastrakParserCounters counters_{};
 };
 

@@ -12,6 +12,7 @@
 
 #include "twister/base/result.hpp"
 #include "twister/tracker/fastrak_event.hpp"
+#include "twister/tracker/frame_scanner.hpp"
 #include "twister/tracker/liberty_wire.hpp"
 
 namespace twister::tracker {
@@ -61,7 +62,9 @@ class LibertyParser {
   const LibertyParserCounters& counters() const { return counters_; }
 
  private:
-  enum class Verdict : std::uint8_t { need_more, drop, accept };
+  template <std::size_t>
+  friend class FrameScanner;  // the byte loop, with this parser as its codec
+  using Verdict = FrameVerdict;
   struct Candidate {
     Verdict verdict = Verdict::drop;
     std::size_t length = 0;  // need_more: total bytes needed; accept: bytes consumed
@@ -73,19 +76,14 @@ class LibertyParser {
   Candidate decode_body(const std::byte* frame, std::size_t station, std::size_t len,
                         FastrakEvent& out) const;
   bool can_start(std::byte b) const;
-  std::size_t skip_to_start(const std::byte* p, std::size_t n) const;
+  Candidate at_end(const Candidate& waiting, const std::byte* p, std::size_t n) const;
   void reject(const Candidate& c);
-  Result<FastrakEvent> emit(const FastrakEvent& ev);
-  void drop_bytes(std::size_t n);
+  void count(const FastrakEvent& ev);
 
   LibertyConfig config_{};
   bool config_ok_ = false;
   std::array<std::uint16_t, kLibertyMaxStations> body_len_{};  // 0 = station disabled
-  std::array<std::byte, kLibertyMaxFrameBytes> pending_{};
-  std::size_t pending_len_ = 0;
-  std::uint32_t dropped_run_ = 0;
-  bool held_ = false;
-  FastrakEvent held_event_{};
+  FrameScanner<kLibertyMaxFrameBytes> scan_;
   LibertyParserCounters counters_{};
 };
 
