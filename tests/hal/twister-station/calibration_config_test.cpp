@@ -141,6 +141,19 @@ TEST(CalibrationOnSim, BoresightZeroesTheAnglesAtItsOrientation) {
               kRestOrigin, tracker::rotation_from_euler_deg(30, 0, 0));
 }
 
+TEST(CalibrationOnSim, AllKeysTogether) {
+  // Tip, boresight and work frame at once: the tip stays where the stylus points (the
+  // boresight changes how the attitude reads, not where the tip is), then the work frame
+  // moves it. Work frame: origin at the transmitter, x = transmitter y, y = transmitter x.
+  const SimRun r = run(setup_of("tip_offset = [0.1, 0.0, 0.0]\nboresight = [10, 5, 0]\n"
+                                "position_filter = \"off\"\n"
+                                "[tracker.calibration.work_frame]\norigin = [0, 0, 0]\n"
+                                "x_axis = [0, 1, 0]\ny_axis = [1, 0, 0]"),
+                       kRest, 3.0);
+  const glm::dmat3 to_model(glm::dvec3(0, 1, 0), glm::dvec3(1, 0, 0), glm::dvec3(0, 0, -1));
+  expect_pose(r, to_model * (kRestOrigin + 0.1 * kRestR[0]), to_model);
+}
+
 TEST(CalibrationOnSim, WorkFrameMovesAndTurnsEveryPoseIntoTheModelFrame) {
   // The model's origin at the resting receiver; its +X the transmitter's +Y, its +Y the
   // transmitter's +X, so its +Z (up) is the transmitter's -Z (the transmitter's +Z
