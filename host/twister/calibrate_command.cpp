@@ -145,8 +145,7 @@ int run_calibrate(const CalibrateOptions& o) {
   const Vec ax = p[1] - origin;
   const double x_len = length(ax);
   if (x_len < kMinSpanM) {
-    cli_log().error("",
-                    "the +X point is %.1f mm from the origin; touch it at least %.0f mm away",
+    cli_log().error("", "the +X point is %.1f mm from the origin; touch it at least %.0f mm away",
                     x_len * 1e3, kMinSpanM * 1e3);
     return kExitBadInput;
   }

@@ -17,8 +17,7 @@ bool read_vec3(ConfigReader& r, std::string_view key, double min, double max,
                std::array<double, 3>& out) {
   const toml::array* a = r.array(key, false);
   if (a == nullptr) return false;
-  const std::string expected =
-      "an array of three numbers from " + fmt(min) + " to " + fmt(max);
+  const std::string expected = "an array of three numbers from " + fmt(min) + " to " + fmt(max);
   if (a->size() != 3) {
     r.error(a, key, "expected " + expected + ", got " + std::to_string(a->size()) + " elements");
     return false;
@@ -43,7 +42,9 @@ bool read_vec3(ConfigReader& r, std::string_view key, double min, double max,
   return true;
 }
 
-double norm(const std::array<double, 3>& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+double norm(const std::array<double, 3>& v) {
+  return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
 
 // "unit" (leave the unit's EEPROM setting), "off", "medium" (the manual's 0.2, 0.2,
 // 0.8, 0.95) or an inline table { f, flow, fhigh, factor }.
@@ -54,7 +55,7 @@ void read_filter(ConfigReader& c, std::string_view key, FilterConfig& out) {
     std::string mode;
     if (!c.string(key, false, mode, {"unit", "off", "medium"})) return;
     out = FilterConfig{};
-    out.mode = mode == "unit" ? FilterConfig::Mode::unit
+    out.mode = mode == "unit"  ? FilterConfig::Mode::unit
                : mode == "off" ? FilterConfig::Mode::off
                                : FilterConfig::Mode::set;
     return;
@@ -63,20 +64,22 @@ void read_filter(ConfigReader& c, std::string_view key, FilterConfig& out) {
   if (t == nullptr) {
     c.error(n, key,
             "expected \"unit\", \"off\", \"medium\" or { f = F, flow = L, fhigh = H, factor = "
-            "A }, got " + describe(*n));
+            "A }, got " +
+                describe(*n));
     return;
   }
   ConfigReader e = c.element(t, key);
   FilterConfig f;
   f.mode = FilterConfig::Mode::set;
-  const bool ok = e.real("f", true, 0.001, 0.999, f.f) & e.real("flow", true, 0.001, 0.999, f.flow) &
-                  e.real("fhigh", true, 0.001, 0.999, f.fhigh) &
-                  e.real("factor", true, 0.001, 0.999, f.factor);
+  const bool ok =
+      e.real("f", true, 0.001, 0.999, f.f) & e.real("flow", true, 0.001, 0.999, f.flow) &
+      e.real("fhigh", true, 0.001, 0.999, f.fhigh) & e.real("factor", true, 0.001, 0.999, f.factor);
   e.finish();
   if (!ok) return;
   if (!(f.flow < f.fhigh)) {
-    c.error(n, key, "expected flow < fhigh (the unit refuses it), got flow " + fmt(f.flow) +
-                        ", fhigh " + fmt(f.fhigh));
+    c.error(n, key,
+            "expected flow < fhigh (the unit refuses it), got flow " + fmt(f.flow) + ", fhigh " +
+                fmt(f.fhigh));
     return;
   }
   out = f;
@@ -115,7 +118,8 @@ void read_work_frame(ConfigReader& c, CalibrationConfig& cal) {
       const double cosine = (wf.x_axis[0] * wf.y_axis[0] + wf.x_axis[1] * wf.y_axis[1] +
                              wf.x_axis[2] * wf.y_axis[2]) /
                             (nx * ny);
-      const double angle = std::acos(std::fmax(-1.0, std::fmin(1.0, cosine))) * 180.0 / 3.14159265358979323846;
+      const double angle =
+          std::acos(std::fmax(-1.0, std::fmin(1.0, cosine))) * 180.0 / 3.14159265358979323846;
       if (std::fabs(angle - 90.0) > kMaxWorkFrameSkewDeg) {
         w.error(w.node("y_axis"), "y_axis",
                 "expected a direction perpendicular to x_axis (within " +
@@ -155,8 +159,9 @@ void read_calibration(ConfigReader& tracker, TrackerConfig& tc) {
     c.error(c.node("boresight_reference"), "boresight_reference",
             "needs tracker.calibration.boresight (the orientation that reads as these angles)");
   }
-  for (const auto& [key, angles] : {std::pair{"boresight", &cal.boresight_deg},
-                                     std::pair{"boresight_reference", &cal.boresight_reference_deg}}) {
+  for (const auto& [key, angles] :
+       {std::pair{"boresight", &cal.boresight_deg},
+        std::pair{"boresight_reference", &cal.boresight_reference_deg}}) {
     if (std::fabs((*angles)[1]) > 90.0) {
       c.error(c.node(key), key,
               "expected an elevation (the second angle) from -90 to 90, got " + fmt((*angles)[1]));

@@ -55,8 +55,8 @@ station::StationConfig setup_of(const std::string& calibration) {
 }
 
 struct SimRun {
-  Pose pose;                   // hand 0 (receiver 1) at the end
-  glm::dvec3 truth_origin_m;   // the scenario's receiver 1 at the end (transmitter frame)
+  Pose pose;                  // hand 0 (receiver 1) at the end
+  glm::dvec3 truth_origin_m;  // the scenario's receiver 1 at the end (transmitter frame)
   glm::dmat3 truth_rotation{1.0};
   sim::FilterParams position_filter;
   bool valid = false;
@@ -82,10 +82,10 @@ SimRun run(const station::StationConfig& cfg, const std::string& scenario, doubl
   SimRun r;
   r.valid = st.hand_valid(0, clock.now_us());
   r.pose = st.hand_pose(0);
-  const sim::HandSample s =
-      sim::sample(sc, 1, stream.device().scenario_time_s(clock.now_us()));
+  const sim::HandSample s = sim::sample(sc, 1, stream.device().scenario_time_s(clock.now_us()));
   r.truth_origin_m = glm::dvec3(s.position_in[0], s.position_in[1], s.position_in[2]) * kInch;
-  r.truth_rotation = tracker::rotation_from_euler_deg(s.euler_deg[0], s.euler_deg[1], s.euler_deg[2]);
+  r.truth_rotation =
+      tracker::rotation_from_euler_deg(s.euler_deg[0], s.euler_deg[1], s.euler_deg[2]);
   r.position_filter = stream.device().position_filter();
   return r;
 }
@@ -158,9 +158,10 @@ TEST(CalibrationOnSim, WorkFrameMovesAndTurnsEveryPoseIntoTheModelFrame) {
   // The model's origin at the resting receiver; its +X the transmitter's +Y, its +Y the
   // transmitter's +X, so its +Z (up) is the transmitter's -Z (the transmitter's +Z
   // points down).
-  const SimRun r = run(setup_of("[tracker.calibration.work_frame]\norigin = [0.254, -0.1016, 0.0508]\n"
-                             "x_axis = [0, 1, 0]\ny_axis = [1, 0, 0]"),
-                    kRest, 3.0);
+  const SimRun r =
+      run(setup_of("[tracker.calibration.work_frame]\norigin = [0.254, -0.1016, 0.0508]\n"
+                   "x_axis = [0, 1, 0]\ny_axis = [1, 0, 0]"),
+          kRest, 3.0);
   const glm::dmat3 to_model(glm::dvec3(0, 1, 0), glm::dvec3(1, 0, 0), glm::dvec3(0, 0, -1));
   expect_pose(r, glm::dvec3(0.0), to_model * kRestR);
   // A point 10 cm above the transmitter's origin stands 10 cm up in the model.
@@ -176,9 +177,9 @@ TEST(CalibrationOnSim, PositionFilterReachesTheUnitAndLagsAMovingHand) {
       "receivers 2\nkey 0 1 10 0 0 0 0 0\nkey 10 1 110 0 0 0 0 0\nkey 0 2 12 4 -3 -40 10 20\n";
   const SimRun off = run(setup_of("position_filter = \"off\""), moving, 4.0);
   const SimRun medium = run(setup_of("position_filter = \"medium\""), moving, 4.0);
-  const SimRun custom = run(
-      setup_of("position_filter = { f = 0.2, flow = 0.05, fhigh = 0.5, factor = 0.95 }"), moving,
-      4.0);
+  const SimRun custom =
+      run(setup_of("position_filter = { f = 0.2, flow = 0.05, fhigh = 0.5, factor = 0.95 }"),
+          moving, 4.0);
   ASSERT_TRUE(off.valid && medium.valid && custom.valid);
   EXPECT_EQ(off.position_filter.flow, 1.0);
   EXPECT_NEAR(medium.position_filter.flow, 0.2, 1e-9);
