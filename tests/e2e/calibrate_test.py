@@ -8,6 +8,7 @@
    poses over the PTY, as on a rig.
 2. `twister calibrate --file POSES --tip-offset 0.05,0,0 --rest-poses 30` prints the
    work frame; it must match the touched points (origin within 2 mm, axes within 0.01).
+   Too-close or collinear points are refused (exit 2).
 3. twister-station, in virtual time on its in-process simulator, with the snippet and
    the tip offset in [tracker.calibration]: a box standing on the model's origin
    (twister mesh box: half size 0.05 m, z from 0 to 0.10 m) is grabbed at its top by the stylus where it
@@ -142,6 +143,16 @@ def main():
     exe = lambda name: os.path.join(a.bin, name)  # noqa: E731
     poses = record_touches(exe, out)
     snippet, problems = calibrate(exe, poses)
+    # A +Y point on the X line, and a +X point too close: refused with the reason (exit 2).
+    for points, reason in ((["0.5,0,0.3", "0.7,0,0.3", "0.9,0.001,0.3"], "from the X axis"),
+                           (["0.5,0,0.3", "0.51,0,0.3", "0.5,0.2,0.3"], "from the origin")):
+        r = subprocess.run([exe("twister"), "calibrate"] +
+                           [a for p in points for a in ("--point", p)], capture_output=True,
+                           text=True)
+        ok = r.returncode == 2 and reason in r.stderr
+        print("check refused (%s): %s %s" % (reason, r.stderr.strip(), "ok" if ok else "FAILED"))
+        if not ok:
+            problems.append("refusal " + reason)
     commits, v = sculpt(exe, out, snippet)
     lo = [min(p[i] for p in v) for i in range(3)]
     hi = [max(p[i] for p in v) for i in range(3)]
