@@ -76,6 +76,54 @@ int grab_line(const StationFileConfig& config, std::uint8_t hand) {
   return -1;
 }
 
+tracker::FilterSetting filter_of(const FilterConfig& f) {
+  tracker::FilterSetting out;
+  out.mode = f.mode == FilterConfig::Mode::unit  ? tracker::FilterSetting::Mode::leave
+             : f.mode == FilterConfig::Mode::off ? tracker::FilterSetting::Mode::off
+                                                 : tracker::FilterSetting::Mode::set;
+  out.f = static_cast<float>(f.f);
+  out.flow = static_cast<float>(f.flow);
+  out.fhigh = static_cast<float>(f.fhigh);
+  out.factor = static_cast<float>(f.factor);
+  return out;
+}
+
+glm::dvec3 vec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+
+}  // namespace
+
+void apply_work_frame(const WorkFrameConfig& wf, tracker::PoseConversion& conv) {
+  const glm::dvec3 x = glm::normalize(vec(wf.x_axis));
+  const glm::dvec3 y = glm::normalize(vec(wf.y_axis) - glm::dot(vec(wf.y_axis), x) * x);
+  const glm::dmat3 axes(x, y, glm::cross(x, y));  // columns: the model's axes
+  conv.world_rotation = glm::transpose(axes);
+  conv.world_translation_m = -(conv.world_rotation * vec(wf.origin));
+}
+
+namespace {
+
+// [tracker.calibration]: the unit's hemisphere and filters (sent by the session), and
+// host-side: hemisphere (again, so a unit that ignored `H` is still mirrored), boresight,
+// the stylus tip offset and the work frame (pose_conversion.hpp).
+void set_calibration(const StationFileConfig& config, station::StationConfig& c) {
+  const CalibrationConfig& cal = config.tracker.calibration;
+  for (const std::uint8_t s : c.hand_station) {
+    const auto i = static_cast<std::size_t>(s - 1);
+    c.session.hemisphere[i] = cal.hemisphere;
+    c.conversion.hemisphere[i] = glm::dvec3(cal.hemisphere[0], cal.hemisphere[1], cal.hemisphere[2]);
+    c.conversion.boresight[i] = cal.boresight;
+    if (cal.boresight) {
+      c.conversion.boresight_rotation[i] = tracker::rotation_from_euler_deg(
+          cal.boresight_deg[0], cal.boresight_deg[1], cal.boresight_deg[2]);
+      c.conversion.boresight_reference_deg[i] = vec(cal.boresight_reference_deg);
+    }
+  }
+  c.conversion.tool_offset_m[0] = vec(cal.tip_offset_m);
+  c.session.position_filter = filter_of(cal.position_filter);
+  c.session.attitude_filter = filter_of(cal.attitude_filter);
+  if (cal.has_work_frame) apply_work_frame(cal.work_frame, c.conversion);
+}
+
 // [tracker]: receivers, output lists (the stylus item where it exists), timings.
 void set_tracker(const StationFileConfig& config, station::StationConfig& c) {
   using tracker::Item;
@@ -130,6 +178,7 @@ std::string set_stylus(const StationFileConfig& config, station::StationConfig& 
 hal::Expected<station::StationConfig> make_station_setup(const StationFileConfig& config) {
   station::StationConfig c;
   set_tracker(config, c);
+  set_calibration(config, c);
   c.checkpoint_interval = config.station.checkpoint_interval;
   c.sculpt.debounce.interval_us.fill(static_cast<ports::TimestampUs>(config.buttons.debounce_ms) *
                                      1000);

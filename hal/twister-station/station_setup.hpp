@@ -13,4 +13,8 @@ namespace twister::station_app {
 // invalid_argument: the combination cannot run (the message says why).
 hal::Expected<station::StationConfig> make_station_setup(const StationFileConfig& config);
 
+// The work frame as the pose conversion's world transform: model = R^T (p - origin),
+// R's columns the unit x_axis, y_axis (made perpendicular to x) and x_axis x y_axis.
+void apply_work_frame(const WorkFrameConfig& wf, tracker::PoseConversion& conv);
+
 }  // namespace twister::station_app

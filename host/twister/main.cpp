@@ -4,6 +4,7 @@
 #include <exception>
 
 #include "cli_exit_code.hpp"
+#include "calibrate_command.hpp"
 #include "cli_log.hpp"
 #include "fastrak_dump_command.hpp"
 #include "figure8_command.hpp"
@@ -26,6 +27,7 @@ int run(int argc, char** argv) {
   twister::cli::add_replay_command(app, exit_code);
   twister::cli::add_mesh_command(app, exit_code);
   twister::cli::add_journal_command(app, exit_code);
+  twister::cli::add_calibrate_command(app, exit_code);
 
   try {
     app.parse(argc, argv);

@@ -86,12 +86,14 @@ Result<Pose> to_station_frame(const FastrakPose& pose, const PoseConversion& con
   glm::dvec3 p = glm::dvec3(pose.position[0], pose.position[1], pose.position[2]) * scale;
   const glm::dvec3& h = conv.hemisphere[s];
   if (glm::dot(h, h) > 0.0 && glm::dot(p, h) < 0.0) p = -p;
+  // The tool point along the receiver's true axes: a boresight changes how the
+  // orientation reads, not where the tip is.
+  const glm::dvec3 tool = p + r * conv.tool_offset_m[s];
   if (conv.boresight[s]) {
     const glm::dvec3& ref = conv.boresight_reference_deg[s];
     r = rotation_from_euler_deg(ref.x, ref.y, ref.z) * glm::transpose(conv.boresight_rotation[s]) *
         r;
   }
-  const glm::dvec3 tool = p + r * conv.tool_offset_m[s];
   const glm::dmat3 world_r = conv.world_rotation * r;
   Pose f;
   f.origin = conv.world_rotation * tool + conv.world_translation_m;

@@ -12,6 +12,7 @@
 #include <cerrno>
 #include <cstdio>
 
+#include "calibration_config.hpp"
 #include "config_reader.hpp"
 #include "link_config.hpp"
 #include "sculpt_config.hpp"
@@ -94,6 +95,7 @@ void read_tracker(ConfigReader& root, StationFileConfig& cfg) {
   read_u(m, "unplug_at_ms", false, 0, 3'600'000, tc.sim.unplug_at_ms);
   read_u(m, "replug_after_ms", false, 0, 3'600'000, tc.sim.replug_after_ms);
   m.finish();
+  internal::read_calibration(t, tc);
   t.finish();
 }
 

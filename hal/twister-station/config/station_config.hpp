@@ -6,6 +6,7 @@
 // Init-time code: allocates freely, never throws.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -44,6 +45,42 @@ struct SimTrackerConfig {
   std::uint32_t replug_after_ms = 0;  // how long the simulated tracker stays unplugged
 };
 
+// The unit's adaptive filter (`x` position, `v` attitude): left as the unit has it, off,
+// or the four parameters (the defaults are the manual's "medium").
+struct FilterConfig {
+  enum class Mode : std::uint8_t { unit, off, set };
+  Mode mode = Mode::unit;
+  double f = 0.2;
+  double flow = 0.2;
+  double fhigh = 0.8;
+  double factor = 0.95;
+};
+
+// The rigid transform from the transmitter frame to the model's frame, in transmitter
+// coordinates (metres): the model's origin and its +X and +Y directions (+Z = X x Y is
+// the model's up). y_axis is made exactly perpendicular to x_axis (Gram-Schmidt).
+struct WorkFrameConfig {
+  std::array<double, 3> origin{};
+  std::array<double, 3> x_axis{1.0, 0.0, 0.0};
+  std::array<double, 3> y_axis{0.0, 1.0, 0.0};
+};
+// How far from perpendicular x_axis and y_axis may be (typed or measured values).
+inline constexpr double kMaxWorkFrameSkewDeg = 2.0;
+
+// [tracker.calibration]: applied to both hands' receivers (the tip offset to receiver 1,
+// the stylus).
+struct CalibrationConfig {
+  std::array<int, 3> hemisphere{1, 0, 0};  // `H` direction, transmitter frame
+  bool boresight = false;                  // orientations relative to boresight_deg
+  std::array<double, 3> boresight_deg{};   // az, el, roll that read as the reference
+  std::array<double, 3> boresight_reference_deg{};
+  std::array<double, 3> tip_offset_m{};  // receiver 1, receiver coordinates
+  FilterConfig position_filter;
+  FilterConfig attitude_filter;
+  bool has_work_frame = false;
+  WorkFrameConfig work_frame;
+};
+
 struct TrackerConfig {
   TrackerBackend backend = TrackerBackend::serial;
   std::uint8_t left_station = 1;  // Fastrak receiver (1..4) held in the left hand
@@ -54,6 +91,7 @@ struct TrackerConfig {
   SerialTrackerConfig serial;
   UsbTrackerConfig usb;
   SimTrackerConfig sim;
+  CalibrationConfig calibration;
 };
 
 struct HidButtonBit {

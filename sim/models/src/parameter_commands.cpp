@@ -71,6 +71,10 @@ bool per_station(ParameterCommand c) {
     case ParameterCommand::hemisphere:
     case ParameterCommand::stylus_mode:
     case ParameterCommand::envelope:
+    case ParameterCommand::tip_offset:
+    case ParameterCommand::boresight:
+    case ParameterCommand::unboresight:
+    case ParameterCommand::boresight_reference:
       return true;
     default:
       return false;
@@ -91,7 +95,7 @@ void ParameterCommands::execute(const tracker::Parameters& command, std::string_
     serial_port(f, echo, at);
     return;
   }
-  if (!per_station(c)) return;  // accepted, no effect on the model (A, R, B, b, G, N, I, X)
+  if (!per_station(c)) return;  // accepted, no effect on the model (A, R, I, X)
   int station = 0;
   if (const int rc = to_int(f[0], station); rc != 0) {
     replies_.error(echo, rc, at);
@@ -113,6 +117,17 @@ void ParameterCommands::execute(const tracker::Parameters& command, std::string_
       return;
     case ParameterCommand::envelope:
       envelope(station, f, echo, at);
+      return;
+    case ParameterCommand::tip_offset:
+    case ParameterCommand::boresight_reference:
+      station_vector(c, station, f, echo, at);
+      return;
+    case ParameterCommand::boresight:
+      ++settings_.boresight_requests[static_cast<std::size_t>(station - 1)];
+      settings_.boresight_on[static_cast<std::size_t>(station - 1)] = true;
+      return;
+    case ParameterCommand::unboresight:
+      settings_.boresight_on[static_cast<std::size_t>(station - 1)] = false;
       return;
     default:
       stylus_mode(f, echo, at);
@@ -252,6 +267,40 @@ void ParameterCommands::envelope(int station, const Fields& f, std::string_view 
     }
   }
   settings_.envelope[static_cast<std::size_t>(station - 1)] = e;
+}
+
+void ParameterCommands::station_vector(ParameterCommand which, int station, const Fields& f,
+                                      std::string_view echo, ports::TimestampUs at) {
+  const auto i = static_cast<std::size_t>(station - 1);
+  const bool tip = which == ParameterCommand::tip_offset;
+  // N: the current units (stored in inches); G: az, el, roll degrees.
+  std::array<double, 3> v = tip ? settings_.tip_offset_in[i] : settings_.boresight_reference_deg[i];
+  if (tip && settings_.protocol.units == tracker::Units::centimetres) {
+    for (double& x : v) x *= 2.54;
+  }
+  if (f.size() < 4) {
+    replies_.error(echo, -1, at);
+    return;
+  }
+  for (std::size_t k = 0; k < 3; ++k) {
+    if (f[k + 1].empty()) continue;  // an empty field keeps the value
+    if (const int rc = to_double(f[k + 1], v[k]); rc != 0) {
+      replies_.error(echo, rc, at);
+      return;
+    }
+  }
+  if (tip) {
+    if (settings_.protocol.units == tracker::Units::centimetres) {
+      for (double& x : v) x /= 2.54;
+    }
+    settings_.tip_offset_in[i] = v;
+  } else {
+    if (std::fabs(v[1]) > 90.0 || std::fabs(v[0]) > 180.0 || std::fabs(v[2]) > 180.0) {
+      replies_.error(echo, -3, at);
+      return;
+    }
+    settings_.boresight_reference_deg[i] = v;
+  }
 }
 
 void ParameterCommands::serial_port(const Fields& f, std::string_view echo, ports::TimestampUs at) {

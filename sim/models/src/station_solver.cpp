@@ -11,6 +11,7 @@ void StationSolver::reset() {
     for (auto& one : f) one.reset();
   }
   solution_ = {};
+  boresight_taken_ = {};
 }
 
 void StationSolver::solve(int station, const HandSample& h, const UnitSettings& settings) {
@@ -26,6 +27,19 @@ void StationSolver::solve(int station, const HandSample& h, const UnitSettings& 
   s.valid = true;
   s.position_in = filter_[i][0].position(p, settings.filter[0]);
   s.attitude = filter_[i][1].attitude(q, settings.filter[1]);
+  // The tip offset, in the receiver's own (unboresighted) axes.
+  const glm::dmat3 r = glm::mat3_cast(s.attitude);
+  const auto& tip = settings.tip_offset_in[i];
+  s.position_in += r * glm::dvec3(tip[0], tip[1], tip[2]);
+  if (boresight_taken_[i] != settings.boresight_requests[i]) {  // `B`: this attitude
+    boresight_[i] = r;
+    boresight_taken_[i] = settings.boresight_requests[i];
+  }
+  if (settings.boresight_on[i]) {
+    const auto& ref = settings.boresight_reference_deg[i];
+    s.attitude = glm::normalize(glm::quat_cast(
+        tracker::rotation_from_euler_deg(ref[0], ref[1], ref[2]) * glm::transpose(boresight_[i]) * r));
+  }
   s.button = station == 1 && h.button;  // the stylus works on station 1 only
 }
 

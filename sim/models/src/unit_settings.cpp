@@ -14,6 +14,10 @@ void UnitSettings::power_up(const PowerUpSettings& start) {
   for (auto& h : hemisphere) h = {1.0, 0.0, 0.0};
   for (auto& e : envelope) e = {180.0, 90.0, 180.0, -180.0, -90.0, -180.0};
   filter = {start.position_filter, start.attitude_filter};
+  tip_offset_in = {};
+  boresight_on = {};
+  boresight_requests = {};
+  boresight_reference_deg = {};
   baud = start.baud;  // `o` is not saved: power-up uses the switches' rate
 }
 

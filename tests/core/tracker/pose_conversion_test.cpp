@@ -119,6 +119,15 @@ TEST(PoseConversion, HemisphereAndBoresight) {
   f = to_station_frame(p, conv);
   ASSERT_TRUE(f.ok());
   expect_near(glm::dmat3(f->u, f->v, f->w), glm::dmat3(1.0), 1e-6);
+
+  // A tool offset stays along the receiver's true axes under a boresight: the tip of a
+  // stylus turned az 30 is 0.1 m along (cos 30, sin 30, 0), though it reads as unturned.
+  conv.tool_offset_m[0] = {0.1, 0.0, 0.0};
+  f = to_station_frame(p, conv);
+  ASSERT_TRUE(f.ok());
+  EXPECT_NEAR(f->origin.x, 0.254 + 0.1 * std::cos(3.14159265358979323846 / 6), 1e-6);
+  EXPECT_NEAR(f->origin.y, -0.127 + 0.1 * std::sin(3.14159265358979323846 / 6), 1e-6);
+  expect_near(glm::dmat3(f->u, f->v, f->w), glm::dmat3(1.0), 1e-6);
 }
 
 TEST(PoseConversion, MissingItemsAreReported) {

@@ -18,7 +18,7 @@ struct PoseConversion {
   Units units = Units::inches;
   Format format = Format::ascii;  // picks the orthonormality tolerance (orthonormal_tolerance)
   // Tool offset per station (index = station - 1), metres, in receiver coordinates:
-  // the tool point is position + R * offset.
+  // the tool point is position + R * offset (R before any boresight).
   std::array<glm::dvec3, kMaxStations> tool_offset_m{};
   // Hemisphere per station (tracker frame, §2 `H`): a pose whose position points
   // into the other half-space is mirrored through the origin, as the unit does when

@@ -1,6 +1,6 @@
 // ParameterCommands: the simulated Fastrak's interpreter of parameter commands
-// (tracker::Parameters from the shared command codec: `O l H e Q x v o` change the
-// unit's settings or read them back, `A R B b G N I X` are accepted without effect).
+// (tracker::Parameters from the shared command codec: `O l H e Q x v o N B b G` change
+// the unit's settings or read them back, `A R I X` are accepted without effect).
 // Replies and error records (`2 E*ERROR*... EC n`: -1 missing field, -2 not a number,
 // -3 out of range, -5 list too long) go to a ReplySink. Not thread-safe.
 #pragma once
@@ -44,6 +44,9 @@ class ParameterCommands {
   // `x` / `v` (no station): set, macro or read back the filter.
   void filter(tracker::ParameterCommand which, const Fields& f, std::string_view echo,
               ports::TimestampUs at);
+  // `N` (tip offset, current units) and `G` (boresight reference angles): s,a,b,c.
+  void station_vector(tracker::ParameterCommand which, int station, const Fields& f,
+                      std::string_view echo, ports::TimestampUs at);
   void serial_port(const Fields& f, std::string_view echo, ports::TimestampUs at);
 
   UnitSettings& settings_;

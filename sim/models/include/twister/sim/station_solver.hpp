@@ -1,6 +1,7 @@
 // StationSolver: the simulated unit's solutions, one per station: the scenario's hand
 // sample reported in the station's hemisphere and passed through the station's
-// adaptive position and attitude filters. One job: the numbers a record carries. No heap.
+// adaptive position and attitude filters, then moved to the `N` tip offset and turned
+// by the `B`/`G` boresight. One job: the numbers a record carries. No heap.
 #pragma once
 
 #include <array>
@@ -33,6 +34,9 @@ class StationSolver {
  private:
   std::array<Solution, 4> solution_{};
   std::array<std::array<AdaptiveFilter, 2>, 4> filter_{};  // [station][position, attitude]
+  std::array<glm::dmat3, 4> boresight_{glm::dmat3(1.0), glm::dmat3(1.0), glm::dmat3(1.0),
+                                       glm::dmat3(1.0)};  // the attitude captured by `B`
+  std::array<unsigned, 4> boresight_taken_{};  // the requests already captured
 };
 
 }  // namespace twister::sim

@@ -29,6 +29,16 @@ struct UnitSettings {
   // `Q` angular envelope per station: az max, el max, roll max, az min, el min, roll min.
   std::array<std::array<double, 6>, 4> envelope{};
   std::array<FilterParams, 2> filter{};  // position (`x`), attitude (`v`)
+  // `N` tip offset per station, inches, in the receiver's axes: the reported point is
+  // the solution's position + R * offset.
+  std::array<std::array<double, 3>, 4> tip_offset_in{};
+  // `B` / `b` / `G` per station: a `B` asks for the next solution's attitude to be
+  // captured (boresight_requests counts them; the solver captures once per request);
+  // while boresight_on, attitudes are reported as R_ref * B^T * R, R_ref from the `G`
+  // reference angles (az, el, roll degrees).
+  std::array<bool, 4> boresight_on{};
+  std::array<unsigned, 4> boresight_requests{};
+  std::array<std::array<double, 3>, 4> boresight_reference_deg{};
   int baud = 115200;
 
   // The settings a power-up leaves (`o` is not saved: the switches' rate).
