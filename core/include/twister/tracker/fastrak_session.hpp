@@ -18,11 +18,20 @@
 #include "twister/tracker/fastrak_event.hpp"
 #include "twister/tracker/fastrak_parser.hpp"
 #include "twister/tracker/fastrak_wire.hpp"
+#include "twister/tracker/liberty_parser.hpp"
 #include "twister/tracker/pose_continuity.hpp"
 
 namespace twister::tracker {
 
+// The unit on the line. A Liberty or Patriot takes the Fastrak's commands (the same
+// start-up); in binary its records are Liberty-family frames (docs/liberty-protocol.md),
+// so once streaming the session reads them with LibertyParser, configured with
+// to_liberty_config(protocol). Those models need Format::binary.
+enum class TrackerModel : std::uint8_t { fastrak, liberty, patriot };
+const char* tracker_model_name(TrackerModel model);  // "FASTRAK", "Liberty", "Patriot"
+
 struct FastrakSessionConfig {
+  TrackerModel model = TrackerModel::fastrak;
   FastrakConfig protocol{};  // format, units, enabled stations and their output lists
   // `H` vector per station (index = station - 1); default +X ("forward").
   std::array<std::array<int, 3>, kMaxStations> hemisphere{
@@ -93,7 +102,11 @@ class FastrakSession {
   SessionState state() const { return state_; }
   bool streaming() const { return state_ == SessionState::streaming; }
   const FastrakSessionCounters& counters() const { return counters_; }
-  const FastrakParserCounters& parser_counters() const { return parser_.counters(); }
+  const FastrakParserCounters& parser_counters() const { return parsers_.fastrak.counters(); }
+  // The frame parser's counters (model liberty / patriot; zero for a Fastrak).
+  const LibertyParserCounters& liberty_parser_counters() const {
+    return parsers_.liberty.counters();
+  }
   const FastrakStatus& last_status() const { return last_status_; }
   const FastrakSessionConfig& config() const { return config_; }
   int ladder_rung() const { return recovery_.rung; }
@@ -111,6 +124,9 @@ class FastrakSession {
   // A validated pose while streaming: continuity and status bookkeeping. false: held back.
   bool take_pose(const FastrakPose& pose, ports::TimestampUs now);
   void handle_event(const FastrakEvent& ev, ports::TimestampUs now);
+  // The next event from rx_: frames while a Liberty-family unit streams, else records
+  // and replies.
+  Result<FastrakEvent> next_event();
 
   // A fixed buffer and how far it is filled (len) and used (pos).
   template <typename T, std::size_t N>
@@ -124,6 +140,16 @@ class FastrakSession {
     ports::TimestampUs last_pose = 0;  // a pose was last accepted
     ports::TimestampUs last_byte = 0;  // a byte was last read
   };
+  // The Fastrak parser reads replies (and a Fastrak's records); the frame parser reads a
+  // Liberty's or Patriot's records while streaming.
+  struct Parsers {
+    FastrakParser fastrak;
+    LibertyParser liberty;
+    void reset() {
+      fastrak.reset();
+      liberty.reset();
+    }
+  };
   struct Recovery {
     std::int64_t backoff_us = 0;  // the next re-initialisation delay
     int rung = 0;                 // the reset ladder's rung
@@ -132,7 +158,7 @@ class FastrakSession {
   ports::ByteStream& stream_;
   ports::Clock& clock_;
   FastrakSessionConfig config_;
-  FastrakParser parser_;
+  Parsers parsers_;
   PoseContinuity continuity_;
   bool config_ok_ = false;
   bool port_open_ = false;
