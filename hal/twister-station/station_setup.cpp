@@ -87,6 +87,11 @@ void set_tracker(const StationFileConfig& config, station::StationConfig& c) {
                  : t.format == RecordFormat::ascii  ? tracker::Format::ascii
                                                     : tracker::Format::binary16;
   proto.units = tracker::Units::inches;
+  // A Liberty / Patriot: the same commands and lists; its frames are read with the
+  // Liberty parser (to_liberty_config of these lists). The config allows binary only.
+  c.session.model = t.model == TrackerModel::liberty   ? tracker::TrackerModel::liberty
+                    : t.model == TrackerModel::patriot ? tracker::TrackerModel::patriot
+                                                       : tracker::TrackerModel::fastrak;
   c.hand_station = {t.left_station, t.right_station};
   const bool stylus = config.buttons.backend == ButtonBackend::stylus;
   for (const std::uint8_t s : c.hand_station) {
