@@ -104,8 +104,8 @@ void set_tracker(const StationFileConfig& config, station::StationConfig& c) {
             : tracker::OutputList::of({Item::position, Item::quaternion, Item::crlf});
   }
   c.session.silence_timeout_us = static_cast<std::int64_t>(t.silence_timeout_ms) * 1000;
-  c.session.backoff_initial_us = static_cast<std::int64_t>(t.reconnect_interval_ms) * 1000;
-  c.session.backoff_max_us = std::max<std::int64_t>(c.session.backoff_initial_us, 8'000'000);
+  c.session.backoff.initial_us = static_cast<std::int64_t>(t.reconnect_interval_ms) * 1000;
+  c.session.backoff.max_us = std::max<std::int64_t>(c.session.backoff.initial_us, 8'000'000);
   c.conversion.units = proto.units;
   c.conversion.format = proto.format;
   c.pose_stale_us = std::max<std::int64_t>(200'000, c.session.silence_timeout_us / 2);

@@ -60,7 +60,7 @@ FastrakSession::FastrakSession(ports::ByteStream& stream, ports::Clock& clock,
       continuity_(config.continuity, config.protocol.units, config.protocol.format) {
   config_ok_ = parsers_.fastrak.configure(config_.protocol).ok() &&
                configure_frames(config_, parsers_.liberty) && config_.reset_rung_limit >= 1;
-  recovery_.backoff_us = config_.backoff_initial_us;
+  recovery_.backoff_us = config_.backoff.initial_us;
   timers_.deadline = clock_.now_us();
   if (config_ok_) build_commands();
 }
@@ -148,7 +148,7 @@ void FastrakSession::fault(ports::TimestampUs now) {
   rx_.len = rx_.pos = 0;
   port_open_ = false;  // the port is reopened (VRPN closes and reopens as well)
   timers_.deadline = now + recovery_.backoff_us;
-  recovery_.backoff_us = std::min(recovery_.backoff_us * 2, config_.backoff_max_us);
+  recovery_.backoff_us = std::min(recovery_.backoff_us * 2, config_.backoff.max_us);
   enter(SessionState::backoff);
 }
 
@@ -278,7 +278,7 @@ void FastrakSession::handle_event(const FastrakEvent& ev, ports::TimestampUs now
         if (!send_command(Mode{ModeCommand::continuous}, now)) return;
         ++counters_.streams_started;
         recovery_.rung = 0;
-        recovery_.backoff_us = config_.backoff_initial_us;
+        recovery_.backoff_us = config_.backoff.initial_us;
         timers_.last_pose = timers_.last_byte = now;
         continuity_.reset();
         enter(SessionState::streaming);

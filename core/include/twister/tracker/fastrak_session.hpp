@@ -30,6 +30,12 @@ namespace twister::tracker {
 enum class TrackerModel : std::uint8_t { fastrak, liberty, patriot };
 const char* tracker_model_name(TrackerModel model);  // "FASTRAK", "Liberty", "Patriot"
 
+// Delay before each re-initialisation: the first, doubled per failure up to the cap.
+struct SessionBackoff {
+  std::int64_t initial_us = 250'000;  // first re-initialisation delay
+  std::int64_t max_us = 8'000'000;    // back-off cap
+};
+
 struct FastrakSessionConfig {
   TrackerModel model = TrackerModel::fastrak;
   FastrakConfig protocol{};  // format, units, enabled stations and their output lists
@@ -45,8 +51,7 @@ struct FastrakSessionConfig {
   std::int64_t command_pause_us = 100'000;      // between configuration commands
   std::int64_t filter_pause_us = 1'000'000;     // after `x` / `v` (VRPN waits 1 s)
   std::int64_t silence_timeout_us = 2'000'000;  // no valid pose -> fault (VRPN 2 s)
-  std::int64_t backoff_initial_us = 250'000;    // first re-initialisation delay
-  std::int64_t backoff_max_us = 8'000'000;      // back-off cap (doubles per failure)
+  SessionBackoff backoff{};                     // re-initialisation delays
   int reset_rung_limit = 3;                     // highest ladder rung: 1 `c`, 2 CR+`c`, 3 CR+`c`+^Y
   FilterSetting position_filter{};              // `x`, sent after the output lists
   FilterSetting attitude_filter{};              // `v`
