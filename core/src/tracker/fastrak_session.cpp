@@ -73,7 +73,12 @@ void FastrakSession::build_commands() {
     const ReceiverConfig& st = config_.protocol.stations[static_cast<std::size_t>(s - 1)];
     ok = ok && add_command(station_state_command(s, st.enabled));
     if (!st.enabled) continue;
-    ok = ok && add_command(output_list_command(s, st.list));
+    if (config_.model == TrackerModel::fastrak) {
+      ok = ok && add_command(output_list_command(s, st.list));
+    } else {
+      // The family's own item codes (docs/liberty-protocol.md §3), as the parser frames them.
+      ok = ok && add_liberty_list(s);
+    }
     ok = ok &&
          add_command(hemisphere_command(s, config_.hemisphere[static_cast<std::size_t>(s - 1)]));
   }
@@ -89,6 +94,16 @@ void FastrakSession::build_commands() {
   const bool ascii = config_.protocol.format == Format::ascii;
   ok = ok && add_command(Mode{ascii ? ModeCommand::ascii : ModeCommand::binary});
   TWISTER_ASSERT(ok);  // 4 stations x 32 items always fit the buffer
+}
+
+bool FastrakSession::add_liberty_list(int station) {
+  const auto room = std::span<char>(commands_.data).subspan(commands_.len);
+  const auto& list = parsers_.liberty.config().stations[static_cast<std::size_t>(station - 1)].list;
+  const Result<std::size_t> n = encode_liberty_output_list(station, list, room);
+  if (!n.ok() || *n >= room.size()) return false;
+  commands_.len += *n;
+  commands_.data[commands_.len++] = '\0';
+  return true;
 }
 
 bool FastrakSession::add_command(const FastrakCommand& command) {

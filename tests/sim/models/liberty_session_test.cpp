@@ -1,7 +1,7 @@
 // Issue 22: the station's tracker session with model liberty / patriot, driven by the
 // device model of `twister-sim --model liberty|patriot` through SimFastrakStream in
-// virtual time. The session starts the unit as a Fastrak (same commands), then reads
-// its frames with LibertyParser: the poses equal the Fastrak run's as floats, and
+// virtual time. The session starts the unit as a Fastrak (same commands, the lists in
+// the Liberty's item codes), then reads its frames with LibertyParser: the poses equal the Fastrak run's as floats, and
 // lost tracking, resync and the counters behave as for the Fastrak (label devices).
 #include <gtest/gtest.h>
 
@@ -104,6 +104,15 @@ TEST_P(LibertySession, PosesEqualTheFastrakRunsAsFloats) {
     pressed = pressed || a.button;
   }
   EXPECT_TRUE(pressed);  // the stylus item travels in the frames
+  // The unit took the lists in its own item codes (O1,2,7,10,1 and O2,2,7,1): they read
+  // back as the station's Fastrak lists.
+  const auto want = session_config(GetParam()).protocol;
+  for (std::size_t st = 0; st < 2; ++st) {
+    const auto& got = rig.stream.device().protocol().stations[st].list;
+    ASSERT_EQ(got.count, want.stations[st].list.count) << st;
+    for (std::size_t i = 0; i < got.count; ++i) EXPECT_EQ(got.items[i], want.stations[st].list.items[i]);
+  }
+  EXPECT_EQ(rig.stream.device().counters().command_errors, 0u);
   const auto& c = rig.session.counters();
   EXPECT_EQ(c.streams_started, 1u);
   EXPECT_EQ(c.rejected_poses, 0u);
@@ -140,17 +149,21 @@ TEST_P(LibertySession, HangupAndStallAreLostTrackingAndRecover) {
   EXPECT_GT(tail[2], 30u);
 }
 
-TEST_P(LibertySession, TheWrongModelFindsNoPoseAndKeepsReinitialising) {
-  // A Fastrak session on a Liberty-family unit (and the reverse): replies parse, records
-  // do not, so the session calls it garbage and starts again.
-  Rig fastrak_on_frames(kMotion, TrackerModel::fastrak, GetParam());
-  fastrak_on_frames.run(5.0);
-  EXPECT_TRUE(fastrak_on_frames.poses.empty());
-  EXPECT_GE(fastrak_on_frames.session.counters().garbage_faults, 1u);
-  Rig frames_on_fastrak(kMotion, GetParam(), TrackerModel::fastrak);
-  frames_on_fastrak.run(5.0);
-  EXPECT_TRUE(frames_on_fastrak.poses.empty());
-  EXPECT_GE(frames_on_fastrak.session.counters().garbage_faults, 1u);
+TEST_P(LibertySession, TheWrongModelIsRefusedItsListsAndNeverStreams) {
+  // A Fastrak session on a Liberty-family unit (and the reverse): each sends its output
+  // lists in its own item codes, which the other unit refuses (quaternion 11 is the
+  // Liberty's distortion, which the model cannot send; 10 is no Fastrak item), so
+  // configuration fails and the session keeps re-initialising; no pose is ever taken.
+  for (const bool session_is_fastrak : {true, false}) {
+    SCOPED_TRACE(session_is_fastrak ? "fastrak session" : "frame session");
+    Rig rig(kMotion, session_is_fastrak ? TrackerModel::fastrak : GetParam(),
+            session_is_fastrak ? GetParam() : TrackerModel::fastrak);
+    rig.run(5.0);
+    EXPECT_TRUE(rig.poses.empty());
+    const auto& c = rig.session.counters();
+    EXPECT_GE(c.command_errors + c.garbage_faults, 1u);
+    EXPECT_GE(c.inits, 2u);
+  }
 }
 
 TEST_P(LibertySession, NeedsBinaryOutput) {

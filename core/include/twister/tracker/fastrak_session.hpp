@@ -23,10 +23,10 @@
 
 namespace twister::tracker {
 
-// The unit on the line. A Liberty or Patriot takes the Fastrak's commands (the same
-// start-up); in binary its records are Liberty-family frames (docs/liberty-protocol.md),
-// so once streaming the session reads them with LibertyParser, configured with
-// to_liberty_config(protocol). Those models need Format::binary.
+// The unit on the line. A Liberty or Patriot takes the Fastrak's start-up, but its `O`
+// lists in its own item codes (to_liberty_config(protocol)); in binary its records are
+// Liberty-family frames (docs/liberty-protocol.md), so once streaming the session reads
+// them with LibertyParser configured the same way. Those models need Format::binary.
 enum class TrackerModel : std::uint8_t { fastrak, liberty, patriot };
 const char* tracker_model_name(TrackerModel model);  // "FASTRAK", "Liberty", "Patriot"
 
@@ -126,6 +126,8 @@ class FastrakSession {
   void build_commands();
   // Appends one encoded command to the configuration commands.
   bool add_command(const FastrakCommand& command);
+  // Appends a Liberty-family `O` command for `station` (its list from the frame parser).
+  bool add_liberty_list(int station);
   // A validated pose while streaming: continuity and status bookkeeping. false: held back.
   bool take_pose(const FastrakPose& pose, ports::TimestampUs now);
   void handle_event(const FastrakEvent& ev, ports::TimestampUs now);
