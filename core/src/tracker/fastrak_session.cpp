@@ -47,8 +47,7 @@ bool configure_frames(const FastrakSessionConfig& config, LibertyParser& parser)
   const LibertyModel family =
       config.model == TrackerModel::patriot ? LibertyModel::patriot : LibertyModel::liberty;
   LibertyConfig frames;
-  return to_liberty_config(config.protocol, family, frames).ok() &&
-         parser.configure(frames).ok();
+  return to_liberty_config(config.protocol, family, frames).ok() && parser.configure(frames).ok();
 }
 }  // namespace
 

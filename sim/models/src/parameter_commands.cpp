@@ -141,8 +141,8 @@ void ParameterCommands::output_list(int station, const Fields& f, std::string_vi
     if (liberty_codes_ && !tracker::to_liberty_list(st.list, codes).ok()) codes = {};
     const std::size_t n = liberty_codes_ ? codes.count : st.list.count;
     for (std::size_t i = 0; i < n; ++i) {
-      const int code = liberty_codes_ ? static_cast<int>(codes.items[i])
-                                      : static_cast<int>(st.list.items[i]);
+      const int code =
+          liberty_codes_ ? static_cast<int>(codes.items[i]) : static_cast<int>(st.list.items[i]);
       std::snprintf(item, sizeof item, "%2d", code);
       r += item;
     }
@@ -167,10 +167,10 @@ bool ParameterCommands::read_list(const Fields& f, std::string_view echo, ports:
       replies_.error(echo, rc, at);
       return false;
     }
-    const bool known = code >= 0 && code <= 255 &&
-                       (liberty_codes_
-                            ? tracker::is_supported_liberty_item(static_cast<std::uint8_t>(code))
-                            : tracker::is_supported_item(static_cast<std::uint8_t>(code)));
+    const bool known =
+        code >= 0 && code <= 255 &&
+        (liberty_codes_ ? tracker::is_supported_liberty_item(static_cast<std::uint8_t>(code))
+                        : tracker::is_supported_item(static_cast<std::uint8_t>(code)));
     const std::size_t count = liberty_codes_ ? codes.count : list.count;
     if (!known || count >= tracker::kMaxItems) {
       replies_.error(echo, -3, at);

@@ -295,10 +295,10 @@ TEST(LibertyWire, FastrakConfigTranslatesStationForStation) {
 TEST(LibertyWire, OutputListCommandUsesTheFamilysItemCodes) {
   // The station's lists: position, quaternion, stylus, CR LF = codes 2, 7, 10, 1 (§3).
   LibertyOutputList list;
-  ASSERT_TRUE(to_liberty_list(
-                  OutputList::of({Item::position, Item::quaternion, Item::stylus, Item::crlf}),
-                  list)
-                  .ok());
+  ASSERT_TRUE(
+      to_liberty_list(OutputList::of({Item::position, Item::quaternion, Item::stylus, Item::crlf}),
+                      list)
+          .ok());
   std::array<char, 32> buf{};
   auto n = encode_liberty_output_list(1, list, buf);
   ASSERT_TRUE(n.ok());
@@ -306,8 +306,7 @@ TEST(LibertyWire, OutputListCommandUsesTheFamilysItemCodes) {
   n = encode_liberty_output_list(16, LibertyOutputList::of({L::dcm, L::space}), buf);
   ASSERT_TRUE(n.ok());
   EXPECT_EQ(std::string(buf.data(), *n), "O16,6,0\r");
-  EXPECT_EQ(encode_liberty_output_list(0, list, buf).status().code(),
-            StatusCode::invalid_argument);
+  EXPECT_EQ(encode_liberty_output_list(0, list, buf).status().code(), StatusCode::invalid_argument);
   EXPECT_EQ(encode_liberty_output_list(17, list, buf).status().code(),
             StatusCode::invalid_argument);
   EXPECT_EQ(encode_liberty_output_list(1, {}, buf).status().code(), StatusCode::invalid_argument);
@@ -325,8 +324,8 @@ TEST(LibertyWire, LibertyListsTranslateBackToFastrakLists) {
   ASSERT_TRUE(to_fastrak_list(liberty, back).ok());
   ASSERT_EQ(back.count, station.count);
   for (std::size_t i = 0; i < back.count; ++i) EXPECT_EQ(back.items[i], station.items[i]);
-  ASSERT_TRUE(to_fastrak_list(LibertyOutputList::of({L::position_ext, L::dcm, L::space}), back)
-                  .ok());
+  ASSERT_TRUE(
+      to_fastrak_list(LibertyOutputList::of({L::position_ext, L::dcm, L::space}), back).ok());
   ASSERT_EQ(back.count, 5);
   EXPECT_EQ(back.items[0], Item::position);
   EXPECT_EQ(back.items[1], Item::dcm_x);

@@ -55,11 +55,11 @@ TEST(TrackerModelConfig, LibertyAndPatriotNeedBinary) {
           config_with(std::string("model = \"") + model + "\"\nformat = \"" + format + "\""),
           "t.toml");
       EXPECT_FALSE(r.ok());
-      EXPECT_THAT(test::messages(r),
-                  HasSubstr(std::string("tracker.format: expected \"binary\" with tracker.model "
-                                        "= \"") +
-                            model + "\" (its frames are read in binary only), got \"" + format +
-                            "\""));
+      EXPECT_THAT(
+          test::messages(r),
+          HasSubstr(std::string("tracker.format: expected \"binary\" with tracker.model "
+                                "= \"") +
+                    model + "\" (its frames are read in binary only), got \"" + format + "\""));
     }
   }
   // The Fastrak keeps every format.

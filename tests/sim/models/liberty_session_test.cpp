@@ -1,8 +1,9 @@
 // Issue 22: the station's tracker session with model liberty / patriot, driven by the
 // device model of `twister-sim --model liberty|patriot` through SimFastrakStream in
 // virtual time. The session starts the unit as a Fastrak (same commands, the lists in
-// the Liberty's item codes), then reads its frames with LibertyParser: the poses equal the Fastrak run's as floats, and
-// lost tracking, resync and the counters behave as for the Fastrak (label devices).
+// the Liberty's item codes), then reads its frames with LibertyParser: the poses equal the Fastrak
+// run's as floats, and lost tracking, resync and the counters behave as for the Fastrak (label
+// devices).
 #include <gtest/gtest.h>
 
 #include <string>
@@ -31,9 +32,8 @@ tracker::FastrakSessionConfig session_config(TrackerModel model) {
   tracker::FastrakSessionConfig c;
   c.model = model;
   c.protocol.format = Format::binary;
-  c.protocol.stations[0] = {true,
-                            OutputList::of({Item::position, Item::quaternion, Item::stylus,
-                                            Item::crlf})};
+  c.protocol.stations[0] = {
+      true, OutputList::of({Item::position, Item::quaternion, Item::stylus, Item::crlf})};
   c.protocol.stations[1] = {true, OutputList::of({Item::position, Item::quaternion, Item::crlf})};
   c.ladder_char_pause_us = 20'000;
   c.reset_wait_us = 600'000;
@@ -110,7 +110,8 @@ TEST_P(LibertySession, PosesEqualTheFastrakRunsAsFloats) {
   for (std::size_t st = 0; st < 2; ++st) {
     const auto& got = rig.stream.device().protocol().stations[st].list;
     ASSERT_EQ(got.count, want.stations[st].list.count) << st;
-    for (std::size_t i = 0; i < got.count; ++i) EXPECT_EQ(got.items[i], want.stations[st].list.items[i]);
+    for (std::size_t i = 0; i < got.count; ++i)
+      EXPECT_EQ(got.items[i], want.stations[st].list.items[i]);
   }
   EXPECT_EQ(rig.stream.device().counters().command_errors, 0u);
   const auto& c = rig.session.counters();

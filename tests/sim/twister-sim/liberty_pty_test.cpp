@@ -1,7 +1,8 @@
 // twister-sim's server playing a Liberty / Patriot on a real PTY (`--model`): a raw host
 // configures the station's output lists (in the Liberty's item codes), binary and
-// continuous, and the frames it reads parse with LibertyParser to the poses the Fastrak model gives for the same still hands
-// through FastrakParser in process (equal as floats). Real time, about 2 s per model.
+// continuous, and the frames it reads parse with LibertyParser to the poses the Fastrak model gives
+// for the same still hands through FastrakParser in process (equal as floats). Real time, about 2 s
+// per model.
 #include <gtest/gtest.h>
 
 #include <cstring>
