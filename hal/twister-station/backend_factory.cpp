@@ -79,6 +79,10 @@ hal::Expected<void> make_sim_tracker(const StationFileConfig& config, Backends& 
   device.baud = static_cast<int>(config.tracker.serial.baud);
   // A unit whose binary format is the 16-bit packed one answers `f` with it.
   device.packed16 = config.tracker.format == RecordFormat::binary16;
+  // The simulated unit is the model configured (its binary frames follow it).
+  device.model = config.tracker.model == TrackerModel::liberty   ? sim::DeviceModel::liberty
+                 : config.tracker.model == TrackerModel::patriot ? sim::DeviceModel::patriot
+                                                                 : sim::DeviceModel::fastrak;
   // Scenario time 0 for both: the device powers up at this instant.
   const ports::TimestampUs start_us = out.clock->now_us();
   if (config.buttons.backend == ButtonBackend::sim) {

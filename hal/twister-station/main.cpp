@@ -180,9 +180,10 @@ int run(const Options& opt, const StationFileConfig& cfg, hal::Logger& log, hal:
   startup_signals.end();
   app::StationLoop loop(*parts.core, parts.backends, parts.display, log,
                         app::make_loop_config(cfg, opt.duration_s, parts.backends));
-  results.notice("", "running (tracker %s, buttons %s, journal %s)",
-                 parts.backends.tracker_name.c_str(), parts.backends.buttons_name.c_str(),
-                 cfg.station.journal.c_str());
+  results.notice("", "running (tracker %s, model %s, buttons %s, journal %s)",
+                 parts.backends.tracker_name.c_str(),
+                 twister::tracker::tracker_model_name(parts.core->tracker_session().config().model),
+                 parts.backends.buttons_name.c_str(), cfg.station.journal.c_str());
   loop.watch_journal(&parts.journal);
   const twister::Status flushed = loop.run();
   log_summary(results, *parts.core, loop, flushed);

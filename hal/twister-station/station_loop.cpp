@@ -120,8 +120,36 @@ bool StationLoop::step() {
 
 void StationLoop::log_events() {
   for (auto e = core_.next_event(); e.ok(); e = core_.next_event()) {
+    if (e->kind == session::SessionEventKind::tracker_streaming) {
+      log_tracker_search(&*e);
+      continue;
+    }
     log_station_event(*e, log_, journal_ != nullptr ? journal_->last_errno() : 0);
   }
+  log_tracker_search(nullptr);
+}
+
+// Found: the streaming line names the model and where. Not found: once, when the
+// first start-up failed, what was looked for where and why it failed.
+void StationLoop::log_tracker_search(const session::SessionEvent* e) {
+  const tracker::FastrakSession& session = core_.tracker_session();
+  const char* model = tracker::tracker_model_name(session.config().model);
+  const char* where = backends_.tracker_name.c_str();
+  if (e != nullptr) {
+    log_.notice("tracker", "streaming (start-up #%u): %s found on %s",
+                e->tracker_streaming().start_ups, model, where);
+    tracker_found_ = true;
+    return;
+  }
+  const auto& c = session.counters();
+  if (tracker_found_ || tracker_missing_said_ || c.inits < 2) return;
+  tracker_missing_said_ = true;
+  log_.warning("tracker",
+               "no %s found on %s yet (status timeouts %llu, io errors %llu, garbage %llu); "
+               "still looking (is it on, at this baud, and tracker.model right?)",
+               model, where, static_cast<unsigned long long>(c.status_timeouts),
+               static_cast<unsigned long long>(c.io_errors),
+               static_cast<unsigned long long>(c.garbage_faults));
 }
 
 // A missing or vanished button device is tried again every retry interval; the

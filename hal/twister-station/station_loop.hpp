@@ -83,6 +83,8 @@ class StationLoop {
   std::size_t fill_poll_set();
   bool signalled();
   void log_events();
+  // The tracker model configured, where it was found, or that it is not found yet.
+  void log_tracker_search(const session::SessionEvent* e);
   void retry_buttons(ports::TimestampUs now_us);
   void pet_watchdog(ports::TimestampUs now_us);
   bool time_is_up(ports::TimestampUs now_us) const;
@@ -104,6 +106,8 @@ class StationLoop {
   ports::TimestampUs last_button_retry_us_ = 0;
   StatusCode last_retry_code_ = StatusCode::unavailable;  // of the last button reopen
   std::uint64_t passes_ = 0;
+  bool tracker_found_ = false;          // the tracker has streamed since start
+  bool tracker_missing_said_ = false;   // "not found yet" was logged
   StopReason stop_reason_ = StopReason::end_of_run;
 };
 

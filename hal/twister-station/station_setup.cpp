@@ -135,6 +135,11 @@ void set_tracker(const StationFileConfig& config, station::StationConfig& c) {
                  : t.format == RecordFormat::ascii  ? tracker::Format::ascii
                                                     : tracker::Format::binary16;
   proto.units = tracker::Units::inches;
+  // A Liberty / Patriot: the same commands and lists; its frames are read with the
+  // Liberty parser (to_liberty_config of these lists). The config allows binary only.
+  c.session.model = t.model == TrackerModel::liberty   ? tracker::TrackerModel::liberty
+                    : t.model == TrackerModel::patriot ? tracker::TrackerModel::patriot
+                                                       : tracker::TrackerModel::fastrak;
   c.hand_station = {t.left_station, t.right_station};
   const bool stylus = config.buttons.backend == ButtonBackend::stylus;
   for (const std::uint8_t s : c.hand_station) {
@@ -147,8 +152,8 @@ void set_tracker(const StationFileConfig& config, station::StationConfig& c) {
             : tracker::OutputList::of({Item::position, Item::quaternion, Item::crlf});
   }
   c.session.silence_timeout_us = static_cast<std::int64_t>(t.silence_timeout_ms) * 1000;
-  c.session.backoff_initial_us = static_cast<std::int64_t>(t.reconnect_interval_ms) * 1000;
-  c.session.backoff_max_us = std::max<std::int64_t>(c.session.backoff_initial_us, 8'000'000);
+  c.session.backoff.initial_us = static_cast<std::int64_t>(t.reconnect_interval_ms) * 1000;
+  c.session.backoff.max_us = std::max<std::int64_t>(c.session.backoff.initial_us, 8'000'000);
   c.conversion.units = proto.units;
   c.conversion.format = proto.format;
   c.pose_stale_us = std::max<std::int64_t>(200'000, c.session.silence_timeout_us / 2);

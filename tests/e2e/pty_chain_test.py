@@ -7,8 +7,11 @@ Checks: the station's final model = the display's = `twister replay` of the jour
 = the station alone on the in-process simulator in virtual time (run_scenario.py);
 the poses line reports no conversion error; every stroke of the scenario committed.
 Only stylus scenarios can run here: the Fastrak line carries no other button.
+`--model liberty|patriot` (issue 22): twister-sim plays that unit (`--model`) and the
+station reads it as one (`tracker.model`); the reference stays the in-process Fastrak
+run, so the checksum shows the frames carry the same poses.
 
-    pty_chain_test.py --bin BUILD/bin --scenario S.scn --out DIR --commits N
+    pty_chain_test.py --bin BUILD/bin --scenario S.scn --out DIR --commits N [--model M]
 """
 import argparse
 import os
@@ -48,16 +51,16 @@ def chain(a, out):
     # real unit would), e.g. `e1,0`, and the stylus would then stop the stream. The
     # command-time model has its own tests (fastrak_fidelity_pty_test).
     sim = Proc([exe("twister-sim"), "--scenario", a.scenario, "--link", link,
-                "--command-time", "all=0"],
+                "--command-time", "all=0", "--model", a.model],
                os.path.join(out, "sim.log"), stdout_pipe=True)
     if wait_for_line(sim.popen.stdout, 10.0) is None:
         sys.exit("pty e2e: twister-sim printed no link path")
     cfg = os.path.join(out, "station.toml")
     open(cfg, "w").write(
         '[station]\njournal = "%s/journal.twj"\nmesh = "%s/start.obj"\n'
-        '[tracker]\nbackend = "serial"\nreconnect_interval_ms = 200\n'
+        '[tracker]\nbackend = "serial"\nmodel = "%s"\nreconnect_interval_ms = 200\n'
         '[tracker.serial]\ndevice = "%s"\n[buttons]\nbackend = "stylus"\ndebounce_ms = 10\n'
-        '[systemd]\nnotify = false\nwatchdog = false\n' % (out, out, link))
+        '[systemd]\nnotify = false\nwatchdog = false\n' % (out, out, a.model, link))
     sock = os.path.join(out, "link.sock")
     station = Proc([exe("twister-station"), "--config", cfg, "--log-level", "info",
                     "--link", "unix:" + sock, "--link-wait", "10",
@@ -80,6 +83,7 @@ def main():
     ap.add_argument("--scenario", required=True)
     ap.add_argument("--out", required=True)
     ap.add_argument("--commits", type=int, required=True, help="strokes in the scenario")
+    ap.add_argument("--model", default="fastrak", choices=["fastrak", "liberty", "patriot"])
     a = ap.parse_args()
     shutil.rmtree(a.out, ignore_errors=True)
     out = os.path.join(os.path.abspath(a.out), "chain")
@@ -93,13 +97,18 @@ def main():
                         "--mesh", out + "/start.obj", "--out", out + "/replayed.obj"],
                        capture_output=True, text=True)
     replay = re.findall(r"checksum ([0-9a-f]{16})", r.stdout)
-    print("reference %s, station %s, display %s, replay %s" % (ref, station, display, replay))
+    print("model %s: reference %s, station %s, display %s, replay %s" %
+          (a.model, ref, station, display, replay))
     for name, got in (("station", station), ("display", display), ("replay", replay)):
         if got[-1:] != [ref]:
             problems.append("%s checksum %s, reference %s" % (name, got, ref))
     m = re.search(r"poses: applied (\d+), conversion errors (\d+)", slog)
     if not m or int(m.group(2)) != 0:
         problems.append("poses line: %s" % (m.group(0) if m else "missing"))
+    names = {"fastrak": "FASTRAK", "liberty": "Liberty", "patriot": "Patriot"}
+    found = r"tracker: streaming \(start-up #1\): %s found on serial " % names[a.model]
+    if not re.search(found, slog):
+        problems.append("no line saying the %s was found" % names[a.model])
     commits = len(re.findall(r"committed as journal record", slog))
     if commits != a.commits:
         problems.append("%d commits, the scenario has %d strokes" % (commits, a.commits))

@@ -27,14 +27,39 @@ const char* session_state_name(SessionState s) {
   return "unknown";
 }
 
+const char* tracker_model_name(TrackerModel model) {
+  switch (model) {
+    case TrackerModel::fastrak:
+      return "FASTRAK";
+    case TrackerModel::liberty:
+      return "Liberty";
+    case TrackerModel::patriot:
+      return "Patriot";
+  }
+  return "unknown";
+}
+
+namespace {
+// A Liberty-family model needs binary output and lists with a Liberty equivalent.
+bool configure_frames(const FastrakSessionConfig& config, LibertyParser& parser) {
+  if (config.model == TrackerModel::fastrak) return true;
+  if (config.protocol.format != Format::binary) return false;
+  const LibertyModel family =
+      config.model == TrackerModel::patriot ? LibertyModel::patriot : LibertyModel::liberty;
+  LibertyConfig frames;
+  return to_liberty_config(config.protocol, family, frames).ok() && parser.configure(frames).ok();
+}
+}  // namespace
+
 FastrakSession::FastrakSession(ports::ByteStream& stream, ports::Clock& clock,
                                const FastrakSessionConfig& config)
     : stream_(stream),
       clock_(clock),
       config_(config),
       continuity_(config.continuity, config.protocol.units, config.protocol.format) {
-  config_ok_ = parser_.configure(config_.protocol).ok() && config_.reset_rung_limit >= 1;
-  recovery_.backoff_us = config_.backoff_initial_us;
+  config_ok_ = parsers_.fastrak.configure(config_.protocol).ok() &&
+               configure_frames(config_, parsers_.liberty) && config_.reset_rung_limit >= 1;
+  recovery_.backoff_us = config_.backoff.initial_us;
   timers_.deadline = clock_.now_us();
   if (config_ok_) build_commands();
 }
@@ -47,7 +72,12 @@ void FastrakSession::build_commands() {
     const ReceiverConfig& st = config_.protocol.stations[static_cast<std::size_t>(s - 1)];
     ok = ok && add_command(station_state_command(s, st.enabled));
     if (!st.enabled) continue;
-    ok = ok && add_command(output_list_command(s, st.list));
+    if (config_.model == TrackerModel::fastrak) {
+      ok = ok && add_command(output_list_command(s, st.list));
+    } else {
+      // The family's own item codes (docs/liberty-protocol.md §3), as the parser frames them.
+      ok = ok && add_liberty_list(s);
+    }
     ok = ok &&
          add_command(hemisphere_command(s, config_.hemisphere[static_cast<std::size_t>(s - 1)]));
   }
@@ -63,6 +93,16 @@ void FastrakSession::build_commands() {
   const bool ascii = config_.protocol.format == Format::ascii;
   ok = ok && add_command(Mode{ascii ? ModeCommand::ascii : ModeCommand::binary});
   TWISTER_ASSERT(ok);  // 4 stations x 32 items always fit the buffer
+}
+
+bool FastrakSession::add_liberty_list(int station) {
+  const auto room = std::span<char>(commands_.data).subspan(commands_.len);
+  const auto& list = parsers_.liberty.config().stations[static_cast<std::size_t>(station - 1)].list;
+  const Result<std::size_t> n = encode_liberty_output_list(station, list, room);
+  if (!n.ok() || *n >= room.size()) return false;
+  commands_.len += *n;
+  commands_.data[commands_.len++] = '\0';
+  return true;
 }
 
 bool FastrakSession::add_command(const FastrakCommand& command) {
@@ -118,18 +158,18 @@ void FastrakSession::start_ladder(ports::TimestampUs now) {
 }
 
 void FastrakSession::fault(ports::TimestampUs now) {
-  parser_.reset();
+  parsers_.reset();
   rx_.len = rx_.pos = 0;
   port_open_ = false;  // the port is reopened (VRPN closes and reopens as well)
   timers_.deadline = now + recovery_.backoff_us;
-  recovery_.backoff_us = std::min(recovery_.backoff_us * 2, config_.backoff_max_us);
+  recovery_.backoff_us = std::min(recovery_.backoff_us * 2, config_.backoff.max_us);
   enter(SessionState::backoff);
 }
 
 void FastrakSession::reinitialise() {
   ++counters_.reinit_requests;
   const ports::TimestampUs now = clock_.now_us();
-  parser_.reset();
+  parsers_.reset();
   rx_.len = rx_.pos = 0;
   port_open_ = false;
   recovery_.rung = 1;
@@ -168,7 +208,7 @@ void FastrakSession::step_timers(ports::TimestampUs now) {
       if (now < timers_.deadline) return;
       // Whatever came during the ladder (records, power-up text) is stale.
       stream_.discard_input();
-      parser_.reset();
+      parsers_.reset();
       rx_.len = rx_.pos = 0;
       if (!send_command(Mode{ModeCommand::status}, now)) return;
       timers_.deadline = now + config_.reply_timeout_us;
@@ -252,7 +292,7 @@ void FastrakSession::handle_event(const FastrakEvent& ev, ports::TimestampUs now
         if (!send_command(Mode{ModeCommand::continuous}, now)) return;
         ++counters_.streams_started;
         recovery_.rung = 0;
-        recovery_.backoff_us = config_.backoff_initial_us;
+        recovery_.backoff_us = config_.backoff.initial_us;
         timers_.last_pose = timers_.last_byte = now;
         continuity_.reset();
         enter(SessionState::streaming);
@@ -275,6 +315,14 @@ bool FastrakSession::take_pose(const FastrakPose& pose, ports::TimestampUs now) 
   return true;
 }
 
+Result<FastrakEvent> FastrakSession::next_event() {
+  std::span<const std::byte> in(rx_.data.data() + rx_.pos, rx_.len - rx_.pos);
+  const bool frames = config_.model != TrackerModel::fastrak && state_ == SessionState::streaming;
+  auto ev = frames ? parsers_.liberty.next(in) : parsers_.fastrak.next(in);
+  rx_.pos = rx_.len - in.size();
+  return ev;
+}
+
 Result<FastrakPose> FastrakSession::poll() {
   if (!config_ok_) return StatusCode::invalid_argument;
   const ports::TimestampUs now = clock_.now_us();
@@ -285,9 +333,7 @@ Result<FastrakPose> FastrakSession::poll() {
   for (;;) {
     // The parser may still hold an event (an accepted record queued behind its
     // resync report) even when no bytes are left, so ask it before reading.
-    std::span<const std::byte> in(rx_.data.data() + rx_.pos, rx_.len - rx_.pos);
-    auto ev = parser_.next(in);
-    rx_.pos = rx_.len - in.size();
+    auto ev = next_event();
     if (ev.ok()) {
       if (ev->kind == EventKind::pose && state_ == SessionState::streaming) {
         if (!take_pose(ev->pose, now)) continue;

@@ -109,6 +109,72 @@ Status to_liberty_list(const OutputList& fastrak, LibertyOutputList& out) {
   return Status{};
 }
 
+Status to_fastrak_list(const LibertyOutputList& liberty, OutputList& out) {
+  out = {};
+  const auto add = [&out](Item item) {
+    if (out.count >= kMaxItems) return false;
+    out.items[out.count++] = item;
+    return true;
+  };
+  for (std::size_t i = 0; i < liberty.count && i < kLibertyMaxItems; ++i) {
+    bool ok = true;
+    switch (liberty.items[i]) {
+      case LibertyItem::space:
+        ok = add(Item::space);
+        break;
+      case LibertyItem::crlf:
+        ok = add(Item::crlf);
+        break;
+      case LibertyItem::position:
+      case LibertyItem::position_ext:
+        ok = add(Item::position);
+        break;
+      case LibertyItem::euler:
+      case LibertyItem::euler_ext:
+        ok = add(Item::euler);
+        break;
+      case LibertyItem::dcm:
+        ok = add(Item::dcm_x) && add(Item::dcm_y) && add(Item::dcm_z);
+        break;
+      case LibertyItem::quaternion:
+        ok = add(Item::quaternion);
+        break;
+      case LibertyItem::stylus:
+        ok = add(Item::stylus);
+        break;
+      default:
+        return StatusCode::invalid_argument;
+    }
+    if (!ok) return StatusCode::invalid_argument;
+  }
+  return Status{};
+}
+
+Result<std::size_t> encode_liberty_output_list(int station, const LibertyOutputList& list,
+                                               std::span<char> out) {
+  if (station < 1 || station > kLibertyMaxStations || list.count == 0 ||
+      list.count > kLibertyMaxItems) {
+    return StatusCode::invalid_argument;
+  }
+  std::size_t n = 0;
+  const auto put = [&](char c) {
+    if (n >= out.size()) return false;
+    out[n++] = c;
+    return true;
+  };
+  const auto put_number = [&](unsigned v) {
+    if (v >= 10 && !put(static_cast<char>('0' + v / 10))) return false;
+    return put(static_cast<char>('0' + v % 10));
+  };
+  bool ok = put('O') && put_number(static_cast<unsigned>(station));
+  for (std::size_t i = 0; i < list.count; ++i) {
+    ok = ok && put(',') && put_number(static_cast<unsigned>(list.items[i]));
+  }
+  ok = ok && put(kCr);
+  if (!ok) return StatusCode::out_of_range;
+  return n;
+}
+
 std::size_t liberty_size_value(std::size_t body, LibertySizeField field) {
   return field == LibertySizeField::body ? body : body + kLibertyHeaderBytes;
 }

@@ -51,6 +51,18 @@ void read_tracker(ConfigReader& root, StationFileConfig& cfg) {
                 : format == "ascii"  ? RecordFormat::ascii
                                      : RecordFormat::binary16;
   }
+  std::string model;
+  if (t.string("model", false, model, {"fastrak", "liberty", "patriot"})) {
+    tc.model = model == "fastrak"   ? TrackerModel::fastrak
+               : model == "liberty" ? TrackerModel::liberty
+                                    : TrackerModel::patriot;
+  }
+  // A Liberty's or Patriot's records are parsed as binary frames only.
+  if (tc.model != TrackerModel::fastrak && tc.format != RecordFormat::binary) {
+    t.error(t.node("format"), "format",
+            "expected \"binary\" with tracker.model = \"" + model + "\" (its frames are "
+            "read in binary only), got \"" + format + "\"");
+  }
   read_u(t, "reconnect_interval_ms", false, 100, 60000, tc.reconnect_interval_ms);
   read_u(t, "silence_timeout_ms", false, 50, 10000, tc.silence_timeout_ms);
 

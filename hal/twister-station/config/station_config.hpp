@@ -20,6 +20,9 @@ enum class ButtonBackend : std::uint8_t { gpiod, hidapi, stylus, sim };
 enum class SerialFlowControl : std::uint8_t { none, rtscts, xonxoff };
 enum class GpioBias : std::uint8_t { as_is, disable, pull_up, pull_down };
 enum class RecordFormat : std::uint8_t { binary, ascii, binary16 };
+// The Polhemus unit on the line: its binary records are Fastrak records or
+// Liberty / Patriot frames (docs/liberty-protocol.md).
+enum class TrackerModel : std::uint8_t { fastrak, liberty, patriot };
 enum class SimTime : std::uint8_t { virtual_time, real_time };
 
 struct SerialTrackerConfig {
@@ -83,6 +86,7 @@ struct CalibrationConfig {
 
 struct TrackerConfig {
   TrackerBackend backend = TrackerBackend::serial;
+  TrackerModel model = TrackerModel::fastrak;
   std::uint8_t left_station = 1;  // Fastrak receiver (1..4) held in the left hand
   std::uint8_t right_station = 2;
   RecordFormat format = RecordFormat::binary;

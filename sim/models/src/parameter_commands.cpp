@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "twister/tracker/liberty_wire.hpp"
+
 // GCC 12 reports a false -Wrestrict inside std::string concatenation at -O3
 // (GCC bug 105329); nothing here overlaps.
 #if defined(__GNUC__) && !defined(__clang__)
@@ -150,32 +152,57 @@ void ParameterCommands::output_list(int station, const Fields& f, std::string_vi
   if (f.size() == 1) {
     std::string r = "2" + std::to_string(station) + "O";
     char item[8];
-    for (std::size_t i = 0; i < st.list.count; ++i) {
-      std::snprintf(item, sizeof item, "%2d", static_cast<int>(st.list.items[i]));
+    tracker::LibertyOutputList codes;
+    if (liberty_codes_ && !tracker::to_liberty_list(st.list, codes).ok()) codes = {};
+    const std::size_t n = liberty_codes_ ? codes.count : st.list.count;
+    for (std::size_t i = 0; i < n; ++i) {
+      const int code =
+          liberty_codes_ ? static_cast<int>(codes.items[i]) : static_cast<int>(st.list.items[i]);
+      std::snprintf(item, sizeof item, "%2d", code);
       r += item;
     }
     replies_.reply(r + "\r\n", at);
     return;
   }
   OutputList list;
-  for (std::size_t i = 1; i < f.size(); ++i) {
-    int code = 0;
-    if (const int rc = to_int(f[i], code); rc != 0) {
-      replies_.error(echo, rc, at);
-      return;
-    }
-    if (code < 0 || code > 255 || !tracker::is_supported_item(static_cast<std::uint8_t>(code)) ||
-        list.count >= tracker::kMaxItems) {
-      replies_.error(echo, -3, at);
-      return;
-    }
-    list.items[list.count++] = static_cast<Item>(code);
-  }
+  if (!read_list(f, echo, at, list)) return;
   if (tracker::record_length(list, settings_.protocol.format) > tracker::kMaxRecordBytes) {
     replies_.error(echo, -5, at);
     return;
   }
   st.list = list;
+}
+
+bool ParameterCommands::read_list(const Fields& f, std::string_view echo, ports::TimestampUs at,
+                                  OutputList& list) {
+  tracker::LibertyOutputList codes;
+  for (std::size_t i = 1; i < f.size(); ++i) {
+    int code = 0;
+    if (const int rc = to_int(f[i], code); rc != 0) {
+      replies_.error(echo, rc, at);
+      return false;
+    }
+    const bool known =
+        code >= 0 && code <= 255 &&
+        (liberty_codes_ ? tracker::is_supported_liberty_item(static_cast<std::uint8_t>(code))
+                        : tracker::is_supported_item(static_cast<std::uint8_t>(code)));
+    const std::size_t count = liberty_codes_ ? codes.count : list.count;
+    if (!known || count >= tracker::kMaxItems) {
+      replies_.error(echo, -3, at);
+      return false;
+    }
+    if (liberty_codes_) {
+      codes.items[codes.count++] = static_cast<tracker::LibertyItem>(code);
+    } else {
+      list.items[list.count++] = static_cast<Item>(code);
+    }
+  }
+  // A Liberty item the model cannot send (timestamp, frame count, distortion): refused.
+  if (liberty_codes_ && !tracker::to_fastrak_list(codes, list).ok()) {
+    replies_.error(echo, -3, at);
+    return false;
+  }
+  return true;
 }
 
 void ParameterCommands::station_state(int station, const Fields& f, std::string_view echo,

@@ -98,8 +98,8 @@ StationConfig test_config() {
   c.session.reply_timeout_us = 50'000;
   c.session.command_pause_us = 1'000;
   c.session.silence_timeout_us = 100'000;
-  c.session.backoff_initial_us = 10'000;
-  c.session.backoff_max_us = 40'000;
+  c.session.backoff.initial_us = 10'000;
+  c.session.backoff.max_us = 40'000;
   c.conversion.units = tracker::Units::inches;
   c.conversion.format = tracker::Format::binary;
   c.sculpt.debounce.interval_us.fill(5'000);

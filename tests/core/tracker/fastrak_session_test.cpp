@@ -28,8 +28,8 @@ FastrakSessionConfig fast_config() {
   c.settle_us = 2'000;
   c.reply_timeout_us = 20'000;
   c.command_pause_us = 500;
-  c.backoff_initial_us = 10'000;
-  c.backoff_max_us = 80'000;
+  c.backoff.initial_us = 10'000;
+  c.backoff.max_us = 80'000;
   return c;
 }
 

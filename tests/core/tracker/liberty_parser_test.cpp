@@ -6,6 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <span>
+#include <string>
+
 #include "liberty_test_util.hpp"
 
 namespace twister::tracker {
@@ -286,6 +290,51 @@ TEST(LibertyWire, FastrakConfigTranslatesStationForStation) {
   EXPECT_TRUE(c.stations[1].enabled);
   EXPECT_EQ(liberty_body_length(c.stations[1].list), 26u);
   EXPECT_TRUE(validate(c).ok());
+}
+
+TEST(LibertyWire, OutputListCommandUsesTheFamilysItemCodes) {
+  // The station's lists: position, quaternion, stylus, CR LF = codes 2, 7, 10, 1 (§3).
+  LibertyOutputList list;
+  ASSERT_TRUE(
+      to_liberty_list(OutputList::of({Item::position, Item::quaternion, Item::stylus, Item::crlf}),
+                      list)
+          .ok());
+  std::array<char, 32> buf{};
+  auto n = encode_liberty_output_list(1, list, buf);
+  ASSERT_TRUE(n.ok());
+  EXPECT_EQ(std::string(buf.data(), *n), "O1,2,7,10,1\r");
+  n = encode_liberty_output_list(16, LibertyOutputList::of({L::dcm, L::space}), buf);
+  ASSERT_TRUE(n.ok());
+  EXPECT_EQ(std::string(buf.data(), *n), "O16,6,0\r");
+  EXPECT_EQ(encode_liberty_output_list(0, list, buf).status().code(), StatusCode::invalid_argument);
+  EXPECT_EQ(encode_liberty_output_list(17, list, buf).status().code(),
+            StatusCode::invalid_argument);
+  EXPECT_EQ(encode_liberty_output_list(1, {}, buf).status().code(), StatusCode::invalid_argument);
+  EXPECT_EQ(encode_liberty_output_list(1, list, std::span<char>(buf).first(11)).status().code(),
+            StatusCode::out_of_range);
+  EXPECT_TRUE(encode_liberty_output_list(1, list, std::span<char>(buf).first(12)).ok());
+}
+
+TEST(LibertyWire, LibertyListsTranslateBackToFastrakLists) {
+  const OutputList station =
+      OutputList::of({Item::position, Item::quaternion, Item::stylus, Item::crlf});
+  LibertyOutputList liberty;
+  ASSERT_TRUE(to_liberty_list(station, liberty).ok());
+  OutputList back;
+  ASSERT_TRUE(to_fastrak_list(liberty, back).ok());
+  ASSERT_EQ(back.count, station.count);
+  for (std::size_t i = 0; i < back.count; ++i) EXPECT_EQ(back.items[i], station.items[i]);
+  ASSERT_TRUE(
+      to_fastrak_list(LibertyOutputList::of({L::position_ext, L::dcm, L::space}), back).ok());
+  ASSERT_EQ(back.count, 5);
+  EXPECT_EQ(back.items[0], Item::position);
+  EXPECT_EQ(back.items[1], Item::dcm_x);
+  EXPECT_EQ(back.items[3], Item::dcm_z);
+  EXPECT_EQ(back.items[4], Item::space);
+  for (L none : {L::timestamp, L::frame_count, L::distortion}) {
+    EXPECT_EQ(to_fastrak_list(LibertyOutputList::of({L::position, none}), back).code(),
+              StatusCode::invalid_argument);
+  }
 }
 
 }  // namespace

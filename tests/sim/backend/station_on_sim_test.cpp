@@ -52,7 +52,7 @@ station::StationConfig station_config(Format format) {
   c.session.reply_timeout_us = 300'000;
   c.session.command_pause_us = 50'000;
   c.session.silence_timeout_us = 500'000;
-  c.session.backoff_initial_us = 100'000;
+  c.session.backoff.initial_us = 100'000;
   c.conversion.format = format;
   return c;
 }

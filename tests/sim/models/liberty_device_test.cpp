@@ -42,8 +42,12 @@ ModelRun run(DeviceModel model, bool binary) {
   FastrakDeviceConfig cfg;
   cfg.model = model;
   FastrakDevice dev(cfg, sc, 0);
-  const std::vector<std::string> commands = {"O1,2,11,16,1\r", "O2,2,11,1\r", binary ? "f" : "F",
-                                             "C"};
+  // A Liberty-family unit takes its own item codes (position 2, quaternion 7, stylus 10,
+  // CR LF 1; docs/liberty-protocol.md §3); the same lists as the Fastrak's 2, 11, 16, 1.
+  const bool codes = model != DeviceModel::fastrak;
+  const std::vector<std::string> commands = {codes ? "O1,2,7,10,1\r" : "O1,2,11,16,1\r",
+                                             codes ? "O2,2,7,1\r" : "O2,2,11,1\r",
+                                             binary ? "f" : "F", "C"};
   ModelRun r;
   std::int64_t t = 0;
   for (std::size_t i = 0; i <= commands.size(); ++i) {

@@ -36,7 +36,7 @@ tracker::FastrakSessionConfig session_config(Format format, OutputList list) {
   cfg.reply_timeout_us = 300'000;
   cfg.command_pause_us = 50'000;
   cfg.silence_timeout_us = 1'000'000;
-  cfg.backoff_initial_us = 100'000;
+  cfg.backoff.initial_us = 100'000;
   return cfg;
 }
 

@@ -88,7 +88,7 @@ TEST_P(FastrakPtyAcceptance, SessionRecoversAndNoInvalidPoseReachesTheConsumer) 
   cfg.settle_us = 50'000;
   cfg.reply_timeout_us = 300'000;
   cfg.command_pause_us = 50'000;  // the simulator's default command times (40 ms)
-  cfg.backoff_initial_us = 100'000;
+  cfg.backoff.initial_us = 100'000;
   hal::TermiosByteStream port({opts.link, 115200, hal::FlowControl::none});
   hal::MonotonicClock clock;
   tracker::FastrakSession session(port, clock, cfg);

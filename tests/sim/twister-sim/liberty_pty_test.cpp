@@ -1,7 +1,8 @@
 // twister-sim's server playing a Liberty / Patriot on a real PTY (`--model`): a raw host
-// configures the station's output lists, binary and continuous, and the frames it reads
-// parse with LibertyParser to the poses the Fastrak model gives for the same still hands
-// through FastrakParser in process (equal as floats). Real time, about 2 s per model.
+// configures the station's output lists (in the Liberty's item codes), binary and
+// continuous, and the frames it reads parse with LibertyParser to the poses the Fastrak model gives
+// for the same still hands through FastrakParser in process (equal as floats). Real time, about 2 s
+// per model.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -74,7 +75,8 @@ void check_model(DeviceModel model, tracker::LibertyModel family, const char* na
   RawClient host(opts.link, B115200);
   ASSERT_TRUE(host.ok());
   // One command at a time: the unit is deaf while it processes one.
-  for (const char* cmd : {"O1,2,11,16,1\r", "O2,2,11,1\r"}) {
+  // The family's own item codes: position 2, quaternion 7, stylus 10, CR LF 1.
+  for (const char* cmd : {"O1,2,7,10,1\r", "O2,2,7,1\r"}) {
     host.send(cmd);
     host.read_for(200);
   }

@@ -18,11 +18,26 @@
 #include "twister/tracker/fastrak_event.hpp"
 #include "twister/tracker/fastrak_parser.hpp"
 #include "twister/tracker/fastrak_wire.hpp"
+#include "twister/tracker/liberty_parser.hpp"
 #include "twister/tracker/pose_continuity.hpp"
 
 namespace twister::tracker {
 
+// The unit on the line. A Liberty or Patriot takes the Fastrak's start-up, but its `O`
+// lists in its own item codes (to_liberty_config(protocol)); in binary its records are
+// Liberty-family frames (docs/liberty-protocol.md), so once streaming the session reads
+// them with LibertyParser configured the same way. Those models need Format::binary.
+enum class TrackerModel : std::uint8_t { fastrak, liberty, patriot };
+const char* tracker_model_name(TrackerModel model);  // "FASTRAK", "Liberty", "Patriot"
+
+// Delay before each re-initialisation: the first, doubled per failure up to the cap.
+struct SessionBackoff {
+  std::int64_t initial_us = 250'000;  // first re-initialisation delay
+  std::int64_t max_us = 8'000'000;    // back-off cap
+};
+
 struct FastrakSessionConfig {
+  TrackerModel model = TrackerModel::fastrak;
   FastrakConfig protocol{};  // format, units, enabled stations and their output lists
   // `H` vector per station (index = station - 1); default +X ("forward").
   std::array<std::array<int, 3>, kMaxStations> hemisphere{
@@ -36,8 +51,7 @@ struct FastrakSessionConfig {
   std::int64_t command_pause_us = 100'000;      // between configuration commands
   std::int64_t filter_pause_us = 1'000'000;     // after `x` / `v` (VRPN waits 1 s)
   std::int64_t silence_timeout_us = 2'000'000;  // no valid pose -> fault (VRPN 2 s)
-  std::int64_t backoff_initial_us = 250'000;    // first re-initialisation delay
-  std::int64_t backoff_max_us = 8'000'000;      // back-off cap (doubles per failure)
+  SessionBackoff backoff{};                     // re-initialisation delays
   int reset_rung_limit = 3;                     // highest ladder rung: 1 `c`, 2 CR+`c`, 3 CR+`c`+^Y
   FilterSetting position_filter{};              // `x`, sent after the output lists
   FilterSetting attitude_filter{};              // `v`
@@ -93,7 +107,11 @@ class FastrakSession {
   SessionState state() const { return state_; }
   bool streaming() const { return state_ == SessionState::streaming; }
   const FastrakSessionCounters& counters() const { return counters_; }
-  const FastrakParserCounters& parser_counters() const { return parser_.counters(); }
+  const FastrakParserCounters& parser_counters() const { return parsers_.fastrak.counters(); }
+  // The frame parser's counters (model liberty / patriot; zero for a Fastrak).
+  const LibertyParserCounters& liberty_parser_counters() const {
+    return parsers_.liberty.counters();
+  }
   const FastrakStatus& last_status() const { return last_status_; }
   const FastrakSessionConfig& config() const { return config_; }
   int ladder_rung() const { return recovery_.rung; }
@@ -108,9 +126,14 @@ class FastrakSession {
   void build_commands();
   // Appends one encoded command to the configuration commands.
   bool add_command(const FastrakCommand& command);
+  // Appends a Liberty-family `O` command for `station` (its list from the frame parser).
+  bool add_liberty_list(int station);
   // A validated pose while streaming: continuity and status bookkeeping. false: held back.
   bool take_pose(const FastrakPose& pose, ports::TimestampUs now);
   void handle_event(const FastrakEvent& ev, ports::TimestampUs now);
+  // The next event from rx_: frames while a Liberty-family unit streams, else records
+  // and replies.
+  Result<FastrakEvent> next_event();
 
   // A fixed buffer and how far it is filled (len) and used (pos).
   template <typename T, std::size_t N>
@@ -124,6 +147,16 @@ class FastrakSession {
     ports::TimestampUs last_pose = 0;  // a pose was last accepted
     ports::TimestampUs last_byte = 0;  // a byte was last read
   };
+  // The Fastrak parser reads replies (and a Fastrak's records); the frame parser reads a
+  // Liberty's or Patriot's records while streaming.
+  struct Parsers {
+    FastrakParser fastrak;
+    LibertyParser liberty;
+    void reset() {
+      fastrak.reset();
+      liberty.reset();
+    }
+  };
   struct Recovery {
     std::int64_t backoff_us = 0;  // the next re-initialisation delay
     int rung = 0;                 // the reset ladder's rung
@@ -132,7 +165,7 @@ class FastrakSession {
   ports::ByteStream& stream_;
   ports::Clock& clock_;
   FastrakSessionConfig config_;
-  FastrakParser parser_;
+  Parsers parsers_;
   PoseContinuity continuity_;
   bool config_ok_ = false;
   bool port_open_ = false;

@@ -8,7 +8,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <initializer_list>
+#include <span>
 
+#include "twister/base/result.hpp"
 #include "twister/base/status.hpp"
 #include "twister/tracker/fastrak_wire.hpp"
 
@@ -74,6 +76,18 @@ std::size_t liberty_body_length(const LibertyOutputList& list);
 // position, orientation (Euler, direction cosines or quaternion), stylus, CR LF, space.
 // invalid_argument: a Fastrak item without a Liberty equivalent.
 Status to_liberty_list(const OutputList& fastrak, LibertyOutputList& out);
+
+// The inverse for the items a Fastrak list can say: direction cosines become the three
+// rows, every other item its Fastrak counterpart (extended precision as plain).
+// invalid_argument: timestamp, frame count or distortion (no Fastrak item), or too long.
+Status to_fastrak_list(const LibertyOutputList& liberty, OutputList& out);
+
+// The `O` command setting a station's list in the family's own item codes (§3):
+// "O<station>,<code>,...\r". Returns the bytes written.
+// invalid_argument: station outside 1..kLibertyMaxStations or an empty list;
+// out_of_range: `out` is too small.
+Result<std::size_t> encode_liberty_output_list(int station, const LibertyOutputList& list,
+                                               std::span<char> out);
 
 struct LibertyStationConfig {
   bool enabled = false;

@@ -165,7 +165,7 @@ class FastrakDevice final : private ReplySink {
   ports::TimestampUs start_us_;
   std::mt19937 rng_;
   UnitSettings settings_;
-  ParameterCommands parameters_{settings_, *this};
+  ParameterCommands parameters_{settings_, *this, config_.model != DeviceModel::fastrak};
   CommandInput input_{config_.command_time_us};
   FaultSchedule faults_{scenario_.faults, start_us_};
   StationSolver solver_;

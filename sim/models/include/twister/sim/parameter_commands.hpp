@@ -28,8 +28,10 @@ class ReplySink {
 
 class ParameterCommands {
  public:
-  ParameterCommands(UnitSettings& settings, ReplySink& replies)
-      : settings_(settings), replies_(replies) {}
+  // liberty_codes: `O` takes and reads back the Liberty family's item codes
+  // (docs/liberty-protocol.md §3), kept as the equivalent Fastrak list.
+  ParameterCommands(UnitSettings& settings, ReplySink& replies, bool liberty_codes = false)
+      : settings_(settings), replies_(replies), liberty_codes_(liberty_codes) {}
 
   // Runs `command`, done at `at`; `echo` is the command as received (for errors).
   void execute(const tracker::Parameters& command, std::string_view echo, ports::TimestampUs at);
@@ -49,8 +51,13 @@ class ParameterCommands {
                       std::string_view echo, ports::TimestampUs at);
   void serial_port(const Fields& f, std::string_view echo, ports::TimestampUs at);
 
+  // The list of `O`'s item codes; false: an error was replied.
+  bool read_list(const Fields& f, std::string_view echo, ports::TimestampUs at,
+                 tracker::OutputList& list);
+
   UnitSettings& settings_;
   ReplySink& replies_;
+  bool liberty_codes_ = false;
 };
 
 }  // namespace twister::sim
