@@ -1,5 +1,6 @@
 #include "calibration_config.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 
@@ -71,9 +72,12 @@ void read_filter(ConfigReader& c, std::string_view key, FilterConfig& out) {
   ConfigReader e = c.element(t, key);
   FilterConfig f;
   f.mode = FilterConfig::Mode::set;
-  const bool ok =
-      e.real("f", true, 0.001, 0.999, f.f) & e.real("flow", true, 0.001, 0.999, f.flow) &
-      e.real("fhigh", true, 0.001, 0.999, f.fhigh) & e.real("factor", true, 0.001, 0.999, f.factor);
+  // Every key is read (each bad one reported), then the verdict.
+  const std::array<bool, 4> read = {e.real("f", true, 0.001, 0.999, f.f),
+                                    e.real("flow", true, 0.001, 0.999, f.flow),
+                                    e.real("fhigh", true, 0.001, 0.999, f.fhigh),
+                                    e.real("factor", true, 0.001, 0.999, f.factor)};
+  const bool ok = read[0] && read[1] && read[2] && read[3];
   e.finish();
   if (!ok) return;
   if (!(f.flow < f.fhigh)) {
