@@ -237,6 +237,7 @@ LinkView BridgeApp::link_view() const {
       break;
   }
   if (connected_) return LinkView::connected;
+  if (station_stopped_) return LinkView::stopped;
   return counters_.connects > 0 ? LinkView::lost : LinkView::waiting;
 }
 

@@ -143,6 +143,7 @@ class BridgeApp {
   std::vector<std::byte> in_;  // receive buffer, sized once
   std::vector<std::byte> out_;
   bool connected_ = false;
+  bool station_stopped_ = false;  // its last connection ended with bye: shutdown
   // Handshake of the current connection.
   bool station_hello_ = false;
   bool ready_ = false;

@@ -13,6 +13,7 @@ using ports::LogLevel;
 
 void BridgeApp::on_connect() {
   connected_ = true;
+  station_stopped_ = false;
   ++counters_.connects;
   decoder_.clear();  // a fresh decoder per connection: no stale partial frame
   replica_.reconnected();
@@ -129,6 +130,7 @@ void BridgeApp::on_bye(const link::Bye& bye) {
       if (connected_) ++counters_.disconnects;
       connected_ = false;
       ready_ = false;
+      station_stopped_ = true;
       return;
     case link::ByeReason::protocol:
     case link::ByeReason::timeout:

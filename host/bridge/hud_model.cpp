@@ -32,6 +32,8 @@ const char* link_text(LinkView link) {
       return "another display has the link (retrying)";
     case LinkView::refused:
       return "refused by the station";
+    case LinkView::stopped:
+      return "the station stopped (end of its run)";
   }
   return "?";
 }

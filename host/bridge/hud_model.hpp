@@ -20,7 +20,9 @@
 
 namespace twister::bridge {
 
-enum class LinkView : std::uint8_t { waiting, connected, lost, displaced, refused };
+// stopped: the station said goodbye at the end of its run (nothing is wrong here:
+// no banner over the model it left).
+enum class LinkView : std::uint8_t { waiting, connected, lost, displaced, refused, stopped };
 
 struct HudInput {
   LinkView link = LinkView::waiting;

@@ -44,6 +44,13 @@ TEST(HudModel, BannersInOrderOfUrgency) {
   const HudText lost = hud.update(r, in);
   EXPECT_EQ(lost.banner, "LINK LOST");
   EXPECT_NE(lost.lines[0].find("lost, reconnecting"), std::string::npos) << lost.lines[0];
+  // A station that said goodbye at the end of its run: said, but no banner over the model.
+  in.link = LinkView::stopped;
+  const HudText stopped = hud.update(r, in);
+  EXPECT_EQ(stopped.banner, "TRACKER LOST") << "the station's last status still counts";
+  (void)r.apply(status(1, 1000, 1000));
+  EXPECT_EQ(hud.update(r, in).banner, "");
+  EXPECT_NE(hud.update(r, in).lines[0].find("the station stopped"), std::string::npos);
 }
 
 TEST(HudModel, AMeshLoadedFullIsNoBannerButSaysSo) {
