@@ -210,13 +210,7 @@ FastrakParser::Candidate FastrakParser::at_end(const Candidate&, const std::byte
 }
 
 Result<FastrakEvent> FastrakParser::next(std::span<const std::byte>& input) {
-  if (!config_ok_) {
-    scan_.drop(counters_, input.size());
-    counters_.bytes += input.size();
-    input = input.subspan(input.size());
-    return StatusCode::unavailable;
-  }
-  return scan_.next(*this, counters_, input);
+  return config_ok_ ? scan_.next(*this, counters_, input) : scan_.drop_all(counters_, input);
 }
 
 Result<FastrakEvent> FastrakParser::finish() { return scan_.finish(*this, counters_); }

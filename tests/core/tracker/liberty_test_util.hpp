@@ -1,4 +1,5 @@
-// Helpers for the Liberty-family tests: hex byte strings, whole-stream parsing.
+// Helpers for the Liberty-family tests: hex byte strings (parse_all is
+// tracker_test_util.hpp's, for any parser).
 #pragma once
 
 #include <cstdint>
@@ -31,20 +32,6 @@ inline std::string hex(std::string_view s) {
   return out;
 }
 
-inline std::vector<FastrakEvent> parse_all(LibertyParser& parser, std::string_view stream,
-                                           const std::vector<std::size_t>& chunks = {}) {
-  std::vector<FastrakEvent> out;
-  std::size_t pos = 0, k = 0;
-  while (pos < stream.size()) {
-    std::size_t n = chunks.empty() ? stream.size() : chunks[k++ % chunks.size()];
-    if (n == 0) n = 1;
-    n = std::min(n, stream.size() - pos);
-    parser.feed(bytes_of(stream.substr(pos, n)), [&](const FastrakEvent& e) { out.push_back(e); });
-    pos += n;
-  }
-  for (auto e = parser.finish(); e.ok(); e = parser.finish()) out.push_back(*e);
-  return out;
-}
 
 inline LibertyConfig liberty_one_station(LibertyModel model, LibertyOutputList list,
                                          int station = 1) {

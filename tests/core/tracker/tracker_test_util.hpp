@@ -32,9 +32,10 @@ inline const std::string kDefaultAscii = std::string("01 ") + "  12.50" + "  -3.
                                          "  90.00" + "   0.00" + " 180.00" + "\r\n";
 
 // Feeds `stream` in chunks of the given sizes (cycled; empty = all at once), then
-// finish(); returns every event.
-inline std::vector<FastrakEvent> parse_all(FastrakParser& parser, std::string_view stream,
-                                           const std::vector<std::size_t>& chunks = {}) {
+// finish(); returns every event. Any parser with feed() and finish() (Fastrak, Liberty).
+template <typename Parser>
+std::vector<FastrakEvent> parse_all(Parser& parser, std::string_view stream,
+                                    const std::vector<std::size_t>& chunks = {}) {
   std::vector<FastrakEvent> out;
   std::size_t pos = 0, k = 0;
   while (pos < stream.size()) {

@@ -131,14 +131,22 @@ class FrameScanner {
     held_ = false;
   }
 
-  // Every byte of `n` is dropped (a parser without a valid configuration).
+  // A parser without a valid configuration: every byte of `input` is dropped.
+  template <typename Counters>
+  Result<FastrakEvent> drop_all(Counters& counters, std::span<const std::byte>& input) {
+    drop(counters, input.size());
+    counters.bytes += input.size();
+    input = input.subspan(input.size());
+    return StatusCode::unavailable;
+  }
+
+ private:
   template <typename Counters>
   void drop(Counters& counters, std::size_t n) {
     dropped_run_ += static_cast<std::uint32_t>(n);
     counters.dropped_bytes += n;
   }
 
- private:
   // Bytes from p[0] up to the next one that could start an item (at least 1).
   template <typename Codec>
   static std::size_t skip_to_start(const Codec& codec, const std::byte* p, std::size_t n) {
