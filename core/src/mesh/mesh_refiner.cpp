@@ -8,12 +8,20 @@
 #include "twister/mesh/mesh_refiner.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <functional>
 #include <glm/geometric.hpp>
 #include <utility>
 
 #include "twister/base/assert.hpp"
+
+// batch_edge runs once per region edge: inlined, a batch's count stays in a register.
+#if defined(__GNUC__)
+#define TWISTER_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define TWISTER_ALWAYS_INLINE inline
+#endif
 
 namespace twister::mesh {
 namespace {
@@ -30,6 +38,10 @@ constexpr std::uint32_t kNoCorner = 0xffffffffu;
 constexpr std::uint32_t next(std::uint32_t i) { return i == 2 ? 0 : i + 1; }
 constexpr std::uint32_t prev(std::uint32_t i) { return i == 0 ? 2 : i - 1; }
 bool real_twin(std::uint32_t g) { return g != kBoundary && g != kNonManifold; }
+// |c| as bits, ordered as the magnitudes are, a NaN above every number: a running
+// maximum of them has no chain of float compares and lets a NaN through (to settle
+// nothing) where std::max would drop it.
+std::uint32_t magnitude_bits(float c) { return std::bit_cast<std::uint32_t>(c) & 0x7fffffffu; }
 
 }  // namespace
 
@@ -417,6 +429,14 @@ Status MeshRefiner::build_adjacency(const Mesh& mesh) {
     mesh_ = const_cast<Mesh*>(saved);
     adjacency_key_.manifold = adjacency_key_.manifold && corners == 3 * triangles;
   }
+  // Consistent winding: every edge runs one way in one triangle and the other way in
+  // its twin. Splits keep it (each half keeps its triangle's orientation).
+  const std::uint32_t* tv = mesh.triangle_indices().data();
+  adjacency_key_.oriented = true;
+  for (std::uint32_t h = 0; h < 3 * triangles && adjacency_key_.oriented; ++h) {
+    const std::uint32_t g = adjacency_.twin(h);
+    adjacency_key_.oriented = !real_twin(g) || tv[g] == tv[h % 3 == 2 ? h - 2 : h + 1];
+  }
   return ok_status();
 }
 
@@ -475,8 +495,10 @@ void MeshRefiner::walk_fan(std::uint32_t v, Tri&& tri, Edge&& edge) const {
   if (t0 == kNoCorner) return;
   const std::uint32_t j0 = slot(t0, v);
   tri(t0, j0);
-  for (const std::uint32_t first_exit : {3 * t0 + j0, 3 * t0 + prev(j0)}) {
-    std::uint32_t exit = first_exit;
+  const bool oriented = adjacency_key_.oriented;
+  // Way 0 leaves t0 by the edge from v, way 1 by the edge into v.
+  for (const std::uint32_t way : {0u, 1u}) {
+    std::uint32_t exit = way == 0 ? 3 * t0 + j0 : 3 * t0 + prev(j0);
     for (;;) {
       const std::uint32_t g = adjacency_.twin(exit);
       if (!real_twin(g)) {  // the boundary (a manifold fan has no other end)
@@ -488,7 +510,14 @@ void MeshRefiner::walk_fan(std::uint32_t v, Tri&& tri, Edge&& edge) const {
         edge(exit, g);
         return;
       }
-      const std::uint32_t j = slot(u, v);
+      // Consistent winding: g runs against exit, so v's slot in u follows from g
+      // alone and the walk waits on one load per triangle, not two.
+      std::uint32_t j = 0;
+      if (oriented) {
+        j = way == 0 ? next(g % 3) : g % 3;
+      } else {
+        j = slot(u, v);
+      }
       tri(u, j);  // before the edge into it: an edge sees both its triangles entered
       edge(exit, g);
       exit = 3 * u + j == g ? 3 * u + prev(j) : 3 * u + j;
@@ -563,9 +592,9 @@ struct MeshRefiner::FloatBatch {
   std::array<std::uint32_t, kSize> edges{};
   std::array<std::uint32_t, kSize> twins{};
   std::array<float, kSize> x{}, y{}, z{}, ox{}, oy{}, oz{};  // float midpoints, S of them
-  std::array<double, kSize> cx{}, cy{}, cz{};                 // (S(a) + S(b)) / 2 in float
+  std::array<double, kSize> cx{}, cy{}, cz{};                // (S(a) + S(b)) / 2 in float
   std::size_t n = 0;
-  float extent = 0.0f;
+  bool keep_verdicts = true;  // cache each edge's verdict (else only count them)
 };
 
 struct MeshRefiner::VertexBatch {
@@ -598,8 +627,7 @@ void MeshRefiner::warp_vertices(VertexBatch& b) {
 // `vertices` are walked once, each edge batched when it is first met, the other
 // region vertices taken as fixed points. Otherwise the region first, then S in float
 // at each of its vertices, then its edges.
-bool MeshRefiner::collect_and_settle(std::span<const std::uint32_t> vertices,
-                                     VertexImages images) {
+bool MeshRefiner::collect_and_settle(std::span<const std::uint32_t> vertices, VertexImages images) {
   filter_ = FloatFilter{};
   const std::size_t n = mesh_->vertex_count();
   FloatBatch b;
@@ -612,11 +640,15 @@ bool MeshRefiner::collect_and_settle(std::span<const std::uint32_t> vertices,
     return filter_.unsettled == 0;
   }
   stamp_images(vertices, images);
+  if (settle_stroke_edges(vertices)) return true;
+  filter_.settled = 0;
+  filter_.unsettled = 0;
   const std::size_t capacity = region_.stamps.size();
   std::span<std::uint32_t> list = storage_.adjacency.incident.subspan(capacity, capacity);
   std::size_t count = 0;
   const std::uint32_t* tv = mesh_->triangle_indices().data();
   for (const std::uint32_t v : vertices) {
+    const EdgeEnd ev = edge_end(v, true);
     walk_fan(
         v,
         [&](std::uint32_t t, std::uint32_t j) {
@@ -634,11 +666,48 @@ bool MeshRefiner::collect_and_settle(std::span<const std::uint32_t> vertices,
           const std::uint32_t w = a == v ? tv[h % 3 == 2 ? h - 2 : h + 1] : a;
           const bool both = stroke_vertex(w);
           if (both && w < v) return;
-          batch_edge(h, g, {v, w}, {true, both}, b);
+          batch_edge(h, g, ev, edge_end(w, both), b);
         });
   }
   settle_batch(b);
   set_region(list.first(count));
+  return filter_.unsettled == 0;
+}
+
+// The float filter over the stroke's fans with no bookkeeping (no region list, no
+// triangle stamps or flags, no cached verdicts): true when every region edge is
+// within the threshold, and then nothing can split and nothing else is needed. Stops
+// at the first batch with an edge left to the double criterion (the caller then
+// walks again with the bookkeeping). Each edge once, without marks: an edge at a
+// stroke vertex from its lower stroke end, an edge with no stroke end from the
+// triangle across from its stroke vertex (the lower of two such triangles).
+bool MeshRefiner::settle_stroke_edges(std::span<const std::uint32_t> vertices) {
+  const std::uint32_t* tv = mesh_->triangle_indices().data();
+  FloatBatch b;
+  b.keep_verdicts = false;
+  for (const std::uint32_t v : vertices) {
+    const EdgeEnd ev = edge_end(v, true);
+    walk_fan(
+        v,
+        [&](std::uint32_t t, std::uint32_t j) {
+          const std::uint32_t h = 3 * t + next(j);
+          const std::uint32_t a = tv[h];
+          const std::uint32_t c = tv[3 * t + prev(j)];
+          if (stroke_vertex(a) || stroke_vertex(c)) return;
+          const std::uint32_t g = adjacency_.twin(h);
+          if (real_twin(g) && g / 3 < t && stroke_vertex(tv[g % 3 == 0 ? g + 2 : g - 1])) return;
+          batch_edge(h, g, edge_end(a, false), edge_end(c, false), b);
+        },
+        [&](std::uint32_t h, std::uint32_t g) {
+          const std::uint32_t a = tv[h];
+          const std::uint32_t w = a == v ? tv[h % 3 == 2 ? h - 2 : h + 1] : a;
+          const bool both = stroke_vertex(w);
+          if (both && w < v) return;
+          batch_edge(h, g, ev, edge_end(w, both), b);
+        });
+    if (filter_.unsettled != 0) return false;
+  }
+  settle_batch(b);
   return filter_.unsettled == 0;
 }
 
@@ -647,13 +716,14 @@ void MeshRefiner::stamp_images(std::span<const std::uint32_t> vertices, VertexIm
   const std::span<const float> px = std::as_const(*mesh_).x();
   const std::span<const float> py = std::as_const(*mesh_).y();
   const std::span<const float> pz = std::as_const(*mesh_).z();
-  float extent = 0.0f;
+  std::uint32_t extent = 0;
   for (const std::uint32_t v : vertices) {
     storage_.float_stamp[v] = generation_;
-    extent = std::max({extent, std::abs(px[v]), std::abs(py[v]), std::abs(pz[v])});
+    extent =
+        std::max({extent, magnitude_bits(px[v]), magnitude_bits(py[v]), magnitude_bits(pz[v])});
   }
   filter_.images = images;
-  filter_.error = vertices.empty() ? 0.0 : warp_->float_error_m(extent);
+  filter_.error = vertices.empty() ? 0.0 : warp_->float_error_m(std::bit_cast<float>(extent));
 }
 
 bool MeshRefiner::stroke_vertex(std::uint32_t v) const {
@@ -701,44 +771,46 @@ void MeshRefiner::batch_edges_of(std::uint32_t h, FloatBatch& b) {
   const std::uint32_t* tv = mesh_->triangle_indices().data();
   const std::uint32_t va = tv[h];
   const std::uint32_t vb = tv[h % 3 == 2 ? h - 2 : h + 1];
-  batch_edge(h, g, {va, vb}, {stroke_vertex(va), stroke_vertex(vb)}, b);
+  batch_edge(h, g, edge_end(va, stroke_vertex(va)), edge_end(vb, stroke_vertex(vb)), b);
+}
+
+// An edge's end: its rest position and its image (a stroke vertex's from the
+// filter's images; any other end is a fixed point of the warp).
+MeshRefiner::EdgeEnd MeshRefiner::edge_end(std::uint32_t v, bool stroke) const {
+  const Mesh& m = *mesh_;
+  const glm::vec3 p(m.x()[v], m.y()[v], m.z()[v]);
+  const VertexImages& im = filter_.images;
+  return {p, stroke ? glm::vec3(im.x[v], im.y[v], im.z[v]) : p};
 }
 
 // Edge h (twin g, both triangles touched) into the batch: its float midpoint and the
-// mean of its ends' images (`stroke`: the end is a stroke vertex, with an image; the
-// others are fixed); settled when full.
-void MeshRefiner::batch_edge(std::uint32_t h, std::uint32_t g,
-                             std::array<std::uint32_t, 2> ends, std::array<bool, 2> stroke,
-                             FloatBatch& b) {
-  const Mesh& m = *mesh_;
-  const auto [va, vb] = ends;
-  const float* px = m.x().data();
-  const float* py = m.y().data();
-  const float* pz = m.z().data();
-  const glm::vec3 pa(px[va], py[va], pz[va]);
-  const glm::vec3 pb(px[vb], py[vb], pz[vb]);
-  const glm::vec3 pm = (pa + pb) * 0.5f;
-  const VertexImages& im = filter_.images;
-  const glm::vec3 sa = stroke[0] ? glm::vec3(im.x[va], im.y[va], im.z[va]) : pa;
-  const glm::vec3 sb = stroke[1] ? glm::vec3(im.x[vb], im.y[vb], im.z[vb]) : pb;
+// mean of its ends' images; settled when full.
+TWISTER_ALWAYS_INLINE void MeshRefiner::batch_edge(std::uint32_t h, std::uint32_t g,
+                                                   const EdgeEnd& a, const EdgeEnd& e,
+                                                   FloatBatch& b) {
+  const glm::vec3 pm = (a.p + e.p) * 0.5f;
   const std::size_t k = b.n;
   b.edges[k] = h;
   b.twins[k] = g;
   b.x[k] = pm.x, b.y[k] = pm.y, b.z[k] = pm.z;
-  b.cx[k] = 0.5 * (double{sa.x} + double{sb.x});
-  b.cy[k] = 0.5 * (double{sa.y} + double{sb.y});
-  b.cz[k] = 0.5 * (double{sa.z} + double{sb.z});
-  // |exact midpoint| <= |float midpoint| (1 + 2^-23) per coordinate.
-  const glm::vec3 am = glm::abs(pm);
-  b.extent = std::max({b.extent, am.x, am.y, am.z});
+  b.cx[k] = 0.5 * (double{a.s.x} + double{e.s.x});
+  b.cy[k] = 0.5 * (double{a.s.y} + double{e.s.y});
+  b.cz[k] = 0.5 * (double{a.s.z} + double{e.s.z});
   if (++b.n == FloatBatch::kSize) settle_batch(b);
 }
 
 void MeshRefiner::settle_batch(FloatBatch& b) {
   if (b.n == 0) return;
+  std::uint32_t extent_bits = 0;  // of the largest midpoint coordinate
+  for (std::size_t k = 0; k < b.n; ++k) {
+    extent_bits = std::max(
+        {extent_bits, magnitude_bits(b.x[k]), magnitude_bits(b.y[k]), magnitude_bits(b.z[k])});
+  }
+  const auto batch_extent = std::bit_cast<float>(extent_bits);
   const bool fast = warp_->warp_float(b.x.data(), b.y.data(), b.z.data(), b.ox.data(), b.oy.data(),
                                       b.oz.data(), b.n);
-  const double extent = (1.0 + 0x1p-23) * b.extent;
+  // |exact midpoint| <= |float midpoint| (1 + 2^-23) per coordinate.
+  const double extent = (1.0 + 0x1p-23) * batch_extent;
   // |e_float - e_double| <= (delta_a + delta_b) / 2 + delta_m (fixed points: delta 0).
   const double delta = fast ? warp_->float_error_m(extent) : 0.0;
   const double limit = threshold_m_ - filter_.error - delta - 0x1p-40 * (1.0 + extent);
@@ -750,14 +822,16 @@ void MeshRefiner::settle_batch(FloatBatch& b) {
     const double dz = b.cz[k] - double{b.oz[k]};
     within[k] = dx * dx + dy * dy + dz * dz <= limit2 ? 1 : 0;
   }
-  for (std::size_t k = 0; k < b.n; ++k) {
+  std::uint32_t settled = 0;
+  for (std::size_t k = 0; k < b.n; ++k) settled += within[k];
+  filter_.settled += settled;
+  filter_.unsettled += static_cast<std::uint32_t>(b.n) - settled;
+  for (std::size_t k = 0; k < b.n && b.keep_verdicts; ++k) {
     const std::uint8_t state = within[k] != 0 ? kWithin : kUnknown;
     storage_.edge_state[b.edges[k]] = state;
     if (real_twin(b.twins[k])) storage_.edge_state[b.twins[k]] = state;
-    ++(within[k] != 0 ? filter_.settled : filter_.unsettled);
   }
   b.n = 0;
-  b.extent = 0.0f;
 }
 
 }  // namespace twister::mesh

@@ -73,6 +73,15 @@ std::unique_ptr<meshio::MeshBuffer> any_mesh(std::size_t spare) {
       m.set_position(v, m.position(v) + glm::vec3(any_point(0.004)));
     }
   }
+  if (*rc::gen::inRange(0, 3) == 0) {  // inconsistent winding: some triangles turned over
+    RC_TAG("inconsistent winding");
+    mesh::Mesh& m = b->mesh();
+    for (std::uint32_t t = 0; t < m.triangle_count(); ++t) {
+      if (*rc::gen::inRange(0, 4) != 0) continue;
+      const auto tv = m.triangle(t);
+      m.set_triangle(t, {tv[0], tv[2], tv[1]});
+    }
+  }
   return b;
 }
 
@@ -170,14 +179,15 @@ RC_GTEST_PROP(RefineLocal,
     std::vector<float> ix(lm.x().begin(), lm.x().end());
     std::vector<float> iy(lm.y().begin(), lm.y().end());
     std::vector<float> iz(lm.z().begin(), lm.z().end());
-    RC_ASSERT(plan_local.apply(math::ConstVertexColumns(lm.x(), lm.y(), lm.z()),
-                               math::VertexColumns(ix, iy, iz))
+    RC_ASSERT(plan_local
+                  .apply(math::ConstVertexColumns(lm.x(), lm.y(), lm.z()),
+                         math::VertexColumns(ix, iy, iz))
                   .ok());
     const mesh::VertexImages images =
         with_images ? mesh::VertexImages{ix, iy, iz} : mesh::VertexImages{};
     RC_CLASSIFY(with_images, "the plan's images given");
-    const auto rl = around.refine_around(local->mesh(), warp_local, threshold,
-                                         plan_local.indices(), nullptr, images);
+    const auto rl = around.refine_around(local->mesh(), warp_local, threshold, plan_local.indices(),
+                                         nullptr, images);
     RC_ASSERT(rg.ok());
     RC_ASSERT(rl.ok());
     // Conforming and, where it ran to the end, every region edge within the threshold.
@@ -340,6 +350,38 @@ TEST(RefineLocal, AllocatesNothing) {
   EXPECT_GT(rl->edges_split, 0u);
 }
 
+// The pass without bookkeeping (nothing over the threshold, images given) finds each
+// region edge exactly once on any mesh: closed or open, consistently wound or not.
+RC_GTEST_PROP(RefineLocal, NothingToSplitSettlesEachRegionEdgeOnce, ()) {
+  auto b = any_mesh(0);
+  mesh::Mesh& m = b->mesh();
+  math::WarpPlanWithStorage<40'000> plan;
+  RC_PRE(build(plan, m, any_stroke()));
+  std::vector<float> ix(m.x().begin(), m.x().end());
+  std::vector<float> iy(m.y().begin(), m.y().end());
+  std::vector<float> iz(m.z().begin(), m.z().end());
+  RC_ASSERT(
+      plan.apply(math::ConstVertexColumns(m.x(), m.y(), m.z()), math::VertexColumns(ix, iy, iz))
+          .ok());
+  const std::uint64_t before = m.checksum();
+  const PlanWarp warp(plan);
+  meshio::RefinerBuffer rb(m.vertex_capacity(), m.triangle_capacity());
+  mesh::MeshRefiner around(rb.storage());
+  const auto rl = around.refine_around(m, warp, 10.0, plan.indices(), nullptr, {ix, iy, iz});
+  RC_ASSERT(rl.ok());
+  RC_ASSERT(rl->edges_split == 0u);
+  RC_ASSERT(m.checksum() == before);
+  std::vector<bool> in(m.vertex_count(), false);
+  for (const std::uint32_t v : plan.indices()) in[v] = true;
+  std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
+  for (std::uint32_t t = 0; t < m.triangle_count(); ++t) {
+    const auto tv = m.triangle(t);
+    if (!in[tv[0]] && !in[tv[1]] && !in[tv[2]]) continue;
+    for (int i = 0; i < 3; ++i) edges.insert(std::minmax(tv[i], tv[(i + 1) % 3]));
+  }
+  RC_ASSERT(around.settled_in_float() == edges.size());
+}
+
 // A commit's case: the plan's images given and nothing over the threshold. Every
 // region edge is settled in float (no double warp, no visit in index order), in one
 // walk that allocates nothing, and the mesh is left as it was.
@@ -350,9 +392,9 @@ TEST(RefineLocal, WithTheStrokesImagesEveryEdgeWithinIsSettledInFloatAlone) {
   std::vector<float> ix(m.x().begin(), m.x().end());
   std::vector<float> iy(m.y().begin(), m.y().end());
   std::vector<float> iz(m.z().begin(), m.z().end());
-  ASSERT_TRUE(s.plan.apply(math::ConstVertexColumns(m.x(), m.y(), m.z()),
-                           math::VertexColumns(ix, iy, iz))
-                  .ok());
+  ASSERT_TRUE(
+      s.plan.apply(math::ConstVertexColumns(m.x(), m.y(), m.z()), math::VertexColumns(ix, iy, iz))
+          .ok());
   const PlanWarp warp(s.plan);
   meshio::RefinerBuffer rb(m.vertex_capacity(), m.triangle_capacity());
   mesh::MeshRefiner around(rb.storage());

@@ -135,8 +135,7 @@ class MeshRefiner {
   // Errors as refine().
   Result<RefineResult> refine_around(Mesh& mesh, const PointWarp& warp, double threshold_m,
                                      std::span<const std::uint32_t> vertices,
-                                     RefineObserver* observer = nullptr,
-                                     VertexImages images = {});
+                                     RefineObserver* observer = nullptr, VertexImages images = {});
 
   // S of vertex v (rest position as of the last refine()); valid for every vertex
   // that refine() added (asserted).
@@ -178,14 +177,20 @@ class MeshRefiner {
   void sort_region();
   // The float filter (docs/refinement.md "The float filter").
   bool collect_and_settle(std::span<const std::uint32_t> vertices, VertexImages images);
+  bool settle_stroke_edges(std::span<const std::uint32_t> vertices);
   void stamp_images(std::span<const std::uint32_t> vertices, VertexImages images);
   bool stroke_vertex(std::uint32_t v) const;
   bool warp_region_vertices();
   struct FloatBatch;
   void batch_edges(std::uint32_t t, FloatBatch& b);
   void batch_edges_of(std::uint32_t h, FloatBatch& b);
-  void batch_edge(std::uint32_t h, std::uint32_t g, std::array<std::uint32_t, 2> ends,
-                  std::array<bool, 2> stroke, FloatBatch& b);
+  struct EdgeEnd {
+    glm::vec3 p;  // rest
+    glm::vec3 s;  // image
+  };
+  EdgeEnd edge_end(std::uint32_t v, bool stroke) const;
+  void batch_edge(std::uint32_t h, std::uint32_t g, const EdgeEnd& a, const EdgeEnd& e,
+                  FloatBatch& b);
   template <typename Tri, typename Edge>
   void walk_fan(std::uint32_t v, Tri&& tri, Edge&& edge) const;
   void settle_batch(FloatBatch& b);
@@ -223,12 +228,13 @@ class MeshRefiner {
     std::uint64_t version = 0;
     std::size_t vertices = 0;
     bool manifold = false;  // every edge has <= 2 triangles, every vertex one fan
+    bool oriented = false;  // every edge runs against its twin (consistent winding)
   } adjacency_key_;
   // The float filter of the last refine_around.
   struct FloatFilter {
-    VertexImages images;  // S in float at the stamped vertices
-    double error = 0.0;   // bound on |S in float - S in double| there
-    std::uint32_t settled = 0;  // edges found within the threshold in float
+    VertexImages images;          // S in float at the stamped vertices
+    double error = 0.0;           // bound on |S in float - S in double| there
+    std::uint32_t settled = 0;    // edges found within the threshold in float
     std::uint32_t unsettled = 0;  // edges left to the double criterion
   } filter_;
 
