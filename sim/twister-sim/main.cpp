@@ -181,15 +181,16 @@ class GpioButtons {
 #endif
   }
   bool is_open() const { return open_; }
-  // Plays what is due at now_us; false: said why (the chip went away), exit 1.
+  // Plays what is due at now_us, the edges of one instant in one write; false: said
+  // why (the chip went away), exit 1.
   bool advance(twister::sim::ButtonPlayer& player, std::int64_t now_us) {
 #ifdef TWISTER_SIM_GPIOD
-    const twister::Status s =
-        player.advance(now_us, [this, now_us](std::size_t line, bool pressed) {
-          logger().info("buttons", "line %zu %s at %.3f s", line, pressed ? "pressed" : "released",
-                        static_cast<double>(now_us) / 1e6);
-          return output_.set(line, pressed);
-        });
+    twister::Status s = player.advance(now_us, [this, now_us](std::size_t line, bool pressed) {
+      logger().info("buttons", "line %zu %s at %.3f s", line, pressed ? "pressed" : "released",
+                    static_cast<double>(now_us) / 1e6);
+      return output_.stage(line, pressed);
+    });
+    if (s.ok()) s = output_.flush();
     if (s.ok()) return true;
     const int err = output_.last_errno();
     logger().error("buttons", "cannot set the lines: %s (errno %d)", std::strerror(err), err);

@@ -17,6 +17,7 @@ void GpiodLineOutput::close() {
   }
   lines_.fill(nullptr);
   count_ = 0;
+  dirty_ = false;
   if (chip_ != nullptr) gpiod_chip_close(chip_);
   chip_ = nullptr;
 }
@@ -65,9 +66,21 @@ Status GpiodLineOutput::open(const GpiodOutputConfig& config) {
 }
 
 Status GpiodLineOutput::set(std::size_t index, bool active) {
+  if (const Status s = stage(index, active); !s.ok()) return s;
+  return flush();
+}
+
+Status GpiodLineOutput::stage(std::size_t index, bool active) {
   if (count_ == 0) return StatusCode::failed_precondition;
   if (index >= count_) return StatusCode::invalid_argument;
+  dirty_ = dirty_ || values_[index] != (active ? 1 : 0);
   values_[index] = active ? 1 : 0;
+  return ok_status();
+}
+
+Status GpiodLineOutput::flush() {
+  if (!dirty_) return ok_status();
+  dirty_ = false;
   return write_values();
 }
 

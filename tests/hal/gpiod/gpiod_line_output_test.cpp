@@ -88,6 +88,21 @@ TEST_F(GpiodLineOutputTest, SetWritesAllValuesAndCloseReleasesInactive) {
   EXPECT_TRUE(chip.physical.at(22));
 }
 
+// stage() changes lines without writing; flush() writes them in one ioctl (edges of
+// one instant leave together), and nothing when nothing changed.
+TEST_F(GpiodLineOutputTest, StagedLinesLeaveInOneWrite) {
+  ASSERT_TRUE(output_.open({.chip = "gpiochip1", .lines = {20, 21, 22}}).ok());
+  ASSERT_TRUE(output_.stage(0, true).ok());
+  ASSERT_TRUE(output_.stage(2, true).ok());
+  EXPECT_TRUE(chips_.chip("gpiochip1").value_writes.empty());
+  ASSERT_TRUE(output_.flush().ok());
+  ASSERT_TRUE(output_.flush().ok());         // nothing staged since
+  ASSERT_TRUE(output_.stage(2, true).ok());  // no change
+  ASSERT_TRUE(output_.flush().ok());
+  EXPECT_EQ(chips_.chip("gpiochip1").value_writes, (std::vector<Values>{{1, 0, 1}}));
+  EXPECT_EQ(output_.stage(3, true).code(), StatusCode::invalid_argument);
+}
+
 // Output wired to the station's input backend (GpiodButtonSource, active low on both
 // ends): a set() arrives as the button's edge, pressed on press.
 TEST_F(GpiodLineOutputTest, WiredToAButtonSourceAPressIsAPressedEdge) {

@@ -26,6 +26,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <regex>
@@ -158,7 +159,6 @@ class GpioButtonsHil : public ::testing::Test {
   void SetUp() override {
     ::mkdir(out_.c_str(), 0755);
     ::unlink(link_.c_str());
-    ::unlink((out_ + "/journal.twj").c_str());
   }
   void TearDown() override {
     for (const pid_t pid : {sim_, station_}) {
@@ -203,55 +203,123 @@ class GpioButtonsHil : public ::testing::Test {
   pid_t station_ = -1;
 };
 
-TEST_F(GpioButtonsHil, TwoHandScenarioWithButtonsOnGpioMatchesTheInProcessRun) {
+// One run of the chain: testbed, station, twister-sim; what the test checks.
+struct ChainRun {
+  double streaming_s = 0.0;  // from twister-sim's start to the station streaming
+  bool complete = false;     // ran to the end (not cut short as too late to compare)
+  std::string station_log, sim_log;
+  twister::test::UmockdevGpioChips::Chip out_chip;
+  std::uint64_t wire_edges = 0;
+};
+
+// The time of the scenario's first button line (seconds).
+double first_press_s(const std::string& scenario) {
+  std::ifstream in(scenario);
+  double first = 1e9;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream words(line);
+    std::string word;
+    double t = 0.0;
+    if (words >> word && word == "button" && words >> t) first = std::min(first, t);
+  }
+  return first;
+}
+
+class GpioButtonsChain : public GpioButtonsHil {
+ protected:
+  // Runs the chain once. `deadline_s`: if the station is not streaming this long after
+  // twister-sim started, the run is cut short (complete = false).
+  void run_chain(double deadline_s, ChainRun& run) {
+    twister::test::UmockdevGpioChips chips;  // from here on, children see the emulated chips
+    ASSERT_TRUE(umockdev_in_mock_environment()) << "run under umockdev's preload library";
+    std::string error;
+    ASSERT_TRUE(chips.add_chip("gpiochip0", 0, error)) << error;  // the station's inputs
+    ASSERT_TRUE(chips.add_chip("gpiochip1", 1, error)) << error;  // twister-sim's outputs
+    for (std::uint32_t i = 0; i < kButtons; ++i) {
+      chips.connect("gpiochip1", kSimFirst + i, "gpiochip0", kStationFirst + i);
+    }
+    ::unlink((out_ + "/journal.twj").c_str());
+    ::unlink((out_ + "/journal.twj.ckpt").c_str());
+
+    // The station first: it requests its button lines (the event pipes it inherits) and
+    // looks for the tracker on the link until twister-sim makes it.
+    chips.pre_make_event_pipes(4 * kButtons);
+    const std::string station_log = out_ + "/station.log";
+    station_ = spawn({kBin + "/twister-station", "--config", write_station_config(), "--log-level",
+                      "info", "--link", "unix:" + out_ + "/link.sock"},
+                     station_log, /*clean=*/false);
+    ASSERT_GT(station_, 0);
+    ASSERT_TRUE(chips.wait_for_event_requests("gpiochip0", kButtons, 30s))
+        << read_file(station_log);
+
+    chips.set_output_client(-1);  // twister-sim's line handle: its own chip descriptor
+    const std::string sim_log = out_ + "/sim.log";
+    sim_ = spawn(
+        {kBin + "/twister-sim", "--scenario", kScenario, "--link", link_, "--command-time", "all=0",
+         "--buttons", "gpiod:gpiochip1:" + offsets(kSimFirst), "--log-level", "info"},
+        sim_log, /*clean=*/false);
+    ASSERT_GT(sim_, 0);
+    chips.set_output_client(sim_);
+    const auto sim_started = std::chrono::steady_clock::now();
+    ASSERT_TRUE(wait_for_log(station_log, "tracker: streaming", 1, 30s)) << read_file(station_log);
+    run.streaming_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - sim_started).count();
+    std::printf("tracker streaming %.2f s after twister-sim started\n", run.streaming_s);
+    if (run.streaming_s > deadline_s) {
+      TearDown();  // both go; the run cannot be compared
+      sim_ = station_ = -1;
+      return;
+    }
+
+    // twister-sim ends at the scenario's end; the stroke is committed by then.
+    EXPECT_EQ(wait_exit(sim_, 60s), 0) << read_file(sim_log);
+    sim_ = -1;
+    EXPECT_TRUE(wait_for_log(station_log, "committed as journal record", 1, 30s))
+        << read_file(station_log);
+    ::kill(station_, SIGTERM);
+    EXPECT_EQ(wait_exit(station_, 60s), 0) << read_file(station_log);
+    station_ = -1;
+    run.complete = true;
+    run.station_log = read_file(station_log);
+    run.sim_log = read_file(sim_log);
+    run.out_chip = chips.chip("gpiochip1");
+    run.wire_edges = chips.wire_edges();
+  }
+};
+
+TEST_F(GpioButtonsChain, TwoHandScenarioWithButtonsOnGpioMatchesTheInProcessRun) {
   const std::string expected = reference();
   ASSERT_EQ(expected.size(), 16u) << "no reference checksum";
 
-  twister::test::UmockdevGpioChips chips;  // from here on, children see the emulated chips
-  ASSERT_TRUE(umockdev_in_mock_environment()) << "run under umockdev's preload library";
-  std::string error;
-  ASSERT_TRUE(chips.add_chip("gpiochip0", 0, error)) << error;  // the station's inputs
-  ASSERT_TRUE(chips.add_chip("gpiochip1", 1, error)) << error;  // twister-sim's outputs
-  for (std::uint32_t i = 0; i < kButtons; ++i) {
-    chips.connect("gpiochip1", kSimFirst + i, "gpiochip0", kStationFirst + i);
+  // The station's start-up (about 2 s: settle, status, configuration commands) must be
+  // over before the scenario's first press (2.5 s), as it is in the in-process run;
+  // on a machine loaded enough to delay it past that, the run cannot be compared:
+  // it is cut short and run once more.
+  const double deadline_s = first_press_s(kScenario) - 0.1;
+  ChainRun run;
+  for (int attempt = 1; attempt <= 2 && !run.complete; ++attempt) {
+    run_chain(deadline_s, run);
+    if (HasFatalFailure()) return;
+    if (!run.complete) {
+      std::printf(
+          "attempt %d: the tracker streamed %.2f s after twister-sim started, after "
+          "%.2f s (the first press is at %.2f s): too loaded to compare\n",
+          attempt, run.streaming_s, deadline_s, deadline_s + 0.1);
+    }
   }
+  ASSERT_TRUE(run.complete) << "the station's tracker start-up came after the scenario's "
+                               "first press twice (a heavily loaded machine)";
 
-  // The station first: it requests its button lines (the event pipes it inherits) and
-  // looks for the tracker on the link until twister-sim makes it.
-  chips.pre_make_event_pipes(4 * kButtons);
-  const std::string station_log = out_ + "/station.log";
-  station_ = spawn({kBin + "/twister-station", "--config", write_station_config(), "--log-level",
-                    "info", "--link", "unix:" + out_ + "/link.sock"},
-                   station_log, /*clean=*/false);
-  ASSERT_GT(station_, 0);
-  ASSERT_TRUE(chips.wait_for_event_requests("gpiochip0", kButtons, 30s)) << read_file(station_log);
-
-  chips.set_output_client(-1);  // twister-sim's line handle: its own chip descriptor
-  const std::string sim_log = out_ + "/sim.log";
-  sim_ =
-      spawn({kBin + "/twister-sim", "--scenario", kScenario, "--link", link_, "--command-time",
-             "all=0", "--buttons", "gpiod:gpiochip1:" + offsets(kSimFirst), "--log-level", "info"},
-            sim_log, /*clean=*/false);
-  ASSERT_GT(sim_, 0);
-  chips.set_output_client(sim_);
-
-  // twister-sim ends at the scenario's end; the stroke is committed by then.
-  EXPECT_EQ(wait_exit(sim_, 60s), 0) << read_file(sim_log);
-  sim_ = -1;
-  EXPECT_TRUE(wait_for_log(station_log, "committed as journal record", 1, 30s))
-      << read_file(station_log);
-  ::kill(station_, SIGTERM);
-  EXPECT_EQ(wait_exit(station_, 60s), 0) << read_file(station_log);
-  station_ = -1;
-
-  const std::string slog = read_file(station_log);
-  const std::string simlog = read_file(sim_log);
+  const std::string& slog = run.station_log;
+  const std::string& simlog = run.sim_log;
   // The buttons came over the wire: four edges (both grabs pressed and released).
-  const auto out_chip = chips.chip("gpiochip1");
-  ASSERT_EQ(out_chip.handles.size(), 1u) << simlog;
-  EXPECT_NE(out_chip.handles[0].flags & GPIOHANDLE_REQUEST_ACTIVE_LOW, 0u);
-  EXPECT_EQ(out_chip.handles[0].consumer, "twister-sim");
-  EXPECT_EQ(chips.wire_edges(), 4u);
+  ASSERT_EQ(run.out_chip.handles.size(), 1u) << simlog;
+  EXPECT_NE(run.out_chip.handles[0].flags & GPIOHANDLE_REQUEST_OUTPUT, 0u);
+  EXPECT_NE(run.out_chip.handles[0].flags & GPIOHANDLE_REQUEST_ACTIVE_LOW, 0u);
+  EXPECT_EQ(run.out_chip.handles[0].consumer, "twister-sim");
+  // Both presses in one write, both releases in one, and all released at exit.
+  EXPECT_EQ(run.out_chip.value_writes.size(), 3u);
+  EXPECT_EQ(run.wire_edges, 4u);
   EXPECT_NE(simlog.find("buttons: edges=4 not_played=0"), std::string::npos) << simlog;
   EXPECT_NE(slog.find("buttons gpiod gpiochip0"), std::string::npos) << slog;
   EXPECT_EQ(count(slog, "hand 0 grabbed"), 1) << slog;

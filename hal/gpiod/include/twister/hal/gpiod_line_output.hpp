@@ -3,7 +3,9 @@
 // uses it to press the station's buttons on the scenario's clock (docs/hil.md).
 // All lines are requested in one request (one line handle), every line starting
 // inactive; set() writes the whole set of values in one ioctl (a v1 handle sets all
-// its lines at once, so the others keep their levels). active_low: an active
+// its lines at once, so the others keep their levels); stage() changes lines without
+// writing and flush() writes them together, so edges scripted for the same instant
+// leave in one ioctl. active_low: an active
 // (pressed) line is driven low, as a switch to GND with a pull-up would pull it (the
 // station's default `active_low = true`); open_drain: the line is only ever pulled
 // low or let go (safe against a second driver; needs the station's pull-up).
@@ -46,8 +48,12 @@ class GpiodLineOutput {
   GpiodLineOutput& operator=(const GpiodLineOutput&) = delete;
 
   Status open(const GpiodOutputConfig& config);
-  // Line `index` (lines[index]) active or inactive.
+  // Line `index` (lines[index]) active or inactive, written at once.
   Status set(std::size_t index, bool active);
+  // The same without writing (same errors as set(), never io_error) ...
+  Status stage(std::size_t index, bool active);
+  // ... and every staged change written in one ioctl (nothing to do: ok).
+  Status flush();
   void close();
 
   bool is_open() const { return count_ > 0; }
@@ -63,6 +69,7 @@ class GpiodLineOutput {
   std::array<gpiod_line*, kMaxLines> lines_{};
   std::array<int, kMaxLines> values_{};  // logical: 1 = active
   std::size_t count_ = 0;
+  bool dirty_ = false;  // staged values not written yet
   int last_errno_ = 0;
 };
 
