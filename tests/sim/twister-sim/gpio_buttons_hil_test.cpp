@@ -86,13 +86,21 @@ pid_t spawn(const std::vector<std::string>& args, const std::string& log, bool c
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
   std::vector<std::string> env_text;
+  // Sanitizer builds: the preload library comes before the ASan runtime in the
+  // children too (harmless here, see __asan_default_options).
+  std::string asan = "ASAN_OPTIONS=verify_asan_link_order=0";
   for (char** e = environ; *e != nullptr; ++e) {
     const std::string entry = *e;
     if (clean && (entry.rfind("LD_PRELOAD=", 0) == 0 || entry.rfind("UMOCKDEV_DIR=", 0) == 0)) {
       continue;
     }
+    if (entry.rfind("ASAN_OPTIONS=", 0) == 0) {
+      asan = entry + ":verify_asan_link_order=0";
+      continue;
+    }
     env_text.push_back(entry);
   }
+  env_text.push_back(asan);
   std::vector<char*> envp;
   for (std::string& e : env_text) envp.push_back(e.data());
   envp.push_back(nullptr);
