@@ -339,4 +339,42 @@ TEST_F(GpioButtonsChain, TwoHandScenarioWithButtonsOnGpioMatchesTheInProcessRun)
   std::printf("reference %s, station over PTY + emulated GPIO %s\n", expected.c_str(), got.c_str());
 }
 
+// twister-sim as a program: a missing chip, a busy line and an offset beyond the chip
+// each end it with exit code 1 and a line saying which, before it serves anything.
+TEST_F(GpioButtonsHil, TwisterSimSaysWhyItCannotHaveTheLines) {
+  twister::test::UmockdevGpioChips chips;
+  ASSERT_TRUE(umockdev_in_mock_environment()) << "run under umockdev's preload library";
+  std::string error;
+  ASSERT_TRUE(chips.add_chip("gpiochip1", 1, error)) << error;
+  const std::string log = out_ + "/sim_errors.log";
+  const auto sim = [&](const std::string& spec) {
+    chips.set_output_client(-1);
+    const pid_t pid =
+        spawn({kBin + "/twister-sim", "--scenario", kScenario, "--link", link_, "--buttons", spec},
+              log, /*clean=*/false);
+    EXPECT_GT(pid, 0);
+    chips.set_output_client(pid);
+    const int rc = wait_exit(pid, 30s);
+    chips.set_output_client(-1);
+    return rc;
+  };
+  EXPECT_EQ(sim("gpiod:gpiochip7:20,21,22,23"), 1);
+  EXPECT_NE(read_file(log).find("buttons: no GPIO chip gpiochip7"), std::string::npos)
+      << read_file(log);
+  EXPECT_EQ(sim("gpiod:gpiochip1:20,21,22,40"), 1);
+  EXPECT_NE(read_file(log).find("gpiochip1 has no such line"), std::string::npos) << read_file(log);
+  chips.refuse_requests("gpiochip1", true);
+  EXPECT_EQ(sim("gpiod:gpiochip1:20,21,22,23"), 1);
+  EXPECT_NE(read_file(log).find("cannot request the lines on gpiochip1: Device or resource "
+                                "busy (errno 16); another program or driver holds a line"),
+            std::string::npos)
+      << read_file(log);
+  EXPECT_EQ(sim("gpiod:gpiochip1:20,21,22"), 2);  // box_twist presses line 3: not wired
+  EXPECT_NE(read_file(log).find("presses button line 3 but --buttons wires 3 lines"),
+            std::string::npos)
+      << read_file(log);
+  struct stat st {};
+  EXPECT_NE(::lstat(link_.c_str(), &st), 0) << "no PTY link is made";
+}
+
 }  // namespace
