@@ -3,21 +3,29 @@
 // line (its output: clients wait for it). Logs through hal::Logger ("twister-sim:
 // [error: ]component: message"); --log-level picks the threshold (default notice:
 // errors and the exit summary).
-// Exit codes: 0 ok, 1 failure (PTY or device), 2 bad options or scenario.
+// --buttons drives the scenario's button lines on GPIO output lines (a HIL rig's wiring
+// to the station's button inputs, docs/hil.md) on the same clock as the records.
+// Exit codes: 0 ok, 1 failure (PTY, device or GPIO lines), 2 bad options or scenario.
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <vector>
 
 #include "device_server.hpp"
+#include "gpio_buttons.hpp"
 #include "twister/hal/logger.hpp"
 #include "twister/sim/fastrak_device.hpp"
 #include "twister/sim/scenario.hpp"
+#ifdef TWISTER_SIM_GPIOD
+#include "twister/hal/gpiod_line_output.hpp"
+#endif
 
 namespace {
 
@@ -44,6 +52,7 @@ struct Options {
   std::vector<std::string> command_times;  // LETTER=SECONDS
   std::string log_level = "notice";
   std::string model = "fastrak";
+  std::string buttons;  // --buttons spec (gpio_buttons.hpp)
 };
 
 // "O=0.05", "x=1", "^K=3", "all=0": sets the processing time of that command.
@@ -96,6 +105,11 @@ void add_options(CLI::App& app, Options& o) {
                  "the unit played: fastrak (default), liberty or patriot (same commands; in "
                  "binary, frames of docs/liberty-protocol.md)")
       ->check(CLI::IsMember({"fastrak", "liberty", "patriot"}));
+  app.add_option("--buttons", o.buttons,
+                 "drive the scenario's button lines on GPIO output lines (HIL rig, "
+                 "docs/hil.md): gpiod:CHIP:OFFSET,OFFSET,...[:active-low|:active-high]"
+                 "[:open-drain]; button line i on the i-th offset, as the station reads "
+                 "button i from [buttons.gpiod] lines[i]; default active-low (pressed = low)");
   app.add_option("--log-level", o.log_level, "error | warning | notice (default) | info | debug")
       ->check(CLI::IsMember({"error", "warning", "notice", "info", "debug"}));
 }
@@ -114,8 +128,90 @@ void log_summary(const twister::sim::FastrakDevice& device,
                   server.counters().ptys_opened, server.counters().hangups);
 }
 
+// The scenario's buttons on GPIO output lines (--buttons), or nothing.
+class GpioButtons {
+ public:
+  // Opens the lines (all released). false: said why, exit 1.
+  bool open(const twister::sim::GpioButtonsSpec& spec) {
+#ifdef TWISTER_SIM_GPIOD
+    twister::hal::GpiodOutputConfig config;
+    config.chip = spec.chip;
+    config.lines = spec.lines;
+    config.active_low = spec.active_low;
+    config.open_drain = spec.open_drain;
+    const twister::Status s = output_.open(config);
+    if (s.ok()) {
+      std::string offsets;
+      for (const std::uint32_t line : spec.lines) {
+        offsets += (offsets.empty() ? "" : ",") + std::to_string(line);
+      }
+      logger().notice("buttons", "%zu lines on %s (offsets %s, %s%s), all released",
+                      spec.lines.size(), spec.chip.c_str(), offsets.c_str(),
+                      spec.active_low ? "active low" : "active high",
+                      spec.open_drain ? ", open drain" : "");
+      open_ = true;
+      return true;
+    }
+    const int err = output_.last_errno();
+    switch (s.code()) {
+      case twister::StatusCode::unavailable:
+        logger().error("buttons", "no GPIO chip %s (gpiodetect lists the chips)",
+                       spec.chip.c_str());
+        break;
+      case twister::StatusCode::invalid_argument:
+        logger().error("buttons",
+                       "%s has no such line: an offset of --buttons is beyond the chip's lines "
+                       "(gpioinfo %s lists them)",
+                       spec.chip.c_str(), spec.chip.c_str());
+        break;
+      default:
+        logger().error("buttons", "cannot request the lines on %s: %s (errno %d)%s",
+                       spec.chip.c_str(), std::strerror(err), err,
+                       err == EBUSY    ? "; another program or driver holds a line (gpioinfo "
+                                         "shows its consumer)"
+                       : err == EACCES ? "; add the user to the gpio group (udev rule)"
+                                       : "");
+        break;
+    }
+    return false;
+#else
+    (void)spec;
+    logger().error("buttons", "--buttons: this twister-sim was built without libgpiod");
+    return false;
+#endif
+  }
+  bool is_open() const { return open_; }
+  // Plays what is due at now_us, the edges of one instant in one write; false: said
+  // why (the chip went away), exit 1.
+  bool advance(twister::sim::ButtonPlayer& player, std::int64_t now_us) {
+#ifdef TWISTER_SIM_GPIOD
+    twister::Status s = player.advance(now_us, [this, now_us](std::size_t line, bool pressed) {
+      logger().info("buttons", "line %zu %s at %.3f s", line, pressed ? "pressed" : "released",
+                    static_cast<double>(now_us) / 1e6);
+      return output_.stage(line, pressed);
+    });
+    if (s.ok()) s = output_.flush();
+    if (s.ok()) return true;
+    const int err = output_.last_errno();
+    logger().error("buttons", "cannot set the lines: %s (errno %d)", std::strerror(err), err);
+    return false;
+#else
+    (void)player;
+    (void)now_us;
+    return false;
+#endif
+  }
+
+ private:
+#ifdef TWISTER_SIM_GPIOD
+  twister::hal::GpiodLineOutput output_;  // releases every line (inactive) when it goes
+#endif
+  bool open_ = false;
+};
+
 // Serves the device until signalled or the duration is over.
-int serve(Options& o, const twister::sim::Scenario& scenario) {
+int serve(Options& o, const twister::sim::Scenario& scenario,
+          const twister::sim::GpioButtonsSpec* buttons_spec) {
   o.serve.baud = o.dev.baud;
   o.serve.port =
       o.port == "fixed" ? twister::sim::PortKind::fixed : twister::sim::PortKind::usb_adapter;
@@ -134,6 +230,11 @@ int serve(Options& o, const twister::sim::Scenario& scenario) {
   o.dev.start_position_filter = o.dev.start_attitude_filter = filter;
   const double duration_s = o.duration_s == 0.0 ? scenario.duration_s : o.duration_s;
 
+  // The lines first (all released), so that the scenario's clock starts with them ready.
+  GpioButtons buttons;
+  twister::sim::ButtonPlayer player(scenario.buttons);
+  if (buttons_spec != nullptr && !buttons.open(*buttons_spec)) return kExitFailure;
+
   twister::sim::FastrakDevice device(o.dev, scenario, 0);
   twister::sim::DeviceServer server(device, o.serve);
   if (const auto started = server.start(); !started) {
@@ -150,9 +251,14 @@ int serve(Options& o, const twister::sim::Scenario& scenario) {
       logger().error("device", "%s", stepped.error().message.c_str());
       return kExitFailure;
     }
+    if (buttons.is_open() && !buttons.advance(player, server.now_us())) return kExitFailure;
     if (duration_s > 0.0 && static_cast<double>(server.now_us()) / 1e6 >= duration_s) break;
   }
   log_summary(device, server);
+  if (buttons.is_open()) {
+    logger().notice("buttons", "edges=%llu not_played=%zu",
+                    static_cast<unsigned long long>(player.edges()), player.remaining());
+  }
   // Only our symbolic link goes (never a file that took its place meanwhile).
   struct stat st {};
   if (!o.serve.link.empty() && ::lstat(o.serve.link.c_str(), &st) == 0 && S_ISLNK(st.st_mode)) {
@@ -190,7 +296,18 @@ int run(int argc, char** argv) {
     }
     scenario = std::move(*loaded);
   }
-  return serve(o, scenario);
+  if (o.buttons.empty()) return serve(o, scenario, nullptr);
+  auto spec = twister::sim::parse_gpio_buttons(o.buttons);
+  if (!spec) {
+    logger().error("", "%s", spec.error().message.c_str());
+    return kExitBadOptions;
+  }
+  if (auto wired = twister::sim::ButtonPlayer(scenario.buttons).check_lines(spec->lines.size());
+      !wired) {
+    logger().error("buttons", "%s", wired.error().message.c_str());
+    return kExitBadOptions;
+  }
+  return serve(o, scenario, &*spec);
 }
 
 }  // namespace
