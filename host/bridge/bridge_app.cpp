@@ -236,7 +236,9 @@ void BridgeApp::hold_framing() {
     log_.write(LogLevel::info, "camera",
                "framing the station's working volume (%s) and the model: centre (%.3f, %.3f, "
                "%.3f) m, radius %.3f m, up (%.0f, %.0f, %.0f)",
-               {(w.flags & link::kWorkspaceCalibrated) != 0 ? "work frame" : "tracker range",
+               {(w.flags & link::kWorkspaceConfigured) != 0   ? "configured"
+                : (w.flags & link::kWorkspaceCalibrated) != 0 ? "above the work frame's origin"
+                                                              : "the tracker's range",
                 static_cast<double>(framing_.sphere().centre.x),
                 static_cast<double>(framing_.sphere().centre.y),
                 static_cast<double>(framing_.sphere().centre.z),
