@@ -24,7 +24,8 @@ DisplayLink::DisplayLink() = default;
 DisplayLink::~DisplayLink() = default;
 
 hal::Expected<void> DisplayLink::open(const LinkSection& settings,
-                                      const session::SculptSession& session, hal::Logger& log) {
+                                      const session::SculptSession& session,
+                                      const link::Workspace& workspace, hal::Logger& log) {
   log_ = &log;
   const std::string& address = settings.address;
   if (const std::string why = internal::unauthenticated_tcp_problem(settings); !why.empty()) {
@@ -72,9 +73,10 @@ hal::Expected<void> DisplayLink::open(const LinkSection& settings,
   indices_.resize(3 * session.mesh().triangle_capacity());
   // Room for a few hundred frames: a whole commit of a large stroke fits at once.
   out_.resize(512 * link::kMaxFrameBytes);
+  station::StationLinkConfig link_config;
+  link_config.workspace = workspace;
   link_ = std::make_unique<station::StationLink>(
-      *port_, station::StationLinkStorage{x_, y_, z_, indices_, out_}, station::StationLinkConfig{},
-      options);
+      *port_, station::StationLinkStorage{x_, y_, z_, indices_, out_}, link_config, options);
   if (const Status s = link_->start(session); !s.ok()) {
     return hal::Error{s, std::string("link: ") + s.name()};
   }

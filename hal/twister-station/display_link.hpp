@@ -38,8 +38,9 @@ class DisplayLink {
   // Opens `settings.address` and takes the session's mesh as version 1. Errors
   // name the link: the key file's (load_link_key), the transport's (SocketLink /
   // SerialLink open), or the StationLink's (resource_exhausted).
+  // `workspace` goes to every admitted display (the camera frames it).
   hal::Expected<void> open(const LinkSection& settings, const session::SculptSession& session,
-                           hal::Logger& log);
+                           const link::Workspace& workspace, hal::Logger& log);
   bool is_open() const { return link_ != nullptr; }
   // One link step; the admitted display's commands (its undo/redo/method keys) go
   // to the session's command path inside core (StationLink -> Station::submit);

@@ -276,7 +276,9 @@ hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationFileC
   LinkSection link = config.link;
   if (!options.link_address.empty()) link.address = options.link_address;  // --link wins
   if (!link.address.empty()) {
-    if (auto opened = parts->display.open(link, core.sculpt(), hal::process_log()); !opened) {
+    if (auto opened = parts->display.open(
+            link, core.sculpt(), workspace_of(config.tracker.calibration), hal::process_log());
+        !opened) {
       return opened.error();
     }
   }

@@ -100,6 +100,32 @@ void apply_work_frame(const WorkFrameConfig& wf, tracker::PoseConversion& conv) 
   conv.world_translation_m = -(conv.world_rotation * vec(wf.origin));
 }
 
+link::Workspace workspace_of(const CalibrationConfig& cal) {
+  link::Workspace w;
+  if (cal.has_work_frame) {
+    w.flags = link::kWorkspaceCalibrated;
+    w.up = {0.0F, 0.0F, 1.0F};
+    w.min = {-0.30F, -0.30F, 0.0F};
+    w.max = {0.30F, 0.30F, 0.40F};
+  } else {
+    // The Fastrak's specified range (30 in) on the hemisphere's side of the transmitter.
+    constexpr float kRange = 0.76F;
+    const glm::vec3 h =
+        glm::normalize(glm::vec3(cal.hemisphere[0], cal.hemisphere[1], cal.hemisphere[2]));
+    const glm::vec3 centre = 0.5F * (kRange + 0.10F) * h;
+    const glm::vec3 half(0.5F * (kRange - 0.10F));
+    w.up = {0.0F, 0.0F, -1.0F};
+    w.min = centre - half;
+    w.max = centre + half;
+  }
+  if (cal.has_work_volume) {
+    w.flags = static_cast<std::uint8_t>(w.flags | link::kWorkspaceConfigured);
+    w.min = glm::vec3(vec(cal.work_volume.min));
+    w.max = glm::vec3(vec(cal.work_volume.max));
+  }
+  return w;
+}
+
 namespace {
 
 // [tracker.calibration]: the unit's hemisphere and filters (sent by the session), and
@@ -110,7 +136,8 @@ void set_calibration(const StationFileConfig& config, station::StationConfig& c)
   for (const std::uint8_t s : c.hand_station) {
     const auto i = static_cast<std::size_t>(s - 1);
     c.session.hemisphere[i] = cal.hemisphere;
-    c.conversion.hemisphere[i] = glm::dvec3(cal.hemisphere[0], cal.hemisphere[1], cal.hemisphere[2]);
+    c.conversion.hemisphere[i] =
+        glm::dvec3(cal.hemisphere[0], cal.hemisphere[1], cal.hemisphere[2]);
     c.conversion.boresight[i] = cal.boresight;
     if (cal.boresight) {
       c.conversion.boresight_rotation[i] = tracker::rotation_from_euler_deg(
@@ -131,9 +158,9 @@ void set_tracker(const StationFileConfig& config, station::StationConfig& c) {
   auto& proto = c.session.protocol;
   // binary16: the 16-bit packed records, selected with `f` like binary (on a unit
   // whose binary format they are).
-  proto.format = t.format == RecordFormat::binary   ? tracker::Format::binary
-                 : t.format == RecordFormat::ascii  ? tracker::Format::ascii
-                                                    : tracker::Format::binary16;
+  proto.format = t.format == RecordFormat::binary  ? tracker::Format::binary
+                 : t.format == RecordFormat::ascii ? tracker::Format::ascii
+                                                   : tracker::Format::binary16;
   proto.units = tracker::Units::inches;
   // A Liberty / Patriot: the same commands and lists; its frames are read with the
   // Liberty parser (to_liberty_config of these lists). The config allows binary only.

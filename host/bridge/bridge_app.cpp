@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <span>
 
 #include "cue_geometry.hpp"
 #include "scene_view.hpp"
@@ -102,7 +103,7 @@ void BridgeApp::handle_scene(const link::LinkMessage& m) {
   if (ends_live && live.active && live.stroke != live_pictured_ && !options_.snapshot_dir.empty()) {
     refresh_display();
     const std::string path = snapshot("live-" + std::to_string(replica_.version() + 1));
-    if (!path.empty()) write_live_cues(path.substr(0, path.size() - 4) + ".cues");
+    if (!path.empty()) write_cues(path.substr(0, path.size() - 4) + ".cues");
     live_pictured_ = live.stroke;
   }
   const std::uint64_t commits = replica_.counters().commits;
@@ -139,13 +140,15 @@ void BridgeApp::handle_scene(const link::LinkMessage& m) {
       snapshot("commit-" + std::to_string(replica_.version()));
     }
   }
+  if (hands != nullptr) follow_cursors();
   if (hands != nullptr && options_.movie_every > 0 && !options_.snapshot_dir.empty() &&
       ++movie_hands_ % options_.movie_every == 0) {
     refresh_display();
     std::array<char, 16> name{};
     std::snprintf(name.data(), name.size(), "frame-%05llu",
                   static_cast<unsigned long long>(++movie_frames_));
-    snapshot(name.data());
+    const std::string path = snapshot(name.data());
+    if (!path.empty()) write_cues(path.substr(0, path.size() - 4) + ".cues");
   }
 }
 
@@ -198,6 +201,70 @@ void BridgeApp::refresh_display() {
   }
   renderer_->set_show_weights(live.active || preview_.hand_mask() != 0);
   renderer_->set_live(live.active ? &live : nullptr);
+  hold_framing();
+}
+
+bool BridgeApp::workspace_framing() const {
+  if (renderer_ == nullptr || !replica_.has_mesh() || !replica_.has_workspace() ||
+      shown_version_ == 0) {
+    return false;
+  }
+  switch (options_.framing) {
+    case Framing::model:
+      return false;
+    case Framing::workspace:
+      return true;
+    case Framing::automatic:
+      break;
+  }
+  return (replica_.workspace().flags & (link::kWorkspaceCalibrated | link::kWorkspaceConfigured)) !=
+         0;
+}
+
+void BridgeApp::hold_framing() {
+  if (!workspace_framing()) return;
+  const link::Workspace& w = replica_.workspace();
+  const Sphere before = framing_.sphere();
+  const bool was_active = framing_.active();
+  const Sphere model{
+      glm::vec3(renderer_->model_matrix() * glm::vec4(renderer_->model_centre(), 1.0F)),
+      renderer_->model_radius()};
+  framing_.hold(w.min, w.max, model);
+  Camera& camera = renderer_->camera();
+  if (!was_active) {
+    camera.set_up(w.up);
+    log_.write(LogLevel::info, "camera",
+               "framing the station's working volume (%s) and the model: centre (%.3f, %.3f, "
+               "%.3f) m, radius %.3f m, up (%.0f, %.0f, %.0f)",
+               {(w.flags & link::kWorkspaceConfigured) != 0   ? "configured"
+                : (w.flags & link::kWorkspaceCalibrated) != 0 ? "above the work frame's origin"
+                                                              : "the tracker's range",
+                static_cast<double>(framing_.sphere().centre.x),
+                static_cast<double>(framing_.sphere().centre.y),
+                static_cast<double>(framing_.sphere().centre.z),
+                static_cast<double>(framing_.sphere().radius), static_cast<double>(w.up.x),
+                static_cast<double>(w.up.y), static_cast<double>(w.up.z)});
+  }
+  const Sphere& now = framing_.sphere();
+  if (!was_active || now.radius != before.radius || now.centre != before.centre) {
+    camera.frame(now.centre, now.radius);
+  }
+}
+
+void BridgeApp::follow_cursors() {
+  hold_framing();
+  if (!framing_.active() || !workspace_framing()) return;
+  std::array<glm::vec3, link::kLinkHands> cursors{};
+  std::size_t n = 0;
+  for (const HandView& v : replica_.hands()) {
+    if (!v.present || n == cursors.size()) continue;
+    cursors[n++] = glm::vec3(renderer_->model_matrix() * glm::vec4(glm::vec3(v.pose.origin), 1.0F));
+  }
+  if (framing_.follow(std::span<const glm::vec3>(cursors.data(), n))) {
+    renderer_->camera().frame(framing_.sphere().centre, framing_.sphere().radius);
+    log_.write(LogLevel::debug, "camera", "framing grows to keep the cursors: radius %.3f m",
+               {static_cast<double>(framing_.sphere().radius)});
+  }
 }
 
 void BridgeApp::refresh_weights(bool mesh_uploaded) {
@@ -260,9 +327,10 @@ void BridgeApp::draw() {
   }
 }
 
-void BridgeApp::write_live_cues(const std::string& path) const {
-  // Where the live picture's cues are (pixels, top-left origin), for checks of the
-  // picture that need no GL: sim/scenarios/picture_check.py --cues.
+void BridgeApp::write_cues(const std::string& path) const {
+  // Where the picture's cues are (pixels, top-left origin), for checks of the
+  // picture that need no GL: sim/scenarios/picture_check.py --cues; and the camera
+  // (size, view-projection matrix, column-major) to project any world point.
   std::FILE* f = std::fopen(path.c_str(), "w");
   if (f == nullptr) return;
   const Camera& camera = renderer_->camera();
@@ -288,6 +356,13 @@ void BridgeApp::write_live_cues(const std::string& path) const {
     const float* r = view_->hud().panel();
     std::fprintf(f, "panel %.1f %.1f %.1f %.1f\n", r[0], r[1], r[2], r[3]);
   }
+  std::fprintf(f, "size %d %d\n", w, h);
+  const glm::mat4 vp = camera.projection(w, h) * camera.view_matrix();
+  std::fprintf(f, "viewproj");
+  for (int c = 0; c < 4; ++c) {
+    for (int r = 0; r < 4; ++r) std::fprintf(f, " %.7g", static_cast<double>(vp[c][r]));
+  }
+  std::fprintf(f, "\n");
   std::fclose(f);
 }
 

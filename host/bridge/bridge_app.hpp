@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "framing.hpp"
 #include "hud_model.hpp"
 #include "mesh_renderer.hpp"
 #include "scene_replica.hpp"
@@ -38,8 +39,16 @@
 
 namespace twister::bridge {
 
+// What the camera frames (kiosk and offscreen; a window's free camera frames the model).
+enum class Framing : std::uint8_t {
+  model,      // the model's bounding sphere (when the first mesh arrives)
+  workspace,  // the station's working volume and the model, growing to keep the cursors
+  automatic,  // workspace when the station has a work frame or a configured volume
+};
+
 struct BridgeOptions {
   std::string snapshot_dir;  // empty: no PNGs
+  Framing framing = Framing::model;
   // With snapshot_dir: also a frame-<n>.png after every `movie_every`-th hands update
   // (0: none), a moving picture in the station's time (one update per 8 ms at most).
   std::uint32_t movie_every = 0;
@@ -126,8 +135,13 @@ class BridgeApp {
       out_.insert(out_.end(), frame.begin(), frame.begin() + static_cast<std::ptrdiff_t>(*n));
   }
   void flush();
-  // Beside a live picture: where its screw axes, cursors and HUD panel are.
-  void write_live_cues(const std::string& path) const;
+  // Beside a live or movie picture: where its screw axes, cursors and HUD panel are.
+  void write_cues(const std::string& path) const;
+  // The workspace framing (Framing): holds the volume and the model, follows the
+  // cursors once per hands update (so pictures repeat from run to run).
+  bool workspace_framing() const;
+  void hold_framing();
+  void follow_cursors();
   void refresh_display();
   void refresh_weights(bool mesh_uploaded);
   std::int64_t now_ms() const { return clock_.now_us() / 1000; }
@@ -170,6 +184,7 @@ class BridgeApp {
   std::uint64_t movie_hands_ = 0;        // hands updates counted for movie frames
   std::uint64_t movie_frames_ = 0;       // frame-<n>.png written
   WeightPreview preview_;                // weights before a grab
+  WorkspaceFraming framing_;             // Framing::workspace: what the camera holds
   std::uint64_t over_capacity_logged_ = 0;
   BridgeCounters counters_{};
   std::vector<std::string> pictures_;

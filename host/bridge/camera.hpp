@@ -33,6 +33,12 @@ class Camera {
     reset();
   }
   const ViewConfig& view() const { return view_; }
+  // A new world up (the station's work frame), angles and framing kept.
+  void set_up(glm::vec3 up) {
+    view_.up[0] = up.x;
+    view_.up[1] = up.y;
+    view_.up[2] = up.z;
+  }
   // Frames a bounding sphere in the world (the model): the target is its centre
   // unless the view fixes one, the distance fits it in the view at zoom 1.
   void frame(glm::vec3 centre, float radius);

@@ -62,8 +62,9 @@ struct Options {
   bool no_cues = false;                   // the model alone (no glyphs, spheres, axes, ...)
   bool no_hud = false;
   float crease_angle_deg = twister::bridge::kDefaultCreaseAngleDeg;  // --crease-angle
-  bool no_live_refine = false;  // the live stroke unrefined even on OpenGL 4
+  bool no_live_refine = false;    // the live stroke unrefined even on OpenGL 4
   std::uint32_t movie_every = 0;  // --movie-every N: frame-<n>.png every N-th hands update
+  std::string frame;              // --frame model|workspace|auto ("": auto unless a free camera)
 };
 
 twister::hal::Logger& logger() { return twister::hal::process_log(); }
@@ -270,6 +271,15 @@ int run(const Options& opt) {
   bridge_options.movie_every = opt.movie_every;
   bridge_options.authenticator = auth.get();
   bridge_options.limits = opt.limits;
+  // Kiosk, offscreen and a fixed camera frame the hands' working space when the station
+  // has one (calibrated or configured); a window's free camera frames the model.
+  using twister::bridge::Framing;
+  bridge_options.framing =
+      opt.frame == "model"       ? Framing::model
+      : opt.frame == "workspace" ? Framing::workspace
+      : opt.frame == "auto" || opt.kiosk || opt.offscreen || options.fixed_camera
+          ? Framing::automatic
+          : Framing::model;
   BridgeApp app(*transport.port, clock, &display.renderer, bridge_options, logger());
   app.set_view(&display.view);
   app.replica().set_crease_angle(opt.crease_angle_deg);
@@ -330,6 +340,12 @@ void add_options(CLI::App& cli, Options& opt) {
   cli.add_option("--camera", opt.camera_file,
                  "camera file (TOML [camera]: azimuth_deg, elevation_deg, zoom, fov_deg, up, "
                  "target, fixed): a kiosk's fixed view");
+  cli.add_option("--frame", opt.frame,
+                 "what the camera frames: model, workspace (the station's working volume and "
+                 "the model, grown to keep both cursors in view) or auto (workspace when the "
+                 "station has a work frame or work_volume; the default in kiosk, offscreen and "
+                 "with a fixed camera; a window's free camera: model)")
+      ->check(CLI::IsMember({"model", "workspace", "auto"}));
   cli.add_option("--azimuth", opt.view.azimuth_deg, "camera azimuth in degrees");
   cli.add_option("--elevation", opt.view.elevation_deg, "camera elevation in degrees");
   cli.add_option_function<float>(

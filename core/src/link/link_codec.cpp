@@ -111,6 +111,7 @@ TWISTER_LINK_INSTANTIATE(Hands)
 TWISTER_LINK_INSTANTIATE(ObjectPose)
 TWISTER_LINK_INSTANTIATE(StatusReport)
 TWISTER_LINK_INSTANTIATE(Command)
+TWISTER_LINK_INSTANTIATE(Workspace)
 #undef TWISTER_LINK_INSTANTIATE
 
 Status decode_payload(std::span<const std::byte> payload, LinkMessage& out) {

@@ -141,6 +141,16 @@ void write_status(ByteWriter& w, const StatusReport& s) {
   w.u64(s.traffic.frames_rejected);
 }
 
+bool read_workspace(ByteReader& r, Workspace& s) {
+  s.flags = r.u8();
+  bool good = (s.flags & ~kWorkspaceFlagMask) == 0;
+  for (glm::vec3* v : {&s.up, &s.min, &s.max}) {
+    *v = {r.f32(), r.f32(), r.f32()};
+    good = good && std::isfinite(v->x) && std::isfinite(v->y) && std::isfinite(v->z);
+  }
+  return good;
+}
+
 bool read_status(ByteReader& r, StatusReport& s) {
   s.mesh_version = r.u32();
   s.vertex_count = r.u32();
@@ -292,6 +302,17 @@ bool write_body(ByteWriter& w, const StatusReport& m) {
   return true;
 }
 
+bool write_body(ByteWriter& w, const Workspace& m) {
+  if ((m.flags & ~kWorkspaceFlagMask) != 0) return false;
+  w.u8(m.flags);
+  for (const glm::vec3& v : {m.up, m.min, m.max}) {
+    w.f32(v.x);
+    w.f32(v.y);
+    w.f32(v.z);
+  }
+  return true;
+}
+
 bool write_body(ByteWriter& w, const Command& m) {
   w.u8(static_cast<std::uint8_t>(m.kind));
   w.u8(m.method);
@@ -372,6 +393,9 @@ bool read_body(ByteReader& r, MessageType type, LinkMessage& m) {
     }
     case MessageType::status:
       good = read_status(r, reset_as<StatusReport>(m));
+      break;
+    case MessageType::workspace:
+      good = read_workspace(r, reset_as<Workspace>(m));
       break;
     default:
       good = read_small(r, type, m);

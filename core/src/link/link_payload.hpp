@@ -24,6 +24,7 @@ bool write_body(ByteWriter& w, const Hands& m);
 bool write_body(ByteWriter& w, const ObjectPose& m);
 bool write_body(ByteWriter& w, const StatusReport& m);
 bool write_body(ByteWriter& w, const Command& m);
+bool write_body(ByteWriter& w, const Workspace& m);
 
 // Reads the body of a `type` message into `m` (which then holds that
 // alternative); false: short/long body or a field out of range.

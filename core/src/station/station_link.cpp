@@ -13,7 +13,7 @@ StationLink::StationLink(ports::LinkPort& port, StationLinkStorage storage,
       mirror_(queues_,
               MeshMirrorStorage{storage.x, storage.y, storage.z, storage.triangle_indices}),
       live_(queues_, LiveStreamConfig{config.live_interval_us, config.status_interval_us,
-                                      config.stroke_repeat_us}) {}
+                                      config.stroke_repeat_us, config.workspace}) {}
 
 Status StationLink::start(const session::SculptSession& session) {
   if (queues_.bulk_capacity() < 4 * link::kMaxFrameBytes) return StatusCode::resource_exhausted;

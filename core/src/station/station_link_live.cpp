@@ -32,6 +32,7 @@ std::uint8_t button_bits(const input::HandButtons& b) {
 }  // namespace
 
 void LiveStream::restart() {
+  workspace_sent_ = false;
   hands_.sent = false;
   status_.sent = false;
   object_.valid = false;
@@ -41,6 +42,7 @@ void LiveStream::restart() {
 
 void LiveStream::poll(const session::SculptSession& session, const StationStatus& status,
                       const LinkFacts& facts, ports::TimestampUs now_us) {
+  if (!workspace_sent_) workspace_sent_ = out_.urgent(config_.workspace);  // else next poll
   const session::LiveWarp live = session.live();
   const bool active = live.active && live.plan != nullptr && live.plan->built();
   if (active) {

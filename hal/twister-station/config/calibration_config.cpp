@@ -73,10 +73,9 @@ void read_filter(ConfigReader& c, std::string_view key, FilterConfig& out) {
   FilterConfig f;
   f.mode = FilterConfig::Mode::set;
   // Every key is read (each bad one reported), then the verdict.
-  const std::array<bool, 4> read = {e.real("f", true, 0.001, 0.999, f.f),
-                                    e.real("flow", true, 0.001, 0.999, f.flow),
-                                    e.real("fhigh", true, 0.001, 0.999, f.fhigh),
-                                    e.real("factor", true, 0.001, 0.999, f.factor)};
+  const std::array<bool, 4> read = {
+      e.real("f", true, 0.001, 0.999, f.f), e.real("flow", true, 0.001, 0.999, f.flow),
+      e.real("fhigh", true, 0.001, 0.999, f.fhigh), e.real("factor", true, 0.001, 0.999, f.factor)};
   const bool ok = read[0] && read[1] && read[2] && read[3];
   e.finish();
   if (!ok) return;
@@ -140,6 +139,38 @@ void read_work_frame(ConfigReader& c, CalibrationConfig& cal) {
   }
 }
 
+void read_work_volume(ConfigReader& c, CalibrationConfig& cal) {
+  ConfigReader w = c.table("work_volume", false);
+  if (!w.present()) {
+    w.finish();
+    return;
+  }
+  WorkVolumeConfig v;
+  bool ok = true;
+  for (const auto& [key, out] : {std::pair{"min", &v.min}, std::pair{"max", &v.max}}) {
+    if (!w.has(key)) {
+      w.error_at(line_of(c.node("work_volume")->source()), w.name(key),
+                 "missing; the work volume needs min and max (the model's frame, metres)");
+      ok = false;
+      continue;
+    }
+    ok = read_vec3(w, key, -10.0, 10.0, *out) && ok;
+  }
+  for (std::size_t i = 0; ok && i < 3; ++i) {
+    if (v.max[i] - v.min[i] < 0.01) {
+      w.error(w.node("max"), "max",
+              "expected each coordinate at least 0.01 above min's, got " + fmt(v.max[i]) +
+                  " against " + fmt(v.min[i]));
+      ok = false;
+    }
+  }
+  w.finish();
+  if (ok) {
+    cal.work_volume = v;
+    cal.has_work_volume = true;
+  }
+}
+
 }  // namespace
 
 void read_calibration(ConfigReader& tracker, TrackerConfig& tc) {
@@ -175,6 +206,7 @@ void read_calibration(ConfigReader& tracker, TrackerConfig& tc) {
   read_filter(c, "position_filter", cal.position_filter);
   read_filter(c, "attitude_filter", cal.attitude_filter);
   read_work_frame(c, cal);
+  read_work_volume(c, cal);
   c.finish();
 }
 

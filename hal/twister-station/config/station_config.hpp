@@ -70,6 +70,15 @@ struct WorkFrameConfig {
 // How far from perpendicular x_axis and y_axis may be (typed or measured values).
 inline constexpr double kMaxWorkFrameSkewDeg = 2.0;
 
+// The hands' working volume (an axis-aligned box in the model's frame, metres): what
+// the kiosk and offscreen cameras frame (sent to the display in the link's
+// `workspace` message). Absent: 0.6 x 0.6 m by 0.4 m high above the origin with a work
+// frame; without one, the tracker's range in the hemisphere's half-space.
+struct WorkVolumeConfig {
+  std::array<double, 3> min{};
+  std::array<double, 3> max{};
+};
+
 // [tracker.calibration]: applied to both hands' receivers (the tip offset to receiver 1,
 // the stylus).
 struct CalibrationConfig {
@@ -82,6 +91,8 @@ struct CalibrationConfig {
   FilterConfig attitude_filter;
   bool has_work_frame = false;
   WorkFrameConfig work_frame;
+  bool has_work_volume = false;
+  WorkVolumeConfig work_volume;
 };
 
 struct TrackerConfig {
@@ -125,12 +136,12 @@ struct ButtonsConfig {
 };
 
 struct StationSection {
-  std::string journal;                 // append-only stroke journal (fsynced per stroke)
-  std::string mesh;                    // initial model (OBJ, metres); relative = to the config file
+  std::string journal;  // append-only stroke journal (fsynced per stroke)
+  std::string mesh;     // initial model (OBJ, metres); relative = to the config file
   // Extra mesh capacity beyond the OBJ's vertices (and twice as many triangles):
   // refinement's room. Default: session::kDefaultSpareVertices (a test checks).
   std::uint32_t spare_vertices = 100'000;
-  std::uint32_t loop_timeout_ms = 10;  // poll() timeout of the event loop
+  std::uint32_t loop_timeout_ms = 10;       // poll() timeout of the event loop
   std::uint32_t checkpoint_interval = 256;  // journal records between checkpoints (0: at stop)
 };
 
@@ -180,7 +191,7 @@ struct SculptConfig {
   // Largest midpoint error an edge keeps (absolute). Default:
   // session::kDefaultRefineThresholdM (a test checks).
   double refine_threshold_m = 0.0005;
-  bool buttons_configured = false;    // [sculpt.buttons] given (else the paper's map)
+  bool buttons_configured = false;  // [sculpt.buttons] given (else the paper's map)
   std::vector<ButtonBindingConfig> buttons;
 };
 

@@ -72,6 +72,9 @@ std::optional<link::ResendRequest> SceneReplica::apply(const link::LinkMessage& 
     on_hands(*hands);
   } else if (const auto* object = std::get_if<link::ObjectPose>(&m)) {
     object_pose_ = link::from_compact(object->pose);
+  } else if (const auto* workspace = std::get_if<link::Workspace>(&m)) {
+    workspace_ = *workspace;
+    has_workspace_ = true;
   } else if (const auto* status = std::get_if<link::StatusReport>(&m)) {
     status_ = *status;
     has_status_ = true;

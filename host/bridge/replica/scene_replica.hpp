@@ -1,5 +1,5 @@
 // SceneReplica: the bridge's copy of the station's scene, built from link messages
-// (protocol 4, docs/link-protocol.md), with no OpenGL (its own library, also built
+// (protocol 5, docs/link-protocol.md), with no OpenGL (its own library, also built
 // by the fuzz preset):
 //   - the mesh at a version: a full mesh or a commit's change set is staged and
 //     becomes the displayed mesh only when its mesh_end checksum matches; a
@@ -22,16 +22,15 @@
 #include <optional>
 #include <vector>
 
+#include "crease_shading.hpp"
+#include "mesh_data.hpp"
 #include "twister/base/inline_vector.hpp"
 #include "twister/link/link_message.hpp"
 #include "twister/math/frame.hpp"
 #include "twister/math/screw.hpp"
 #include "twister/math/warp_method.hpp"
-#include "crease_shading.hpp"
-#include "mesh_data.hpp"
 
 namespace twister::bridge {
-
 
 // The largest mesh the bridge accepts (twister-bridge --max-vertices/--max-triangles).
 struct ReplicaLimits {
@@ -127,6 +126,9 @@ class SceneReplica {
   float radius_m() const { return radius_m_; }
   // The object frame in the world (identity until the station sends it).
   const math::Frame& object_pose() const { return object_pose_; }
+  // The station's working volume and up axis (protocol 5), in the world.
+  bool has_workspace() const { return has_workspace_; }
+  const link::Workspace& workspace() const { return workspace_; }
   bool has_status() const { return has_status_; }
   const link::StatusReport& station_status() const { return status_; }
 
@@ -167,6 +169,8 @@ class SceneReplica {
   math::Frame object_pose_{};
   bool has_status_ = false;
   link::StatusReport status_{};
+  bool has_workspace_ = false;
+  link::Workspace workspace_{};
   ReplicaCounters counters_{};
 };
 

@@ -158,6 +158,14 @@ LinkMessage random_message() {
       m = Command{static_cast<CommandKind>(*rc::gen::inRange(1, kLastCommandKind + 1)),
                   static_cast<std::uint8_t>(*rc::gen::inRange(0, 3))};
       break;
+    case MessageType::workspace: {
+      Workspace& w = m.emplace<Workspace>();
+      w.flags = static_cast<std::uint8_t>(*rc::gen::inRange(0, kWorkspaceFlagMask + 1));
+      w.up = {random_float(), random_float(), random_float()};
+      w.min = {random_float(), random_float(), random_float()};
+      w.max = {random_float(), random_float(), random_float()};
+      break;
+    }
   }
   return m;
 }

@@ -75,6 +75,7 @@ TEST(LinkMessageSize, EachMessageIsAsSmallAsItsBodyAndTheVariantAsItsLargest) {
   note(check("object", ObjectPose{}));
   note(check("status", StatusReport{}));
   note(check("command", Command{}));
+  note(check("workspace", Workspace{}));
   std::printf("LinkMessage    sizeof %5zu, largest body %5zu\n", sizeof(LinkMessage), largest);
   EXPECT_LE(static_cast<double>(sizeof(LinkMessage)), 1.2 * static_cast<double>(largest));
   // Small messages stay small: what the display sends per key, the hands per update.

@@ -207,13 +207,20 @@ TEST(LiveStream, SendsWhatChangedAndEverythingAgainAfterRestart) {
   Display display(wire);
   std::vector<std::byte> bulk(4 * link::kMaxFrameBytes);
   FrameQueues q(station_end, bulk);
-  LiveStream live(q, LiveStreamConfig{});
+  LiveStreamConfig config;
+  config.workspace.flags = link::kWorkspaceCalibrated;
+  config.workspace.max = {0.3F, 0.3F, 0.4F};
+  LiveStream live(q, config);
   session::test_support::Station s;
   live.poll(*s.session, StationStatus{}, LinkFacts{1, 0}, 0);
   q.flush();
-  EXPECT_EQ(
-      types(display.receive()),
-      (std::vector<MessageType>{MessageType::object, MessageType::hands, MessageType::status}));
+  const auto first = display.receive();
+  EXPECT_EQ(types(first), (std::vector<MessageType>{MessageType::workspace, MessageType::object,
+                                                    MessageType::hands, MessageType::status}));
+  ASSERT_FALSE(first.empty());
+  ASSERT_TRUE(std::holds_alternative<link::Workspace>(first[0]));
+  EXPECT_EQ(std::get<link::Workspace>(first[0]).flags, link::kWorkspaceCalibrated);
+  EXPECT_EQ(std::get<link::Workspace>(first[0]).max, glm::vec3(0.3F, 0.3F, 0.4F));
   live.poll(*s.session, StationStatus{}, LinkFacts{1, 0}, 10'000);
   q.flush();
   EXPECT_TRUE(display.receive().empty()) << "nothing changed";
@@ -228,7 +235,7 @@ TEST(LiveStream, SendsWhatChangedAndEverythingAgainAfterRestart) {
   live.restart();
   live.poll(*s.session, StationStatus{}, LinkFacts{1, 0}, 30'000);
   q.flush();
-  EXPECT_EQ(display.receive().size(), 3u);
+  EXPECT_EQ(display.receive().size(), 4u) << "the workspace, object, hands and status again";
 }
 
 }  // namespace

@@ -266,3 +266,51 @@ TEST(CalibrationConfig, DefaultsLeaveTheUnitAndThePosesAlone) {
 
 }  // namespace
 }  // namespace twister::station_app
+
+namespace twister::station_app {
+namespace {
+
+// The working volume the display frames (link `workspace`): the configured box, the
+// default above the work frame's origin (+Z up), or the tracker's range on the
+// hemisphere's side of the transmitter (+Z down), and the box's mistakes.
+link::Workspace workspace_from(const std::string& calibration) {
+  const auto r = parse_station_config(config_with(calibration), "t.toml");
+  EXPECT_TRUE(r.ok()) << test::messages(r);
+  return workspace_of(r.config.tracker.calibration);
+}
+
+TEST(CalibrationConfig, WorkVolumeIsWhatTheDisplayFrames) {
+  const link::Workspace none = workspace_from("");
+  EXPECT_EQ(none.flags, 0);
+  EXPECT_EQ(none.up, glm::vec3(0.0F, 0.0F, -1.0F));
+  EXPECT_GT(none.min.x, 0.0F) << "in front of the transmitter (hemisphere +X)";
+  EXPECT_NEAR(none.max.x, 0.76F, 1e-5F);
+  const link::Workspace below = workspace_from("hemisphere = [0, 0, 1]");
+  EXPECT_GT(below.min.z, 0.0F) << "below the transmitter";
+  const std::string frame =
+      "[tracker.calibration.work_frame]\norigin = [0.5, 0, 0.3]\nx_axis = [1, 0, 0]\n"
+      "y_axis = [0, -1, 0]\n";
+  const link::Workspace calibrated = workspace_from(frame);
+  EXPECT_EQ(calibrated.flags, link::kWorkspaceCalibrated);
+  EXPECT_EQ(calibrated.up, glm::vec3(0.0F, 0.0F, 1.0F));
+  EXPECT_EQ(calibrated.min, glm::vec3(-0.3F, -0.3F, 0.0F));
+  EXPECT_EQ(calibrated.max, glm::vec3(0.3F, 0.3F, 0.4F));
+  const link::Workspace configured = workspace_from(
+      frame + "[tracker.calibration.work_volume]\nmin = [-0.5, -0.2, 0]\nmax = [0.5, 0.2, 0.6]\n");
+  EXPECT_EQ(configured.flags, link::kWorkspaceCalibrated | link::kWorkspaceConfigured);
+  EXPECT_EQ(configured.min, glm::vec3(-0.5F, -0.2F, 0.0F));
+  EXPECT_EQ(configured.max, glm::vec3(0.5F, 0.2F, 0.6F));
+}
+
+TEST(CalibrationConfig, BadWorkVolumesAreRefusedWithTheKey) {
+  EXPECT_THAT(errors_of("[tracker.calibration.work_volume]\nmin = [0, 0, 0]"),
+              HasSubstr("tracker.calibration.work_volume.max: missing"));
+  EXPECT_THAT(errors_of("[tracker.calibration.work_volume]\nmin = [0, 0, 0]\nmax = [1, 1, 0]"),
+              HasSubstr("tracker.calibration.work_volume.max: expected each coordinate at least "
+                        "0.01 above min's, got 0 against 0"));
+  EXPECT_THAT(errors_of("[tracker.calibration.work_volume]\nmin = [0, 0, 0]\nmax = [1, 1, 11]"),
+              HasSubstr("work_volume.max: expected an array of three numbers from -10 to 10"));
+}
+
+}  // namespace
+}  // namespace twister::station_app

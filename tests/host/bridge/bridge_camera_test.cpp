@@ -6,10 +6,13 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <cmath>
 #include <glm/geometric.hpp>
+#include <span>
 
 #include "bridge_link_rig.hpp"
 #include "camera_config.hpp"
+#include "framing.hpp"
 #include "window_input.hpp"
 
 namespace twister::bridge {
@@ -116,6 +119,52 @@ TEST(WindowInput, CameraKeysMoveAFreeCameraOnlyAndCommandKeysReachTheStation) {
   EXPECT_EQ(rig.link->counters().commands_refused, 0u);
   (void)rig.station.tick();
   EXPECT_EQ(rig.station.session->method(), math::WarpMethod::rottran);
+}
+
+}  // namespace
+}  // namespace twister::bridge
+
+namespace twister::bridge {
+namespace {
+
+// The workspace framing (kiosk, offscreen): a cursor that leaves the framed sphere
+// makes it grow over several updates, never by a jump and never back; a cursor inside
+// changes nothing; the volume and the model are both held.
+TEST(WorkspaceFraming, HoldsTheVolumeAndTheModel) {
+  WorkspaceFraming f;
+  f.hold({-0.3F, -0.3F, 0.0F}, {0.3F, 0.3F, 0.4F}, Sphere{{0.0F, 0.0F, 0.05F}, 0.09F});
+  ASSERT_TRUE(f.active());
+  EXPECT_NEAR(f.sphere().radius, 0.5F * std::sqrt(0.36F + 0.36F + 0.16F), 1e-5F);
+  // A model beyond the volume is held too.
+  f.hold({-0.3F, -0.3F, 0.0F}, {0.3F, 0.3F, 0.4F}, Sphere{{1.0F, 0.0F, 0.2F}, 0.1F});
+  EXPECT_LE(glm::length(glm::vec3(1.0F, 0.0F, 0.2F) - f.sphere().centre) + 0.1F,
+            f.sphere().radius * 1.0001F);
+}
+
+TEST(WorkspaceFraming, GrowsSmoothlyToKeepACursorThatLeavesAndNeverShrinks) {
+  WorkspaceFraming f;
+  f.hold({-0.3F, -0.3F, 0.0F}, {0.3F, 0.3F, 0.4F}, Sphere{{0.0F, 0.0F, 0.05F}, 0.09F});
+  const Sphere start = f.sphere();
+  const glm::vec3 inside(0.1F, 0.1F, 0.2F);
+  EXPECT_FALSE(f.follow(std::span<const glm::vec3>(&inside, 1)));
+  EXPECT_EQ(f.sphere().radius, start.radius);
+  // A hand far outside: the framing grows over several updates, each a bounded step.
+  const glm::vec3 out(0.9F, 0.0F, 0.2F);
+  float radius = f.sphere().radius;
+  int updates = 0;
+  for (; updates < 100; ++updates) {
+    const glm::vec3 c = f.sphere().centre;
+    if (!f.follow(std::span<const glm::vec3>(&out, 1))) break;
+    EXPECT_GE(f.sphere().radius, radius) << "never shrinks";
+    EXPECT_LE(f.sphere().radius - radius, 0.1F) << "no jump at update " << updates;
+    EXPECT_LE(glm::length(f.sphere().centre - c), 0.1F) << "no jump at update " << updates;
+    radius = f.sphere().radius;
+  }
+  EXPECT_GT(updates, 3) << "it eased, not jumped";
+  EXPECT_LE(glm::length(out - f.sphere().centre), f.sphere().radius) << "the cursor is held";
+  // The hand comes back: the framing stays.
+  EXPECT_FALSE(f.follow(std::span<const glm::vec3>(&inside, 1)));
+  EXPECT_EQ(f.sphere().radius, radius);
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
-// Link messages between twister-station and twister-bridge (protocol version 4,
+// Link messages between twister-station and twister-bridge (protocol version 5,
 // docs/link-protocol.md). Each message type is its own small struct naming its
 // MessageType (kType); one frame on the wire carries one of them (see
-// link_codec.hpp for the framing). LinkMessage, a std::variant of all thirteen, is
+// link_codec.hpp for the framing). LinkMessage, a std::variant of all fourteen, is
 // what a decoder yields: senders encode the type they send directly and never
 // build a LinkMessage for it. Units: metres, radians; poses are in the station's
 // object frame (the mesh's own frame, the journal's frames) except the object pose,
@@ -19,7 +19,7 @@
 
 namespace twister::link {
 
-inline constexpr std::uint8_t kProtocolVersion = 4;
+inline constexpr std::uint8_t kProtocolVersion = 5;
 // Largest payload (version byte .. last body byte, without CRC) of one frame.
 inline constexpr std::size_t kMaxPayload = 4096;
 inline constexpr std::size_t kMaxVerticesPerChunk = 200;   // 16 bytes each
@@ -50,8 +50,9 @@ enum class MessageType : std::uint8_t {
   object = 11,         // S->B: the object's pose in the world
   status = 12,         // S->B: station status (tracker, capacity, counters)
   command = 13,        // B->S: a sculptor's key (undo, redo, method), admitted display only
+  workspace = 14,      // S->B: the hands' working volume and the up axis (protocol 5)
 };
-inline constexpr std::uint8_t kLastMessageType = 13;
+inline constexpr std::uint8_t kLastMessageType = 14;
 
 enum class Role : std::uint8_t { station = 1, bridge = 2 };
 
@@ -228,12 +229,28 @@ struct Command {
   std::uint8_t method = 0;  // math::WarpMethod, set_method only
 };
 
+// Workspace flags.
+inline constexpr std::uint8_t kWorkspaceCalibrated = 1;  // a calibrated work frame: up is +Z
+inline constexpr std::uint8_t kWorkspaceConfigured = 2;  // the volume comes from the config
+inline constexpr std::uint8_t kWorkspaceFlagMask = 3;
+
+// The space the hands work in (protocol 5), in the object frame (metres): an
+// axis-aligned box and the up direction. Sent once after each admission; the
+// kiosk and offscreen cameras frame it (docs/bridge.md "Window, kiosk, camera").
+struct Workspace {
+  static constexpr MessageType kType = MessageType::workspace;
+  std::uint8_t flags = 0;  // kWorkspaceCalibrated | kWorkspaceConfigured
+  glm::vec3 up{0.0F, 0.0F, -1.0F};
+  glm::vec3 min{0.0F};
+  glm::vec3 max{0.0F};
+};
+
 // One decoded message: the alternative is its type, in MessageType order (index
 // + 1 is the type byte). As large as its largest alternative (Triangles) plus the
 // index: only decoders hold one.
 using LinkMessage =
     std::variant<Hello, Auth, Bye, MeshBegin, Vertices, Triangles, MeshEnd, ResendRequest,
-                 StrokeBegin, Hands, ObjectPose, StatusReport, Command>;
+                 StrokeBegin, Hands, ObjectPose, StatusReport, Command, Workspace>;
 static_assert(std::variant_size_v<LinkMessage> == kLastMessageType);
 
 inline MessageType type_of(const LinkMessage& m) { return static_cast<MessageType>(m.index() + 1); }

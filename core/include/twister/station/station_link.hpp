@@ -1,4 +1,4 @@
-// StationLink: the station's side of the display link (protocol 4,
+// StationLink: the station's side of the display link (protocol 5,
 // docs/link-protocol.md), driven from the station's loop after Station::poll(). A
 // thin coordinator of four parts, one job each:
 //   LinkAdmission  who the display is: handshakes on the display's and the
@@ -50,6 +50,8 @@ struct StationLinkConfig {
   ports::TimestampUs status_interval_us = 1'000'000;
   ports::TimestampUs stroke_repeat_us = 1'000'000;      // stroke message repeated while open
   ports::TimestampUs handshake_timeout_us = 2'000'000;  // a newcomer's hello and auth
+  // The hands' working volume and up axis, sent once after each admission.
+  link::Workspace workspace{};
 };
 
 // The parts' counters in one place (for logs and tests).

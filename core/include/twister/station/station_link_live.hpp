@@ -3,7 +3,8 @@
 // changed; at most one per live_interval_us; one that finds no room is dropped and
 // counted, the next replaces it), `stroke` when a segment starts and about once a
 // second while it lasts (the exact start frames), `object` when the object pose
-// changed, `status` once a second and when something in it changed. No heap. Not
+// changed, `status` once a second and when something in it changed, `workspace`
+// once per admission (before anything else). No heap. Not
 // thread-safe.
 #pragma once
 
@@ -23,6 +24,7 @@ struct LiveStreamConfig {
   ports::TimestampUs live_interval_us = 8'000;  // at most one hands update per interval
   ports::TimestampUs status_interval_us = 1'000'000;
   ports::TimestampUs stroke_repeat_us = 1'000'000;  // stroke message repeated while open
+  link::Workspace workspace{};                      // sent once after each admission
 };
 
 struct LiveCounters {
@@ -83,6 +85,7 @@ class LiveStream {
   HandsSent hands_{};
   ObjectSent object_{};
   StatusSent status_{};
+  bool workspace_sent_ = false;
   LiveCounters counters_{};
 };
 
