@@ -687,28 +687,98 @@ bool MeshRefiner::settle_stroke_edges(std::span<const std::uint32_t> vertices) {
   b.keep_verdicts = false;
   for (const std::uint32_t v : vertices) {
     const EdgeEnd ev = edge_end(v, true);
-    walk_fan(
-        v,
-        [&](std::uint32_t t, std::uint32_t j) {
-          const std::uint32_t h = 3 * t + next(j);
-          const std::uint32_t a = tv[h];
-          const std::uint32_t c = tv[3 * t + prev(j)];
-          if (stroke_vertex(a) || stroke_vertex(c)) return;
-          const std::uint32_t g = adjacency_.twin(h);
-          if (real_twin(g) && g / 3 < t && stroke_vertex(tv[g % 3 == 0 ? g + 2 : g - 1])) return;
-          batch_edge(h, g, edge_end(a, false), edge_end(c, false), b);
-        },
-        [&](std::uint32_t h, std::uint32_t g) {
-          const std::uint32_t a = tv[h];
-          const std::uint32_t w = a == v ? tv[h % 3 == 2 ? h - 2 : h + 1] : a;
-          const bool both = stroke_vertex(w);
-          if (both && w < v) return;
-          batch_edge(h, g, ev, edge_end(w, both), b);
-        });
+    const auto at_v = [&](std::uint32_t h, std::uint32_t g, std::uint32_t w, bool w_stroke) {
+      if (w_stroke && w < v) return;
+      batch_edge(h, g, ev, edge_end(w, w_stroke), b);
+    };
+    const auto across = [&](std::uint32_t t, std::uint32_t h, std::uint32_t a, bool a_stroke,
+                            std::uint32_t c, bool c_stroke) {
+      if (a_stroke || c_stroke) return;
+      const std::uint32_t g = adjacency_.twin(h);
+      if (real_twin(g) && g / 3 < t && stroke_vertex(tv[g % 3 == 0 ? g + 2 : g - 1])) return;
+      batch_edge(h, g, edge_end(a, false), edge_end(c, false), b);
+    };
+    if (adjacency_key_.oriented) {
+      walk_ring(v, at_v, across);
+    } else {
+      walk_fan(
+          v,
+          [&](std::uint32_t t, std::uint32_t j) {
+            const std::uint32_t h = 3 * t + next(j);
+            const std::uint32_t a = tv[h];
+            const std::uint32_t c = tv[3 * t + prev(j)];
+            across(t, h, a, stroke_vertex(a), c, stroke_vertex(c));
+          },
+          [&](std::uint32_t h, std::uint32_t g) {
+            const std::uint32_t a = tv[h];
+            const std::uint32_t w = a == v ? tv[h % 3 == 2 ? h - 2 : h + 1] : a;
+            at_v(h, g, w, stroke_vertex(w));
+          });
+    }
     if (filter_.unsettled != 0) return false;
   }
   settle_batch(b);
   return filter_.unsettled == 0;
+}
+
+// The fan of v on a consistently wound manifold, as the ring of v's neighbours:
+// at_v(h, g, w, w_stroke) for each edge (v, w) (h the half-edge at v crossed, g its
+// twin or kBoundary), across(t, h, a, a_stroke, c, c_stroke) for each triangle's edge
+// (a, c) across from v. Each step loads one twin (the walk's only dependent load: v's
+// slot in the next triangle follows from it) and one new neighbour, whose stroke flag
+// serves both the edge to it and the two triangles' edges across.
+template <typename AtV, typename Across>
+void MeshRefiner::walk_ring(std::uint32_t v, AtV&& at_v, Across&& across) const {
+  const std::uint32_t t0 = storage_.adjacency.vertex_offsets[v];
+  if (t0 == kNoCorner) return;
+  const std::uint32_t* tv = mesh_->triangle_indices().data();
+  const std::uint32_t j0 = slot(t0, v);
+  const std::uint32_t x0 = tv[3 * t0 + next(j0)];
+  const std::uint32_t y0 = tv[3 * t0 + prev(j0)];
+  const bool x0_stroke = stroke_vertex(x0);
+  const bool y0_stroke = stroke_vertex(y0);
+  across(t0, 3 * t0 + next(j0), x0, x0_stroke, y0, y0_stroke);
+  // Out of t0 by the edge from v (v -> x): each next triangle is (v, x', x).
+  std::uint32_t exit = 3 * t0 + j0;
+  std::uint32_t w = x0;
+  bool w_stroke = x0_stroke;
+  for (;;) {
+    const std::uint32_t g = adjacency_.twin(exit);
+    const std::uint32_t u = g / 3;
+    if (!real_twin(g) || u == t0) {
+      at_v(exit, g, w, w_stroke);
+      if (real_twin(g)) return;  // closed: every edge at v crossed once
+      break;
+    }
+    const std::uint32_t j = next(g % 3);
+    const std::uint32_t x = tv[3 * u + next(j)];
+    const bool x_stroke = stroke_vertex(x);
+    across(u, 3 * u + next(j), x, x_stroke, w, w_stroke);
+    at_v(exit, g, w, w_stroke);
+    exit = 3 * u + j;
+    w = x;
+    w_stroke = x_stroke;
+  }
+  // Open: back from t0 by the edge into v (y -> v): each next triangle is (v, y, y').
+  exit = 3 * t0 + prev(j0);
+  w = y0;
+  w_stroke = y0_stroke;
+  for (;;) {
+    const std::uint32_t g = adjacency_.twin(exit);
+    if (!real_twin(g) || g / 3 == t0) {
+      at_v(exit, g, w, w_stroke);
+      return;
+    }
+    const std::uint32_t u = g / 3;
+    const std::uint32_t j = g % 3;
+    const std::uint32_t y = tv[3 * u + prev(j)];
+    const bool y_stroke = stroke_vertex(y);
+    across(u, 3 * u + next(j), w, w_stroke, y, y_stroke);
+    at_v(exit, g, w, w_stroke);
+    exit = 3 * u + prev(j);
+    w = y;
+    w_stroke = y_stroke;
+  }
 }
 
 // `vertices` stamped as the stroke's (their images given), and the bound for them.

@@ -353,7 +353,7 @@ TEST(RefineLocal, AllocatesNothing) {
 // The pass without bookkeeping (nothing over the threshold, images given) finds each
 // region edge exactly once on any mesh: closed or open, consistently wound or not.
 RC_GTEST_PROP(RefineLocal, NothingToSplitSettlesEachRegionEdgeOnce, ()) {
-  auto b = any_mesh(0);
+  auto b = any_mesh(6000);
   mesh::Mesh& m = b->mesh();
   math::WarpPlanWithStorage<40'000> plan;
   RC_PRE(build(plan, m, any_stroke()));
@@ -380,6 +380,19 @@ RC_GTEST_PROP(RefineLocal, NothingToSplitSettlesEachRegionEdgeOnce, ()) {
     for (int i = 0; i < 3; ++i) edges.insert(std::minmax(tv[i], tv[(i + 1) % 3]));
   }
   RC_ASSERT(around.settled_in_float() == edges.size());
+  // At a threshold some strokes exceed: when nothing splits, no region edge was over.
+  const double threshold = *rc::gen::inRange(2, 60) * 1e-4;
+  const auto tight =
+      around.refine_around(m, warp, threshold, plan.indices(), nullptr, {ix, iy, iz});
+  RC_ASSERT(tight.ok());
+  const bool none = tight->edges_split == 0u && tight->stop == mesh::RefineStop::done;
+  RC_CLASSIFY(none, "nothing split at the tight threshold");
+  if (!none) return;
+  for (const auto& [a, c] : edges) {
+    const double e = mesh::MeshRefiner::midpoint_error(glm::dvec3(m.position(a)),
+                                                       glm::dvec3(m.position(c)), warp);
+    RC_ASSERT(e <= threshold);
+  }
 }
 
 // A commit's case: the plan's images given and nothing over the threshold. Every

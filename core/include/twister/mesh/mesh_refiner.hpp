@@ -193,6 +193,8 @@ class MeshRefiner {
                   FloatBatch& b);
   template <typename Tri, typename Edge>
   void walk_fan(std::uint32_t v, Tri&& tri, Edge&& edge) const;
+  template <typename AtV, typename Across>
+  void walk_ring(std::uint32_t v, AtV&& at_v, Across&& across) const;
   void settle_batch(FloatBatch& b);
   struct VertexBatch;
   void warp_vertices(VertexBatch& b);
