@@ -45,13 +45,17 @@ ports::TimestampUs cycle_time(std::int64_t k) { return (k * 25'000) / 3; }
 
 FastrakDevice::FastrakDevice(const FastrakDeviceConfig& config, Scenario scenario,
                              ports::TimestampUs start_us)
-    : config_(config), scenario_(std::move(scenario)), start_us_(start_us), rng_(scenario_.seed) {
+    : config_(config),
+      scenario_(std::move(scenario)),
+      start_us_(start_us),
+      scenario_origin_(config.scenario_clock == ScenarioClock::power_up ? start_us : kNotYet),
+      rng_(scenario_.seed) {
   settings_.baud = config.baud;
   power_up(start_us);
 }
 
 double FastrakDevice::scenario_time_s(ports::TimestampUs now) const {
-  return static_cast<double>(now - start_us_) / 1e6;
+  return now <= scenario_origin_ ? 0.0 : static_cast<double>(now - scenario_origin_) / 1e6;
 }
 
 void FastrakDevice::power_up(ports::TimestampUs now) {
@@ -64,17 +68,16 @@ void FastrakDevice::power_up(ports::TimestampUs now) {
   counters_.drop_expired += faults_.expire_drop();
   busy_until_ = now + config_.reset_time_us;
   line_.clear(now);
-  input_.reset();
+  counters_.input_lost += input_.reset();  // the UART is reinitialised
   cycle_.next = 0;
   while (start_us_ + cycle_time(cycle_.next) < busy_until_) ++cycle_.next;
 }
 
 bool FastrakDevice::hung_up(ports::TimestampUs now) {
   apply_faults(now);
-  const bool down = faults_.in_window(now, FaultKind::hangup);
-  // Plugged back in: the unit powers up from its defaults.
-  if (faults_.replugged(down)) power_up(now);
-  return down;
+  // The line is down (a USB-serial adapter pulled, a cable out); the unit behind it keeps
+  // its power, its configuration and its mode, and streams on into nothing.
+  return faults_.in_window(now, FaultKind::hangup);
 }
 
 void FastrakDevice::apply_faults(ports::TimestampUs now) {
@@ -93,21 +96,35 @@ void FastrakDevice::receive(const std::byte* data, std::size_t size, ports::Time
   for (std::size_t i = 0; i < size; ++i) {
     std::byte b = data[i];
     if (misclock && !misclock_byte(b)) continue;
+    read_buffered(now);             // what waited is read before this byte
     if (now < busy_until_) return;  // a ^Y earlier in this chunk
-    switch (input_.take(static_cast<char>(b), now)) {
-      case CommandInput::Heard::nothing:
-        break;
-      case CommandInput::Heard::lost:
-        ++counters_.input_lost;
-        break;
-      case CommandInput::Heard::error:
-        error(input_.echo(), input_.error_code(), now);
-        break;
-      case CommandInput::Heard::command:
-        execute(input_.command(), input_.echo(), input_.done());
-        input_.hold_until(input_.done());
-        break;
-    }
+    heard(input_.take(static_cast<char>(b), now), now);
+  }
+}
+
+void FastrakDevice::read_buffered(ports::TimestampUs now) {
+  // Bytes that waited in the input buffer while a command was processed are read when
+  // it is done, one command after another (a ^Y among them empties the buffer).
+  while (input_.buffered_ready(now) && input_.ready_at() >= busy_until_) {
+    const ports::TimestampUs at = input_.ready_at();
+    heard(input_.take_buffered(), at);
+  }
+}
+
+void FastrakDevice::heard(CommandInput::Heard what, ports::TimestampUs at) {
+  switch (what) {
+    case CommandInput::Heard::nothing:
+      break;
+    case CommandInput::Heard::lost:
+      ++counters_.input_lost;
+      break;
+    case CommandInput::Heard::error:
+      error(input_.echo(), input_.error_code(), at);
+      break;
+    case CommandInput::Heard::command:
+      execute(input_.command(), input_.echo(), input_.done());
+      input_.hold_until(input_.done());
+      break;
   }
 }
 
@@ -129,6 +146,10 @@ void FastrakDevice::execute_mode(ModeCommand command, ports::TimestampUs now) {
     case ModeCommand::continuous:
       settings_.continuous = true;
       settings_.output_on = true;
+      if (scenario_origin_ == kNotYet) {  // ScenarioClock::first_continuous: t = 0 now
+        scenario_origin_ = now;
+        faults_.start_at(now);
+      }
       return;
     case ModeCommand::polled:
       settings_.continuous = false;
@@ -312,12 +333,17 @@ void FastrakDevice::generate(ports::TimestampUs now, bool stalled) {
     if (line_.queue().room() < tracker::kMaxRecordBytes) return;
     if (t < busy_until_ || stalled || faults_.in_window(t, FaultKind::stall)) continue;
     const HandSample s1 = sample(scenario_, 1, scenario_time_s(t));
-    if (s1.button && !cycle_.last_button && settings_.stylus_mode == 1 && settings_.continuous) {
-      settings_.output_on = !settings_.output_on;
-    }
+    const bool press = s1.button && !cycle_.last_button && settings_.stylus_mode == 1;
     cycle_.last_button = s1.button;
+    // Point/track mode (`e1,1`, the default): a press toggles continuous output, and in
+    // polled mode acts as `P` (manual, `e` command; docs/fastrak-protocol.md §2).
+    if (press && settings_.continuous) settings_.output_on = !settings_.output_on;
     const ActiveStations act = active_stations();
     if (act.empty()) continue;
+    if (press && !settings_.continuous) {
+      ++counters_.stylus_polls;
+      for (const int station : act) queue_record(station, t);  // as `P`
+    }
     if (!settings_.continuous || !settings_.output_on) {  // polled: solutions still run
       solve(act[cycle_.polled_station++ % act.size()], t);
       continue;
@@ -353,6 +379,11 @@ std::size_t FastrakDevice::deliver(ports::TimestampUs now, std::span<std::byte> 
   std::size_t n = 0;
   LineQueue& line = line_.queue();
   while (!line.empty() && line.front_ready() <= now) {
+    if (faults_.in_window(line.front_ready(), FaultKind::hangup)) {
+      counters_.hangup_lost += line.front_left();  // sent while the line was down
+      line.pop_front();
+      continue;
+    }
     const bool misclock = misclocked(line.front_ready());
     counters_.drop_expired += faults_.expire_drop_before(line.front_ready());  // hit long over
     while (line.front_left() > 0 && n < out.size()) {
@@ -374,10 +405,18 @@ std::size_t FastrakDevice::deliver(ports::TimestampUs now, std::span<std::byte> 
 
 std::size_t FastrakDevice::advance(ports::TimestampUs now, std::span<std::byte> out) {
   if (hung_up(now)) {  // applies the faults due by now
-    line_.queue().clear();
+    // The unit runs on; what it has sent by now reached nobody (nor does what the
+    // pulled adapter held).
+    generate(now, false);
+    LineQueue& line = line_.queue();
+    while (!line.empty() && line.front_ready() <= now) {
+      counters_.hangup_lost += line.front_left();
+      line.pop_front();
+    }
     return 0;
   }
   const bool stalled = faults_.in_window(now, FaultKind::stall);
+  if (!stalled) read_buffered(now);
   generate(now, stalled);
   if (stalled) return 0;
   return deliver(now, out);
