@@ -36,7 +36,7 @@ struct Options {
   std::string scenario_path;
   twister::sim::ServeOptions serve;
   twister::sim::FastrakDeviceConfig dev;
-  double reset_s = 0.5;
+  double reset_s = twister::sim::kRealUnitBootUs / 1e6;  // a real unit's boot (10 s)
   double duration_s = 0.0;
   bool binary = false;
   std::string port = "usb";
@@ -44,6 +44,7 @@ struct Options {
   std::vector<std::string> command_times;  // LETTER=SECONDS
   std::string log_level = "notice";
   std::string model = "fastrak";
+  std::string scenario_clock = "power-up";
 };
 
 // "O=0.05", "x=1", "^K=3", "all=0": sets the processing time of that command.
@@ -75,8 +76,14 @@ void add_options(CLI::App& app, Options& o) {
                  "serve on this real serial device (HIL) instead of a PTY");
   app.add_option("--baud", o.dev.baud, "modelled line rate (bits/s, 10 bits per byte)")
       ->check(CLI::Range(300, 4000000));
-  app.add_option("--reset-time", o.reset_s, "seconds a ^Y or power-up takes (real unit: 10-20)")
+  app.add_option("--reset-time", o.reset_s,
+                 "seconds a ^Y or power-up takes (default 10, a real Fastrak; tests and "
+                 "scripts pass 0.5 or less)")
       ->check(CLI::Range(0.0, 60.0));
+  app.add_option("--scenario-clock", o.scenario_clock,
+                 "where scenario time 0 is: power-up (default) or stream (the host's first "
+                 "C: motion, faults and the scenario's duration count from there)")
+      ->check(CLI::IsMember({"power-up", "stream"}));
   app.add_flag("--continuous", o.dev.start_continuous, "power up in continuous mode");
   app.add_flag("--binary", o.binary, "power up in binary format");
   app.add_flag("--binary16", o.dev.packed16,
@@ -120,6 +127,9 @@ int serve(Options& o, const twister::sim::Scenario& scenario) {
   o.serve.port =
       o.port == "fixed" ? twister::sim::PortKind::fixed : twister::sim::PortKind::usb_adapter;
   o.dev.reset_time_us = static_cast<std::int64_t>(o.reset_s * 1e6);
+  o.dev.scenario_clock = o.scenario_clock == "stream"
+                             ? twister::sim::ScenarioClock::first_continuous
+                             : twister::sim::ScenarioClock::power_up;
   o.dev.model = o.model == "liberty"   ? twister::sim::DeviceModel::liberty
                 : o.model == "patriot" ? twister::sim::DeviceModel::patriot
                                        : twister::sim::DeviceModel::fastrak;
@@ -132,7 +142,8 @@ int serve(Options& o, const twister::sim::Scenario& scenario) {
                                             : o.filter == "heavy"  ? twister::sim::kFilterHeavy
                                                                    : twister::sim::kFilterOff;
   o.dev.start_position_filter = o.dev.start_attitude_filter = filter;
-  const double duration_s = o.duration_s == 0.0 ? scenario.duration_s : o.duration_s;
+  // --duration counts from start-up; the scenario's own duration on its clock.
+  const double duration_s = o.duration_s;
 
   twister::sim::FastrakDevice device(o.dev, scenario, 0);
   twister::sim::DeviceServer server(device, o.serve);
@@ -151,6 +162,10 @@ int serve(Options& o, const twister::sim::Scenario& scenario) {
       return kExitFailure;
     }
     if (duration_s > 0.0 && static_cast<double>(server.now_us()) / 1e6 >= duration_s) break;
+    if (duration_s == 0.0 && scenario.duration_s > 0.0 && device.scenario_started() &&
+        device.scenario_time_s(server.now_us()) >= scenario.duration_s) {
+      break;
+    }
   }
   log_summary(device, server);
   // Only our symbolic link goes (never a file that took its place meanwhile).
