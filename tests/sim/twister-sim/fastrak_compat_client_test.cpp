@@ -4,7 +4,7 @@
 // project's parser or session: POSIX termios, its own record decoding. On a PTY it
 // checks the status record, output-list read-back, the filter commands and their
 // read-back, binary continuous streaming (rate, record layout, values), and that a
-// command sent without the drivers' pause is lost.
+// command sent without the drivers' pause waits in the unit's input buffer (issue 22).
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <poll.h>
