@@ -7,6 +7,9 @@
 3. With `--scenario-clock stream` the scenario's `duration` counts from the host's first
    `C`: the program is still serving 2.5 s after start-up (the scenario lasts 1 s) and
    ends about 1 s after the `C`.
+4. A hang-up (`--port usb`: the link and the PTY vanish, then come back) leaves the unit
+   streaming in its configuration: a client that configured binary continuous output
+   before the hang-up reads binary records from the new PTY without sending anything.
 
     sim_boot_and_clock_test.py TWISTER_SIM WORK_DIR
 """
@@ -19,9 +22,30 @@ import time
 import tty
 
 
-def start(sim, work, name, extra, scenario=None):
+def open_raw(link):
+    fd = os.open(link, os.O_RDWR | os.O_NOCTTY | os.O_NONBLOCK)
+    tty.setraw(fd)
+    attrs = termios.tcgetattr(fd)  # the unit's rate: twister-sim garbles a mismatch
+    attrs[4] = attrs[5] = termios.B115200
+    termios.tcsetattr(fd, termios.TCSANOW, attrs)
+    return fd
+
+
+def read_for(fd, seconds):
+    got = b""
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        time.sleep(0.02)
+        try:
+            got += os.read(fd, 65536)
+        except (BlockingIOError, OSError):
+            pass
+    return got
+
+
+def start(sim, work, name, extra, scenario=None, port="fixed"):
     link = os.path.join(work, name)
-    args = [sim, "--link", link, "--port", "fixed"] + extra
+    args = [sim, "--link", link, "--port", port] + extra
     if scenario:
         path = os.path.join(work, name + ".scn")
         open(path, "w").write(scenario)
@@ -29,12 +53,7 @@ def start(sim, work, name, extra, scenario=None):
     p = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
     if not p.stdout.readline():
         sys.exit("boot test: twister-sim printed no link path")
-    fd = os.open(link, os.O_RDWR | os.O_NOCTTY | os.O_NONBLOCK)
-    tty.setraw(fd)
-    attrs = termios.tcgetattr(fd)  # the unit's rate: twister-sim garbles a mismatch
-    attrs[4] = attrs[5] = termios.B115200
-    termios.tcsetattr(fd, termios.TCSANOW, attrs)
-    return p, fd
+    return p, open_raw(link)
 
 
 def ask_status(fd, seconds):
@@ -94,6 +113,31 @@ def main():
     print("--scenario-clock stream: ended %.2f s after C (scenario duration 1 s)" % ran)
     if ran < 0.8:
         problems.append("--scenario-clock stream: ended %.2f s after C" % ran)
+
+    p, fd = start(sim, work, "hangup", ["--reset-time", "0.2"],
+                  "receivers 1\nfault 1.5 hangup 1\n", port="usb")
+    time.sleep(0.3)
+    os.write(fd, b"O1,2,11,1\rfC")  # back to back: the unit buffers while O runs
+    before = read_for(fd, 0.8)
+    time.sleep(1.0)  # the line is down from 1.5 s to 2.5 s
+    link = os.path.join(work, "hangup")
+    deadline = time.monotonic() + 3.0
+    while not os.path.exists(link) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    os.close(fd)
+    fd = open_raw(link)
+    after = read_for(fd, 0.5)  # nothing sent on the new PTY
+    p.terminate()
+    p.wait(10)
+    os.close(fd)
+    records = after.count(b"01 ")
+    print("hang-up: %d bytes before, %d bytes (%d record headers) after, no command sent"
+          % (len(before), len(after), records))
+    if before.count(b"01 ") < 50:
+        problems.append("hang-up: only %d bytes streamed before the hang-up" % len(before))
+    if records < 40 or b"21S" in after:
+        problems.append("hang-up: %d records after the line came back (still streaming "
+                        "binary expected)" % records)
 
     for problem in problems:
         print("PROBLEM: " + problem)
