@@ -115,11 +115,11 @@ void log_summary(const twister::sim::FastrakDevice& device,
                   "input_lost=%llu corrupted=%llu status_letters=%llu dropped_bytes=%llu "
                   "drop_expired=%llu misclock_lost=%llu misclock_junk=%llu host_baud=%d "
                   "ptys=%llu hangups=%llu hangup_lost=%llu stylus_polls=%llu",
-                  c.records, c.dropped_solutions, c.commands, c.command_errors, c.resets,
+                  c.output.records, c.dropped_solutions, c.commands, c.command_errors, c.resets,
                   c.input_lost, c.corrupted_records, c.status_letters, c.dropped_bytes,
                   c.drop_expired, c.misclock_lost, c.misclock_junk, server.counters().host_baud,
-                  server.counters().ptys_opened, server.counters().hangups, c.hangup_lost,
-                  c.stylus_polls);
+                  server.counters().ptys_opened, server.counters().hangups, c.output.hangup_lost,
+                  c.output.stylus_polls);
 }
 
 // Serves the device until signalled or the duration is over.

@@ -294,7 +294,7 @@ void FastrakDevice::queue_record(int station, ports::TimestampUs at) {
   std::size_t size = encode_pose(pose, buf);
   if (size == 0) return;
   if (size > 2 && faults_.take_truncate()) size = 1 + rng_() % (size - 2);
-  ++counters_.records;
+  ++counters_.output.records;
   queue(std::span<const std::byte>(buf.data(), size), at);
 }
 
@@ -341,7 +341,7 @@ void FastrakDevice::generate(ports::TimestampUs now, bool stalled) {
     const ActiveStations act = active_stations();
     if (act.empty()) continue;
     if (press && !settings_.continuous) {
-      ++counters_.stylus_polls;
+      ++counters_.output.stylus_polls;
       for (const int station : act) queue_record(station, t);  // as `P`
     }
     if (!settings_.continuous || !settings_.output_on) {  // polled: solutions still run
@@ -380,7 +380,7 @@ std::size_t FastrakDevice::deliver(ports::TimestampUs now, std::span<std::byte> 
   LineQueue& line = line_.queue();
   while (!line.empty() && line.front_ready() <= now) {
     if (faults_.in_window(line.front_ready(), FaultKind::hangup)) {
-      counters_.hangup_lost += line.front_left();  // sent while the line was down
+      counters_.output.hangup_lost += line.front_left();  // sent while the line was down
       line.pop_front();
       continue;
     }
@@ -395,7 +395,7 @@ std::size_t FastrakDevice::deliver(ports::TimestampUs now, std::span<std::byte> 
       }
       if (misclock && !misclock_byte(b)) continue;
       out[n++] = b;
-      ++counters_.bytes_out;
+      ++counters_.output.bytes_out;
     }
     if (line.front_left() > 0) break;  // `out` is full
     line.pop_front();
@@ -410,7 +410,7 @@ std::size_t FastrakDevice::advance(ports::TimestampUs now, std::span<std::byte> 
     generate(now, false);
     LineQueue& line = line_.queue();
     while (!line.empty() && line.front_ready() <= now) {
-      counters_.hangup_lost += line.front_left();
+      counters_.output.hangup_lost += line.front_left();
       line.pop_front();
     }
     return 0;

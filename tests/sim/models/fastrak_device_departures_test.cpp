@@ -198,7 +198,7 @@ TEST(FastrakDeviceDepartures, AStylusPressInPolledModeActsAsP) {
   n = poses_per_station(h.events(ascii));
   EXPECT_EQ(n[1], 2);
   EXPECT_EQ(n[2], 2);
-  EXPECT_EQ(h.device.counters().stylus_polls, 2u);
+  EXPECT_EQ(h.device.counters().output.stylus_polls, 2u);
 }
 
 TEST(FastrakDeviceDepartures, InMouseModeAPolledPressSendsNothing) {
@@ -208,7 +208,7 @@ TEST(FastrakDeviceDepartures, InMouseModeAPolledPressSendsNothing) {
   h.send("e1,0\r");
   h.run(3.0);
   EXPECT_EQ(h.text(), "");
-  EXPECT_EQ(h.device.counters().stylus_polls, 0u);
+  EXPECT_EQ(h.device.counters().output.stylus_polls, 0u);
 }
 
 TEST(FastrakDeviceDepartures, AHangUpLeavesTheUnitStreamingInItsConfiguration) {
@@ -235,7 +235,7 @@ TEST(FastrakDeviceDepartures, AHangUpLeavesTheUnitStreamingInItsConfiguration) {
   for (const auto& e : ev) EXPECT_EQ(e.kind, EventKind::pose);
   EXPECT_TRUE(h.device.continuous());
   EXPECT_EQ(h.device.counters().resets, 1u);  // the power-up only
-  EXPECT_GT(h.device.counters().hangup_lost, 0u);
+  EXPECT_GT(h.device.counters().output.hangup_lost, 0u);
 }
 
 // x moves from 10 in at t = 0 to 20 in at t = 10 s.

@@ -83,13 +83,21 @@ struct FastrakDeviceConfig {
   double misclock_junk = 1.0 / 16.0;
 };
 
+// What the unit put on its line and what became of it there (one group of
+// FastrakDeviceCounters).
+struct FastrakOutputCounters {
+  std::uint64_t records = 0;       // records queued for transmission
+  std::uint64_t bytes_out = 0;     // bytes handed to the line
+  std::uint64_t stylus_polls = 0;  // stylus presses in polled mode (each acts as `P`)
+  std::uint64_t hangup_lost = 0;   // bytes sent while a hang-up held the line down
+};
+
 struct FastrakDeviceCounters {
-  std::uint64_t records = 0;            // records queued for transmission
+  FastrakOutputCounters output;         // records, bytes, polled presses, hang-up losses
   std::uint64_t dropped_solutions = 0;  // cycles skipped because the line was busy
   std::uint64_t commands = 0;           // commands executed
   std::uint64_t command_errors = 0;     // error records sent
   std::uint64_t resets = 0;             // ^Y and power-ups
-  std::uint64_t bytes_out = 0;          // bytes handed to the line
   std::uint64_t line_overflow = 0;      // bytes lost because the line queue was full
   std::uint64_t input_lost = 0;         // bytes lost: input buffer full, or buffered at a reset
   std::uint64_t corrupted_records = 0;  // records with a corrupted field (fault corrupt)
@@ -98,8 +106,6 @@ struct FastrakDeviceCounters {
   std::uint64_t misclock_lost = 0;      // bytes (either way) lost to a baud mismatch
   std::uint64_t misclock_junk = 0;      // junk bytes (either way) from a baud mismatch
   std::uint64_t status_letters = 0;     // records sent with a status letter
-  std::uint64_t stylus_polls = 0;       // stylus presses in polled mode (each acts as `P`)
-  std::uint64_t hangup_lost = 0;        // bytes sent while a hang-up held the line down
   std::array<std::uint64_t, kFaultKindCount> faults{};  // injected, indexed by FaultKind
 };
 
