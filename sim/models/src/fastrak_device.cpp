@@ -1,5 +1,6 @@
-// The device model. Records are built with the core encoder, so the simulator and
-// the parser share one definition of the wire layout.
+// The device model: power-up, the 120 Hz cycle, records and the line (the command side
+// is fastrak_device_commands.cpp). Records are built with the core encoder, so the
+// simulator and the parser share one definition of the wire layout.
 #include "twister/sim/fastrak_device.hpp"
 
 // GCC 12 reports a false -Wrestrict inside std::string concatenation at -O3
