@@ -1,6 +1,9 @@
-// fastrak-dump. Options are named after the protocol's own commands: -O s,items (output
-// list of station s, repeatable), -F / -f (ASCII / binary), -U / -u (inches / cm);
-// --binary16 reads the 16-bit packed format of the Isotrak II / 3SPACE family.
+// tracker-dump (also under its old name fastrak-dump). Options are named after the
+// protocol's own commands: -O s,items (output list of station s, repeatable, Fastrak item
+// codes), -F / -f (ASCII / binary), -U / -u (inches / cm); --binary16 reads the 16-bit
+// packed format of the Isotrak II / 3SPACE family; --model liberty|patriot|latus reads
+// the Liberty family's binary frames (the lists translated item for item, as the station
+// does: to_liberty_config).
 // Output: one line per valid record "station ox oy oz ux uy uz vx vy vz wx wy wz"
 // (tracker units; receiver axes as unit vectors in tracker coordinates; %.6g) and one
 // line starting with "error" per rejected stretch of bytes.
@@ -22,6 +25,7 @@
 #include "twister/hal/termios_byte_stream.hpp"
 #include "twister/tracker/fastrak_parser.hpp"
 #include "twister/tracker/fastrak_session.hpp"
+#include "twister/tracker/liberty_parser.hpp"
 #include "twister/tracker/pose_conversion.hpp"
 
 namespace twister::cli {
@@ -55,7 +59,16 @@ struct DumpOptions {
   double seconds = 0.0;
   long count = 0;
   bool quick = false;
+  std::string model = "fastrak";  // fastrak | liberty | patriot | latus
 };
+
+bool liberty_family(const DumpOptions& o) { return o.model != "fastrak"; }
+
+tracker::LibertyModel liberty_model(const DumpOptions& o) {
+  return o.model == "patriot" ? tracker::LibertyModel::patriot
+         : o.model == "latus" ? tracker::LibertyModel::latus
+                              : tracker::LibertyModel::liberty;
+}
 
 hal::Error bad_option(std::string message) {
   return hal::make_error(StatusCode::invalid_argument, std::move(message));
@@ -145,6 +158,36 @@ void print_event(const tracker::FastrakEvent& e, Format format) {
   }
 }
 
+// The Liberty family's binary frames: the Fastrak lists translated (to_liberty_config).
+hal::Expected<tracker::LibertyConfig> liberty_config(const DumpOptions& o,
+                                                     const FastrakConfig& config) {
+  tracker::LibertyConfig liberty;
+  if (!tracker::to_liberty_config(config, liberty_model(o), liberty).ok() ||
+      !tracker::validate(liberty).ok()) {
+    return bad_option("--model " + o.model +
+                      ": an output list has an item without a Liberty-family equivalent "
+                      "(position 2, Euler 4, cosines 5-7, quaternion 11, stylus 16, 0, 1)");
+  }
+  return liberty;
+}
+
+template <typename Parser>
+int decode_stream(std::istream& in, Parser& parser, Format format) {
+  std::vector<char> buf(1 << 16);
+  while (in) {
+    in.read(buf.data(), static_cast<std::streamsize>(buf.size()));
+    const auto n = static_cast<std::size_t>(in.gcount());
+    if (n == 0) break;
+    parser.feed(std::as_bytes(std::span<const char>(buf.data(), n)),
+                [&](const tracker::FastrakEvent& e) { print_event(e, format); });
+  }
+  for (auto e = parser.finish(); e.ok(); e = parser.finish()) print_event(*e, format);
+  const auto& c = parser.counters();
+  cli_log().notice("counters", "bytes=%llu poses=%llu errors=%llu resyncs=%llu dropped=%llu",
+                   c.bytes, c.poses, c.errors, c.resyncs, c.dropped_bytes);
+  return kExitOk;
+}
+
 int run_file(const DumpOptions& o, const FastrakConfig& config) {
   std::istream* in = &std::cin;
   std::ifstream file;
@@ -156,20 +199,16 @@ int run_file(const DumpOptions& o, const FastrakConfig& config) {
     }
     in = &file;
   }
-  tracker::FastrakParser parser(config);
-  std::vector<char> buf(1 << 16);
-  while (*in) {
-    in->read(buf.data(), static_cast<std::streamsize>(buf.size()));
-    const auto n = static_cast<std::size_t>(in->gcount());
-    if (n == 0) break;
-    parser.feed(std::as_bytes(std::span<const char>(buf.data(), n)),
-                [&](const tracker::FastrakEvent& e) { print_event(e, config.format); });
+  if (liberty_family(o) && config.format == Format::binary) {
+    const hal::Expected<tracker::LibertyConfig> liberty = liberty_config(o, config);
+    if (!liberty) return fail(kExitBadInput, liberty.error().message);
+    tracker::LibertyParser parser(*liberty);
+    return decode_stream(*in, parser, config.format);
   }
-  for (auto e = parser.finish(); e.ok(); e = parser.finish()) print_event(*e, config.format);
-  const auto& c = parser.counters();
-  cli_log().notice("counters", "bytes=%llu poses=%llu errors=%llu resyncs=%llu dropped=%llu",
-                   c.bytes, c.poses, c.errors, c.resyncs, c.dropped_bytes);
-  return kExitOk;
+  // ASCII from a Liberty-family unit: Fastrak records, as twister-sim models them
+  // (assumed: the real units' ASCII records are not modelled).
+  tracker::FastrakParser parser(config);
+  return decode_stream(*in, parser, config.format);
 }
 
 int run_device(const DumpOptions& o, const FastrakConfig& config) {
@@ -180,6 +219,15 @@ int run_device(const DumpOptions& o, const FastrakConfig& config) {
   }
   tracker::FastrakSessionConfig sc;
   sc.protocol = config;
+  if (liberty_family(o)) {
+    if (o.model == "latus" || config.format != Format::binary) {
+      return fail(kExitBadInput,
+                  "DEVICE mode reads a Liberty or Patriot in binary (-f); a "
+                  "Latus only from a --file");
+    }
+    sc.model =
+        o.model == "patriot" ? tracker::TrackerModel::patriot : tracker::TrackerModel::liberty;
+  }
   if (o.quick) {  // simulator timings (twister-sim --reset-time 0.5 or less)
     sc.ladder_char_pause_us = 20'000;
     sc.reset_wait_us = 600'000;
@@ -231,17 +279,19 @@ int run_dump(const DumpOptions& o) {
   }
   const hal::Expected<FastrakConfig> config = build_config(o);
   if (!config) return fail(kExitBadInput, config.error().message);
+  if (liberty_family(o) && config->format == Format::binary16) {
+    return fail(kExitBadInput, "--binary16 is a Fastrak-family format, not --model " + o.model);
+  }
   const int rc = o.file.empty() ? run_device(o, *config) : run_file(o, *config);
   std::fflush(stdout);
   return rc;
 }
 
-}  // namespace
-
-void add_fastrak_dump_command(CLI::App& app, int& exit_code) {
+// One subcommand; `name` is tracker-dump or its old name fastrak-dump (same options).
+void add_dump_command(CLI::App& app, const std::string& name, const std::string& help,
+                      int& exit_code) {
   auto opts = std::make_shared<DumpOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "fastrak-dump", "Configure a Fastrak and print decoded records, or decode a recording");
+  CLI::App* cmd = app.add_subcommand(name, help);
   cmd->add_option("DEVICE", opts->device, "serial device or twister-sim link to configure");
   cmd->add_option("--file", opts->file, "decode a recorded stream from PATH ('-' = stdin)");
   cmd->add_option("-O", opts->lists,
@@ -261,10 +311,25 @@ void add_fastrak_dump_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--count", opts->count, "DEVICE mode: stop after this many records")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--quick", opts->quick, "short reset waits, for twister-sim");
-  cmd->callback([opts, &exit_code] {
-    start_command_log("fastrak-dump");
+  cmd->add_option("--model", opts->model,
+                  "the unit: fastrak (default), liberty, patriot or latus (binary frames; "
+                  "-O in Fastrak item codes, translated; latus: --file only)")
+      ->check(CLI::IsMember({"fastrak", "liberty", "patriot", "latus"}));
+  cmd->callback([opts, name, &exit_code] {
+    start_command_log(name.c_str());
     exit_code = run_dump(*opts);
   });
+}
+
+}  // namespace
+
+void add_fastrak_dump_command(CLI::App& app, int& exit_code) {
+  add_dump_command(app, "tracker-dump",
+                   "Configure a tracker (Fastrak, Liberty, Patriot) and print decoded records, "
+                   "or decode a recording of any frame format",
+                   exit_code);
+  add_dump_command(app, "fastrak-dump", "The old name of tracker-dump (the same options)",
+                   exit_code);
 }
 
 }  // namespace twister::cli

@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cerrno>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -44,7 +45,7 @@ struct Options {
   std::string scenario_path;
   twister::sim::ServeOptions serve;
   twister::sim::FastrakDeviceConfig dev;
-  double reset_s = 0.5;
+  double reset_s = twister::sim::kRealUnitBootUs / 1e6;  // a real unit's boot (10 s)
   double duration_s = 0.0;
   bool binary = false;
   std::string port = "usb";
@@ -53,6 +54,7 @@ struct Options {
   std::string log_level = "notice";
   std::string model = "fastrak";
   std::string buttons;  // --buttons spec (gpio_buttons.hpp)
+  std::string scenario_clock = "power-up";
 };
 
 // "O=0.05", "x=1", "^K=3", "all=0": sets the processing time of that command.
@@ -84,8 +86,14 @@ void add_options(CLI::App& app, Options& o) {
                  "serve on this real serial device (HIL) instead of a PTY");
   app.add_option("--baud", o.dev.baud, "modelled line rate (bits/s, 10 bits per byte)")
       ->check(CLI::Range(300, 4000000));
-  app.add_option("--reset-time", o.reset_s, "seconds a ^Y or power-up takes (real unit: 10-20)")
+  app.add_option("--reset-time", o.reset_s,
+                 "seconds a ^Y or power-up takes (default 10, a real Fastrak; tests and "
+                 "scripts pass 0.5 or less)")
       ->check(CLI::Range(0.0, 60.0));
+  app.add_option("--scenario-clock", o.scenario_clock,
+                 "where scenario time 0 is: power-up (default) or stream (the host's first "
+                 "C: motion, faults and the scenario's duration count from there)")
+      ->check(CLI::IsMember({"power-up", "stream"}));
   app.add_flag("--continuous", o.dev.start_continuous, "power up in continuous mode");
   app.add_flag("--binary", o.binary, "power up in binary format");
   app.add_flag("--binary16", o.dev.packed16,
@@ -121,11 +129,12 @@ void log_summary(const twister::sim::FastrakDevice& device,
                   "records=%llu dropped_solutions=%llu commands=%llu errors=%llu resets=%llu "
                   "input_lost=%llu corrupted=%llu status_letters=%llu dropped_bytes=%llu "
                   "drop_expired=%llu misclock_lost=%llu misclock_junk=%llu host_baud=%d "
-                  "ptys=%llu hangups=%llu",
-                  c.records, c.dropped_solutions, c.commands, c.command_errors, c.resets,
+                  "ptys=%llu hangups=%llu hangup_lost=%llu stylus_polls=%llu",
+                  c.output.records, c.dropped_solutions, c.commands, c.command_errors, c.resets,
                   c.input_lost, c.corrupted_records, c.status_letters, c.dropped_bytes,
                   c.drop_expired, c.misclock_lost, c.misclock_junk, server.counters().host_baud,
-                  server.counters().ptys_opened, server.counters().hangups);
+                  server.counters().ptys_opened, server.counters().hangups, c.output.hangup_lost,
+                  c.output.stylus_polls);
 }
 
 // The scenario's buttons on GPIO output lines (--buttons), or nothing.
@@ -216,6 +225,9 @@ int serve(Options& o, const twister::sim::Scenario& scenario,
   o.serve.port =
       o.port == "fixed" ? twister::sim::PortKind::fixed : twister::sim::PortKind::usb_adapter;
   o.dev.reset_time_us = static_cast<std::int64_t>(o.reset_s * 1e6);
+  o.dev.scenario_clock = o.scenario_clock == "stream"
+                             ? twister::sim::ScenarioClock::first_continuous
+                             : twister::sim::ScenarioClock::power_up;
   o.dev.model = o.model == "liberty"   ? twister::sim::DeviceModel::liberty
                 : o.model == "patriot" ? twister::sim::DeviceModel::patriot
                                        : twister::sim::DeviceModel::fastrak;
@@ -228,7 +240,8 @@ int serve(Options& o, const twister::sim::Scenario& scenario,
                                             : o.filter == "heavy"  ? twister::sim::kFilterHeavy
                                                                    : twister::sim::kFilterOff;
   o.dev.start_position_filter = o.dev.start_attitude_filter = filter;
-  const double duration_s = o.duration_s == 0.0 ? scenario.duration_s : o.duration_s;
+  // --duration counts from start-up; the scenario's own duration on its clock.
+  const double duration_s = o.duration_s;
 
   // The lines first (all released), so that the scenario's clock starts with them ready.
   GpioButtons buttons;
@@ -251,8 +264,16 @@ int serve(Options& o, const twister::sim::Scenario& scenario,
       logger().error("device", "%s", stepped.error().message.c_str());
       return kExitFailure;
     }
-    if (buttons.is_open() && !buttons.advance(player, server.now_us())) return kExitFailure;
+    // The buttons on the scenario's clock, as the tracker's motion (--scenario-clock).
+    if (buttons.is_open() && device.scenario_started() &&
+        !buttons.advance(player, std::llround(device.scenario_time_s(server.now_us()) * 1e6))) {
+      return kExitFailure;
+    }
     if (duration_s > 0.0 && static_cast<double>(server.now_us()) / 1e6 >= duration_s) break;
+    if (duration_s == 0.0 && scenario.duration_s > 0.0 && device.scenario_started() &&
+        device.scenario_time_s(server.now_us()) >= scenario.duration_s) {
+      break;
+    }
   }
   log_summary(device, server);
   if (buttons.is_open()) {

@@ -63,7 +63,8 @@ def record_touches(exe, out):
         key(0, 1, ORIGIN) + key(4, 1, ORIGIN) + key(4.5, 1, X_POINT) + key(6.5, 1, X_POINT) +
         key(7, 1, Y_POINT))
     link = os.path.join(out, "fastrak")
-    sim = Proc([exe("twister-sim"), "--scenario", scn, "--link", link, "--command-time", "all=0"],
+    sim = Proc([exe("twister-sim"), "--scenario", scn, "--link", link, "--command-time", "all=0",
+                "--reset-time", "0.5"],
                os.path.join(out, "sim.log"), stdout_pipe=True)
     if wait_for_line(sim.popen.stdout, 10.0) is None:
         sys.exit("calibrate e2e: twister-sim printed no link path")

@@ -51,7 +51,7 @@ def chain(a, out):
     # real unit would), e.g. `e1,0`, and the stylus would then stop the stream. The
     # command-time model has its own tests (fastrak_fidelity_pty_test).
     sim = Proc([exe("twister-sim"), "--scenario", a.scenario, "--link", link,
-                "--command-time", "all=0", "--model", a.model],
+                "--command-time", "all=0", "--model", a.model, "--reset-time", "0.5"],
                os.path.join(out, "sim.log"), stdout_pipe=True)
     if wait_for_line(sim.popen.stdout, 10.0) is None:
         sys.exit("pty e2e: twister-sim printed no link path")

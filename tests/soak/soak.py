@@ -73,7 +73,7 @@ class Soak:
     def start_sim(self, duration):
         log = os.path.join(self.out, "sim.log")
         self.sim = Proc([self.exe("twister-sim"), "--scenario", self.scenario, "--link",
-                         self.link, "--duration", "%g" % duration], log, stdout_pipe=True)
+                         self.link, "--reset-time", "0.5", "--duration", "%g" % duration], log, stdout_pipe=True)
         if wait_for_line(self.sim.popen.stdout, 10.0) is None:
             raise SystemExit("soak: twister-sim printed no link path")
 

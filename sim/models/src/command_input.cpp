@@ -23,14 +23,34 @@ std::int64_t CommandInput::command_time(char letter) const {
   return i < times_.size() ? times_[i] : 0;
 }
 
-void CommandInput::reset() {
+std::size_t CommandInput::reset() {
   pending_.clear();
   in_parameter_ = false;
   deaf_until_ = 0;
+  const std::size_t lost = buffered_;
+  buffer_head_ = buffered_ = 0;
+  return lost;
 }
 
 CommandInput::Heard CommandInput::take(char byte, ports::TimestampUs now) {
-  if (now < deaf_until_) return Heard::lost;  // still processing the previous command
+  // Still processing the previous command, or earlier bytes wait: into the buffer.
+  if (now < deaf_until_ || buffered_ > 0) {
+    if (buffered_ >= buffer_limit_) return Heard::lost;  // overrun
+    buffer_[(buffer_head_ + buffered_) % buffer_.size()] = byte;
+    ++buffered_;
+    return Heard::nothing;
+  }
+  return frame(byte, now);
+}
+
+CommandInput::Heard CommandInput::take_buffered() {
+  const char byte = buffer_[buffer_head_];
+  buffer_head_ = (buffer_head_ + 1) % buffer_.size();
+  --buffered_;
+  return frame(byte, deaf_until_);
+}
+
+CommandInput::Heard CommandInput::frame(char byte, ports::TimestampUs now) {
   if (!in_parameter_) return take_first(byte, now);
   if (byte == tracker::kCr) {
     in_parameter_ = false;

@@ -1,5 +1,6 @@
-// The device model. Records are built with the core encoder, so the simulator and
-// the parser share one definition of the wire layout.
+// The device model: power-up, the 120 Hz cycle, records and the line (the command side
+// is fastrak_device_commands.cpp). Records are built with the core encoder, so the
+// simulator and the parser share one definition of the wire layout.
 #include "twister/sim/fastrak_device.hpp"
 
 // GCC 12 reports a false -Wrestrict inside std::string concatenation at -O3
@@ -45,13 +46,17 @@ ports::TimestampUs cycle_time(std::int64_t k) { return (k * 25'000) / 3; }
 
 FastrakDevice::FastrakDevice(const FastrakDeviceConfig& config, Scenario scenario,
                              ports::TimestampUs start_us)
-    : config_(config), scenario_(std::move(scenario)), start_us_(start_us), rng_(scenario_.seed) {
+    : config_(config),
+      scenario_(std::move(scenario)),
+      start_us_(start_us),
+      scenario_origin_(config.scenario_clock == ScenarioClock::power_up ? start_us : kNotYet),
+      rng_(scenario_.seed) {
   settings_.baud = config.baud;
   power_up(start_us);
 }
 
 double FastrakDevice::scenario_time_s(ports::TimestampUs now) const {
-  return static_cast<double>(now - start_us_) / 1e6;
+  return now <= scenario_origin_ ? 0.0 : static_cast<double>(now - scenario_origin_) / 1e6;
 }
 
 void FastrakDevice::power_up(ports::TimestampUs now) {
@@ -64,150 +69,21 @@ void FastrakDevice::power_up(ports::TimestampUs now) {
   counters_.drop_expired += faults_.expire_drop();
   busy_until_ = now + config_.reset_time_us;
   line_.clear(now);
-  input_.reset();
+  counters_.input_lost += input_.reset();  // the UART is reinitialised
   cycle_.next = 0;
   while (start_us_ + cycle_time(cycle_.next) < busy_until_) ++cycle_.next;
 }
 
 bool FastrakDevice::hung_up(ports::TimestampUs now) {
   apply_faults(now);
-  const bool down = faults_.in_window(now, FaultKind::hangup);
-  // Plugged back in: the unit powers up from its defaults.
-  if (faults_.replugged(down)) power_up(now);
-  return down;
+  // The line is down (a USB-serial adapter pulled, a cable out); the unit behind it keeps
+  // its power, its configuration and its mode, and streams on into nothing.
+  return faults_.in_window(now, FaultKind::hangup);
 }
 
 void FastrakDevice::apply_faults(ports::TimestampUs now) {
   faults_.apply(now, settings_.baud, counters_.faults,
                 [this](std::uint64_t bytes, ports::TimestampUs at) { queue_noise(bytes, at); });
-}
-
-void FastrakDevice::receive(const std::byte* data, std::size_t size, ports::TimestampUs now) {
-  apply_faults(now);
-  // A resetting, stalled or hung-up unit understands nothing.
-  if (now < busy_until_ || faults_.in_window(now, FaultKind::stall) ||
-      faults_.in_window(now, FaultKind::hangup)) {
-    return;
-  }
-  const bool misclock = misclocked(now);
-  for (std::size_t i = 0; i < size; ++i) {
-    std::byte b = data[i];
-    if (misclock && !misclock_byte(b)) continue;
-    if (now < busy_until_) return;  // a ^Y earlier in this chunk
-    switch (input_.take(static_cast<char>(b), now)) {
-      case CommandInput::Heard::nothing:
-        break;
-      case CommandInput::Heard::lost:
-        ++counters_.input_lost;
-        break;
-      case CommandInput::Heard::error:
-        error(input_.echo(), input_.error_code(), now);
-        break;
-      case CommandInput::Heard::command:
-        execute(input_.command(), input_.echo(), input_.done());
-        input_.hold_until(input_.done());
-        break;
-    }
-  }
-}
-
-void FastrakDevice::execute(const tracker::FastrakCommand& command, std::string_view echo,
-                            ports::TimestampUs now) {
-  ++counters_.commands;
-  if (const auto* mode = std::get_if<tracker::Mode>(&command)) {
-    execute_mode(mode->command, now);
-  } else {
-    parameters_.execute(std::get<tracker::Parameters>(command), echo, now);
-  }
-}
-
-void FastrakDevice::execute_mode(ModeCommand command, ports::TimestampUs now) {
-  switch (command) {
-    case ModeCommand::poll:
-      for (const int station : active_stations()) queue_record(station, now);
-      return;
-    case ModeCommand::continuous:
-      settings_.continuous = true;
-      settings_.output_on = true;
-      return;
-    case ModeCommand::polled:
-      settings_.continuous = false;
-      // The stream stopped: what was left of a line hit's budget has nothing to eat.
-      counters_.drop_expired += faults_.expire_drop();
-      return;
-    case ModeCommand::ascii:
-    case ModeCommand::binary: {
-      const Format binary = config_.packed16 ? Format::binary16 : Format::binary;
-      settings_.protocol.format = command == ModeCommand::ascii ? Format::ascii : binary;
-      return;
-    }
-    case ModeCommand::inches:
-    case ModeCommand::centimetres:
-      settings_.protocol.units =
-          command == ModeCommand::inches ? Units::inches : Units::centimetres;
-      return;
-    case ModeCommand::status:
-      send_status(now);
-      return;
-    case ModeCommand::factory_defaults: {
-      const bool cont = settings_.continuous;
-      const ports::TimestampUs busy = busy_until_;
-      power_up(now);
-      --counters_.resets;
-      settings_.continuous = cont;
-      busy_until_ = busy;
-      return;
-    }
-    case ModeCommand::reinitialise:
-      power_up(now);
-      return;
-    case ModeCommand::built_in_test:  // accepted, no effect on the model
-    case ModeCommand::metal_compensation_on:
-    case ModeCommand::metal_compensation_off:
-    case ModeCommand::save:
-    case ModeCommand::suspend:
-    case ModeCommand::resume:
-      return;
-  }
-}
-
-void FastrakDevice::send_status(ports::TimestampUs now) {
-  tracker::FastrakStatus st;
-  const ActiveStations act = active_stations();
-  st.station = static_cast<std::uint8_t>(act.empty() ? 1 : act[cycle_.next_station % act.size()]);
-  st.flags = 0x3F0;
-  st.binary = settings_.protocol.format != Format::ascii;
-  st.centimetres = settings_.protocol.units == Units::centimetres;
-  st.continuous = settings_.continuous;
-  std::array<std::byte, 64> buf{};
-  auto n = tracker::encode_status(st, buf);
-  if (n.ok()) queue(std::span<const std::byte>(buf.data(), *n), now);
-}
-
-FastrakDevice::ActiveStations FastrakDevice::active_stations() const {
-  ActiveStations out;
-  for (int s = 1; s <= 4; ++s) {
-    if (settings_.protocol.stations[static_cast<std::size_t>(s - 1)].enabled &&
-        s <= scenario_.receivers) {
-      out.ids[out.count++] = s;
-    }
-  }
-  return out;
-}
-
-void FastrakDevice::queue(std::span<const std::byte> bytes, ports::TimestampUs now) {
-  counters_.line_overflow += line_.queue(bytes, now, settings_.baud);
-}
-
-void FastrakDevice::reply(std::string_view text, ports::TimestampUs at) {
-  queue(std::as_bytes(std::span<const char>(text.data(), text.size())), at);
-}
-
-void FastrakDevice::error(std::string_view echo, int code, ports::TimestampUs at) {
-  ++counters_.command_errors;
-  reply("2 E*ERROR* " + std::string(echo) + " *ERROR* EC " + std::to_string(code) +
-            " *PS 0 *FL 1 *ST 0\r\n",
-        at);
 }
 
 void FastrakDevice::queue_noise(std::uint64_t count, ports::TimestampUs now) {
@@ -273,7 +149,7 @@ void FastrakDevice::queue_record(int station, ports::TimestampUs at) {
   std::size_t size = encode_pose(pose, buf);
   if (size == 0) return;
   if (size > 2 && faults_.take_truncate()) size = 1 + rng_() % (size - 2);
-  ++counters_.records;
+  ++counters_.output.records;
   queue(std::span<const std::byte>(buf.data(), size), at);
 }
 
@@ -312,12 +188,17 @@ void FastrakDevice::generate(ports::TimestampUs now, bool stalled) {
     if (line_.queue().room() < tracker::kMaxRecordBytes) return;
     if (t < busy_until_ || stalled || faults_.in_window(t, FaultKind::stall)) continue;
     const HandSample s1 = sample(scenario_, 1, scenario_time_s(t));
-    if (s1.button && !cycle_.last_button && settings_.stylus_mode == 1 && settings_.continuous) {
-      settings_.output_on = !settings_.output_on;
-    }
+    const bool press = s1.button && !cycle_.last_button && settings_.stylus_mode == 1;
     cycle_.last_button = s1.button;
+    // Point/track mode (`e1,1`, the default): a press toggles continuous output, and in
+    // polled mode acts as `P` (manual, `e` command; docs/fastrak-protocol.md §2).
+    if (press && settings_.continuous) settings_.output_on = !settings_.output_on;
     const ActiveStations act = active_stations();
     if (act.empty()) continue;
+    if (press && !settings_.continuous) {
+      ++counters_.output.stylus_polls;
+      for (const int station : act) queue_record(station, t);  // as `P`
+    }
     if (!settings_.continuous || !settings_.output_on) {  // polled: solutions still run
       solve(act[cycle_.polled_station++ % act.size()], t);
       continue;
@@ -353,6 +234,11 @@ std::size_t FastrakDevice::deliver(ports::TimestampUs now, std::span<std::byte> 
   std::size_t n = 0;
   LineQueue& line = line_.queue();
   while (!line.empty() && line.front_ready() <= now) {
+    if (faults_.in_window(line.front_ready(), FaultKind::hangup)) {
+      counters_.output.hangup_lost += line.front_left();  // sent while the line was down
+      line.pop_front();
+      continue;
+    }
     const bool misclock = misclocked(line.front_ready());
     counters_.drop_expired += faults_.expire_drop_before(line.front_ready());  // hit long over
     while (line.front_left() > 0 && n < out.size()) {
@@ -364,7 +250,7 @@ std::size_t FastrakDevice::deliver(ports::TimestampUs now, std::span<std::byte> 
       }
       if (misclock && !misclock_byte(b)) continue;
       out[n++] = b;
-      ++counters_.bytes_out;
+      ++counters_.output.bytes_out;
     }
     if (line.front_left() > 0) break;  // `out` is full
     line.pop_front();
@@ -374,10 +260,18 @@ std::size_t FastrakDevice::deliver(ports::TimestampUs now, std::span<std::byte> 
 
 std::size_t FastrakDevice::advance(ports::TimestampUs now, std::span<std::byte> out) {
   if (hung_up(now)) {  // applies the faults due by now
-    line_.queue().clear();
+    // The unit runs on; what it has sent by now reached nobody (nor does what the
+    // pulled adapter held).
+    generate(now, false);
+    LineQueue& line = line_.queue();
+    while (!line.empty() && line.front_ready() <= now) {
+      counters_.output.hangup_lost += line.front_left();
+      line.pop_front();
+    }
     return 0;
   }
   const bool stalled = faults_.in_window(now, FaultKind::stall);
+  if (!stalled) read_buffered(now);
   generate(now, stalled);
   if (stalled) return 0;
   return deliver(now, out);

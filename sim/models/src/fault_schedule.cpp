@@ -72,10 +72,4 @@ bool FaultSchedule::take_corrupt() {
   return true;
 }
 
-bool FaultSchedule::replugged(bool hung_up_now) {
-  const bool back = was_hung_up_ && !hung_up_now;
-  was_hung_up_ = hung_up_now;
-  return back;
-}
-
 }  // namespace twister::sim

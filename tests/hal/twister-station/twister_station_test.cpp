@@ -184,7 +184,7 @@ RunResult run_against_pty(const char* scenario, const std::string& journal, doub
   const std::string link = temp_path("fastrak.link");
   ::unlink(link.c_str());
   const std::string sim_cmd = std::string(TWISTER_SIM_BIN) + " --scenario " + TWISTER_SCENARIO_DIR +
-                              "/" + scenario + " --link " + link;
+                              "/" + scenario + " --reset-time 0.5 --link " + link;
   FILE* sim = ::popen(sim_cmd.c_str(), "r");
   RunResult r;
   if (sim == nullptr) return r;

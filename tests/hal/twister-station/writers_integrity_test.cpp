@@ -158,8 +158,8 @@ TEST_F(WritersIntegrity, AnEmptyCheckpointIsReplacedAndAKilledWritersTemporaries
 #ifdef TWISTER_SIM_BIN
 TEST_F(WritersIntegrity, TwisterSimLinksOnlyOverItsOwnSymbolicLink) {
   write_file(journal(), "a journal");
-  const RunResult r =
-      run_command(std::string(TWISTER_SIM_BIN) + " --link " + journal() + " --duration 0.2");
+  const RunResult r = run_command(std::string(TWISTER_SIM_BIN) + " --reset-time 0.5 --link " +
+                                  journal() + " --duration 0.2");
   EXPECT_NE(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("is not a symbolic link; left untouched"), std::string::npos) << r.output;
   EXPECT_EQ(read_file(journal()), "a journal");

@@ -144,6 +144,7 @@ TEST(FastrakDeviceFilter, QueryFormsAndBadValuesGetTheirReplies) {
 TEST(FastrakDeviceTiming, CommandsSentTooEarlyAreLost) {
   FastrakDeviceConfig dev = Bench::instant_device();
   dev.command_time_us = default_command_times();
+  dev.input_buffer_bytes = 0;  // a unit without an input buffer (the default has one)
   Bench b("receivers 1\n", dev);
   // Back to back: the read-back arrives while `O` is processed and is lost.
   b.send("O1,2,11,1\rO1\r");

@@ -150,6 +150,7 @@ TEST(FastrakFidelityPty, CommandsSentTooEarlyAreLost) {
   const Scenario sc = test_rig::scenario("receivers 1\n");
   FastrakDeviceConfig dev;
   dev.reset_time_us = 0;
+  dev.input_buffer_bytes = 0;  // a unit without an input buffer (the default has one)
   FastrakDevice device(dev, sc, 0);
   ServeOptions opts;
   opts.link = test_rig::link_path("timing");

@@ -263,7 +263,8 @@ class GpioButtonsChain : public GpioButtonsHil {
     chips.set_output_client(-1);  // twister-sim's line handle: its own chip descriptor
     const std::string sim_log = out_ + "/sim.log";
     sim_ = spawn(
-        {kBin + "/twister-sim", "--scenario", kScenario, "--link", link_, "--command-time", "all=0",
+        {kBin + "/twister-sim", "--scenario", kScenario, "--link", link_, "--reset-time", "0.5",
+         "--command-time", "all=0",
          "--buttons", "gpiod:gpiochip1:" + offsets(kSimFirst), "--log-level", "info"},
         sim_log, /*clean=*/false);
     ASSERT_GT(sim_, 0);

@@ -5,8 +5,8 @@
 //            stroke; 7.5 s long.
 //   idle   - both receivers still, no stylus press; 3 s long.
 //   unplug - the stroke above; the stylus is pressed again at 6.8 s and the line hangs
-//            up at 7.0 s for 1.5 s (mid-stroke: the station must cancel it), then the
-//            unit powers up again; a second stroke from (14, -6, 5) in to (18, -4, 5)
+//            up at 7.0 s for 1.5 s (mid-stroke: the station must cancel it; the unit
+//            streams on behind the pulled line); a second stroke from (14, -6, 5) in to (18, -4, 5)
 //            in runs from 12.5 s to 14.5 s; 16 s long. The same scenarios for
 //            twister-sim: tests/hal/twister-station/scenarios/pty_{stroke,unplug}.txt.
 #pragma once

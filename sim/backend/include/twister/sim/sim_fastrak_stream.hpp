@@ -3,7 +3,8 @@
 // has completed by clock.now_us() (the model paces itself at baud/10 bytes per
 // second and 120 Hz shared by the receivers). A scenario "hangup" fault looks like
 // an unplugged USB-serial adapter: read/write fail with io_error and reopen() is
-// unavailable until the fault ends, then the unit powers up from its defaults.
+// unavailable until the fault ends; the unit behind it kept its configuration and streams on
+// (issue 22: a pulled adapter does not power-cycle the unit).
 // Steady state (reads while streaming) uses no heap: bytes go from the model's
 // fixed line queue straight into the reader's buffer. Commands (start-up) may.
 // PollSource: no descriptor (the loop's clock paces it); reopen() is the stream's.

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <array>
+#include <climits>
 #include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -49,16 +50,32 @@ namespace twister::sim {
 enum class DeviceModel : std::uint8_t { fastrak, liberty, patriot };
 const char* device_model_name(DeviceModel model);
 
+// Where the scenario's clock starts (docs/fastrak.md, "Scenario clock"): when the unit
+// powers up (the default; the in-process simulator's station starts with it), or at the
+// first `C` after power-up: the moment the host starts continuous output, so that a
+// scenario's motion, faults and presses do not race the host's start-up. Before that `C`
+// the hands rest at their t = 0 pose and no fault falls due.
+enum class ScenarioClock : std::uint8_t { power_up, first_continuous };
+
+// A real unit's boot (power-up or ^Y) time. VRPN's Fastrak driver waits 20 s after ^Y
+// and says 10 s is enough for an actual Fastrak (InterSense units need 20); Vrui waits
+// 15 s (docs/fastrak-protocol.md §1.1). twister-sim's default; tests pass --reset-time.
+inline constexpr std::int64_t kRealUnitBootUs = 10'000'000;
+
 struct FastrakDeviceConfig {
   DeviceModel model = DeviceModel::fastrak;
   int baud = 115200;                     // line rate; 10 bits per byte (`o` changes it)
-  std::int64_t reset_time_us = 500'000;  // ^Y and power-up (a real unit: 10-20 s)
-  bool start_continuous = false;         // power-up mode (the real default is polled)
+  std::int64_t reset_time_us = 500'000;  // ^Y and power-up (a real unit: kRealUnitBootUs)
+  ScenarioClock scenario_clock = ScenarioClock::power_up;
+  bool start_continuous = false;  // power-up mode (the real default is polled)
   tracker::Format start_format = tracker::Format::ascii;
   // The unit's binary format, chosen by `f`: IEEE floats (Fastrak), or the 16-bit
   // packed format of an Isotrak II / 3SPACE-style unit.
   bool packed16 = false;
   CommandTimes command_time_us = default_command_times();
+  // Bytes the input buffer holds while a command is processed (0: bytes sent meanwhile
+  // are lost, as this model did before issue 22; at most kInputBufferBytes).
+  std::size_t input_buffer_bytes = kInputBufferBytes;
   FilterParams start_position_filter = kFilterOff;  // power-up filters
   FilterParams start_attitude_filter = kFilterOff;
   // At a baud mismatch a byte survives as one junk byte with this probability; the
@@ -66,15 +83,23 @@ struct FastrakDeviceConfig {
   double misclock_junk = 1.0 / 16.0;
 };
 
+// What the unit put on its line and what became of it there (one group of
+// FastrakDeviceCounters).
+struct FastrakOutputCounters {
+  std::uint64_t records = 0;       // records queued for transmission
+  std::uint64_t bytes_out = 0;     // bytes handed to the line
+  std::uint64_t stylus_polls = 0;  // stylus presses in polled mode (each acts as `P`)
+  std::uint64_t hangup_lost = 0;   // bytes sent while a hang-up held the line down
+};
+
 struct FastrakDeviceCounters {
-  std::uint64_t records = 0;            // records queued for transmission
+  FastrakOutputCounters output;         // records, bytes, polled presses, hang-up losses
   std::uint64_t dropped_solutions = 0;  // cycles skipped because the line was busy
   std::uint64_t commands = 0;           // commands executed
   std::uint64_t command_errors = 0;     // error records sent
   std::uint64_t resets = 0;             // ^Y and power-ups
-  std::uint64_t bytes_out = 0;          // bytes handed to the line
   std::uint64_t line_overflow = 0;      // bytes lost because the line queue was full
-  std::uint64_t input_lost = 0;         // bytes received while a command was processed
+  std::uint64_t input_lost = 0;         // bytes lost: input buffer full, or buffered at a reset
   std::uint64_t corrupted_records = 0;  // records with a corrupted field (fault corrupt)
   std::uint64_t dropped_bytes = 0;      // output bytes eaten by a `drop` fault
   std::uint64_t drop_expired = 0;       // drop budget discarded (stream stopped, reset)
@@ -114,8 +139,10 @@ class FastrakDevice final : private ReplySink {
   const tracker::FastrakConfig& protocol() const { return settings_.protocol; }
   const FilterParams& position_filter() const { return settings_.filter[0]; }
   const FilterParams& attitude_filter() const { return settings_.filter[1]; }
-  // Scenario time in seconds at `now`.
+  // Scenario time in seconds at `now` (0 before the scenario's clock has started).
   double scenario_time_s(ports::TimestampUs now) const;
+  // True once the scenario's clock runs (at once with ScenarioClock::power_up).
+  bool scenario_started() const { return scenario_origin_ != kNotYet; }
 
  private:
   // Where the 120 Hz cycle stands.
@@ -128,6 +155,9 @@ class FastrakDevice final : private ReplySink {
 
   void power_up(ports::TimestampUs now);
   void apply_faults(ports::TimestampUs now);
+  // Reads the input buffer's bytes that the unit, done with its command, takes by `now`.
+  void read_buffered(ports::TimestampUs now);
+  void heard(CommandInput::Heard what, ports::TimestampUs at);
   void execute(const tracker::FastrakCommand& command, std::string_view echo,
                ports::TimestampUs now);
   // The single-byte commands (mode letters, status, resets).
@@ -160,14 +190,17 @@ class FastrakDevice final : private ReplySink {
   };
   ActiveStations active_stations() const;
 
+  static constexpr ports::TimestampUs kNotYet = INT64_MAX / 4;  // the clock has not started
+
   FastrakDeviceConfig config_;
   Scenario scenario_;
-  ports::TimestampUs start_us_;
+  ports::TimestampUs start_us_;         // power-up: the 120 Hz cycle's origin
+  ports::TimestampUs scenario_origin_;  // the scenario's t = 0 (kNotYet: not started)
   std::mt19937 rng_;
   UnitSettings settings_;
   ParameterCommands parameters_{settings_, *this, config_.model != DeviceModel::fastrak};
-  CommandInput input_{config_.command_time_us};
-  FaultSchedule faults_{scenario_.faults, start_us_};
+  CommandInput input_{config_.command_time_us, config_.input_buffer_bytes};
+  FaultSchedule faults_{scenario_.faults, scenario_origin_};
   StationSolver solver_;
   PacedLine line_;
   Cycle cycle_;

@@ -35,6 +35,8 @@ class FaultSchedule {
     }
   }
   bool in_window(ports::TimestampUs t, FaultKind kind) const;
+  // Moves the scenario's t = 0 (before any fault has fallen due).
+  void start_at(ports::TimestampUs start_us) { start_us_ = start_us; }
 
   // Drop budget: bytes of the line still to lose. expire_drop() ends it (stream stopped,
   // power-up) and returns what was left; expire_drop_before(t) the same once `t` is past
@@ -46,8 +48,6 @@ class FaultSchedule {
   // True (and one spent) when the next record is to be truncated / corrupted.
   bool take_truncate();
   bool take_corrupt();
-  // Hang-up bookkeeping: true once when a hang-up window has just ended.
-  bool replugged(bool hung_up_now);
 
  private:
   const Fault* next_due(ports::TimestampUs now);
@@ -66,7 +66,6 @@ class FaultSchedule {
   std::uint64_t truncate_left_ = 0;
   std::uint64_t corrupt_left_ = 0;
   std::vector<Window> windows_;
-  bool was_hung_up_ = false;
 };
 
 }  // namespace twister::sim

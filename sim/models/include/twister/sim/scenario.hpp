@@ -37,7 +37,7 @@ enum class FaultKind : std::uint8_t {
   drop,        // the next `amount` output bytes are lost
   truncate,    // the next `amount` records are cut short
   stall,       // no output and no command processing for `amount` seconds
-  hangup,      // the line hangs up for `amount` seconds, then the unit powers up again
+  hangup,      // the line is down for `amount` seconds; the unit runs on behind it
   wrong_baud,  // for `amount` seconds the line is mis-clocked (baud mismatch): mostly
                // silence, occasional junk, both directions
   corrupt,     // the next `amount` records each get one number field corrupted inside
