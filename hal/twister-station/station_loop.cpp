@@ -127,6 +127,26 @@ void StationLoop::log_events() {
     log_station_event(*e, log_, journal_ != nullptr ? journal_->last_errno() : 0);
   }
   log_tracker_search(nullptr);
+  log_tracker_report();
+}
+
+// A tracker backend that searches for its device (usb): its finding, once per change
+// (at start, found, lost, waiting for firmware, another model).
+void StationLoop::log_tracker_report() {
+  const hal::DeviceReport* report = backends_.tracker_report;
+  if (report == nullptr || report->changes() == tracker_report_seen_) return;
+  tracker_report_seen_ = report->changes();
+  switch (report->level()) {
+    case hal::DeviceReport::Level::info:
+      log_.notice("tracker", "%s", report->text());
+      return;
+    case hal::DeviceReport::Level::warning:
+      log_.warning("tracker", "%s", report->text());
+      return;
+    case hal::DeviceReport::Level::error:
+      log_.error("tracker", "%s", report->text());
+      return;
+  }
 }
 
 // Found: the streaming line names the model and where. Not found: once, when the

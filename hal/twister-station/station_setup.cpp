@@ -139,6 +139,7 @@ void set_tracker(const StationFileConfig& config, station::StationConfig& c) {
   // Liberty parser (to_liberty_config of these lists). The config allows binary only.
   c.session.model = t.model == TrackerModel::liberty   ? tracker::TrackerModel::liberty
                     : t.model == TrackerModel::patriot ? tracker::TrackerModel::patriot
+                    : t.model == TrackerModel::latus   ? tracker::TrackerModel::latus
                                                        : tracker::TrackerModel::fastrak;
   c.hand_station = {t.left_station, t.right_station};
   const bool stylus = config.buttons.backend == ButtonBackend::stylus;
