@@ -87,7 +87,10 @@ void LibusbCallbacks::on_in_transfer(libusb_transfer* transfer) {
         break;
       }
     }
-    if (s->handle_ != nullptr && libusb_submit_transfer(transfer) == 0) s->in_flight_ = true;
+    // Back-pressure: the next transfer only while the ring has room for all it may
+    // bring; until read() makes room the unit keeps its data (USB flow control).
+    if (s->handle_ != nullptr && s->room_for_transfer() && libusb_submit_transfer(transfer) == 0)
+      s->in_flight_ = true;
     return;
   }
   if (transfer->status == LIBUSB_TRANSFER_NO_DEVICE || transfer->status == LIBUSB_TRANSFER_ERROR) {
@@ -132,6 +135,14 @@ std::size_t LibusbByteStream::do_poll_fds(std::span<pollfd> out) const {
 
 Status LibusbByteStream::gone(int error) {
   last_error_ = error;
+  if (handle_ != nullptr && found_.product_id != 0) {
+    report(Level::warning,
+           "USB: %s (%04x:%04x) on bus %03u device %03u is gone (%s); looking for it again",
+           found_.id != nullptr ? found_.id->name : "the tracker",
+           static_cast<unsigned>(config_.vendor_id), static_cast<unsigned>(found_.product_id),
+           static_cast<unsigned>(found_.bus), static_cast<unsigned>(found_.address),
+           libusb_error_name(error));
+  }
   close();
   return StatusCode::io_error;
 }
@@ -366,11 +377,12 @@ Result<std::size_t> LibusbByteStream::do_read(std::span<std::byte> dest) {
   if (handle_ == nullptr) return StatusCode::io_error;
   pump_events();
   if (removed_) return gone(LIBUSB_ERROR_NO_DEVICE);
-  if (!in_flight_) {
+  const std::size_t n = rx_.pop_front_into(dest);
+  if (!in_flight_ && room_for_transfer()) {
     if (const int rc = libusb_submit_transfer(in_transfer_); rc != 0) return gone(rc);
     in_flight_ = true;
   }
-  return rx_.pop_front_into(dest);
+  return n;
 }
 
 Result<std::size_t> LibusbByteStream::do_write(std::span<const std::byte> src) {

@@ -3,10 +3,11 @@
 // vendor/product id from the config, or (product_id 0) any Polhemus tracker of the
 // wanted models by its product id (polhemus_usb.hpp); interface from the config;
 // endpoints from the config or else the interface's first bulk OUT and IN (VRPN's
-// Liberty drivers use 0x04 / 0x88). One bulk IN transfer is always in flight
-// (asynchronous); read() runs libusb's event handling without waiting and copies what
-// has arrived. write() is a bulk OUT transfer bounded by timeout_ms (commands are a
-// few bytes). Hot-plug: where libusb supports it, arrival and removal of a matching
+// Liberty drivers use 0x04 / 0x88). One bulk IN transfer is in flight (asynchronous)
+// whenever the receive ring has room for all it may bring (back-pressure: otherwise the
+// unit keeps its data until read() makes room); read() runs libusb's event handling
+// without waiting and copies what has arrived. write() is a bulk OUT transfer bounded by timeout_ms
+// (commands are a few bytes). Hot-plug: where libusb supports it, arrival and removal of a matching
 // device are reported by callbacks; removal makes the next read() / write() fail with
 // io_error at once (without hot-plug, the first failing transfer reports it:
 // LIBUSB_ERROR_NO_DEVICE); an arrival while closed makes device_arrived() true, so
@@ -111,6 +112,7 @@ class LibusbByteStream final : public ports::ByteStream, public PollSource, publ
   void describe_wanted(char* out, std::size_t size) const;
   std::size_t do_poll_fds(std::span<pollfd> out) const override;
   void pump_events();
+  bool room_for_transfer() const { return rx_.max_size() - rx_.size() >= kTransferBytes; }
   void add_fd(int fd, short events);
   void remove_fd(int fd);
   Status gone(int error);
@@ -127,7 +129,7 @@ class LibusbByteStream final : public ports::ByteStream, public PollSource, publ
   int last_error_ = 0;
   std::array<std::uint8_t, kTransferBytes> in_buffer_{};
   InlineRing<std::byte, kRxBytes> rx_;  // received, not read yet
-  std::uint64_t rx_dropped_ = 0;        // ring full: oldest bytes kept, newest dropped
+  std::uint64_t rx_dropped_ = 0;  // ring full: oldest kept, newest dropped (never: back-pressure)
   InlineVector<pollfd, PollSource::kMaxFds> usb_fds_;  // libusb's descriptors
   UsbTrackerFound found_{};
   struct Report {
