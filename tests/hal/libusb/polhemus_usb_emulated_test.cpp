@@ -26,6 +26,7 @@
 #include <cstdio>
 #include <cstring>
 #include <deque>
+#include <memory>
 #include <mutex>
 #include <ostream>
 #include <string>
@@ -33,6 +34,10 @@
 
 #include "backend_factory.hpp"
 #include "config/station_config.hpp"
+#include "fakes/fake_storage.hpp"
+#include "station_assembly.hpp"
+#include "station_loop.hpp"
+#include "station_memory.hpp"
 #include "station_setup.hpp"
 #include "twister/hal/polhemus_usb.hpp"
 #include "twister/tracker/fastrak_encoder.hpp"
@@ -714,6 +719,99 @@ TEST_F(PolhemusUsbTest, NothingPluggedSaysWhatWasLookedFor) {
                                     "(0f44:0003)"),
             std::string::npos)
       << reports_[0].second;
+}
+
+// The station's own loop and log (StationLoop over the Station core, as main runs
+// them) with a Liberty still waiting for its firmware: exactly one error line over many
+// searches, naming the fix; replugged with its firmware, the found line and the
+// streaming line, and no second error.
+class PolhemusUsbStationLoop : public PolhemusUsbTest {
+ protected:
+  void TearDown() override {
+    loop_.reset();
+    core_.reset();
+    PolhemusUsbTest::TearDown();
+    std::fclose(log_file_);
+  }
+  void start_loop(const std::string& tracker_lines) {
+    const std::string text =
+        "[station]\njournal = \"/tmp/j.bin\"\nmesh = \"m.obj\"\n[tracker]\nbackend = \"usb\"\n" +
+        tracker_lines + "\n[buttons]\nbackend = \"stylus\"\n";
+    const ConfigParseResult parsed = parse_station_config(text, "usb.toml");
+    ASSERT_TRUE(parsed.ok()) << parsed.errors.front().to_string();
+    auto backends = make_backends(parsed.config);
+    ASSERT_TRUE(backends) << backends.error().message;
+    backends_ = std::move(*backends);
+    const StationFileConfig config = with_detected_model(parsed.config, backends_);
+    auto setup = make_station_setup(config);
+    ASSERT_TRUE(setup) << setup.error().message;
+    session_config_ = setup->session;  // the lists the emulated unit encodes with
+    model_ = std::move(*load_station_mesh(TWISTER_DEPLOY_DIR "/sim_sphere.obj", 0));
+    work_ = std::make_unique<WorkMemory>(model_->mesh().vertex_capacity());
+    core_ =
+        std::make_unique<station::Station>(*backends_.tracker, *backends_.buttons, *backends_.clock,
+                                           storage_, model_->mesh(), work_->storage(), *setup);
+    ASSERT_TRUE(core_->start().ok());
+    loop_ = std::make_unique<StationLoop>(*core_, backends_, display_, log_,
+                                          make_loop_config(config, 600.0, backends_));
+    ASSERT_TRUE(loop_->start());
+  }
+  void run_s(double seconds) {
+    const auto start = Clock::now();
+    while (seconds_since(start) < seconds) {
+      ASSERT_TRUE(loop_->step()) << stop_reason_name(loop_->stop_reason());
+    }
+  }
+  std::string log_text() {
+    std::fflush(log_file_);
+    std::rewind(log_file_);
+    std::string text;
+    for (int c = std::fgetc(log_file_); c != EOF; c = std::fgetc(log_file_)) {
+      text += static_cast<char>(c);
+    }
+    return text;
+  }
+  static int occurrences(const std::string& text, const std::string& what) {
+    int n = 0;
+    for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+    return n;
+  }
+
+  test::FakeStorage storage_;
+  std::unique_ptr<meshio::MeshBuffer> model_;
+  std::unique_ptr<WorkMemory> work_;
+  std::unique_ptr<station::Station> core_;
+  DisplayLink display_;  // not opened
+  std::FILE* log_file_ = std::tmpfile();
+  hal::Logger log_{{"twister-station", hal::LogLevel::info, false, ::fileno(log_file_)}};
+  std::unique_ptr<StationLoop> loop_;
+};
+
+TEST_F(PolhemusUsbStationLoop, FirmwarelessUnitIsOneErrorLineThenFoundWhenItsFirmwareIsIn) {
+  plug(hal::kPolhemusVendorId, 0xff11, 2);
+  start_loop("model = \"liberty\"\nreconnect_interval_ms = 100");
+  run_s(2.5);
+  std::string log = log_text();
+  EXPECT_EQ(occurrences(log,
+                        "error: tracker: USB: found a Polhemus Liberty (0f44:ff11) on bus "
+                        "001 device 002 still waiting for its firmware: install Debian's "
+                        "fxload"),
+            1)
+      << log;
+  EXPECT_EQ(occurrences(log, "error:"), 1) << log;
+  EXPECT_GE(core_->tracker_session().counters().io_errors, 5u) << "searched again and again";
+
+  fake_.set_script(script_for(kModels[2], 100000));
+  plug(hal::kPolhemusVendorId, 0xff12, 3);
+  run_s(2.5);
+  log = log_text();
+  EXPECT_EQ(occurrences(log, "tracker: USB: found Liberty (0f44:ff12) on bus 001 device 003"), 1)
+      << log;
+  EXPECT_EQ(occurrences(log, "tracker: streaming (start-up #"), 1) << log;
+  EXPECT_EQ(occurrences(log, "error:"), 1) << log;
+  EXPECT_EQ(occurrences(log, "tracker: lost"), 0) << log;
+  EXPECT_GE(core_->tracker_session().counters().poses, 1000u);
+  std::fprintf(stderr, "station log:\n%s", log.c_str());
 }
 
 }  // namespace
