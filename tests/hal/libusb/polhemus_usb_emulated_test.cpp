@@ -663,7 +663,7 @@ TEST_P(PolhemusUsbModels, UnplugAndReplugRecoverWithinTwoSeconds) {
   EXPECT_NE(reports_.back().second.find("device 007"), std::string::npos) << reports_.back().second;
   bool said_missing = false;
   for (const auto& [level, text] : reports_)
-    said_missing |= text.find("device 004 is gone") != std::string::npos;
+    said_missing = said_missing || text.find("device 004 is gone") != std::string::npos;
   EXPECT_TRUE(said_missing);
 }
 
