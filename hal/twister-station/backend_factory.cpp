@@ -185,11 +185,12 @@ hal::Expected<void> make_usb_tracker(const TrackerConfig& tc, Backends& out) {
     if (auto made = make(usb_models(out.detected_model.value_or(TrackerModel::fastrak))); !made)
       return made.error();
   }
+  // "usb 0f44:ff12 (hot-plug)", or "usb Polhemus 0f44:* (hot-plug)" by the model's ids.
   char ids[48];
   if (lc.product_id != 0) {
     std::snprintf(ids, sizeof ids, "%04x:%04x", lc.vendor_id, lc.product_id);
   } else {
-    std::snprintf(ids, sizeof ids, "%04x (Polhemus ids)", lc.vendor_id);
+    std::snprintf(ids, sizeof ids, "Polhemus %04x:*", lc.vendor_id);
   }
   out.tracker_name = std::string("usb ") + ids + (stream->hotplug_supported() ? " (hot-plug)" : "");
   out.tracker_report = stream.get();
