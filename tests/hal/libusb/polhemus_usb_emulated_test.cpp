@@ -20,6 +20,7 @@
 #include <poll.h>
 #include <umockdev.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -658,6 +659,9 @@ TEST_P(PolhemusUsbModels, UnplugAndReplugRecoverWithinTwoSeconds) {
   std::fprintf(stderr, "%s: first pose %.3f s after the unit's return\n", m.name, recovery_s);
   EXPECT_LT(recovery_s, 2.0);
   EXPECT_EQ(session_->counters().streams_started, 2u);
+  const std::vector<std::string> cmds = fake_.commands();  // the whole start-up again
+  EXPECT_EQ(std::count(cmds.begin(), cmds.end(), "S"), 4) << describe();
+  EXPECT_EQ(std::count(cmds.begin(), cmds.end(), "C"), 2) << describe();
   // The log's lines: found, then not found (while gone), then found at the new address.
   ASSERT_GE(reports_.size(), 2u);
   EXPECT_NE(reports_.back().second.find("device 007"), std::string::npos) << reports_.back().second;
@@ -799,6 +803,7 @@ TEST_F(PolhemusUsbStationLoop, FirmwarelessUnitIsOneErrorLineThenFoundWhenItsFir
             1)
       << log;
   EXPECT_EQ(occurrences(log, "error:"), 1) << log;
+  EXPECT_EQ(occurrences(log, "tracker:"), 1) << log;  // nothing else about the tracker
   EXPECT_GE(core_->tracker_session().counters().io_errors, 5u) << "searched again and again";
 
   fake_.set_script(script_for(kModels[2], 100000));
