@@ -138,6 +138,7 @@ class FakePolhemus {
             USBDEVFS_CAP_BULK_CONTINUATION | USBDEVFS_CAP_NO_PACKET_SIZE_LIM |
             USBDEVFS_CAP_REAP_AFTER_DISCONNECT | USBDEVFS_CAP_ZERO_PACKET;
         umockdev_ioctl_client_complete(client, 0, 0);
+        umockdev_ioctl_data_unref(d);
         return TRUE;
       }
       case USBDEVFS_CLAIMINTERFACE:
@@ -182,6 +183,8 @@ class FakePolhemus {
                                     static_cast<gsize>(urb->buffer_length), nullptr);
     if (urb->type != USBDEVFS_URB_TYPE_BULK) {
       umockdev_ioctl_client_complete(client, -1, EINVAL);
+      umockdev_ioctl_data_unref(buffer);
+      umockdev_ioctl_data_unref(urb_data);
       return TRUE;
     }
     if ((urb->endpoint & 0x80) == 0) {
@@ -190,20 +193,23 @@ class FakePolhemus {
               static_cast<std::size_t>(urb->buffer_length));
       urb->actual_length = urb->buffer_length;
       urb->status = 0;
-      done_.push_back(umockdev_ioctl_data_ref(urb_data));
+      done_.push_back(urb_data);  // the resolved reference: released when reaped
     } else {
       in_endpoint_seen_ = urb->endpoint;
-      in_flight_.push_back(umockdev_ioctl_data_ref(urb_data));
+      in_flight_.push_back(urb_data);
     }
     umockdev_ioctl_client_complete(client, 0, 0);
+    umockdev_ioctl_data_unref(buffer);
     return TRUE;
   }
 
   void give_back(UMockdevIoctlClient* client, UMockdevIoctlData* arg, UMockdevIoctlData* urb) {
+    // The client's pointer to its URB; the URB goes back on completion (released after).
     UMockdevIoctlData* ptr = umockdev_ioctl_data_resolve(arg, 0, sizeof(gpointer), nullptr);
     umockdev_ioctl_data_set_ptr(ptr, 0, urb);
-    umockdev_ioctl_data_unref(urb);
     umockdev_ioctl_client_complete(client, 0, 0);
+    umockdev_ioctl_data_unref(ptr);
+    umockdev_ioctl_data_unref(urb);
   }
 
   gboolean reap(UMockdevIoctlClient* client, UMockdevIoctlData* arg) {
