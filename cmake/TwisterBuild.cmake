@@ -56,11 +56,11 @@ function(twister_test_area)
   set_property(DIRECTORY PROPERTY LABELS ${area})
 endfunction()
 
-# twister_add_test(<name> SOURCES ... [LIBS ...] [LABELS ...] [ENVIRONMENT ...])
+# twister_add_test(<name> SOURCES ... [LIBS ...] [LABELS ...] [ENVIRONMENT ...] [TIMEOUT s])
 # One GoogleTest executable; each test case becomes a CTest test carrying the area
 # label plus LABELS (and ENVIRONMENT, e.g. an LD_PRELOAD of a device emulator).
 function(twister_add_test name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS;LABELS;ENVIRONMENT" ${ARGN})
+  cmake_parse_arguments(ARG "" "TIMEOUT" "SOURCES;LIBS;LABELS;ENVIRONMENT" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} twister_test_support GTest::gmock GTest::gtest_main)
@@ -77,6 +77,9 @@ function(twister_add_test name)
   endif()
   if(ARG_ENVIRONMENT)
     list(APPEND properties ENVIRONMENT "${ARG_ENVIRONMENT}")
+  endif()
+  if(ARG_TIMEOUT)
+    list(APPEND properties TIMEOUT ${ARG_TIMEOUT})
   endif()
   gtest_discover_tests(${name}
     DISCOVERY_MODE PRE_TEST

@@ -113,19 +113,87 @@ void make_serial_tracker(const SerialTrackerConfig& sc, Backends& out) {
 #endif
 
 #ifdef TWISTER_HAVE_HAL_LIBUSB
-hal::Expected<void> make_usb_tracker(const UsbTrackerConfig& uc, Backends& out) {
-  out.clock = std::make_unique<hal::MonotonicClock>();
-  auto stream = std::make_unique<hal::LibusbByteStream>(
-      hal::LibusbConfig{uc.vendor_id, uc.product_id, uc.interface_number, uc.endpoint_in,
-                        uc.endpoint_out, uc.timeout_ms});
-  if (const Status st = stream->init(); !st.ok()) {
-    return hal::Error{st, std::string("libusb: initialisation failed (") + st.name() +
-                              ", libusb error " + std::to_string(stream->last_error()) + ")"};
+// The models a station configured for `model` reads (a FASTRAK 3 is a fastrak).
+std::uint8_t usb_models(TrackerModel model) {
+  using hal::PolhemusUsbModel;
+  switch (model) {
+    case TrackerModel::fastrak:
+      return hal::polhemus_model_bit(PolhemusUsbModel::fastrak) |
+             hal::polhemus_model_bit(PolhemusUsbModel::fastrak3);
+    case TrackerModel::liberty:
+      return hal::polhemus_model_bit(PolhemusUsbModel::liberty);
+    case TrackerModel::patriot:
+      return hal::polhemus_model_bit(PolhemusUsbModel::patriot);
+    case TrackerModel::latus:
+      return hal::polhemus_model_bit(PolhemusUsbModel::latus);
   }
-  // Opened by the Fastrak session, which retries while the tracker is unplugged.
-  char ids[32];
-  std::snprintf(ids, sizeof ids, "%04x:%04x", uc.vendor_id, uc.product_id);
+  return 0;
+}
+
+std::optional<TrackerModel> station_model(const hal::PolhemusUsbId* id) {
+  if (id == nullptr) return std::nullopt;
+  switch (id->model) {
+    case hal::PolhemusUsbModel::fastrak:
+    case hal::PolhemusUsbModel::fastrak3:
+      return TrackerModel::fastrak;
+    case hal::PolhemusUsbModel::liberty:
+      return TrackerModel::liberty;
+    case hal::PolhemusUsbModel::patriot:
+      return TrackerModel::patriot;
+    case hal::PolhemusUsbModel::latus:
+      return TrackerModel::latus;
+    case hal::PolhemusUsbModel::unsupported:
+      break;
+  }
+  return std::nullopt;
+}
+
+hal::Expected<void> make_usb_tracker(const TrackerConfig& tc, Backends& out) {
+  const UsbTrackerConfig& uc = tc.usb;
+  out.clock = std::make_unique<hal::MonotonicClock>();
+  hal::LibusbConfig lc;
+  lc.vendor_id = uc.vendor_id;
+  lc.product_id = uc.product_id;
+  lc.interface_number = uc.interface_number;
+  lc.endpoint_in = uc.endpoint_in;
+  lc.endpoint_out = uc.endpoint_out;
+  lc.timeout_ms = uc.timeout_ms;
+  std::unique_ptr<hal::LibusbByteStream> stream;
+  // A stream looking for `models`, searched once: the model to start the session for,
+  // and the first report line. Not opened here: the tracker session opens it, and
+  // keeps retrying while the tracker is unplugged.
+  auto make = [&](std::uint8_t models) -> hal::Expected<void> {
+    lc.models = models;
+    stream = std::make_unique<hal::LibusbByteStream>(lc);
+    if (const Status st = stream->init(); !st.ok()) {
+      return hal::Error{st, std::string("libusb: initialisation failed (") + st.name() +
+                                ", libusb error " + std::to_string(stream->last_error()) + ")"};
+    }
+    stream->probe().ignore();
+    return {};
+  };
+  // With tracker.model (or a product id) that model's ids only.
+  if (auto made = make(tc.model_given ? usb_models(tc.model) : hal::kAnyReadablePolhemus); !made)
+    return made.error();
+  if (!tc.model_given && lc.product_id == 0) {
+    // From now on the model found at start only, so a unit of another model plugged
+    // later is reported, not read with the wrong parser. Nothing readable at start:
+    // the session starts as a FASTRAK (tracker.model's default), and only those are
+    // looked for (the report says so).
+    const hal::UsbTrackerFound* found = stream->found();
+    out.detected_model = found != nullptr ? station_model(found->id) : std::nullopt;
+    if (auto made = make(usb_models(out.detected_model.value_or(TrackerModel::fastrak))); !made)
+      return made.error();
+  }
+  // "usb 0f44:ff12 (hot-plug)", or "usb Polhemus 0f44:* (hot-plug)" by the model's ids.
+  char ids[48];
+  if (lc.product_id != 0) {
+    std::snprintf(ids, sizeof ids, "%04x:%04x", lc.vendor_id, lc.product_id);
+  } else {
+    std::snprintf(ids, sizeof ids, "Polhemus %04x:*", lc.vendor_id);
+  }
   out.tracker_name = std::string("usb ") + ids + (stream->hotplug_supported() ? " (hot-plug)" : "");
+  out.tracker_report = stream.get();
   adopt(std::move(stream), out.tracker, out.tracker_poll);
   return {};
 }
@@ -177,7 +245,7 @@ hal::Expected<void> make_tracker(const StationFileConfig& config, Backends& out)
       return {};
     case TrackerBackend::usb:
 #ifdef TWISTER_HAVE_HAL_LIBUSB
-      return make_usb_tracker(config.tracker.usb, out);
+      return make_usb_tracker(config.tracker, out);
 #endif
       return {};
   }
@@ -212,6 +280,12 @@ hal::Expected<void> make_buttons(const StationFileConfig& config, Backends& out)
 }
 
 }  // namespace
+
+StationFileConfig with_detected_model(const StationFileConfig& config, const Backends& backends) {
+  StationFileConfig effective = config;
+  if (backends.detected_model) effective.tracker.model = *backends.detected_model;
+  return effective;
+}
 
 bool tracker_backend_built(TrackerBackend b) {
   switch (b) {

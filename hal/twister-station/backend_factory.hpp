@@ -4,9 +4,11 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "config/station_config.hpp"
+#include "twister/hal/device_report.hpp"
 #include "twister/hal/expected.hpp"
 #include "twister/hal/poll_source.hpp"
 #include "twister/ports/button_source.hpp"
@@ -28,9 +30,20 @@ struct Backends {
   double scenario_duration_s = 0.0;         // simulator: the scenario's length (0 = none)
   std::string tracker_name;                 // for the log: "serial /dev/...", "sim stroke", ...
   std::string buttons_name;
+  // A tracker backend that searches for its device (usb): what it found, logged by the
+  // loop at start and on every change. nullptr for the others.
+  const hal::DeviceReport* tracker_report = nullptr;
+  // usb without tracker.model: the model of the tracker found at start, if one was.
+  std::optional<TrackerModel> detected_model;
 };
 
-// Builds every backend. Errors name the backend: not_supported ("tracker backend
+// The configuration the station runs with: `config` with the tracker model the
+// backends detected (usb without tracker.model) in place of the default.
+StationFileConfig with_detected_model(const StationFileConfig& config, const Backends& backends);
+
+// Builds every backend. usb: the tracker is searched for once (the model found decides
+// tracker.model when it is not given; a unit of another model than the one given is an
+// error). Errors name the backend: not_supported ("tracker backend
 // \"usb\" is not built into this binary"), invalid_argument (a combination or
 // scenario that cannot run), or the status of the device that failed to open. A
 // button device that is not there (unavailable) is no error: its backend is built

@@ -216,9 +216,12 @@ hal::Expected<std::unique_ptr<meshio::MeshBuffer>> load_station_mesh(
 
 hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationFileConfig& config,
                                                               const AssemblyOptions& options) {
-  auto setup = make_station_setup(config);
-  if (!setup) return setup.error();
+  // The backends first: a USB tracker found at start decides the model the session is
+  // set up for when tracker.model is not given (with_detected_model). A config error
+  // is still reported before a backend's.
   auto backends = make_backends(config);
+  auto setup = make_station_setup(backends ? with_detected_model(config, *backends) : config);
+  if (!setup) return setup.error();
   if (!backends) return backends.error();
   auto parts = std::make_unique<StationParts>();
   parts->backends = std::move(*backends);

@@ -127,10 +127,31 @@ void StationLoop::log_events() {
     log_station_event(*e, log_, journal_ != nullptr ? journal_->last_errno() : 0);
   }
   log_tracker_search(nullptr);
+  log_tracker_report();
+}
+
+// A tracker backend that searches for its device (usb): its finding, once per change
+// (at start, found, lost, waiting for firmware, another model).
+void StationLoop::log_tracker_report() {
+  const hal::DeviceReport* report = backends_.tracker_report;
+  if (report == nullptr || report->changes() == tracker_report_seen_) return;
+  tracker_report_seen_ = report->changes();
+  switch (report->level()) {
+    case hal::DeviceReport::Level::info:
+      log_.notice("tracker", "%s", report->text());
+      return;
+    case hal::DeviceReport::Level::warning:
+      log_.warning("tracker", "%s", report->text());
+      return;
+    case hal::DeviceReport::Level::error:
+      log_.error("tracker", "%s", report->text());
+      return;
+  }
 }
 
 // Found: the streaming line names the model and where. Not found: once, when the
-// first start-up failed, what was looked for where and why it failed.
+// first start-up failed, what was looked for where and why it failed (a backend with
+// a DeviceReport says that itself: log_tracker_report).
 void StationLoop::log_tracker_search(const session::SessionEvent* e) {
   const tracker::FastrakSession& session = core_.tracker_session();
   const char* model = tracker::tracker_model_name(session.config().model);
@@ -142,6 +163,10 @@ void StationLoop::log_tracker_search(const session::SessionEvent* e) {
     return;
   }
   const auto& c = session.counters();
+  // A backend that reports its search (usb) has said already that it found nothing
+  // usable; a unit found that never streams is still worth this line.
+  const hal::DeviceReport* report = backends_.tracker_report;
+  if (report != nullptr && report->level() != hal::DeviceReport::Level::info) return;
   if (tracker_found_ || tracker_missing_said_ || c.inits < 2) return;
   tracker_missing_said_ = true;
   log_.warning("tracker",

@@ -85,6 +85,7 @@ class StationLoop {
   void log_events();
   // The tracker model configured, where it was found, or that it is not found yet.
   void log_tracker_search(const session::SessionEvent* e);
+  void log_tracker_report();
   void retry_buttons(ports::TimestampUs now_us);
   void pet_watchdog(ports::TimestampUs now_us);
   bool time_is_up(ports::TimestampUs now_us) const;
@@ -108,6 +109,7 @@ class StationLoop {
   std::uint64_t passes_ = 0;
   bool tracker_found_ = false;          // the tracker has streamed since start
   bool tracker_missing_said_ = false;   // "not found yet" was logged
+  std::uint32_t tracker_report_seen_ = 0;  // DeviceReport::changes() last logged
   StopReason stop_reason_ = StopReason::end_of_run;
 };
 

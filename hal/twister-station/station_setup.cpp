@@ -166,6 +166,7 @@ void set_tracker(const StationFileConfig& config, station::StationConfig& c) {
   // Liberty parser (to_liberty_config of these lists). The config allows binary only.
   c.session.model = t.model == TrackerModel::liberty   ? tracker::TrackerModel::liberty
                     : t.model == TrackerModel::patriot ? tracker::TrackerModel::patriot
+                    : t.model == TrackerModel::latus   ? tracker::TrackerModel::latus
                                                        : tracker::TrackerModel::fastrak;
   c.hand_station = {t.left_station, t.right_station};
   const bool stylus = config.buttons.backend == ButtonBackend::stylus;
@@ -178,6 +179,11 @@ void set_tracker(const StationFileConfig& config, station::StationConfig& c) {
             ? tracker::OutputList::of({Item::position, Item::quaternion, Item::stylus, Item::crlf})
             : tracker::OutputList::of({Item::position, Item::quaternion, Item::crlf});
   }
+  // USB: 50 ms between configuration commands, as VRPN's Liberty HS driver waits after
+  // its `O` (a bulk OUT transfer completes only once the unit has taken the bytes, so
+  // the pause covers processing alone); the serial line keeps the Fastrak's 100 ms.
+  // Assumed, untried on a unit (docs/hardware.md, "USB trackers").
+  if (t.backend == TrackerBackend::usb) c.session.command_pause_us = 50'000;
   c.session.silence_timeout_us = static_cast<std::int64_t>(t.silence_timeout_ms) * 1000;
   c.session.backoff.initial_us = static_cast<std::int64_t>(t.reconnect_interval_ms) * 1000;
   c.session.backoff.max_us = std::max<std::int64_t>(c.session.backoff.initial_us, 8'000'000);

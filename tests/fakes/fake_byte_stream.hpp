@@ -38,6 +38,8 @@ class FakeByteStreamWithStorage final : public ports::ByteStream {
     rx_pos_ = 0;
   }
   void set_present(bool present) { plugged_ = present; }
+  // A hot-plug arrival: device_arrived() says true until the next reopen().
+  void announce_arrival() { arrived_ = true; }
   bool connected() const { return connected_; }
   int reopen_count() const { return reopen_count_; }
 
@@ -57,8 +59,10 @@ class FakeByteStreamWithStorage final : public ports::ByteStream {
     tx_len_ += n;
     return n;
   }
+  bool do_device_arrived() override { return arrived_; }
   Status do_reopen() override {
     ++reopen_count_;
+    arrived_ = false;
     if (!plugged_) return StatusCode::unavailable;
     connected_ = true;
     rx_len_ = rx_pos_ = 0;
@@ -73,6 +77,7 @@ class FakeByteStreamWithStorage final : public ports::ByteStream {
   std::size_t tx_len_ = 0;
   bool connected_ = true;
   bool plugged_ = true;
+  bool arrived_ = false;
   int reopen_count_ = 0;
 };
 

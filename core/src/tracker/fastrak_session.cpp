@@ -35,6 +35,8 @@ const char* tracker_model_name(TrackerModel model) {
       return "Liberty";
     case TrackerModel::patriot:
       return "Patriot";
+    case TrackerModel::latus:
+      return "Latus";
   }
   return "unknown";
 }
@@ -44,8 +46,9 @@ namespace {
 bool configure_frames(const FastrakSessionConfig& config, LibertyParser& parser) {
   if (config.model == TrackerModel::fastrak) return true;
   if (config.protocol.format != Format::binary) return false;
-  const LibertyModel family =
-      config.model == TrackerModel::patriot ? LibertyModel::patriot : LibertyModel::liberty;
+  const LibertyModel family = config.model == TrackerModel::patriot ? LibertyModel::patriot
+                              : config.model == TrackerModel::latus ? LibertyModel::latus
+                                                                    : LibertyModel::liberty;
   LibertyConfig frames;
   return to_liberty_config(config.protocol, family, frames).ok() && parser.configure(frames).ok();
 }
@@ -180,7 +183,12 @@ void FastrakSession::reinitialise() {
 void FastrakSession::step_timers(ports::TimestampUs now) {
   switch (state_) {
     case SessionState::backoff: {
-      if (now < timers_.deadline) return;
+      // A device that has just been plugged in is tried at once, with the back-off
+      // started afresh (a replug is not one more failure).
+      if (now < timers_.deadline) {
+        if (!stream_.device_arrived()) return;
+        recovery_.backoff_us = config_.backoff.initial_us;
+      }
       const Status s = stream_.reopen();
       if (!s.ok()) {
         ++counters_.io_errors;

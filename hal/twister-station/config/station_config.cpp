@@ -52,10 +52,18 @@ void read_tracker(ConfigReader& root, StationFileConfig& cfg) {
                                      : RecordFormat::binary16;
   }
   std::string model;
-  if (t.string("model", false, model, {"fastrak", "liberty", "patriot"})) {
+  if (t.string("model", false, model, {"fastrak", "liberty", "patriot", "latus"})) {
     tc.model = model == "fastrak"   ? TrackerModel::fastrak
                : model == "liberty" ? TrackerModel::liberty
-                                    : TrackerModel::patriot;
+               : model == "patriot" ? TrackerModel::patriot
+                                    : TrackerModel::latus;
+    tc.model_given = true;
+  }
+  // The simulator models the FASTRAK, Liberty and Patriot (twister-sim --model).
+  if (tc.model == TrackerModel::latus && t.present() && backend == "sim") {
+    t.error(t.node("model"), "model",
+            "expected \"fastrak\", \"liberty\" or \"patriot\" with tracker.backend = \"sim\" "
+            "(the simulator has no Latus), got \"latus\"");
   }
   // A Liberty's or Patriot's records are parsed as binary frames only.
   if (tc.model != TrackerModel::fastrak && tc.format != RecordFormat::binary) {
@@ -88,9 +96,10 @@ void read_tracker(ConfigReader& root, StationFileConfig& cfg) {
   }
   s.finish();
 
-  ConfigReader u = t.table("usb", t.present() && backend == "usb");
-  read_u(u, "vendor_id", u.present(), 1, 0xffff, tc.usb.vendor_id);
-  read_u(u, "product_id", u.present(), 0, 0xffff, tc.usb.product_id);
+  // Optional: the Polhemus vendor and the model's product ids by default.
+  ConfigReader u = t.table("usb", false);
+  read_u(u, "vendor_id", false, 1, 0xffff, tc.usb.vendor_id);
+  read_u(u, "product_id", false, 0, 0xffff, tc.usb.product_id);
   read_u(u, "interface", false, 0, 255, tc.usb.interface_number);
   read_u(u, "endpoint_in", false, 0x81, 0x8f, tc.usb.endpoint_in);
   read_u(u, "endpoint_out", false, 0x01, 0x0f, tc.usb.endpoint_out);

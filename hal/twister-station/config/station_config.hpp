@@ -20,9 +20,9 @@ enum class ButtonBackend : std::uint8_t { gpiod, hidapi, stylus, sim };
 enum class SerialFlowControl : std::uint8_t { none, rtscts, xonxoff };
 enum class GpioBias : std::uint8_t { as_is, disable, pull_up, pull_down };
 enum class RecordFormat : std::uint8_t { binary, ascii, binary16 };
-// The Polhemus unit on the line: its binary records are Fastrak records or
-// Liberty / Patriot frames (docs/liberty-protocol.md).
-enum class TrackerModel : std::uint8_t { fastrak, liberty, patriot };
+// The Polhemus unit on the line: its binary records are Fastrak records (FASTRAK,
+// FASTRAK 3) or Liberty / Patriot / Latus frames (docs/liberty-protocol.md).
+enum class TrackerModel : std::uint8_t { fastrak, liberty, patriot, latus };
 enum class SimTime : std::uint8_t { virtual_time, real_time };
 
 struct SerialTrackerConfig {
@@ -31,13 +31,15 @@ struct SerialTrackerConfig {
   SerialFlowControl flow_control = SerialFlowControl::none;
 };
 
+// [tracker.usb], optional: without it the station finds any Polhemus tracker of the
+// model (tracker.model, else any) by its product id (docs/hardware.md, "USB trackers").
 struct UsbTrackerConfig {
-  std::uint16_t vendor_id = 0;
-  std::uint16_t product_id = 0;
+  std::uint16_t vendor_id = 0x0f44;  // Polhemus
+  std::uint16_t product_id = 0;      // 0: by the model's ids
   std::uint8_t interface_number = 0;
-  std::uint8_t endpoint_in = 0x81;   // bulk IN (bit 7 set)
-  std::uint8_t endpoint_out = 0x01;  // bulk OUT (bit 7 clear)
-  std::uint32_t timeout_ms = 100;    // per bulk transfer
+  std::uint8_t endpoint_in = 0;    // bulk IN (bit 7 set); 0: the interface's first
+  std::uint8_t endpoint_out = 0;   // bulk OUT (bit 7 clear); 0: the interface's first
+  std::uint32_t timeout_ms = 100;  // per bulk transfer
 };
 
 struct SimTrackerConfig {
@@ -98,6 +100,7 @@ struct CalibrationConfig {
 struct TrackerConfig {
   TrackerBackend backend = TrackerBackend::serial;
   TrackerModel model = TrackerModel::fastrak;
+  bool model_given = false;       // tracker.model written (else usb detects it at start)
   std::uint8_t left_station = 1;  // Fastrak receiver (1..4) held in the left hand
   std::uint8_t right_station = 2;
   RecordFormat format = RecordFormat::binary;

@@ -212,6 +212,40 @@ TEST(FastrakSession, UnplugAndReplugWithBackoff) {
   ASSERT_EQ(rig.poses.size(), 1u);
 }
 
+// A port that reports its device's arrival (USB hot-plug) is reopened at once, however
+// long the back-off had grown, and the back-off starts afresh.
+TEST(FastrakSession, ADeviceArrivalEndsTheBackOffAtOnce) {
+  Rig rig;
+  rig.start_streaming();
+  rig.stream.unplug();
+  rig.stream.set_present(false);
+  rig.run_until([] { return false; }, 300'000, 1'000);  // the back-off is at its cap (80 ms)
+  // Just after a failed reopen: the next one is 80 ms away.
+  const int before = rig.stream.reopen_count();
+  ASSERT_TRUE(rig.run_until([&] { return rig.stream.reopen_count() > before; }, 100'000, 1'000));
+  const int reopens = rig.stream.reopen_count();
+  rig.stream.set_present(true);
+  rig.clock.advance_us(1'000);
+  rig.poll_all();
+  EXPECT_EQ(rig.stream.reopen_count(), reopens) << "no arrival: the back-off runs on";
+  EXPECT_EQ(rig.session.state(), SessionState::backoff);
+  rig.stream.announce_arrival();
+  rig.poll_all();
+  EXPECT_EQ(rig.stream.reopen_count(), reopens + 1);
+  EXPECT_NE(rig.session.state(), SessionState::backoff);
+  // Unplugged again before streaming: the next delay is the first one again (10 ms).
+  rig.stream.unplug();
+  rig.stream.set_present(false);
+  rig.poll_all();
+  ASSERT_EQ(rig.session.state(), SessionState::backoff);
+  rig.clock.advance_us(9'000);
+  rig.poll_all();
+  EXPECT_EQ(rig.stream.reopen_count(), reopens + 1);
+  rig.clock.advance_us(1'500);
+  rig.poll_all();
+  EXPECT_EQ(rig.stream.reopen_count(), reopens + 2);
+}
+
 TEST(FastrakSession, StatusMismatchAfterConfiguringIsAFault) {
   Rig rig;
   ASSERT_TRUE(rig.reach(SessionState::await_status));

@@ -1,6 +1,7 @@
 // LibusbByteStream without a device: what a machine with no USB tracker (CI) can
-// check. Bulk traffic, hot-plug events and claim conflicts need a rig or a recorded
-// usbdevfs replay (docs/hardware.md, section 4).
+// check here. Bulk traffic, enumeration by id, hot-plug and a unit without firmware:
+// polhemus_usb_emulated_test (usbdevfs emulated with umockdev); claim conflicts and a
+// real unit's timing need a rig (docs/hardware.md, "USB trackers").
 #include "twister/hal/libusb_byte_stream.hpp"
 
 #include <gtest/gtest.h>

@@ -39,7 +39,8 @@ TEST(StationConfigTest, DeployExamplesAreValid) {
   const auto r = load_station_config(std::string(TWISTER_DEPLOY_DIR) + "/station.toml");
   EXPECT_EQ(r.config.tracker.backend, TrackerBackend::serial);
   EXPECT_EQ(r.config.tracker.serial.baud, 115200u);
-  EXPECT_EQ(r.config.tracker.usb.endpoint_in, 0x88);
+  EXPECT_EQ(r.config.tracker.usb.vendor_id, 0x0f44);
+  EXPECT_EQ(r.config.tracker.usb.endpoint_in, 0);  // from the descriptor
   ASSERT_EQ(r.config.buttons.gpiod.lines.size(), 2u);
   EXPECT_EQ(r.config.buttons.gpiod.lines[1], 27u);
   EXPECT_EQ(r.config.buttons.gpiod.bias, GpioBias::pull_up);

@@ -40,11 +40,11 @@ TEST(TrackerModelConfig, EachModelReachesTheTrackerSession) {
 }
 
 TEST(TrackerModelConfig, ABadModelNamesTheOnesAccepted) {
-  const auto r = parse_station_config(config_with("model = \"latus\""), "t.toml");
+  const auto r = parse_station_config(config_with("model = \"viper\""), "t.toml");
   EXPECT_FALSE(r.ok());
   EXPECT_THAT(test::messages(r),
               HasSubstr("t.toml:6: tracker.model: expected one of \"fastrak\" \"liberty\" "
-                        "\"patriot\", got \"latus\"\n"));
+                        "\"patriot\" \"latus\", got \"viper\"\n"));
   EXPECT_FALSE(parse_station_config(config_with("model = 2"), "t.toml").ok());
 }
 

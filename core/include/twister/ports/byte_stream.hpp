@@ -29,7 +29,13 @@ class ByteStream {
   // Discards bytes received but not yet read (after a reset command, say).
   void discard_input() { do_discard_input(); }
 
+  // true when the device has just appeared (a hot-plug arrival since the last
+  // reopen()): a hint to reopen now instead of at the end of a back-off. Never
+  // blocks. A backend without hot-plug says false (the default).
+  bool device_arrived() { return do_device_arrived(); }
+
  private:
+  virtual bool do_device_arrived() { return false; }
   virtual Result<std::size_t> do_read(std::span<std::byte> dest) = 0;
   virtual Result<std::size_t> do_write(std::span<const std::byte> src) = 0;
   virtual Status do_reopen() = 0;

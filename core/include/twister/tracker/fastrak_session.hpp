@@ -3,8 +3,9 @@
 // station enables, output lists, hemispheres, e1,0, units, format, status re-check
 // of format/units, continuous mode. Faults (I/O error/unplug, silence, endless
 // garbage, missing or wrong replies) lead to automatic re-initialisation with
-// exponential back-off. Driven by poll() calls; time comes from the Clock port, so
-// all waits (including the unit's 10-20 s reset) are state, never sleeps. No heap.
+// exponential back-off; a port that reports its device's arrival (hot-plug) is
+// reopened at once, the back-off started afresh. Driven by poll() calls; time comes from the Clock
+// port, so all waits (including the unit's 10-20 s reset) are state, never sleeps. No heap.
 #pragma once
 
 #include <array>
@@ -23,12 +24,14 @@
 
 namespace twister::tracker {
 
-// The unit on the line. A Liberty or Patriot takes the Fastrak's start-up, but its `O`
-// lists in its own item codes (to_liberty_config(protocol)); in binary its records are
+// The unit on the line. A Liberty, Patriot or Latus (Liberty HS) takes the Fastrak's start-up, but
+// its `O` lists in its own item codes (to_liberty_config(protocol)); in binary its records are
 // Liberty-family frames (docs/liberty-protocol.md), so once streaming the session reads
 // them with LibertyParser configured the same way. Those models need Format::binary.
-enum class TrackerModel : std::uint8_t { fastrak, liberty, patriot };
-const char* tracker_model_name(TrackerModel model);  // "FASTRAK", "Liberty", "Patriot"
+// A FASTRAK 3 is a fastrak here (the same records).
+enum class TrackerModel : std::uint8_t { fastrak, liberty, patriot, latus };
+// "FASTRAK", "Liberty", "Patriot", "Latus"
+const char* tracker_model_name(TrackerModel model);
 
 // Delay before each re-initialisation: the first, doubled per failure up to the cap.
 struct SessionBackoff {
