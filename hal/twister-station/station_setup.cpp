@@ -37,6 +37,19 @@ math::WarpMethod method_of(SculptMethod m) {
   return math::WarpMethod::twister;
 }
 
+math::SymmetrySpec symmetry_of(const SymmetryConfig& c) {
+  switch (c.mode) {
+    case SymmetryMode::none:
+      return {};
+    case SymmetryMode::mirrors:
+      return {math::SymmetryKind::mirrors, c.mirrors, 0, 0};
+    case SymmetryMode::rotation:
+      return {c.mirror ? math::SymmetryKind::rotation_mirror : math::SymmetryKind::rotation, 0,
+              c.axis, c.order};
+  }
+  return {};
+}
+
 // [sculpt]: method, radius, turns, lost-tracking timeout and the button map (the
 // paper's map unless [sculpt.buttons] is given).
 void set_sculpt(const StationFileConfig& config, session::SculptSessionConfig& s,
@@ -54,6 +67,7 @@ void set_sculpt(const StationFileConfig& config, session::SculptSessionConfig& s
   s.turns.limit_rad = sc.turn_limit_deg * session::kDegree;
   s.refine.enabled = sc.refine;
   s.refine.threshold_m = sc.refine_threshold_m;
+  s.symmetry = symmetry_of(sc.symmetry);
   if (!sc.buttons_configured) return;
   s.buttons = input::ButtonMap{};
   for (const ButtonBindingConfig& b : sc.buttons) {
@@ -110,7 +124,8 @@ void set_calibration(const StationFileConfig& config, station::StationConfig& c)
   for (const std::uint8_t s : c.hand_station) {
     const auto i = static_cast<std::size_t>(s - 1);
     c.session.hemisphere[i] = cal.hemisphere;
-    c.conversion.hemisphere[i] = glm::dvec3(cal.hemisphere[0], cal.hemisphere[1], cal.hemisphere[2]);
+    c.conversion.hemisphere[i] =
+        glm::dvec3(cal.hemisphere[0], cal.hemisphere[1], cal.hemisphere[2]);
     c.conversion.boresight[i] = cal.boresight;
     if (cal.boresight) {
       c.conversion.boresight_rotation[i] = tracker::rotation_from_euler_deg(
@@ -131,9 +146,9 @@ void set_tracker(const StationFileConfig& config, station::StationConfig& c) {
   auto& proto = c.session.protocol;
   // binary16: the 16-bit packed records, selected with `f` like binary (on a unit
   // whose binary format they are).
-  proto.format = t.format == RecordFormat::binary   ? tracker::Format::binary
-                 : t.format == RecordFormat::ascii  ? tracker::Format::ascii
-                                                    : tracker::Format::binary16;
+  proto.format = t.format == RecordFormat::binary  ? tracker::Format::binary
+                 : t.format == RecordFormat::ascii ? tracker::Format::ascii
+                                                   : tracker::Format::binary16;
   proto.units = tracker::Units::inches;
   // A Liberty / Patriot: the same commands and lists; its frames are read with the
   // Liberty parser (to_liberty_config of these lists). The config allows binary only.

@@ -125,12 +125,12 @@ struct ButtonsConfig {
 };
 
 struct StationSection {
-  std::string journal;                 // append-only stroke journal (fsynced per stroke)
-  std::string mesh;                    // initial model (OBJ, metres); relative = to the config file
+  std::string journal;  // append-only stroke journal (fsynced per stroke)
+  std::string mesh;     // initial model (OBJ, metres); relative = to the config file
   // Extra mesh capacity beyond the OBJ's vertices (and twice as many triangles):
   // refinement's room. Default: session::kDefaultSpareVertices (a test checks).
   std::uint32_t spare_vertices = 100'000;
-  std::uint32_t loop_timeout_ms = 10;  // poll() timeout of the event loop
+  std::uint32_t loop_timeout_ms = 10;       // poll() timeout of the event loop
   std::uint32_t checkpoint_interval = 256;  // journal records between checkpoints (0: at stop)
 };
 
@@ -166,6 +166,19 @@ struct ButtonBindingConfig {
   std::uint32_t file_line = 0;  // where it is written (for messages)
 };
 
+// [sculpt] symmetry (docs/math.md §11): every stroke mirrored in coordinate planes of
+// the object frame, or repeated n times about one of its axes (optionally with the
+// mirrors through that axis).
+enum class SymmetryMode : std::uint8_t { none, mirrors, rotation };
+
+struct SymmetryConfig {
+  SymmetryMode mode = SymmetryMode::none;
+  std::uint8_t mirrors = 0;  // mirrors: bit 0 the plane x = 0, bit 1 y = 0, bit 2 z = 0
+  std::uint8_t axis = 2;     // rotation: 0 x, 1 y, 2 z (symmetry_axis)
+  std::uint8_t order = 6;    // rotation: n = 2..12 (symmetry_order)
+  bool mirror = false;       // rotation: also the n mirrors through the axis
+};
+
 struct SculptConfig {
   SculptMethod method = SculptMethod::twister;
   double radius_m = 0.25;  // start radius of the influence ball
@@ -180,7 +193,8 @@ struct SculptConfig {
   // Largest midpoint error an edge keeps (absolute). Default:
   // session::kDefaultRefineThresholdM (a test checks).
   double refine_threshold_m = 0.0005;
-  bool buttons_configured = false;    // [sculpt.buttons] given (else the paper's map)
+  SymmetryConfig symmetry{};
+  bool buttons_configured = false;  // [sculpt.buttons] given (else the paper's map)
   std::vector<ButtonBindingConfig> buttons;
 };
 
