@@ -1,5 +1,5 @@
 // SceneReplica: the bridge's copy of the station's scene, built from link messages
-// (protocol 4, docs/link-protocol.md), with no OpenGL (its own library, also built
+// (protocol 5, docs/link-protocol.md), with no OpenGL (its own library, also built
 // by the fuzz preset):
 //   - the mesh at a version: a full mesh or a commit's change set is staged and
 //     becomes the displayed mesh only when its mesh_end checksum matches; a
