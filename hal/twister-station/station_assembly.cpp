@@ -247,6 +247,8 @@ hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationFileC
   mesh::Mesh& mesh = parts->model->mesh();
   parts->work = std::make_unique<WorkMemory>(mesh.vertex_capacity());
   session::SculptStorage storage = parts->work->storage();
+  parts->symmetry = std::make_unique<SymmetryMemory>(mesh.vertex_capacity());
+  storage = parts->symmetry->attach(storage);
   if (config.sculpt.refine) {
     parts->refine =
         std::make_unique<RefineMemory>(mesh.vertex_capacity(), mesh.triangle_capacity());

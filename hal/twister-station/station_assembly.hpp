@@ -55,9 +55,10 @@ struct StationParts {
   int stale_temporaries = 0;  // JOURNAL.ckpt.tmp-* / .torn-tail.tmp-* removed at start
   std::unique_ptr<meshio::MeshBuffer> model;
   std::unique_ptr<WorkMemory> work;
-  std::unique_ptr<RefineMemory> refine;    // [sculpt] refine on
-  std::unique_ptr<station::Station> core;  // started: the journal is replayed
-  DisplayLink display;                     // open when a link address is set
+  std::unique_ptr<RefineMemory> refine;      // [sculpt] refine on
+  std::unique_ptr<SymmetryMemory> symmetry;  // symmetric strokes (always)
+  std::unique_ptr<station::Station> core;    // started: the journal is replayed
+  DisplayLink display;                       // open when a link address is set
 };
 
 // Builds and starts everything. Errors (message for the log): the backends'

@@ -35,6 +35,7 @@ MemoryBudget memory_budget(std::size_t vertex_capacity, std::size_t triangle_cap
                session::kDefaultUndoTriangleChanges * sizeof(session::TriangleChange) +
                3 * sizeof(float) * vertex_capacity;  // a clutch chain's start
   }
+  b.symmetry = 3 * sizeof(float) * vertex_capacity + sizeof(math::PlanSymmetry);
   if (link) {
     b.link = 3 * sizeof(float) * vertex_capacity + 3 * sizeof(std::uint32_t) * triangle_capacity +
              512 * link::kMaxFrameBytes;
@@ -70,6 +71,19 @@ WorkMemory::WorkMemory(std::size_t vertex_capacity, std::size_t undo_changes,
 }
 
 session::SculptStorage WorkMemory::storage() { return storage_; }
+
+SymmetryMemory::SymmetryMemory(std::size_t vertex_capacity)
+    : x_(vertex_capacity),
+      y_(vertex_capacity),
+      z_(vertex_capacity),
+      symmetry_(std::make_unique<math::PlanSymmetry>()) {
+  symmetry_->start = math::VertexColumns{x_, y_, z_};
+}
+
+session::SculptStorage SymmetryMemory::attach(session::SculptStorage storage) {
+  storage.plan.symmetry = symmetry_.get();
+  return storage;
+}
 
 RefineMemory::RefineMemory(std::size_t vertex_capacity, std::size_t triangle_capacity)
     : refiner_(vertex_capacity, triangle_capacity),

@@ -4,9 +4,10 @@
 // the undo history is fixed: undo_changes x 28 B (one per vertex a commit moves) +
 // undo_entries x 248 B (one per commit); 12 B per vertex of normals; with refinement on
 // ([sculpt] refine) the refiner's 48 B per vertex + 32 B per triangle, the undo pool
-// of refined triangles (262144 x 28 B) and 12 B per vertex of a clutch chain's start; with --link the display link adds 12 B per
-// vertex + 12 B per triangle (its copy of the mesh) + its frame buffer (512 frames, as
-// DisplayLink::open sizes it).
+// of refined triangles (262144 x 28 B) and 12 B per vertex of a clutch chain's start; with --link
+// the display link adds 12 B per vertex + 12 B per triangle (its copy of the mesh) + its frame
+// buffer (512 frames, as DisplayLink::open sizes it); symmetric strokes ([sculpt] symmetry, and any
+// journal that holds them) 12 B per vertex of chain-start positions + the symmetric warp.
 // WorkMemory is the core's working memory as ONE arena of exactly
 // budget.live + budget.plan + budget.undo + budget.normals bytes, carved into the spans
 // SculptStorage needs; nothing else is allocated for the core after start-up.
@@ -23,14 +24,17 @@
 namespace twister::station_app {
 
 struct MemoryBudget {
-  std::size_t mesh = 0;     // positions and triangle indices (the model)
-  std::size_t live = 0;     // the live stroke's warped columns
-  std::size_t plan = 0;     // warp plan: influenced indices and two weight columns
-  std::size_t undo = 0;     // undo history: vertex changes and entries
-  std::size_t normals = 0;  // vertex normals (for the display)
-  std::size_t refine = 0;   // refiner and refined triangles' undo pool (0 when off)
-  std::size_t link = 0;     // display link: its mesh copy and frame buffer (0 without --link)
-  std::size_t total() const { return mesh + live + plan + undo + normals + refine + link; }
+  std::size_t mesh = 0;      // positions and triangle indices (the model)
+  std::size_t live = 0;      // the live stroke's warped columns
+  std::size_t plan = 0;      // warp plan: influenced indices and two weight columns
+  std::size_t undo = 0;      // undo history: vertex changes and entries
+  std::size_t normals = 0;   // vertex normals (for the display)
+  std::size_t refine = 0;    // refiner and refined triangles' undo pool (0 when off)
+  std::size_t link = 0;      // display link: its mesh copy and frame buffer (0 without --link)
+  std::size_t symmetry = 0;  // symmetric strokes: chain-start columns and the warp
+  std::size_t total() const {
+    return mesh + live + plan + undo + normals + refine + link + symmetry;
+  }
 };
 
 MemoryBudget memory_budget(std::size_t vertex_capacity, std::size_t triangle_capacity,
@@ -57,6 +61,18 @@ class WorkMemory {
 // Refinement's working memory (only when [sculpt] refine is on): the refiner for the
 // mesh's capacities, the undo pool of refined commits' triangles and a clutch chain's
 // start positions (one per vertex: the plan's capacity).
+// The plan's storage for symmetric strokes (math::PlanSymmetry): always there, so a
+// journal with symmetric strokes replays whatever [sculpt] symmetry says now.
+class SymmetryMemory {
+ public:
+  explicit SymmetryMemory(std::size_t vertex_capacity);
+  session::SculptStorage attach(session::SculptStorage storage);
+
+ private:
+  std::vector<float> x_, y_, z_;
+  std::unique_ptr<math::PlanSymmetry> symmetry_;
+};
+
 class RefineMemory {
  public:
   RefineMemory(std::size_t vertex_capacity, std::size_t triangle_capacity);

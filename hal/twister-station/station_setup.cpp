@@ -37,6 +37,19 @@ math::WarpMethod method_of(SculptMethod m) {
   return math::WarpMethod::twister;
 }
 
+math::SymmetrySpec symmetry_of(const SymmetryConfig& c) {
+  switch (c.mode) {
+    case SymmetryMode::none:
+      return {};
+    case SymmetryMode::mirrors:
+      return {math::SymmetryKind::mirrors, c.mirrors, 0, 0};
+    case SymmetryMode::rotation:
+      return {c.mirror ? math::SymmetryKind::rotation_mirror : math::SymmetryKind::rotation, 0,
+              c.axis, c.order};
+  }
+  return {};
+}
+
 // [sculpt]: method, radius, turns, lost-tracking timeout and the button map (the
 // paper's map unless [sculpt.buttons] is given).
 void set_sculpt(const StationFileConfig& config, session::SculptSessionConfig& s,
@@ -54,6 +67,7 @@ void set_sculpt(const StationFileConfig& config, session::SculptSessionConfig& s
   s.turns.limit_rad = sc.turn_limit_deg * session::kDegree;
   s.refine.enabled = sc.refine;
   s.refine.threshold_m = sc.refine_threshold_m;
+  s.symmetry = symmetry_of(sc.symmetry);
   if (!sc.buttons_configured) return;
   s.buttons = input::ButtonMap{};
   for (const ButtonBindingConfig& b : sc.buttons) {

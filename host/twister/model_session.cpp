@@ -31,14 +31,16 @@ ModelSession::ModelSession(meshio::ObjMesh model, std::size_t undo_changes,
       refiner_(mesh().vertex_capacity(), mesh().triangle_capacity()),
       triangles_(session::kDefaultUndoTriangleChanges) {
   const std::size_t n = mesh().vertex_capacity();
-  for (auto* v : {&lx_, &ly_, &lz_, &w1_, &w2_, &cx_, &cy_, &cz_}) v->resize(n);
+  for (auto* v : {&lx_, &ly_, &lz_, &w1_, &w2_, &cx_, &cy_, &cz_, &sx_, &sy_, &sz_}) v->resize(n);
+  symmetry_ = std::make_unique<math::PlanSymmetry>();
+  symmetry_->start = math::VertexColumns{sx_, sy_, sz_};
   plan_indices_.resize(n);
   changes_.resize(undo_changes);
   entries_.resize(std::max<std::size_t>(undo_entries, 1));
   session::SculptStorage work{lx_,
                               ly_,
                               lz_,
-                              math::WarpPlanStorage{plan_indices_, w1_, w2_},
+                              math::WarpPlanStorage{plan_indices_, w1_, w2_, symmetry_.get()},
                               changes_,
                               entries_,
                               refiner_.storage(),

@@ -36,6 +36,8 @@ class ModelSession {
   meshio::ObjMesh model_;
   std::vector<float> lx_, ly_, lz_, w1_, w2_;
   std::vector<float> cx_, cy_, cz_;  // a clutch chain's start (ClutchChain)
+  std::vector<float> sx_, sy_, sz_;  // symmetric strokes' chain-start positions
+  std::unique_ptr<math::PlanSymmetry> symmetry_;
   std::vector<std::uint32_t> plan_indices_;
   std::vector<session::VertexChange> changes_;
   std::vector<session::UndoEntry> entries_;

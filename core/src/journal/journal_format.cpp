@@ -23,7 +23,7 @@ TailProblem undecodable(std::uint8_t version, std::uint8_t type) {
   const bool known =
       version == kRecordVersion ||
       (stroke && (version == kRecordVersionLongTurns || version == kRecordVersionRefined ||
-                  version == kRecordVersionRefinedLocal));
+                  version == kRecordVersionRefinedLocal || version == kRecordVersionSymmetric));
   return known ? TailProblem::bad_payload : TailProblem::unknown_version;
 }
 

@@ -15,7 +15,9 @@ constexpr std::size_t kStrokeFixedBytes = 4 + 1 + 1 + 2 + 8;
 constexpr std::size_t kMoveBytes = 4 + 1 + 2 * kPoseBytes;
 constexpr std::size_t kSequenceOnlyBytes = 4;
 constexpr std::size_t kRefinedTailBytes = 1 + 8;  // long_turns, refine_threshold_m
-static_assert(kStrokeFixedBytes + 4 * kPoseBytes + kRefinedTailBytes <= kMaxPayloadBytes);
+// long_turns, refine_threshold_m, refine_local, symmetry kind, mirrors, axis, order
+constexpr std::size_t kSymmetricTailBytes = 1 + 8 + 1 + 4;
+static_assert(kStrokeFixedBytes + 4 * kPoseBytes + kSymmetricTailBytes <= kMaxPayloadBytes);
 
 using twister::internal::ByteReader;
 using twister::internal::ByteWriter;
@@ -38,15 +40,18 @@ Pose read_pose(ByteReader& r) {
 // Version 2 strokes end with the long_turns byte, version 3 with it and the threshold.
 std::size_t stroke_bytes(std::uint8_t hand_mask, std::uint8_t version) {
   const auto hands = static_cast<std::size_t>(std::popcount(static_cast<unsigned>(hand_mask)));
-  const std::size_t tail = version == kRecordVersionRefined || version == kRecordVersionRefinedLocal
-                               ? kRefinedTailBytes
-                           : version == kRecordVersionLongTurns ? 1
-                                                                : 0;
+  const std::size_t tail =
+      version == kRecordVersionSymmetric ? kSymmetricTailBytes
+      : version == kRecordVersionRefined || version == kRecordVersionRefinedLocal
+          ? kRefinedTailBytes
+      : version == kRecordVersionLongTurns ? 1
+                                           : 0;
   return kStrokeFixedBytes + 2 * hands * kPoseBytes + tail;
 }
 
 std::uint8_t record_version(const JournalRecord& r) {
   if (r.type != RecordType::stroke) return kRecordVersion;
+  if (r.stroke.symmetry.kind != 0) return kRecordVersionSymmetric;
   if (r.stroke.refine_threshold_m > 0.0) {
     return r.stroke.refine_local ? kRecordVersionRefinedLocal : kRecordVersionRefined;
   }
@@ -81,8 +86,22 @@ bool valid_turns(std::uint8_t long_turns, std::uint8_t hand_mask) {
   return (long_turns & ~hand_mask) == 0;
 }
 
+// Version 5's tail (after long_turns): threshold, local, the group (not none).
+bool read_symmetric_tail(ByteReader& in, StrokeRecord& s) {
+  s.refine_threshold_m = in.f64();
+  const std::uint8_t local = in.u8();
+  s.symmetry.kind = in.u8();
+  s.symmetry.mirrors = in.u8();
+  s.symmetry.axis = in.u8();
+  s.symmetry.order = in.u8();
+  s.refine_local = local == 1;
+  return valid_threshold(s.refine_threshold_m) && local <= 1 &&
+         (local == 0 || s.refine_threshold_m > 0.0) && s.symmetry.kind != 0 &&
+         valid_symmetry(s.symmetry);
+}
+
 // The versioned end of a stroke. Canonical: version 2 only when some hand turned the
-// long way, version 3 only with a threshold.
+// long way, version 3 only with a threshold, version 5 only with a symmetry.
 bool read_stroke_tail(ByteReader& in, std::uint8_t version, StrokeRecord& s) {
   if (version == kRecordVersion) return true;
   s.long_turns = in.u8();
@@ -90,6 +109,7 @@ bool read_stroke_tail(ByteReader& in, std::uint8_t version, StrokeRecord& s) {
       !valid_turns(s.long_turns, s.hand_mask)) {
     return false;
   }
+  if (version == kRecordVersionSymmetric) return read_symmetric_tail(in, s);
   if (version != kRecordVersionRefined && version != kRecordVersionRefinedLocal) return true;
   s.refine_local = version == kRecordVersionRefinedLocal;
   s.refine_threshold_m = in.f64();
@@ -98,12 +118,27 @@ bool read_stroke_tail(ByteReader& in, std::uint8_t version, StrokeRecord& s) {
 
 }  // namespace
 
+bool valid_symmetry(const StrokeSymmetry& s) {
+  switch (s.kind) {
+    case 0:
+      return s.mirrors == 0 && s.axis == 0 && s.order == 0;
+    case 1:
+      return s.mirrors >= 1 && s.mirrors <= 7 && s.axis == 0 && s.order == 0;
+    case 2:
+    case 3:
+      return s.mirrors == 0 && s.axis <= 2 && s.order >= 2 && s.order <= 12;
+    default:
+      return false;
+  }
+}
+
 Result<std::size_t> encode_record(const JournalRecord& r, std::span<std::byte> out) {
   if (r.type == RecordType::stroke &&
       (!valid_mask(r.stroke.hand_mask) || r.stroke.method >= kMethodCount ||
        !valid_turns(r.stroke.long_turns, r.stroke.hand_mask) ||
        !valid_threshold(r.stroke.refine_threshold_m) ||
-       (r.stroke.refine_local && !(r.stroke.refine_threshold_m > 0.0)))) {
+       (r.stroke.refine_local && !(r.stroke.refine_threshold_m > 0.0)) ||
+       !valid_symmetry(r.stroke.symmetry))) {
     return StatusCode::invalid_argument;
   }
   if (r.type == RecordType::object_move && r.move.hand > 1) return StatusCode::invalid_argument;
@@ -130,7 +165,16 @@ Result<std::size_t> encode_record(const JournalRecord& r, std::span<std::byte> o
         write_pose(w, r.stroke.end[h]);
       }
       if (record_version(r) != kRecordVersion) w.u8(r.stroke.long_turns);
-      if (r.stroke.refine_threshold_m > 0.0) w.f64(r.stroke.refine_threshold_m);
+      if (record_version(r) == kRecordVersionSymmetric) {
+        w.f64(r.stroke.refine_threshold_m);
+        w.u8(r.stroke.refine_local ? 1 : 0);
+        w.u8(r.stroke.symmetry.kind);
+        w.u8(r.stroke.symmetry.mirrors);
+        w.u8(r.stroke.symmetry.axis);
+        w.u8(r.stroke.symmetry.order);
+      } else if (r.stroke.refine_threshold_m > 0.0) {
+        w.f64(r.stroke.refine_threshold_m);
+      }
       break;
     case RecordType::object_move:
       w.u8(r.move.hand);
@@ -150,7 +194,7 @@ Result<JournalRecord> decode_payload(std::uint8_t version, std::uint8_t type,
   const bool stroke = type == static_cast<std::uint8_t>(RecordType::stroke);
   if (version != kRecordVersion &&
       !(stroke && (version == kRecordVersionLongTurns || version == kRecordVersionRefined ||
-                   version == kRecordVersionRefinedLocal))) {
+                   version == kRecordVersionRefinedLocal || version == kRecordVersionSymmetric))) {
     return StatusCode::data_loss;
   }
   if (payload.size() < kSequenceOnlyBytes) return StatusCode::data_loss;

@@ -76,6 +76,22 @@ void write_stroke(ByteWriter& w, const StrokeBegin& s) {
     if ((s.hand_mask & (1u << h)) != 0) write_pose(w, s.start[h]);
   }
   w.f32(s.refine_threshold_m);
+  write_bytes(w, s.symmetry);
+}
+
+// The group's bytes in canonical form (none included), as journal records check them.
+bool valid_symmetry(const std::array<std::uint8_t, 4>& b) {
+  switch (b[0]) {
+    case 0:
+      return b[1] == 0 && b[2] == 0 && b[3] == 0;
+    case 1:
+      return b[1] >= 1 && b[1] <= 7 && b[2] == 0 && b[3] == 0;
+    case 2:
+    case 3:
+      return b[1] == 0 && b[2] <= 2 && b[3] >= 2 && b[3] <= 12;
+    default:
+      return false;
+  }
 }
 
 bool read_stroke(ByteReader& r, StrokeBegin& s) {
@@ -91,7 +107,9 @@ bool read_stroke(ByteReader& r, StrokeBegin& s) {
     s.start[h] = (s.hand_mask & (1u << h)) != 0 ? read_pose(r, bad) : Pose{};
   }
   s.refine_threshold_m = r.f32();
-  return !bad && std::isfinite(s.refine_threshold_m) && s.refine_threshold_m >= 0.0F;
+  read_bytes(r, s.symmetry);
+  return !bad && std::isfinite(s.refine_threshold_m) && s.refine_threshold_m >= 0.0F &&
+         valid_symmetry(s.symmetry);
 }
 
 void write_hands(ByteWriter& w, const Hands& l) {

@@ -32,12 +32,42 @@ glm::dmat3 axis_rotation(int a, double angle) {
 
 }  // namespace
 
+bool valid_symmetry(const SymmetrySpec& s) {
+  switch (s.kind) {
+    case SymmetryKind::none:
+      return s.mirrors == 0 && s.axis == 0 && s.order == 0;
+    case SymmetryKind::mirrors:
+      return s.mirrors != 0 && (s.mirrors & ~(kMirrorX | kMirrorY | kMirrorZ)) == 0 &&
+             s.axis == 0 && s.order == 0;
+    case SymmetryKind::rotation:
+    case SymmetryKind::rotation_mirror:
+      return s.mirrors == 0 && s.axis <= 2 && s.order >= kMinRotationOrder &&
+             s.order <= kMaxRotationOrder;
+  }
+  return false;
+}
+
 SymmetryGroup::SymmetryGroup() { set_none(); }
 
 void SymmetryGroup::set_none() {
   elements_[0] = glm::dmat3(1.0);
   order_ = 1;
-  kind_ = SymmetryKind::none;
+  spec_ = SymmetrySpec{};
+}
+
+Status SymmetryGroup::set(const SymmetrySpec& spec) {
+  if (!valid_symmetry(spec)) return StatusCode::invalid_argument;
+  switch (spec.kind) {
+    case SymmetryKind::none:
+      set_none();
+      return ok_status();
+    case SymmetryKind::mirrors:
+      return set_mirrors(spec.mirrors);
+    case SymmetryKind::rotation:
+    case SymmetryKind::rotation_mirror:
+      return set_rotation(spec.axis, spec.order, spec.kind == SymmetryKind::rotation_mirror);
+  }
+  return StatusCode::invalid_argument;
 }
 
 Status SymmetryGroup::set_mirrors(std::uint8_t planes) {
@@ -55,7 +85,7 @@ Status SymmetryGroup::set_mirrors(std::uint8_t planes) {
     elements_[n++] = m;
   }
   order_ = n;
-  kind_ = SymmetryKind::mirrors;
+  spec_ = SymmetrySpec{SymmetryKind::mirrors, planes, 0, 0};
   return ok_status();
 }
 
@@ -77,7 +107,8 @@ Status SymmetryGroup::set_rotation(int axis, int n, bool with_mirror) {
     for (std::size_t j = 0; j < count; ++j) elements_[count + j] = elements_[j] * flip;
   }
   order_ = with_mirror ? 2 * count : count;
-  kind_ = with_mirror ? SymmetryKind::rotation_mirror : SymmetryKind::rotation;
+  spec_ = SymmetrySpec{with_mirror ? SymmetryKind::rotation_mirror : SymmetryKind::rotation, 0,
+                       static_cast<std::uint8_t>(axis), static_cast<std::uint8_t>(n)};
   return ok_status();
 }
 
@@ -148,7 +179,14 @@ Status SymmetricWarp::build(const SymmetryGroup& group, std::span<const Frame> s
   return ok_status();
 }
 
-Status SymmetricWarp::update(std::span<const Frame> end) {
+Status SymmetricWarp::update(std::span<const Frame> end) { return set_end(end, true, 0); }
+
+Status SymmetricWarp::update_turns(std::span<const Frame> end, std::uint8_t long_turns) {
+  return set_end(end, false, long_turns);
+}
+
+Status SymmetricWarp::set_end(std::span<const Frame> end, bool keep_sense,
+                              std::uint8_t long_turns) {
   if (!built()) return StatusCode::failed_precondition;
   if (end.size() != hands_) return StatusCode::invalid_argument;
   for (const Frame& f : end) {
@@ -156,10 +194,26 @@ Status SymmetricWarp::update(std::span<const Frame> end) {
   }
   for (std::size_t h = 0; h < hands_; ++h) {
     std::optional<glm::dvec3> previous;
-    if (!screws_[h].pure_translation) previous = screws_[h].axis;
+    if (keep_sense && !screws_[h].pure_translation) previous = screws_[h].axis;
     end_[h] = end[h];
     if (stab_[h] > 1) end_[h].origin += shift_[h];
     screws_[h] = compute_screw(start_[h], end_[h], previous);
+    if ((long_turns & (1u << h)) != 0) screws_[h] = long_way_round(screws_[h]);
+  }
+  return ok_status();
+}
+
+Status SymmetricWarp::rebase(std::span<const Frame> start) {
+  if (!built()) return StatusCode::failed_precondition;
+  if (start.size() != hands_) return StatusCode::invalid_argument;
+  for (const Frame& f : start) {
+    if (!is_orthonormal(f)) return StatusCode::invalid_argument;
+  }
+  for (std::size_t h = 0; h < hands_; ++h) {
+    start_[h] = start[h];
+    if (stab_[h] > 1) start_[h].origin += shift_[h];
+    end_[h] = start_[h];
+    screws_[h] = compute_screw(start_[h], end_[h]);
   }
   return ok_status();
 }
@@ -168,6 +222,9 @@ double SymmetricWarp::weight(std::size_t k, glm::dvec3 p) const {
   const glm::dvec3 grab = point_[k];
   std::uint64_t others = neighbours_[k];
   if (others == 0) return decay(glm::length(p - grab), radius_);
+  // The squash only moves p away from the grab point (§11.3): beyond the radius every
+  // term is decay(>= r) = 0, the value the loop below would reach.
+  if (!(glm::length(p - grab) < radius_)) return 0.0;
   double w = 1.0;
   while (others != 0 && w > 0.0) {
     const auto j = static_cast<std::size_t>(std::countr_zero(others));
@@ -182,10 +239,10 @@ glm::dvec3 SymmetricWarp::hand_move(std::size_t hand, double t, glm::dvec3 p) co
                                         : screw_at(screws_[hand], t, p);
 }
 
-glm::dvec3 SymmetricWarp::warp_point(glm::dvec3 p) const {
+glm::dvec3 SymmetricWarp::warp_point(glm::dvec3 weights_at, glm::dvec3 p) const {
   if (!built()) return p;
   std::array<double, kMaxGrabPoints> w;
-  for (std::size_t k = 0; k < points_; ++k) w[k] = weight(k, p);
+  for (std::size_t k = 0; k < points_; ++k) w[k] = weight(k, weights_at);
   glm::dvec3 moved = p;
   const std::size_t order = group_.order();
   for (std::size_t h = 0; h < hands_; ++h) {

@@ -50,11 +50,18 @@ void fill_kernel_hand(KernelHand& h, const Screw& s, const Frame& start, const F
   }
 }
 WarpPlan::WarpPlan(WarpPlanStorage storage)
-    : indices_(storage.indices), weights1_(storage.weights1), weights2_(storage.weights2) {
-  capacity_ = std::min({indices_.size(), weights1_.size(), weights2_.size()});
+    : indices_(storage.indices),
+      weights1_(storage.weights1),
+      weights2_(storage.weights2),
+      symmetry_(storage.symmetry) {
+  const std::size_t capacity = std::min({indices_.size(), weights1_.size(), weights2_.size()});
+  indices_ = indices_.first(capacity);
+  weights1_ = weights1_.first(capacity);
+  weights2_ = weights2_.first(capacity);
 }
 
 void WarpPlan::reset() {
+  if (symmetry_ != nullptr) symmetry_->warp.reset();
   hands_ = 0;
   long_turns_ = 0;
   count_ = 0;
@@ -101,7 +108,7 @@ Status WarpPlan::build(ConstVertexColumns rest, std::span<const Frame> start, do
     const bool moved =
         w1 > 0.0 || w2 > 0.0 || (method == WarpMethod::scodef && scodef_.influences(p));
     if (!moved) continue;
-    if (count_ == capacity_) {
+    if (count_ == capacity()) {
       reset();
       return StatusCode::resource_exhausted;
     }
@@ -120,6 +127,65 @@ Status WarpPlan::build(ConstVertexColumns rest, std::span<const Frame> start, do
   return ok_status();
 }
 
+Status WarpPlan::build(ConstVertexColumns rest, std::span<const Frame> start, double radius,
+                       WarpMethod method, const SymmetryGroup& group) {
+  if (group.trivial()) return build(rest, start, radius, method);
+  const Status s = build_symmetric(rest, start, radius, method, group);
+  if (!s.ok()) reset();
+  return s;
+}
+
+Status WarpPlan::build_symmetric(ConstVertexColumns rest, std::span<const Frame> start,
+                                 double radius, WarpMethod method, const SymmetryGroup& group) {
+  reset();
+  if (symmetry_ == nullptr) return StatusCode::failed_precondition;
+  if (!rest.consistent() || rest.size() > std::numeric_limits<std::uint32_t>::max() ||
+      coincident_grabs(start, radius)) {
+    return StatusCode::invalid_argument;
+  }
+  // The frame, radius and method checks, the snap and the images (§11.4).
+  SymmetricWarp& sym = symmetry_->warp;
+  TWISTER_TRY(sym.build(group, start, radius, method));
+  radius_ = radius;
+  method_ = method;
+  hands_ = start.size();
+  std::copy(start.begin(), start.end(), start_.begin());
+  std::copy(start.begin(), start.end(), end_.begin());
+  const VertexColumns& keep = symmetry_->start;
+  const std::size_t room = std::min({capacity(), keep.x.size(), keep.y.size(), keep.z.size()});
+  const std::size_t points = sym.grab_point_count();
+  for (std::size_t i = 0; i < rest.size(); ++i) {
+    const glm::dvec3 p(rest.x[i], rest.y[i], rest.z[i]);
+    // Weights vanish beyond the radius of every grab point (the squash only lowers them).
+    bool moved = false;
+    for (std::size_t k = 0; k < points && !moved; ++k) {
+      moved = glm::length(p - sym.grab_point(k)) < radius;
+    }
+    if (!moved) continue;
+    if (count_ == room) {
+      reset();
+      return StatusCode::resource_exhausted;
+    }
+    // The display's weights: each hand's own grab point (the identity image).
+    const double w1 = sym.weight(sym.grab_point_of(0, 0), p);
+    const double w2 = hands_ == 2 ? sym.weight(sym.grab_point_of(1, 0), p) : 0.0;
+    indices_[count_] = static_cast<std::uint32_t>(i);
+    weights1_[count_] = static_cast<float>(w1);
+    weights2_[count_] = static_cast<float>(w2);
+    keep.x[count_] = rest.x[i];
+    keep.y[count_] = rest.y[i];
+    keep.z[count_] = rest.z[i];
+    if (w1 > 0.0) ++hand_counts_[0];
+    if (w2 > 0.0) ++hand_counts_[1];
+    ++count_;
+  }
+  rest_size_ = rest.size();
+  dense_ = count_ == 0 || indices_[count_ - 1] - indices_[0] == count_ - 1;
+  for (std::size_t h = 0; h < hands_; ++h) screws_[h] = compute_screw(start_[h], end_[h]);
+  set_kernel_hands();
+  return ok_status();
+}
+
 Status WarpPlan::update(std::span<const Frame> end) { return set_end(end, true, 0); }
 
 Status WarpPlan::update_turns(std::span<const Frame> end, std::uint8_t long_turns) {
@@ -130,6 +196,10 @@ Status WarpPlan::set_end(std::span<const Frame> end, bool keep_sense, std::uint8
   if (!built()) return StatusCode::failed_precondition;
   TWISTER_TRY(check_frames(end));
   if (method_ == WarpMethod::scodef) TWISTER_TRY(scodef_.solve(end));
+  if (symmetric()) {
+    TWISTER_TRY(keep_sense ? symmetry_->warp.update(end)
+                           : symmetry_->warp.update_turns(end, long_turns));
+  }
   for (std::size_t h = 0; h < hands_; ++h) {
     std::optional<glm::dvec3> previous;
     if (keep_sense && !screws_[h].pure_translation) previous = screws_[h].axis;
@@ -152,6 +222,8 @@ Status WarpPlan::rebase(std::span<const Frame> start) {
     TWISTER_TRY(fresh.solve(start));
     scodef_ = fresh;
   }
+  // Symmetric: the same grab points and weights (of the chain-start positions).
+  if (symmetric()) TWISTER_TRY(symmetry_->warp.rebase(start));
   for (std::size_t h = 0; h < hands_; ++h) {
     start_[h] = start[h];
     end_[h] = start[h];
@@ -184,6 +256,10 @@ Status WarpPlan::apply(ConstVertexColumns rest, VertexColumns out) const {
     return StatusCode::invalid_argument;
   }
   if (count_ == 0) return ok_status();
+  if (symmetric()) {
+    apply_symmetric(rest, out);
+    return ok_status();
+  }
   if (method_ == WarpMethod::scodef) {
     // Not the hot path (a comparison method): evaluated per point in double.
     for (std::size_t i = 0; i < count_; ++i) {
@@ -238,8 +314,25 @@ Status WarpPlan::apply(ConstVertexColumns rest, VertexColumns out) const {
   return ok_status();
 }
 
+void WarpPlan::apply_symmetric(ConstVertexColumns rest, VertexColumns out) const {
+  // Not the float kernels: every image of every hand per vertex, in double (§11.2).
+  // The weights come from the chain-start position (the rest position at step 0).
+  const SymmetricWarp& sym = symmetry_->warp;
+  const VertexColumns& keep = symmetry_->start;
+  for (std::size_t i = 0; i < count_; ++i) {
+    const std::uint32_t v = indices_[i];
+    const glm::dvec3 p(keep.x[i], keep.y[i], keep.z[i]);
+    const glm::dvec3 q(rest.x[v], rest.y[v], rest.z[v]);
+    const glm::dvec3 moved = sym.warp_point(p, q);
+    out.x[v] = static_cast<float>(moved.x);
+    out.y[v] = static_cast<float>(moved.y);
+    out.z[v] = static_cast<float>(moved.z);
+  }
+}
+
 glm::dvec3 WarpPlan::warp_point(glm::dvec3 p) const {
   if (!built()) return p;
+  if (symmetric()) return symmetry_->warp.warp_point(p);
   if (method_ == WarpMethod::scodef) return p + scodef_.displacement(p);
   glm::dvec3 moved = p;
   for (std::size_t h = 0; h < hands_; ++h) {
@@ -279,7 +372,7 @@ void float_weights(const Frame& grab, const Frame* other, double radius, const f
 
 bool WarpPlan::warp_points_float(const float* x, const float* y, const float* z, float* out_x,
                                  float* out_y, float* out_z, std::size_t n) const {
-  if (!built() || method_ == WarpMethod::scodef || n > kFloatChunk) return false;
+  if (!built() || method_ == WarpMethod::scodef || symmetric() || n > kFloatChunk) return false;
   float w1[kFloatChunk];
   float w2[kFloatChunk];
   const bool two = hands_ == 2;
@@ -321,7 +414,9 @@ bool WarpPlan::warp_points_float(const float* x, const float* y, const float* z,
 //    Lipschitz bound L = 1 + sum (4 + G |grad t|), |grad t| <= pi/(2r) max(1, r/s)
 //    (s: the distance between the grabs, the squash's stretch).
 double WarpPlan::float_error_bound(double extent_m) const {
-  if (!built() || method_ == WarpMethod::scodef) return std::numeric_limits<double>::infinity();
+  if (!built() || method_ == WarpMethod::scodef || symmetric()) {
+    return std::numeric_limits<double>::infinity();
+  }
   constexpr double kWeight = 0x1p-18;
   constexpr double kKernel = 0x1p-16;
   double bound = 0x1p-23 * 1.7320508075688772 * extent_m;

@@ -22,7 +22,8 @@ void ClutchChain::note(const math::WarpPlan& plan, std::uint16_t step, bool keep
     overflow_ = false;
     steps_.clear();
     const std::span<const std::uint32_t> indices = plan.indices();
-    if (!keep || !plan.built() || plan.method() == math::WarpMethod::scodef ||
+    // Symmetric chains are not composed (ChainWarp has no images): committed unrefined.
+    if (!keep || !plan.built() || plan.method() == math::WarpMethod::scodef || plan.symmetric() ||
         !start_.consistent() || start_.size() < indices.size()) {
       return;
     }

@@ -49,14 +49,20 @@ Status JournalReplay::apply_stroke(const journal::StrokeRecord& s) {
       static_cast<math::WarpMethod>(s.method) == math::WarpMethod::scodef) {
     return StatusCode::data_loss;
   }
+  // The record's group (version 5; none before): decode_payload checked it.
+  const math::SymmetrySpec symmetry{static_cast<math::SymmetryKind>(s.symmetry.kind),
+                                    s.symmetry.mirrors, s.symmetry.axis, s.symmetry.order};
   if (s.chain_step == 0) {
-    TWISTER_TRY(
-        plan_.build(mesh_.rest(), start, s.radius_m, static_cast<math::WarpMethod>(s.method)));
+    math::SymmetryGroup group;
+    if (!group.set(symmetry).ok()) return StatusCode::data_loss;
+    TWISTER_TRY(plan_.build(mesh_.rest(), start, s.radius_m,
+                            static_cast<math::WarpMethod>(s.method), group));
   } else {
     // A freeze step reuses the weights of its chain: the chain must be the one just
-    // replayed, with the same hands, radius and method.
+    // replayed, with the same hands, radius, method and symmetry.
     if (!chain_open_ || s.chain_step != chain_step_ + 1 || plan_.hand_count() != n ||
-        plan_.radius() != s.radius_m || static_cast<std::uint8_t>(plan_.method()) != s.method) {
+        plan_.radius() != s.radius_m || static_cast<std::uint8_t>(plan_.method()) != s.method ||
+        plan_.symmetry() != symmetry) {
       return StatusCode::data_loss;
     }
     TWISTER_TRY(plan_.rebase(start));

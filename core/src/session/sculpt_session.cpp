@@ -63,6 +63,8 @@ SculptSession::SculptSession(const SculptSessionConfig& config, mesh::Mesh& mesh
       replay_(plan_, mesh_, history_, poses_),
       normals_(storage.normals) {
   history_.set_refinement(&refinement_);
+  // An invalid group (the configuration checks it) leaves strokes unsymmetrised.
+  strokes_.set_symmetry(config.symmetry).ignore();
   const std::size_t capacity = mesh.vertex_capacity();
   if (normals_.x.size() < capacity || normals_.y.size() < capacity ||
       normals_.z.size() < capacity) {
@@ -269,6 +271,8 @@ SessionState SculptSession::state() const {
   st.turn_tracking = strokes_.drive(0).config().tracking;
   st.stroke_active = strokes_.active();
   st.stroke_method = strokes_.active() ? plan_.method() : strokes_.method();
+  st.symmetry.next = strokes_.symmetry();
+  st.symmetry.stroke = strokes_.active() ? plan_.symmetry() : strokes_.symmetry();
   st.chain_step = strokes_.chain_step();
   st.moving_object = mover_.moving();
   st.undo_depth = history_.undo_history().undo_depth();

@@ -208,7 +208,7 @@ Status StrokeController::begin_segment(std::uint8_t mask) {
   hand_mask_ = mask;
   const math::PlanFrames frames = start_drives();
   segment_radius_m_ = static_cast<double>(radius_m_);
-  const Status s = plan_.build(mesh_.rest(), frames, segment_radius_m_, method_);
+  const Status s = plan_.build(mesh_.rest(), frames, segment_radius_m_, method_, symmetry_);
   if (!s.ok()) {
     drop_segment();
     return s;
@@ -226,6 +226,9 @@ SessionEvent StrokeController::commit_segment(std::uint8_t hand, input::Reason r
   r.hand_mask = hand_mask_;
   r.chain_step = chain_step_;
   r.radius_m = segment_radius_m_;
+  const math::SymmetrySpec sym = plan_.symmetry();
+  r.symmetry = journal::StrokeSymmetry{static_cast<std::uint8_t>(sym.kind), sym.mirrors, sym.axis,
+                                       sym.order};
   std::size_t i = 0;
   for (std::uint8_t h = 0; h < input::kHandCount; ++h) {
     if ((hand_mask_ & bit_of(h)) == 0) continue;

@@ -76,6 +76,8 @@ void LiveStream::send_stroke(const session::LiveWarp& live, std::uint32_t mesh_v
   s.hand_mask = live.hand_mask;
   s.radius_m = plan.radius();
   s.refine_threshold_m = static_cast<float>(live.refine_threshold_m);
+  const math::SymmetrySpec sym = plan.symmetry();
+  s.symmetry = {static_cast<std::uint8_t>(sym.kind), sym.mirrors, sym.axis, sym.order};
   std::size_t k = 0;
   for (std::size_t h = 0; h < link::kLinkHands; ++h) {
     if ((live.hand_mask & (1u << h)) == 0 || k >= plan.hand_count()) continue;

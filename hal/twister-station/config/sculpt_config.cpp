@@ -181,6 +181,42 @@ void read_radius(ConfigReader& s, SculptConfig& sc) {
   }
 }
 
+// symmetry, symmetry_axis, symmetry_order, symmetry_mirror (docs/math.md §11).
+void read_symmetry(ConfigReader& s, SculptConfig& sc) {
+  SymmetryConfig& sym = sc.symmetry;
+  std::string text;
+  if (s.string("symmetry", false, text, {"none", "x", "y", "z", "xy", "xz", "yz", "xyz", "rot"})) {
+    if (text == "none") {
+      sym.mode = SymmetryMode::none;
+    } else if (text == "rot") {
+      sym.mode = SymmetryMode::rotation;
+    } else {
+      sym.mode = SymmetryMode::mirrors;
+      sym.mirrors = 0;
+      for (const char c : text)
+        sym.mirrors = static_cast<std::uint8_t>(sym.mirrors | 1u << (c - 'x'));
+    }
+  }
+  const bool rotation = sym.mode == SymmetryMode::rotation;
+  for (const char* key : {"symmetry_axis", "symmetry_order", "symmetry_mirror"}) {
+    if (s.has(key) && !rotation) {
+      s.error(s.node(key), key, "only with sculpt.symmetry = \"rot\" (an n-fold rotation)");
+    }
+  }
+  if (s.string("symmetry_axis", false, text, {"x", "y", "z"})) {
+    sym.axis = static_cast<std::uint8_t>(text[0] - 'x');
+  }
+  std::int64_t order = 0;
+  if (s.integer("symmetry_order", false, 2, 12, order))
+    sym.order = static_cast<std::uint8_t>(order);
+  s.boolean("symmetry_mirror", sym.mirror);
+  if (sym.mode != SymmetryMode::none && sc.method == SculptMethod::scodef) {
+    s.error(s.node("symmetry"), "symmetry",
+            "scodef strokes are not symmetrised: use method = \"twister\" or \"rottran\", or "
+            "symmetry = \"none\"");
+  }
+}
+
 }  // namespace
 
 void read_sculpt(ConfigReader& root, StationFileConfig& cfg) {
@@ -204,6 +240,7 @@ void read_sculpt(ConfigReader& root, StationFileConfig& cfg) {
   }
   s.boolean("refine", sc.refine);
   s.real("refine_threshold_m", false, 1e-5, 0.1, sc.refine_threshold_m);
+  read_symmetry(s, sc);
   ConfigReader buttons = s.table("buttons", false);
   sc.buttons_configured = buttons.present();
   for (std::uint8_t hand = 0; hand < 2; ++hand) read_buttons_of(buttons, hand, cfg);

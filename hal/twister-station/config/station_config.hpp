@@ -180,6 +180,19 @@ struct ButtonBindingConfig {
   std::uint32_t file_line = 0;  // where it is written (for messages)
 };
 
+// [sculpt] symmetry (docs/math.md §11): every stroke mirrored in coordinate planes of
+// the object frame, or repeated n times about one of its axes (optionally with the
+// mirrors through that axis).
+enum class SymmetryMode : std::uint8_t { none, mirrors, rotation };
+
+struct SymmetryConfig {
+  SymmetryMode mode = SymmetryMode::none;
+  std::uint8_t mirrors = 0;  // mirrors: bit 0 the plane x = 0, bit 1 y = 0, bit 2 z = 0
+  std::uint8_t axis = 2;     // rotation: 0 x, 1 y, 2 z (symmetry_axis)
+  std::uint8_t order = 6;    // rotation: n = 2..12 (symmetry_order)
+  bool mirror = false;       // rotation: also the n mirrors through the axis
+};
+
 struct SculptConfig {
   SculptMethod method = SculptMethod::twister;
   double radius_m = 0.25;  // start radius of the influence ball
@@ -194,6 +207,7 @@ struct SculptConfig {
   // Largest midpoint error an edge keeps (absolute). Default:
   // session::kDefaultRefineThresholdM (a test checks).
   double refine_threshold_m = 0.0005;
+  SymmetryConfig symmetry{};
   bool buttons_configured = false;  // [sculpt.buttons] given (else the paper's map)
   std::vector<ButtonBindingConfig> buttons;
 };

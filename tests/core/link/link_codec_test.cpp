@@ -59,6 +59,14 @@ void random_live(MessageType type, LinkMessage& m) {
     for (std::size_t h = 0; h < kLinkHands; ++h) {
       if ((s.hand_mask & (1u << h)) != 0) s.start[h].origin = {d(), d(), d()};
     }
+    // Protocol 5: the segment's symmetry group (none, mirrors, Cn, Cnv).
+    const int kind = *rc::gen::inRange(0, 4);
+    if (kind == 1) s.symmetry = {1, static_cast<std::uint8_t>(*rc::gen::inRange(1, 8)), 0, 0};
+    if (kind >= 2) {
+      s.symmetry = {static_cast<std::uint8_t>(kind), 0,
+                    static_cast<std::uint8_t>(*rc::gen::inRange(0, 3)),
+                    static_cast<std::uint8_t>(*rc::gen::inRange(2, 13))};
+    }
   } else if (type == MessageType::hands) {
     Hands& l = m.emplace<Hands>();
     l.sequence = *rc::gen::arbitrary<std::uint16_t>();
@@ -254,6 +262,25 @@ TEST(LinkCodec, NonFiniteOrDegenerateLivePosesAreRefused) {
   s.radius_m = 0.2;
   s.start[0].u.x = std::numeric_limits<double>::infinity();
   EXPECT_TRUE(feed(d, encode(s)).empty());
+}
+
+// Protocol 5 (issue 26): a stroke's symmetry group round-trips; a malformed one is
+// refused like any out-of-range field.
+TEST(LinkCodec, StrokeSymmetryRoundTripsAndMalformedGroupsAreRefused) {
+  StrokeBegin s;
+  s.hand_mask = 3;
+  s.radius_m = 0.2;
+  s.symmetry = {3, 0, 1, 6};
+  LinkDecoder d;
+  LinkMessage got;
+  ASSERT_EQ(feed(d, encode(s), &got).size(), 1u);
+  EXPECT_EQ(std::get<StrokeBegin>(got).symmetry, s.symmetry);
+  const std::array<std::array<std::uint8_t, 4>, 6> bad{
+      {{4, 0, 0, 0}, {1, 0, 0, 0}, {1, 8, 0, 0}, {2, 0, 3, 6}, {2, 0, 0, 13}, {0, 0, 0, 2}}};
+  for (const auto& b : bad) {
+    s.symmetry = b;
+    EXPECT_TRUE(feed(d, encode(s)).empty()) << int{b[0]} << " " << int{b[1]};
+  }
 }
 
 TEST(LinkCodec, CommandsOfUnknownKindOrMethodAreRefused) {

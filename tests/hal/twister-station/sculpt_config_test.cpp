@@ -277,3 +277,60 @@ redo = [4, 5, 3]
 
 }  // namespace
 }  // namespace twister::station_app
+
+namespace twister::station_app {
+namespace {
+
+// Issue 26: [sculpt] symmetry, symmetry_axis, symmetry_order, symmetry_mirror.
+math::SymmetrySpec symmetry_of(const std::string& sculpt) {
+  const auto r = parse(sculpt);
+  EXPECT_TRUE(r.ok()) << messages(r);
+  const auto setup = make_station_setup(r.config);
+  EXPECT_TRUE(setup) << setup.error().message;
+  return setup ? setup->sculpt.symmetry : math::SymmetrySpec{};
+}
+
+TEST(SculptConfig, SymmetryMirrorsAndRotations) {
+  using K = math::SymmetryKind;
+  EXPECT_EQ(symmetry_of(""), math::SymmetrySpec{});
+  EXPECT_EQ(symmetry_of("[sculpt]\nsymmetry = \"none\"\n"), math::SymmetrySpec{});
+  EXPECT_EQ(symmetry_of("[sculpt]\nsymmetry = \"x\"\n"), (math::SymmetrySpec{K::mirrors, 1, 0, 0}));
+  EXPECT_EQ(symmetry_of("[sculpt]\nsymmetry = \"yz\"\n"),
+            (math::SymmetrySpec{K::mirrors, 6, 0, 0}));
+  EXPECT_EQ(symmetry_of("[sculpt]\nsymmetry = \"xyz\"\n"),
+            (math::SymmetrySpec{K::mirrors, 7, 0, 0}));
+  EXPECT_EQ(symmetry_of("[sculpt]\nsymmetry = \"rot\"\n"),
+            (math::SymmetrySpec{K::rotation, 0, 2, 6}));  // about z, 6-fold by default
+  EXPECT_EQ(symmetry_of("[sculpt]\nsymmetry = \"rot\"\nsymmetry_axis = \"y\"\n"
+                        "symmetry_order = 12\nsymmetry_mirror = true\n"),
+            (math::SymmetrySpec{K::rotation_mirror, 0, 1, 12}));
+  // Every group the configuration names is one the core accepts.
+  math::SymmetryGroup g;
+  EXPECT_TRUE(g.set(symmetry_of("[sculpt]\nsymmetry = \"rot\"\nsymmetry_order = 2\n")).ok());
+}
+
+TEST(SculptConfig, SymmetryErrors) {
+  EXPECT_EQ(one_error("[sculpt]\nsymmetry = \"w\"\n"),
+            at(2) +
+                "sculpt.symmetry: expected one of \"none\" \"x\" \"y\" \"z\" \"xy\" \"xz\" \"yz\" "
+                "\"xyz\" \"rot\", got \"w\"");
+  EXPECT_EQ(one_error("[sculpt]\nsymmetry = \"rot\"\nsymmetry_order = 13\n"),
+            at(3) + "sculpt.symmetry_order: expected an integer from 2 to 12, got 13");
+  EXPECT_EQ(one_error("[sculpt]\nsymmetry = \"rot\"\nsymmetry_order = 1\n"),
+            at(3) + "sculpt.symmetry_order: expected an integer from 2 to 12, got 1");
+  EXPECT_EQ(one_error("[sculpt]\nsymmetry = \"rot\"\nsymmetry_axis = \"w\"\n"),
+            at(3) + "sculpt.symmetry_axis: expected one of \"x\" \"y\" \"z\", got \"w\"");
+  EXPECT_EQ(
+      one_error("[sculpt]\nsymmetry = \"x\"\nsymmetry_order = 4\n"),
+      at(3) + "sculpt.symmetry_order: only with sculpt.symmetry = \"rot\" (an n-fold rotation)");
+  EXPECT_EQ(
+      one_error("[sculpt]\nsymmetry_mirror = true\n"),
+      at(2) + "sculpt.symmetry_mirror: only with sculpt.symmetry = \"rot\" (an n-fold rotation)");
+  EXPECT_EQ(one_error("[sculpt]\nmethod = \"scodef\"\nsymmetry = \"xy\"\n"),
+            at(3) +
+                "sculpt.symmetry: scodef strokes are not symmetrised: use method = \"twister\" or "
+                "\"rottran\", or symmetry = \"none\"");
+}
+
+}  // namespace
+}  // namespace twister::station_app

@@ -15,7 +15,13 @@
 // the threshold (f64, metres), so a replay refines exactly as the live commit did
 // whatever the station's configuration is at replay time. Version 4 is version 3
 // refined over the stroke's region only (refine_local). Versions 1 and 2 read as
-// not refined, so journals written before refinement replay as they did.
+// not refined, so journals written before refinement replay as they did. A stroke
+// under a symmetry group (docs/math.md §11; symmetry.kind != 0) is version 5: the
+// long_turns byte, the threshold (f64, 0: not refined), a refine_local byte (0 or 1,
+// 0 without a threshold), then the group: kind, mirrors, axis, order (one byte each,
+// math::SymmetrySpec's canonical form). Strokes without symmetry keep versions 1-4
+// byte for byte, so older journals replay unchanged and older readers refuse only
+// the symmetric strokes.
 // Poses are in the object frame of the time (metres; U, V unit axes, W = U x V).
 #pragma once
 
@@ -41,6 +47,8 @@ inline constexpr std::uint8_t kRecordVersionRefined = 3;
 // A stroke refined over the triangles its weights touch (refine_local): version 3's
 // payload, refined by mesh::MeshRefiner::refine_around at replay (docs/refinement.md).
 inline constexpr std::uint8_t kRecordVersionRefinedLocal = 4;
+// A stroke under a symmetry group (any refinement, any turns).
+inline constexpr std::uint8_t kRecordVersionSymmetric = 5;
 inline constexpr std::size_t kRecordHeaderBytes = 8;
 inline constexpr std::size_t kRecordCrcBytes = 4;
 inline constexpr std::size_t kMaxPayloadBytes = 512;
@@ -61,6 +69,20 @@ enum class RecordType : std::uint8_t {
 // when its poses are as_stored() ones.
 inline Pose as_stored(const Pose& p) { return {p.origin, p.u, p.v, glm::cross(p.u, p.v)}; }
 
+// A stroke's symmetry group (math::SymmetrySpec as bytes; kind 0: none, 1: mirrors with
+// the plane bits 1 x, 2 y, 4 z; 2: n-fold rotation, 3: with a mirror, about axis 0..2,
+// order 2..12). Unused fields are 0.
+struct StrokeSymmetry {
+  std::uint8_t kind = 0;
+  std::uint8_t mirrors = 0;
+  std::uint8_t axis = 0;
+  std::uint8_t order = 0;
+  friend bool operator==(const StrokeSymmetry&, const StrokeSymmetry&) = default;
+};
+
+// Whether `s` names a group in the canonical form (kind 0 with every field 0 included).
+bool valid_symmetry(const StrokeSymmetry& s);
+
 struct StrokeRecord {
   std::uint8_t method = 0;       // math::WarpMethod as a number
   std::uint8_t hand_mask = 0;    // bit h set: hand h took part (1, 2 or 3)
@@ -77,6 +99,7 @@ struct StrokeRecord {
   // With a threshold: refined over the triangles the stroke's weights touch and their
   // conforming closure (version 4) rather than the whole mesh (version 3).
   bool refine_local = false;
+  StrokeSymmetry symmetry{};    // kind != 0: version 5
   std::array<Pose, 2> start{};  // per hand, meaningful where hand_mask says
   std::array<Pose, 2> end{};
   friend bool operator==(const StrokeRecord&, const StrokeRecord&) = default;

@@ -1,4 +1,4 @@
-// Link messages between twister-station and twister-bridge (protocol version 5,
+// Link messages between twister-station and twister-bridge (protocol version 6,
 // docs/link-protocol.md). Each message type is its own small struct naming its
 // MessageType (kType); one frame on the wire carries one of them (see
 // link_codec.hpp for the framing). LinkMessage, a std::variant of all fourteen, is
@@ -19,7 +19,7 @@
 
 namespace twister::link {
 
-inline constexpr std::uint8_t kProtocolVersion = 5;
+inline constexpr std::uint8_t kProtocolVersion = 6;
 // Largest payload (version byte .. last body byte, without CRC) of one frame.
 inline constexpr std::size_t kMaxPayload = 4096;
 inline constexpr std::size_t kMaxVerticesPerChunk = 200;   // 16 bytes each
@@ -146,6 +146,11 @@ struct StrokeBegin {
   float refine_threshold_m = 0.0F;
   double radius_m = 0.0;
   std::array<twister::Pose, kLinkHands> start{};  // exact; per session hand in hand_mask
+  // The segment's symmetry group (protocol 5, docs/math.md §11), as the journal's
+  // version 5 stroke records carry it: kind 0 none, 1 mirrors (planes: bits x, y, z),
+  // 2 n-fold rotation about axis 0..2, 3 with the mirrors through it (order 2..12);
+  // unused fields 0. A display draws the images from it (the live warp of every image).
+  std::array<std::uint8_t, 4> symmetry{};  // kind, mirrors, axis, order
 };
 
 // Hands flags.

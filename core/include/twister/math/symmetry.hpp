@@ -33,6 +33,21 @@ inline constexpr std::uint8_t kMirrorZ = 4;
 inline constexpr int kMinRotationOrder = 2;
 inline constexpr int kMaxRotationOrder = 12;
 
+// A group by its parameters (what the station's configuration, the journal and the live
+// link carry): kind none; mirrors with the planes (kMirrorX/Y/Z bits); rotation or
+// rotation_mirror with the axis (0 x, 1 y, 2 z) and the order n (2..12). Fields a kind
+// does not use are 0 (canonical form, SymmetryGroup::spec()).
+struct SymmetrySpec {
+  SymmetryKind kind = SymmetryKind::none;
+  std::uint8_t mirrors = 0;
+  std::uint8_t axis = 0;
+  std::uint8_t order = 0;
+  friend bool operator==(const SymmetrySpec&, const SymmetrySpec&) = default;
+};
+
+// Whether `spec` names a group (canonical: unused fields 0).
+bool valid_symmetry(const SymmetrySpec& spec);
+
 class SymmetryGroup {
  public:
   static constexpr std::size_t kMaxOrder = 2 * kMaxRotationOrder;
@@ -47,8 +62,12 @@ class SymmetryGroup {
   // n in [2, 12]. invalid_argument otherwise; the group is then unchanged.
   Status set_rotation(int axis, int n, bool with_mirror);
   void set_none();
+  // The group `spec` names; invalid_argument (group unchanged) unless valid_symmetry.
+  Status set(const SymmetrySpec& spec);
+  // The parameters of the group (canonical).
+  SymmetrySpec spec() const { return spec_; }
 
-  SymmetryKind kind() const { return kind_; }
+  SymmetryKind kind() const { return spec_.kind; }
   std::size_t order() const { return order_; }
   bool trivial() const { return order_ == 1; }
   // Element i < order(); element 0 is the identity.
@@ -57,7 +76,7 @@ class SymmetryGroup {
  private:
   std::array<glm::dmat3, kMaxOrder> elements_{};
   std::size_t order_ = 1;
-  SymmetryKind kind_ = SymmetryKind::none;
+  SymmetrySpec spec_{};
 };
 
 class SymmetricWarp {
@@ -77,10 +96,22 @@ class SymmetricWarp {
   // previous axis sense at a half turn as WarpPlan::update does (§2.3).
   // invalid_argument: wrong count or a frame not orthonormal; failed_precondition: not built.
   Status update(std::span<const Frame> end);
+  // update() with each hand's screw chosen by the caller, as WarpPlan::update_turns:
+  // the minimal screw of its poses (no sense carried over), the long way round where
+  // bit h of `long_turns` is set.
+  Status update_turns(std::span<const Frame> end, std::uint8_t long_turns);
+  // A clutch step (WarpPlan::rebase): new start poses (each moved by its hand's snap),
+  // identity screws, and the SAME grab points and weights (those of build).
+  // invalid_argument: wrong count or a frame not orthonormal; failed_precondition: not built.
+  Status rebase(std::span<const Frame> start);
   void reset();
 
   // F(p) of §11.2. Identity when not built.
-  glm::dvec3 warp_point(glm::dvec3 p) const;
+  glm::dvec3 warp_point(glm::dvec3 p) const { return warp_point(p, p); }
+  // One clutch-chain step at the current position q of a point whose weights come
+  // from its chain-start position p: q + sum_h (1/|G_h|) sum_g g.(X_h(w_k(p), g^-1 q) -
+  // g^-1 q). warp_point(p) is warp_point(p, p). Equivariant: F(gp, gq) = g F(p, q).
+  glm::dvec3 warp_point(glm::dvec3 weights_at, glm::dvec3 q) const;
   // The weight w_k(p) of grab point k (§11.3).
   double weight(std::size_t k, glm::dvec3 p) const;
 
@@ -102,6 +133,7 @@ class SymmetricWarp {
 
  private:
   glm::dvec3 hand_move(std::size_t hand, double t, glm::dvec3 p) const;
+  Status set_end(std::span<const Frame> end, bool keep_sense, std::uint8_t long_turns);
 
   SymmetryGroup group_{};
   std::array<glm::dvec3, kMaxGrabPoints> point_{};

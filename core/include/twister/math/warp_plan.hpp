@@ -30,6 +30,7 @@
 #include "twister/math/frame.hpp"
 #include "twister/math/scodef.hpp"
 #include "twister/math/screw.hpp"
+#include "twister/math/symmetry.hpp"
 #include "twister/math/vertex_columns.hpp"
 #include "twister/math/warp_kernels.hpp"
 #include "twister/math/warp_method.hpp"
@@ -49,10 +50,20 @@ inline constexpr double kCoincidentGrabFraction = 1e-9;
 void fill_kernel_hand(KernelHand& h, const Screw& s, const Frame& start, const Frame& end,
                       WarpMethod method);
 
+// A plan's storage for symmetric strokes (docs/math.md §11): the symmetrised warp,
+// and each plan vertex's chain-start position (the argument of its weights through a
+// clutch chain: the symmetric weights are too many to store per vertex; each column at
+// least the plan's capacity). Without it a plan builds only under the trivial group.
+struct PlanSymmetry {
+  SymmetricWarp warp{};
+  VertexColumns start{};
+};
+
 struct WarpPlanStorage {
   std::span<std::uint32_t> indices;
   std::span<float> weights1;
   std::span<float> weights2;
+  PlanSymmetry* symmetry = nullptr;  // optional: symmetric strokes
 };
 
 class WarpPlan {
@@ -68,6 +79,15 @@ class WarpPlan {
   // On error the plan is empty (no hands) and apply() does nothing.
   Status build(ConstVertexColumns rest, std::span<const Frame> start, double radius,
                WarpMethod method);
+  // The same under a symmetry group (docs/math.md §11). The trivial group is exactly
+  // build() above. Otherwise the plan's vertices are those within the radius of some
+  // grab point (every image of every hand), weights1/weights2 are each hand's own
+  // (identity image) weight, for the display, and apply()/warp_point() evaluate the
+  // symmetrised warp per vertex in double (math::SymmetricWarp), float results.
+  // failed_precondition: no PlanSymmetry storage; invalid_argument also for scodef (not
+  // symmetrised) and for a hand on another hand's image; errors as build otherwise.
+  Status build(ConstVertexColumns rest, std::span<const Frame> start, double radius,
+               WarpMethod method, const SymmetryGroup& group);
 
   // New end poses (same count as build). Keeps the previous update's axis sense at
   // a half turn (§2). invalid_argument: wrong count or frame not orthonormal;
@@ -115,7 +135,15 @@ class WarpPlan {
 
   bool built() const { return hands_ > 0; }
   std::size_t hand_count() const { return hands_; }
-  std::size_t capacity() const { return capacity_; }
+  std::size_t capacity() const { return indices_.size(); }
+  // Built under a non-trivial group (build with a group).
+  bool symmetric() const { return symmetry_ != nullptr && symmetry_->warp.built(); }
+  // The group's parameters (kind none unless symmetric()).
+  SymmetrySpec symmetry() const {
+    return symmetric() ? symmetry_->warp.group().spec() : SymmetrySpec{};
+  }
+  // The symmetrised warp (meaningful while symmetric()).
+  const SymmetricWarp* symmetric_warp() const { return symmetric() ? &symmetry_->warp : nullptr; }
   double radius() const { return radius_; }
   WarpMethod method() const { return method_; }
   // Union of influenced vertex indices, ascending.
@@ -137,11 +165,15 @@ class WarpPlan {
   Status set_end(std::span<const Frame> end, bool keep_sense, std::uint8_t long_turns);
   void set_kernel_hands();
   double weight_of(std::size_t hand, glm::dvec3 p) const;
+  Status build_symmetric(ConstVertexColumns rest, std::span<const Frame> start, double radius,
+                         WarpMethod method, const SymmetryGroup& group);
+  void apply_symmetric(ConstVertexColumns rest, VertexColumns out) const;
 
+  // Trimmed to the capacity (the shortest of the three).
   std::span<std::uint32_t> indices_;
   std::span<float> weights1_;
   std::span<float> weights2_;
-  std::size_t capacity_ = 0;
+  PlanSymmetry* symmetry_ = nullptr;
   std::size_t count_ = 0;
   std::size_t rest_size_ = 0;
   std::array<std::size_t, kMaxHands> hand_counts_{};

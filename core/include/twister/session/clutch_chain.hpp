@@ -13,7 +13,8 @@
 // the step-0 grabs and radius that define w_h), each later step adds its screws and
 // poses. Bounded: at most kMaxChainSteps steps; a longer chain is kept no further
 // (too_long()) and its end is committed unrefined. scodef chains are not kept (its
-// displacement has no weight a later step could reuse; not refined).
+// displacement has no weight a later step could reuse; not refined), nor are symmetric
+// ones (docs/math.md §11: C would need every image's steps; committed unrefined).
 // Memory: the chain-start columns are the caller's (one float per plan vertex of
 // capacity, each column); no allocation. Not thread-safe.
 #pragma once

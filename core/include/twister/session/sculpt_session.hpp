@@ -85,6 +85,9 @@ struct SculptSessionConfig {
   math::WarpMethod method = math::WarpMethod::twister;
   TurnConfig turns{};     // how far one stroke may turn (unwrapped up to 330 degrees)
   RefineConfig refine{};  // adaptive refinement at commit (off by default)
+  // Every stroke mirrored or repeated about an axis (docs/math.md §11; none by default).
+  // Needs SculptStorage::plan.symmetry (else a symmetric grab is refused).
+  math::SymmetrySpec symmetry{};
 };
 
 // Caller-owned working memory, sized once at start-up.
@@ -93,7 +96,9 @@ struct SculptStorage {
   std::span<float> live_x;
   std::span<float> live_y;
   std::span<float> live_z;
-  math::WarpPlanStorage plan;  // capacity = most vertices one stroke may move
+  // capacity = most vertices one stroke may move; plan.symmetry (optional, its start
+  // columns the plan's capacity): symmetric strokes.
+  math::WarpPlanStorage plan;
   std::span<VertexChange> undo_changes;
   std::span<UndoEntry> undo_entries;
   // Refinement (optional; empty: commits are never refined): the refiner's memory for
@@ -183,6 +188,9 @@ class SculptSession {
   // What the display shows besides mesh and live warp (see SessionState).
   SessionState state() const;
   math::WarpMethod method() const { return strokes_.method(); }
+  // The symmetry group of the next strokes (SculptSessionConfig::symmetry).
+  math::SymmetrySpec symmetry() const { return strokes_.symmetry(); }
+  Status set_symmetry(const math::SymmetrySpec& spec) { return strokes_.set_symmetry(spec); }
   bool busy() const { return strokes_.active() || mover_.moving(); }  // stroke or move
   std::uint32_t next_sequence() const { return history_.next_sequence(); }
   const UndoHistory& history() const { return history_.undo_history(); }
@@ -236,6 +244,16 @@ struct FloatColumns {
   std::array<float, N> y{};
   std::array<float, N> z{};
 };
+// Symmetric strokes' plan storage: the warp and each plan vertex's chain-start position
+// (PlanSymmetry's columns point into `start`: not copyable).
+template <std::size_t N>
+struct SymmetryArrays {
+  SymmetryArrays() = default;
+  SymmetryArrays(const SymmetryArrays&) = delete;
+  SymmetryArrays& operator=(const SymmetryArrays&) = delete;
+  FloatColumns<N> start{};
+  math::PlanSymmetry plan{{}, math::VertexColumns{start.x, start.y, start.z}};
+};
 }  // namespace internal
 
 // A session owning its working memory: kVertices = mesh vertex capacity,
@@ -264,18 +282,20 @@ struct SculptStorageArrays {
   std::array<float, kRefineVertices> normal_y{};
   std::array<float, kRefineVertices> normal_z{};
   internal::FloatColumns<kChainVertices> chain_start{};
+  internal::SymmetryArrays<kInfluenced> symmetry{};
 
   SculptStorage spans() {
-    return SculptStorage{live_x,
-                         live_y,
-                         live_z,
-                         math::WarpPlanStorage{plan_indices, plan_weights1, plan_weights2},
-                         undo_changes,
-                         undo_entries,
-                         refiner.spans(),
-                         undo_triangle_changes,
-                         mesh::NormalColumns{normal_x, normal_y, normal_z},
-                         math::VertexColumns{chain_start.x, chain_start.y, chain_start.z}};
+    return SculptStorage{
+        live_x,
+        live_y,
+        live_z,
+        math::WarpPlanStorage{plan_indices, plan_weights1, plan_weights2, &symmetry.plan},
+        undo_changes,
+        undo_entries,
+        refiner.spans(),
+        undo_triangle_changes,
+        mesh::NormalColumns{normal_x, normal_y, normal_z},
+        math::VertexColumns{chain_start.x, chain_start.y, chain_start.z}};
   }
 };
 

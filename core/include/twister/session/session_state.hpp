@@ -12,6 +12,7 @@
 
 #include "twister/input/button_map.hpp"
 #include "twister/input/interaction_machine.hpp"
+#include "twister/math/symmetry.hpp"
 #include "twister/math/warp_method.hpp"
 #include "twister/session/commit_refinement.hpp"
 #include "twister/session/hand_drive.hpp"
@@ -29,6 +30,12 @@ struct HandView {
   bool at_turn_limit = false;    // turned past the limit: the warp holds
 };
 
+// The symmetry groups (docs/math.md §11): of the next stroke, of the open one.
+struct SymmetryView {
+  math::SymmetrySpec next{};
+  math::SymmetrySpec stroke{};
+};
+
 struct SessionState {
   float radius_m = 0.0f;
   bool radius_gesture_enabled = true;
@@ -37,6 +44,7 @@ struct SessionState {
   TurnTracking turn_tracking = TurnTracking::unwrapped;
   bool stroke_active = false;
   math::WarpMethod stroke_method = math::WarpMethod::twister;  // of the open stroke
+  SymmetryView symmetry{};       // of the next and the open stroke (docs/math.md §11)
   std::uint16_t chain_step = 0;  // freeze steps of the open stroke so far
   bool moving_object = false;
   std::size_t undo_depth = 0;

@@ -37,6 +37,7 @@
 #include "twister/base/status.hpp"
 #include "twister/input/interaction_machine.hpp"
 #include "twister/math/frame.hpp"
+#include "twister/math/symmetry.hpp"
 #include "twister/math/vertex_columns.hpp"
 #include "twister/math/warp_method.hpp"
 #include "twister/math/warp_plan.hpp"
@@ -84,6 +85,10 @@ class StrokeController {
   // The method of segments begun from now on (the open one keeps its own).
   void set_method(math::WarpMethod method) { method_ = method; }
   math::WarpMethod method() const { return method_; }
+  // The symmetry group of segments begun from now on (docs/math.md §11; the open one
+  // keeps its own). invalid_argument (unchanged) unless math::valid_symmetry(spec).
+  Status set_symmetry(const math::SymmetrySpec& spec) { return symmetry_.set(spec); }
+  math::SymmetrySpec symmetry() const { return symmetry_.spec(); }
 
   bool active() const { return hand_mask_ != 0; }
   std::uint8_t hand_mask() const { return hand_mask_; }
@@ -136,7 +141,8 @@ class StrokeController {
   const SessionPoses& poses_;
   StrokeCommitSink& commits_;
   math::WarpMethod method_;
-  float radius_m_ = 0.0f;  // the machine's radius in the current step
+  math::SymmetryGroup symmetry_{};  // of new segments
+  float radius_m_ = 0.0f;           // the machine's radius in the current step
   std::array<HandDrive, input::kHandCount> drives_;
   // Open stroke segment.
   std::uint8_t hand_mask_ = 0;

@@ -1,4 +1,4 @@
-// StationLink: the station's side of the display link (protocol 5,
+// StationLink: the station's side of the display link (protocol 6,
 // docs/link-protocol.md), driven from the station's loop after Station::poll(). A
 // thin coordinator of four parts, one job each:
 //   LinkAdmission  who the display is: handshakes on the display's and the
