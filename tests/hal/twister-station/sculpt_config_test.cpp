@@ -144,7 +144,8 @@ TEST(SculptConfig, UnknownKeysAreErrors) {
               HasSubstr(at(2) + "sculpt.radius: unknown key (allowed here: method, "
                                 "radius_gesture, radius_min_m, radius_max_m, radius_m, "
                                 "turn_tracking, turn_limit_deg, lost_timeout_ms, refine, "
-                                "refine_threshold_m, buttons)"));
+                                "refine_threshold_m, symmetry, symmetry_axis, symmetry_order, "
+                                "symmetry_mirror, buttons)"));
   EXPECT_THAT(one_error("[sculpt.buttons.middle]\ngrab = 0\n"),
               HasSubstr("sculpt.buttons.middle: unknown key (allowed here: left, right)"));
   EXPECT_THAT(one_error("[sculpt.buttons.left]\ngrip = 0\n"),
