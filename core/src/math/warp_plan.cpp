@@ -112,19 +112,29 @@ Status WarpPlan::build(ConstVertexColumns rest, std::span<const Frame> start, do
       reset();
       return StatusCode::resource_exhausted;
     }
-    indices_[count_] = static_cast<std::uint32_t>(i);
-    weights1_[count_] = static_cast<float>(w1);
-    weights2_[count_] = static_cast<float>(w2);
-    if (w1 > 0.0) ++hand_counts_[0];
-    if (w2 > 0.0) ++hand_counts_[1];
-    ++count_;
+    take(i, w1, w2);
   }
-  rest_size_ = rest.size();
-  dense_ = count_ == 0 || indices_[count_ - 1] - indices_[0] == count_ - 1;
-  for (std::size_t h = 0; h < hands_; ++h) screws_[h] = compute_screw(start_[h], end_[h]);
+  finish_build(rest.size());
   if (method == WarpMethod::scodef) TWISTER_TRY(scodef_.solve(start));
   set_kernel_hands();
   return ok_status();
+}
+
+// Vertex i joins the plan with its weights (the caller checked the room).
+void WarpPlan::take(std::size_t i, double w1, double w2) {
+  indices_[count_] = static_cast<std::uint32_t>(i);
+  weights1_[count_] = static_cast<float>(w1);
+  weights2_[count_] = static_cast<float>(w2);
+  if (w1 > 0.0) ++hand_counts_[0];
+  if (w2 > 0.0) ++hand_counts_[1];
+  ++count_;
+}
+
+// After the vertices: the rest size, whether they are one run, each hand's screw.
+void WarpPlan::finish_build(std::size_t rest_size) {
+  rest_size_ = rest_size;
+  dense_ = count_ == 0 || indices_[count_ - 1] - indices_[0] == count_ - 1;
+  for (std::size_t h = 0; h < hands_; ++h) screws_[h] = compute_screw(start_[h], end_[h]);
 }
 
 Status WarpPlan::build(ConstVertexColumns rest, std::span<const Frame> start, double radius,
@@ -169,19 +179,12 @@ Status WarpPlan::build_symmetric(ConstVertexColumns rest, std::span<const Frame>
     // The display's weights: each hand's own grab point (the identity image).
     const double w1 = sym.weight(sym.grab_point_of(0, 0), p);
     const double w2 = hands_ == 2 ? sym.weight(sym.grab_point_of(1, 0), p) : 0.0;
-    indices_[count_] = static_cast<std::uint32_t>(i);
-    weights1_[count_] = static_cast<float>(w1);
-    weights2_[count_] = static_cast<float>(w2);
     keep.x[count_] = rest.x[i];
     keep.y[count_] = rest.y[i];
     keep.z[count_] = rest.z[i];
-    if (w1 > 0.0) ++hand_counts_[0];
-    if (w2 > 0.0) ++hand_counts_[1];
-    ++count_;
+    take(i, w1, w2);
   }
-  rest_size_ = rest.size();
-  dense_ = count_ == 0 || indices_[count_ - 1] - indices_[0] == count_ - 1;
-  for (std::size_t h = 0; h < hands_; ++h) screws_[h] = compute_screw(start_[h], end_[h]);
+  finish_build(rest.size());
   set_kernel_hands();
   return ok_status();
 }

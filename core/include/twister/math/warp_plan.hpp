@@ -164,6 +164,8 @@ class WarpPlan {
   // update() (keep_sense: the half-turn hint of §2) and update_turns().
   Status set_end(std::span<const Frame> end, bool keep_sense, std::uint8_t long_turns);
   void set_kernel_hands();
+  void take(std::size_t i, double w1, double w2);
+  void finish_build(std::size_t rest_size);
   double weight_of(std::size_t hand, glm::dvec3 p) const;
   Status build_symmetric(ConstVertexColumns rest, std::span<const Frame> start, double radius,
                          WarpMethod method, const SymmetryGroup& group);
