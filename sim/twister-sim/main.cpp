@@ -11,7 +11,6 @@
 
 #include <CLI/CLI.hpp>
 #include <cerrno>
-#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -266,7 +265,7 @@ int serve(Options& o, const twister::sim::Scenario& scenario,
     }
     // The buttons on the scenario's clock, as the tracker's motion (--scenario-clock).
     if (buttons.is_open() && device.scenario_started() &&
-        !buttons.advance(player, std::llround(device.scenario_time_s(server.now_us()) * 1e6))) {
+        !buttons.advance(player, device.scenario_time_us(server.now_us()))) {
       return kExitFailure;
     }
     if (duration_s > 0.0 && static_cast<double>(server.now_us()) / 1e6 >= duration_s) break;

@@ -630,8 +630,8 @@ void MeshRefiner::warp_vertices(VertexBatch& b) {
 bool MeshRefiner::collect_and_settle(std::span<const std::uint32_t> vertices, VertexImages images) {
   filter_ = FloatFilter{};
   const std::size_t n = mesh_->vertex_count();
-  FloatBatch b;
   if (images.x.size() < n || images.y.size() < n || images.z.size() < n) {
+    FloatBatch b;
     collect_region(vertices);
     if (!warp_region_vertices()) return false;  // the warp offers no float batch
     filter_.images = {storage_.float_x, storage_.float_y, storage_.float_z};
@@ -640,9 +640,10 @@ bool MeshRefiner::collect_and_settle(std::span<const std::uint32_t> vertices, Ve
     return filter_.unsettled == 0;
   }
   stamp_images(vertices, images);
-  if (settle_stroke_edges(vertices)) return true;
+  if (settle_stroke_edges(vertices)) return true;  // the usual case: nothing else to do
   filter_.settled = 0;
   filter_.unsettled = 0;
+  FloatBatch b;
   const std::size_t capacity = region_.stamps.size();
   std::span<std::uint32_t> list = storage_.adjacency.incident.subspan(capacity, capacity);
   std::size_t count = 0;

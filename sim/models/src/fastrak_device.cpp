@@ -55,8 +55,12 @@ FastrakDevice::FastrakDevice(const FastrakDeviceConfig& config, Scenario scenari
   power_up(start_us);
 }
 
+ports::TimestampUs FastrakDevice::scenario_time_us(ports::TimestampUs now) const {
+  return now <= scenario_origin_ ? 0 : now - scenario_origin_;
+}
+
 double FastrakDevice::scenario_time_s(ports::TimestampUs now) const {
-  return now <= scenario_origin_ ? 0.0 : static_cast<double>(now - scenario_origin_) / 1e6;
+  return static_cast<double>(scenario_time_us(now)) / 1e6;
 }
 
 void FastrakDevice::power_up(ports::TimestampUs now) {

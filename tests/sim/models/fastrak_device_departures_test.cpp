@@ -12,8 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "twister/sim/fastrak_device.hpp"
-#include "twister/tracker/fastrak_parser.hpp"
+#include "device_host.hpp"
 
 namespace twister::sim {
 namespace {
@@ -24,44 +23,13 @@ using tracker::Format;
 using tracker::Item;
 using tracker::OutputList;
 
-Scenario scenario(const std::string& text) {
-  Scenario sc;
-  std::string err;
-  EXPECT_TRUE(parse_scenario(text, sc, err)) << err;
-  return sc;
-}
-
 FastrakDeviceConfig quick_device() {
   FastrakDeviceConfig d;
   d.reset_time_us = 0;
   return d;
 }
 
-// A host writing at chosen times and reading every byte, 1 ms steps.
-struct Host {
-  FastrakDevice device;
-  ports::TimestampUs now = 0;
-  std::vector<std::byte> out;
-
-  Host(const std::string& text, const FastrakDeviceConfig& dev) : device(dev, scenario(text), 0) {}
-  void send(const std::string& s) {
-    device.receive(reinterpret_cast<const std::byte*>(s.data()), s.size(), now);
-  }
-  void run(double seconds) {
-    const auto end = now + static_cast<ports::TimestampUs>(seconds * 1e6);
-    while (now < end) {
-      now += 1'000;
-      device.advance(now, out);
-    }
-  }
-  std::string text() const { return {reinterpret_cast<const char*>(out.data()), out.size()}; }
-  std::vector<FastrakEvent> events(const tracker::FastrakConfig& c) const {
-    tracker::FastrakParser parser(c);
-    std::vector<FastrakEvent> ev;
-    parser.feed(out, [&](const FastrakEvent& e) { ev.push_back(e); });
-    return ev;
-  }
-};
+using Host = test::DeviceHost;
 
 // VRPN's list (vrpn_Tracker_Fastrak: "O%d,2,11,0"): 3 + 12 + 16 + 1 = 32 bytes in binary,
 // 320 bit times: exactly two 120 Hz cycles at 19,200 baud.

@@ -9,8 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "twister/sim/fastrak_device.hpp"
-#include "twister/tracker/fastrak_parser.hpp"
+#include "device_host.hpp"
 
 namespace twister::sim {
 namespace {
@@ -21,44 +20,15 @@ using tracker::Format;
 using tracker::Item;
 using tracker::OutputList;
 
-Scenario scenario(const std::string& text) {
-  Scenario sc;
-  std::string err;
-  EXPECT_TRUE(parse_scenario(text, sc, err)) << err;
-  return sc;
-}
-
 // The unit with a host that writes commands at given times and reads every byte.
-struct Bench {
-  FastrakDevice device;
-  ports::TimestampUs now = 0;
-  std::vector<std::byte> out;
-
-  explicit Bench(const std::string& text, FastrakDeviceConfig dev = instant_device())
-      : device(dev, scenario(text), 0) {}
+struct Bench : test::DeviceHost {
+  explicit Bench(const std::string& text, const FastrakDeviceConfig& dev = instant_device())
+      : DeviceHost(text, dev) {}
   static FastrakDeviceConfig instant_device() {
     FastrakDeviceConfig d;
     d.reset_time_us = 0;
     d.command_time_us = instant_commands();  // commands in one write (timing: its own test)
     return d;
-  }
-  void send(const std::string& s) {
-    device.receive(reinterpret_cast<const std::byte*>(s.data()), s.size(), now);
-  }
-  void run(double seconds) {
-    const auto end = now + static_cast<ports::TimestampUs>(seconds * 1e6);
-    while (now < end) {
-      now += 1'000;
-      device.advance(now, out);
-    }
-  }
-  std::string text() const { return {reinterpret_cast<const char*>(out.data()), out.size()}; }
-  std::vector<FastrakEvent> events(const tracker::FastrakConfig& c) const {
-    tracker::FastrakParser parser(c);
-    std::vector<FastrakEvent> ev;
-    parser.feed(out, [&](const FastrakEvent& e) { ev.push_back(e); });
-    for (auto e = parser.finish(); e.ok(); e = parser.finish()) ev.push_back(*e);
-    return ev;
   }
 };
 

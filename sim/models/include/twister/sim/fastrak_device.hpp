@@ -139,7 +139,8 @@ class FastrakDevice final : private ReplySink {
   const tracker::FastrakConfig& protocol() const { return settings_.protocol; }
   const FilterParams& position_filter() const { return settings_.filter[0]; }
   const FilterParams& attitude_filter() const { return settings_.filter[1]; }
-  // Scenario time in seconds at `now` (0 before the scenario's clock has started).
+  // Scenario time at `now` (0 before the scenario's clock has started).
+  ports::TimestampUs scenario_time_us(ports::TimestampUs now) const;
   double scenario_time_s(ports::TimestampUs now) const;
   // True once the scenario's clock runs (at once with ScenarioClock::power_up).
   bool scenario_started() const { return scenario_origin_ != kNotYet; }
