@@ -340,7 +340,8 @@ void check_plan(const math::WarpPlan& plan, const math::SymmetryGroup& group) {
     glm::dmat3 proj(0.0);
     std::size_t stab = 0;
     for (std::size_t g = 0; g < group.order(); ++g) {
-      if (glm::length(group.element(g) * o - o) <= 1e-9 * plan.radius() * 2) {
+      // The group's own test for "the grab point is its own image" (SymmetricWarp::build).
+      if (glm::length(group.element(g) * o - o) <= math::kCoincidentGrabFraction * plan.radius()) {
         proj += group.element(g);
         ++stab;
       }
