@@ -78,8 +78,22 @@ std::optional<link::ResendRequest> SceneReplica::apply(const link::LinkMessage& 
   } else if (const auto* status = std::get_if<link::StatusReport>(&m)) {
     status_ = *status;
     has_status_ = true;
+  } else if (const auto* visitor = std::get_if<link::VisitorState>(&m)) {
+    visitor_ = *visitor;
+    has_visitor_ = true;
+  } else if (const auto* notice = std::get_if<link::Notice>(&m)) {
+    ++notices_received_;
+    notices_[(notices_received_ - 1) % notices_.size()] = {*notice, notices_received_};
   }
   // Handshake messages belong to BridgeApp; resend_request to the station.
+  return out;
+}
+
+std::vector<ReceivedNotice> SceneReplica::notices() const {
+  std::vector<ReceivedNotice> out;
+  const std::uint64_t kept = std::min<std::uint64_t>(notices_received_, notices_.size());
+  for (std::uint64_t n = notices_received_ - kept + 1; n <= notices_received_; ++n)
+    out.push_back(notices_[(n - 1) % notices_.size()]);
   return out;
 }
 

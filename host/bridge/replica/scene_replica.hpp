@@ -11,7 +11,10 @@
 //     per segment from the exact start frames), the screws rebuilt per update from
 //     the compact end poses with the station's turn sense (link::live_screw);
 //   - what the display draws besides: both hands (pose, tracked, buttons, in the
-//     stroke), the radius, the object pose and the station status.
+//     stroke), the radius, the object pose and the station status;
+//   - the exhibit (protocol 7): the latest visitor state and the last kNoticeRing
+//     notices, each with its arrival number (a display shows each one once, for a
+//     while, on its own clock).
 // Object frame, metres (the object pose places it in the world). Host code:
 // vectors are fine here, but every size comes from a checked count.
 #pragma once
@@ -64,6 +67,15 @@ struct HandView {
   bool freeze = false;
   bool move_object = false;
 };
+
+// A notice as received: `number` counts notices since the replica was made (1-based),
+// so a display tells a new one from one it already shows.
+struct ReceivedNotice {
+  link::Notice notice{};
+  std::uint64_t number = 0;
+};
+// Notices kept (the newest; older ones are dropped, counted by notices_received()).
+inline constexpr std::size_t kNoticeRing = 8;
 
 // One plan hand of the live stroke (plan order: the stroke's hands by session index).
 struct LiveHand {
@@ -131,6 +143,13 @@ class SceneReplica {
   const link::Workspace& workspace() const { return workspace_; }
   bool has_status() const { return has_status_; }
   const link::StatusReport& station_status() const { return status_; }
+  // The exhibit's visitor lifecycle (protocol 7): false until the station sends one
+  // (a station without the exhibit never does).
+  bool has_visitor() const { return has_visitor_; }
+  const link::VisitorState& visitor() const { return visitor_; }
+  // The newest notices, oldest first (at most kNoticeRing), and how many ever came.
+  std::vector<ReceivedNotice> notices() const;
+  std::uint64_t notices_received() const { return notices_received_; }
 
  private:
   struct Plan;
@@ -171,6 +190,10 @@ class SceneReplica {
   link::StatusReport status_{};
   bool has_workspace_ = false;
   link::Workspace workspace_{};
+  bool has_visitor_ = false;
+  link::VisitorState visitor_{};
+  std::array<ReceivedNotice, kNoticeRing> notices_{};  // ring: number n at (n - 1) % size
+  std::uint64_t notices_received_ = 0;
   ReplicaCounters counters_{};
 };
 
