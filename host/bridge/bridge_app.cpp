@@ -153,7 +153,7 @@ void BridgeApp::handle_scene(const link::LinkMessage& m) {
 }
 
 bool BridgeApp::send_command(const link::Command& command) {
-  if (!ready()) return false;
+  if (!ready() || options_.spectator) return false;
   send(command);
   flush();
   ++counters_.commands_sent;

@@ -53,6 +53,9 @@ struct BridgeOptions {
   // (0: none), a moving picture in the station's time (one update per 8 ms at most).
   std::uint32_t movie_every = 0;
   link::LinkAuthenticator* authenticator = nullptr;  // the pre-shared key (null: none)
+  // A read-only display (twister-bridge --spectator): hello with kHelloSpectator,
+  // and no commands sent.
+  bool spectator = false;
   ReplicaLimits limits{};
   std::int64_t hello_retry_ms = 1000;  // hello again until the station answers
   std::int64_t silence_ms = 3000;      // no frame this long: hello again (new session)
@@ -86,6 +89,7 @@ class BridgeApp {
   // Sends a sculptor's command (keys: undo, redo, method) to the station, which
   // acts on it only from the admitted display. False when the link is not ready
   // (nothing is queued for later: a stale undo must not fire on reconnect).
+  // A spectator sends none (false).
   bool send_command(const link::Command& command);
   // Draws through `view` (mesh, cues, HUD) from now on; null: the mesh alone.
   void set_view(class SceneView* view) { view_ = view; }
@@ -98,6 +102,7 @@ class BridgeApp {
   std::string snapshot(const std::string& name);
 
   bool connected() const { return connected_; }
+  bool spectator() const { return options_.spectator; }
   // The handshake is complete: the station's data is trusted and shown.
   bool ready() const { return connected_ && ready_; }
   BridgeStop stopped() const { return stop_; }

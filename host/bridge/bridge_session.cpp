@@ -26,9 +26,9 @@ void BridgeApp::send_hello() {
   ready_ = false;
   bridge_nonce_ =
       options_.authenticator != nullptr ? options_.authenticator->make_nonce() : link::Nonce{};
-  const auto flags =
-      static_cast<std::uint8_t>((options_.authenticator != nullptr ? link::kHelloAuth : 0) |
-                                (yield_.active ? link::kHelloYield : 0));
+  const auto flags = static_cast<std::uint8_t>(
+      (options_.authenticator != nullptr ? link::kHelloAuth : 0) |
+      (yield_.active ? link::kHelloYield : 0) | (options_.spectator ? link::kHelloSpectator : 0));
   const link::Hello mine{link::Role::bridge, flags, replica_.version(), replica_.checksum(),
                          bridge_nonce_};
   send(mine);

@@ -45,6 +45,12 @@ KeyAction key_action(int key) {
       return KeyAction::redo;
     case GLFW_KEY_M:
       return KeyAction::next_method;
+    case GLFW_KEY_TAB:
+      return KeyAction::toggle_audience;
+    case GLFW_KEY_N:
+      return KeyAction::new_sculpture;
+    case GLFW_KEY_U:
+      return KeyAction::undo_new_sculpture;
     default:
       return KeyAction::none;
   }
@@ -81,14 +87,58 @@ bool WindowInput::apply(KeyAction action) {
       c = CueOptions{on, on, on, on, on};
       return true;
     }
+    case KeyAction::toggle_audience:
+      view_.options().audience = view_.options().audience == Audience::visitor
+                                     ? Audience::operator_hud
+                                     : Audience::visitor;
+      return true;
     case KeyAction::undo:
-      return app_.send_command({link::CommandKind::undo, 0});
+      return command({link::CommandKind::undo, 0});
     case KeyAction::redo:
-      return app_.send_command({link::CommandKind::redo, 0});
+      return command({link::CommandKind::redo, 0});
     case KeyAction::next_method:
-      return app_.send_command({link::CommandKind::next_method, 0});
+      return command({link::CommandKind::next_method, 0});
+    case KeyAction::new_sculpture:
+      return command({link::CommandKind::new_sculpture, 0});
+    case KeyAction::undo_new_sculpture: {
+      const SceneReplica& r = app_.replica();
+      if (app_.ready() && r.has_visitor() &&
+          (r.visitor().flags & link::kVisitorResetUndoable) == 0) {
+        view_.local_notice("Nothing to bring back: no sculpture was just ended");
+        return false;
+      }
+      return command({link::CommandKind::undo_new_sculpture, 0});
+    }
   }
   return false;
+}
+
+bool WindowInput::command(const link::Command& c) {
+  if (app_.spectator()) {
+    view_.local_notice("This screen only watches: commands come from the sculpting station");
+    return false;
+  }
+  if (!app_.send_command(c)) {
+    view_.local_notice("Not connected to the station: the key did nothing");
+    return false;
+  }
+  return true;
+}
+
+const char* key_help() {
+  return "Keys (window and kiosk):\n"
+         "  left drag, arrows   orbit the camera (not with a fixed camera)\n"
+         "  right/middle drag   pan;  wheel, + / -  zoom;  F or Home  frame the model again\n"
+         "  H                   show or hide the text on screen\n"
+         "  Tab                 switch the text: the visitor's words or the operator's HUD\n"
+         "  C                   show or hide the cues (hand glyphs, spheres, axes)\n"
+         "  Z                   undo the last stroke (sent to the station)\n"
+         "  Y                   redo\n"
+         "  M                   next warp method\n"
+         "  N                   new sculpture: the station archives this one and starts over\n"
+         "  U                   undo the new sculpture (while the station's grace time is open)\n"
+         "A command key that does nothing (no link, a --spectator display, U too late) says why "
+         "on screen.";
 }
 
 void WindowInput::mouse_button(int button, bool pressed, double x, double y) {

@@ -4,7 +4,12 @@
 //          defaults), H shows or hides the heads-up text, C the cues;
 //          Z undo, Y redo, M next warp method: sent to the station as link
 //          commands (BridgeApp::send_command), which it takes only from the
-//          admitted display and runs through the session's command path.
+//          admitted display and runs through the session's command path;
+//          N new sculpture (the station archives this one and starts over), U
+//          brings it back while the station's grace time is open; Tab switches
+//          the text between the visitor's words and the operator's HUD.
+// A command key that does nothing here (no link yet, a spectator display, U with
+// no grace open) says why on screen (SceneView::local_notice).
 // With a fixed camera (a kiosk's camera file) the mouse and the camera keys do
 // nothing; the command keys still work.
 #pragma once
@@ -32,7 +37,13 @@ enum class KeyAction : std::uint8_t {
   undo,
   redo,
   next_method,
+  toggle_audience,
+  new_sculpture,
+  undo_new_sculpture,
 };
+
+// Every key, one line each, for twister-bridge --help.
+const char* key_help();
 
 // The action of a GLFW key code (GLFW_KEY_*) pressed or repeated.
 KeyAction key_action(int glfw_key);
@@ -51,6 +62,9 @@ class WindowInput {
   void scroll(double dy);
 
  private:
+  // Sends a command key's command, or says on screen why it was not sent.
+  bool command(const link::Command& c);
+
   BridgeApp& app_;
   SceneView& view_;
   bool fixed_;

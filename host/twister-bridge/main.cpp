@@ -65,6 +65,8 @@ struct Options {
   bool no_live_refine = false;    // the live stroke unrefined even on OpenGL 4
   std::uint32_t movie_every = 0;  // --movie-every N: frame-<n>.png every N-th hands update
   std::string frame;              // --frame model|workspace|auto ("": auto unless a free camera)
+  std::string hud;         // --hud visitor|operator ("": visitor in kiosk mode, else operator)
+  bool spectator = false;  // --spectator: a read-only display
 };
 
 twister::hal::Logger& logger() { return twister::hal::process_log(); }
@@ -107,6 +109,9 @@ Expected<void> open_display(const Options& opt, Size size, Display& display) {
     display.view.options().cues = twister::bridge::CueOptions{false, false, false, false, false};
   display.view.options().hud = !opt.no_hud;
   display.view.options().offscreen = opt.offscreen;
+  const bool visitor = opt.hud == "visitor" || (opt.hud.empty() && opt.kiosk);
+  display.view.options().audience =
+      visitor ? twister::bridge::Audience::visitor : twister::bridge::Audience::operator_hud;
   return display.view.init();
 }
 
@@ -270,6 +275,7 @@ int run(const Options& opt) {
   bridge_options.snapshot_dir = opt.snapshots;
   bridge_options.movie_every = opt.movie_every;
   bridge_options.authenticator = auth.get();
+  bridge_options.spectator = opt.spectator;
   bridge_options.limits = opt.limits;
   // Kiosk, offscreen and a fixed camera frame the hands' working space when the station
   // has one (calibrated or configured); a window's free camera frames the model.
@@ -358,6 +364,14 @@ void add_options(CLI::App& cli, Options& opt) {
   cli.add_flag("--no-cues", opt.no_cues,
                "draw the model alone: no hand glyphs, spheres, axes, trajectories (key C)");
   cli.add_flag("--no-hud", opt.no_hud, "no heads-up text or banners (key H)");
+  cli.add_option("--hud", opt.hud,
+                 "who the text speaks to: visitor (the model, the hands and a few friendly words; "
+                 "the default in --kiosk) or operator (the technical HUD; the default otherwise); "
+                 "key Tab switches")
+      ->check(CLI::IsMember({"visitor", "operator"}));
+  cli.add_flag("--spectator", opt.spectator,
+               "a read-only display (a projector, a screen facing the queue): it watches the "
+               "station and sends no commands");
   cli.add_option("--crease-angle", opt.crease_angle_deg,
                  "an edge whose faces' normals differ by more than this keeps a normal per side "
                  "(degrees, default 45; 180: every edge smooth)")
@@ -374,6 +388,7 @@ int main(int argc, char** argv) try {
   CLI::App cli{"twister-bridge: scene replica and display of a twister-station"};
   Options opt;
   add_options(cli, opt);
+  cli.footer(twister::bridge::key_help());
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
