@@ -89,7 +89,7 @@ void visitor_words(const SceneReplica& r, const HudInput& in, ExhibitText& out) 
     return;
   }
   const std::uint64_t strokes = exhibit          ? v.strokes
-                                : r.has_status() ? r.station_status().strokes_committed
+                                : r.has_status() ? r.station_status().strokes.committed
                                                  : 0;
   if (strokes == 0 && !any_grab(r)) {
     out.prompt = "Grab with both hands";

@@ -171,7 +171,12 @@ void HudRenderer::build_exhibit(const ExhibitText& exhibit) {
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(18.0F, 10.0F));
   ImGui::Begin("prompt", nullptr, kFixed);
   ImGui::PushFont(banner_font_);
+  // A prompt wider than the screen is written smaller, never cut.
+  const float wide = ImGui::CalcTextSize(exhibit.prompt.c_str()).x;
+  const float room = 0.92F * io.DisplaySize.x - 36.0F;
+  if (wide > room) ImGui::SetWindowFontScale(room / wide);
   centred(exhibit.prompt);
+  ImGui::SetWindowFontScale(1.0F);
   ImGui::PopFont();
   if (!exhibit.detail.empty()) {
     ImGui::PushFont(prompt_font_);
