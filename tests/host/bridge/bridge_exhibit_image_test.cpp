@@ -12,6 +12,7 @@
 
 #include "bridge_image_rig.hpp"
 #include "twister/link/math_conversion.hpp"
+#include "window_input.hpp"
 
 namespace twister::bridge::test {
 namespace {
@@ -203,6 +204,29 @@ TEST_F(ExhibitPictures, ANoticeShowsBrieflyWithItsReason) {
   (void)shot(Audience::visitor);
   EXPECT_TRUE(view_->exhibit_text().notices.empty());
   EXPECT_EQ(view_->hud().notices()[2], 0.0F);
+}
+
+// A command key that does nothing here says why on screen: this rig's display never
+// finished a handshake, and a spectator sends no commands at all.
+TEST_F(ExhibitPictures, ACommandKeyThatDoesNothingSaysWhy) {
+  status();
+  phase(link::VisitorPhase::sculpting, 2, 60.0F);
+  WindowInput input(*app_, *view_, false);
+  EXPECT_FALSE(input.apply(KeyAction::undo));
+  const Image img = shot(Audience::visitor);
+  ASSERT_EQ(view_->exhibit_text().notices.size(), 1u);
+  EXPECT_EQ(view_->exhibit_text().notices[0], "Not connected to the station: the key did nothing");
+  EXPECT_GT(text_pixels(img, view_->hud().notices()), 50);
+  BridgeOptions spectator;
+  spectator.spectator = true;
+  BridgeApp watcher(link_, clock_, nullptr, spectator, log_);
+  WindowInput watching(watcher, *view_, false);
+  EXPECT_FALSE(watching.apply(KeyAction::new_sculpture));
+  (void)shot(Audience::visitor);
+  ASSERT_EQ(view_->exhibit_text().notices.size(), 2u);
+  EXPECT_EQ(view_->exhibit_text().notices[1],
+            "This screen only watches: commands come from the sculpting station");
+  EXPECT_EQ(watcher.counters().commands_sent, 0u);
 }
 
 }  // namespace
