@@ -5,8 +5,11 @@
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
+#include <rapidcheck.h>
+#include <rapidcheck/gtest.h>
 
 #include <string>
+#include <vector>
 
 #include "exhibit_model.hpp"
 #include "scene_replica.hpp"
@@ -67,6 +70,31 @@ TEST(ExhibitReplica, KeepsTheNewestNoticesBoundedAndNumbered) {
     const std::uint64_t number = 20 - kNoticeRing + 1 + i;  // oldest first
     EXPECT_EQ(kept[i].number, number);
     EXPECT_EQ(kept[i].notice.code, static_cast<link::NoticeCode>(1 + (number - 1) % 9));
+  }
+}
+
+// Property: whatever notices come, interleaved with other messages, the replica keeps
+// exactly the newest min(n, kNoticeRing), oldest first, numbered 1..n.
+RC_GTEST_PROP(ExhibitReplica, TheNoticeRingHoldsTheNewestInOrder, ()) {
+  SceneReplica r;
+  std::vector<link::NoticeCode> sent;
+  const auto steps = *rc::gen::inRange<std::size_t>(0, 40);
+  for (std::size_t i = 0; i < steps; ++i) {
+    if (*rc::gen::inRange(0, 4) == 0) {
+      (void)r.apply(visitor(link::VisitorPhase::sculpting));
+      continue;
+    }
+    const auto code = static_cast<link::NoticeCode>(*rc::gen::inRange(1, 10));
+    (void)r.apply(link::Notice{code, 0});
+    sent.push_back(code);
+  }
+  const auto kept = r.notices();
+  RC_ASSERT(r.notices_received() == sent.size());
+  RC_ASSERT(kept.size() == std::min(sent.size(), kNoticeRing));
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    const std::size_t at = sent.size() - kept.size() + i;
+    RC_ASSERT(kept[i].number == at + 1);
+    RC_ASSERT(kept[i].notice.code == sent[at]);
   }
 }
 
