@@ -49,6 +49,8 @@ struct Scene {
   std::vector<float> x, y, z, ox, oy, oz, sx, sy, sz;
   std::vector<std::uint32_t> indices;
   std::vector<float> w1, w2;
+  std::vector<std::uint64_t> balls;
+  std::vector<float> weights;
   PlanSymmetry symmetry;
   std::unique_ptr<WarpPlan> plan;
   std::array<Frame, 2> start, end, end_b;
@@ -71,6 +73,10 @@ std::unique_ptr<Scene> make_scene(const SymmetrySpec& spec) {
   for (auto* v : {&s->sx, &s->sy, &s->sz, &s->w1, &s->w2}) v->resize(kVertices);
   s->indices.resize(kVertices);
   s->symmetry.start = twister::math::VertexColumns{s->sx, s->sy, s->sz};
+  s->balls.resize(twister::math::SymmetricFloat::words_for(kVertices));
+  s->symmetry.balls = s->balls;
+  s->weights.resize(twister::math::SymmetricFloat::weights_for(kVertices));
+  s->symmetry.weights = s->weights;
   s->plan = std::make_unique<WarpPlan>(
       twister::math::WarpPlanStorage{s->indices, s->w1, s->w2, &s->symmetry});
   // Two generic grab points on the sphere, 0.25 apart (each ball holds the other).
