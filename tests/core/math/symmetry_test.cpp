@@ -448,6 +448,43 @@ void check_float_stroke(const SymmetryGroup& group, Stroke s, bool with_weights)
   }
 }
 
+// A clutch chain: after a rebase the points move from the rest columns given to apply
+// (the previous step's result), with the weights of their chain start: the float path
+// against the plan's double path (the scalar kernel) on the same columns.
+void check_float_chain(const SymmetryGroup& group, const Stroke& s) {
+  SymmetricWarp reference;
+  if (!reference.build(group, s.start, s.radius, s.method).ok()) return;
+  FloatScene sc;
+  fill_scene(sc, group, reference);
+  sc.make_plan(*rc::gen::arbitrary<bool>());
+  RC_ASSERT(sc.plan->build(ConstVertexColumns{sc.x, sc.y, sc.z}, s.start, s.radius, s.method,
+                           group)
+                .ok());
+  RC_ASSERT(sc.plan->update(s.end).ok());
+  RC_ASSERT(sc.plan->apply(ConstVertexColumns{sc.x, sc.y, sc.z}, VertexColumns{sc.ox, sc.oy, sc.oz})
+                .ok());
+  // Step 2: from where step 1 left the points, the hands turn further.
+  const std::vector<float> qx = sc.ox, qy = sc.oy, qz = sc.oz;
+  RC_ASSERT(sc.plan->rebase(s.end).ok());
+  std::vector<Frame> further;
+  for (const Frame& f : s.end) further.push_back(*gen_end_frame(f, 0.3));
+  RC_ASSERT(sc.plan->update(further).ok());
+  const ConstVertexColumns q{qx, qy, qz};
+  std::vector<float> fx = qx, fy = qy, fz = qz, dx = qx, dy = qy, dz = qz;
+  RC_ASSERT(sc.plan->apply(q, VertexColumns{fx, fy, fz}).ok());
+  sc.plan->set_kernel(KernelKind::scalar);
+  RC_ASSERT(sc.plan->apply(q, VertexColumns{dx, dy, dz}).ok());
+  for (std::size_t i = 0; i < fx.size(); ++i) {
+    const double err = distance(glm::dvec3(fx[i], fy[i], fz[i]), glm::dvec3(dx[i], dy[i], dz[i]));
+    RC_ASSERT(err <= 1e-5 * (s.scale + 2.0));
+  }
+}
+
+RC_GTEST_PROP(SymmetricFloat, ClutchChainsMatchTheDoublePath, ()) {
+  const GroupSpec spec = *gen_group_of_kind(*rc::gen::inRange(0, 3));
+  check_float_chain(make_group(spec), *gen_stroke(spec));
+}
+
 RC_GTEST_PROP(SymmetricFloat, MirrorsMatchTheDoubleWarpAndAreSymmetric, ()) {
   const GroupSpec spec = *gen_group_of_kind(0);
   check_float_stroke(make_group(spec), *gen_stroke(spec), *rc::gen::arbitrary<bool>());
