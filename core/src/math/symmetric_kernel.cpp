@@ -342,7 +342,7 @@ void SymmetricFloat::warp_points(const SymmetricWarp& warp, const float* x, cons
   }
   for (std::size_t k = 0; k < points_; ++k) {
     const Grab& g = grabs_[k];
-    weigh(warp, k, x, y, z, w, n, false);
+    weigh(warp, k, x, y, z, w, n, true);  // double weights: error_bound's 2^-18
     // A ball that reaches none of the points (their weights exactly 0).
     float most = 0.0f;
     for (std::size_t i = 0; i < n; ++i) most = std::max(most, w[i]);
@@ -359,10 +359,41 @@ void SymmetricFloat::warp_points(const SymmetricWarp& warp, const float* x, cons
   }
 }
 
+// docs/refinement.md "The float filter" for the plain plan (WarpPlan::float_error_bound),
+// summed over every image of every hand (an image's kernel constants have the hand's
+// magnitudes: g is orthogonal), with the weights in double (warp_points) so that their
+// error is the float rounding, inside the plain bound's 2^-18, and the Lipschitz term's
+// stretch from the closest two grab points.
 double SymmetricFloat::error_bound(const SymmetricWarp& warp, double extent_m) const {
-  (void)warp;
-  (void)extent_m;
-  return std::numeric_limits<double>::infinity();
+  if (!warp.built()) return std::numeric_limits<double>::infinity();
+  constexpr double kWeight = 0x1p-18;
+  constexpr double kKernel = 0x1p-16;
+  constexpr double kRoot3 = 1.7320508075688772;
+  const double r = warp.radius();
+  double closest = r;
+  for (std::size_t k = 0; k < points_; ++k) {
+    for (std::size_t j = 0; j < k; ++j) {
+      closest = std::min(closest, glm::length(warp.grab_point(k) - warp.grab_point(j)));
+    }
+  }
+  const double stretch = closest > 0.0 && closest < r ? r / closest : 1.0;
+  const auto images = static_cast<double>(warp.group().order());
+  double bound = 0x1p-23 * kRoot3 * extent_m;
+  double lipschitz = 1.0;
+  for (std::size_t h = 0; h < warp.hand_count(); ++h) {
+    KernelHand k;
+    fill_kernel_hand(k, warp.screw(h), warp.start_frame(h), warp.end_frame(h), warp.method());
+    const glm::dvec3 mid(k.mid[0], k.mid[1], k.mid[2]);
+    const double kx =
+        std::abs(k.cot_half) * glm::length(glm::dvec3(k.chord[0], k.chord[1], k.chord[2]));
+    const double shift = glm::length(glm::dvec3(k.shift[0], k.shift[1], k.shift[2]));
+    const double v = r + glm::length(warp.start_frame(h).origin - mid);
+    const double magnitude = kRoot3 * extent_m + glm::length(mid) + kx + shift + 2 * v;
+    const double slope = 2.0 * std::abs(k.half_angle) * (2.0 * v + kx) + shift;
+    bound += images * (kKernel * magnitude + kWeight * slope);
+    lipschitz += images * (4.0 + slope * 0.5 * 3.14159265358979324 / r * stretch);
+  }
+  return bound + 0x1p-23 * kRoot3 * extent_m * lipschitz;
 }
 
 }  // namespace twister::math

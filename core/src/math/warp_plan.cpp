@@ -390,7 +390,10 @@ void float_weights(const Frame& grab, const Frame* other, double radius, const f
 bool WarpPlan::warp_points_float(const float* x, const float* y, const float* z, float* out_x,
                                  float* out_y, float* out_z, std::size_t n) const {
   if (!built() || method_ == WarpMethod::scodef || n > kFloatChunk) return false;
-  if (symmetric()) return false;  // no error bound yet: the refiner evaluates in double
+  if (symmetric()) {
+    symmetry_->fast.warp_points(symmetry_->warp, x, y, z, out_x, out_y, out_z, n);
+    return true;
+  }
   float w1[kFloatChunk];
   float w2[kFloatChunk];
   const bool two = hands_ == 2;

@@ -418,6 +418,21 @@ void check_float_stroke(const SymmetryGroup& group, Stroke s, bool with_weights)
     g_worst_float_vs_double = std::max(g_worst_float_vs_double, err);
     RC_ASSERT(err <= 1e-5);
   }
+  // The refiner's float batch (warp_points_float) within its bound of the double warp.
+  double extent = 0.0;
+  for (std::size_t i = 0; i < sc.x.size(); ++i) {
+    extent = std::max(
+        {extent, std::abs(double{sc.x[i]}), std::abs(double{sc.y[i]}), std::abs(double{sc.z[i]})});
+  }
+  const double bound = sc.plan->float_error_bound(extent);
+  for (std::size_t base = 0; base < sc.x.size(); base += WarpPlan::kFloatChunk) {
+    const std::size_t n = std::min(WarpPlan::kFloatChunk, sc.x.size() - base);
+    float bx[WarpPlan::kFloatChunk], by[WarpPlan::kFloatChunk], bz[WarpPlan::kFloatChunk];
+    RC_ASSERT(sc.plan->warp_points_float(&sc.x[base], &sc.y[base], &sc.z[base], bx, by, bz, n));
+    for (std::size_t i = 0; i < n; ++i) {
+      RC_ASSERT(distance(glm::dvec3(bx[i], by[i], bz[i]), exact[base + i]) <= bound);
+    }
+  }
   // Symmetric: F(fl(g p)) against g F(p), beyond what the double warp itself gives for
   // the same float inputs (fl(g p) is g p exactly for mirrors, to ~1e-7 for rotations).
   const std::size_t order = group.order();
@@ -457,8 +472,7 @@ void check_float_chain(const SymmetryGroup& group, const Stroke& s) {
   FloatScene sc;
   fill_scene(sc, group, reference);
   sc.make_plan(*rc::gen::arbitrary<bool>());
-  RC_ASSERT(sc.plan->build(ConstVertexColumns{sc.x, sc.y, sc.z}, s.start, s.radius, s.method,
-                           group)
+  RC_ASSERT(sc.plan->build(ConstVertexColumns{sc.x, sc.y, sc.z}, s.start, s.radius, s.method, group)
                 .ok());
   RC_ASSERT(sc.plan->update(s.end).ok());
   RC_ASSERT(sc.plan->apply(ConstVertexColumns{sc.x, sc.y, sc.z}, VertexColumns{sc.ox, sc.oy, sc.oz})

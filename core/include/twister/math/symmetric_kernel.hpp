@@ -76,7 +76,8 @@ class SymmetricFloat {
   // q_v = rest[v] (p_i itself until rebased()).
   void apply(const SymmetricWarp& warp, std::span<const std::uint32_t> indices,
              ConstVertexColumns start, ConstVertexColumns rest, VertexColumns out) const;
-  // F(p) for n <= kImageChunk points (weights and motion from p): the refiner's batch.
+  // F(p) for n <= kImageChunk points (weights and motion from p): the refiner's batch
+  // (the weights in double, the images' motion in the float kernel).
   void warp_points(const SymmetricWarp& warp, const float* x, const float* y, const float* z,
                    float* out_x, float* out_y, float* out_z, std::size_t n) const;
   // A bound on |warp_points(p) - warp.warp_point(p)| for |p| <= extent_m per coordinate.
