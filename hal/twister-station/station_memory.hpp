@@ -31,7 +31,8 @@ struct MemoryBudget {
   std::size_t normals = 0;   // vertex normals (for the display)
   std::size_t refine = 0;    // refiner and refined triangles' undo pool (0 when off)
   std::size_t link = 0;      // display link: its mesh copy and frame buffer (0 without --link)
-  std::size_t symmetry = 0;  // symmetric strokes: chain-start columns and the warp
+  std::size_t symmetry = 0;  // symmetric strokes: chain-start columns, the warp, the float
+                             // path's sorted order and weights
   std::size_t total() const {
     return mesh + live + plan + undo + normals + refine + link + symmetry;
   }
@@ -70,6 +71,8 @@ class SymmetryMemory {
 
  private:
   std::vector<float> x_, y_, z_;
+  std::vector<std::uint64_t> balls_;
+  std::vector<float> weights_;
   std::unique_ptr<math::PlanSymmetry> symmetry_;
 };
 

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 
 #include "twister/math/warp_kernels.hpp"
 
@@ -274,6 +276,142 @@ void decay_weights_simd(const DecaySpan& s, const float grab[3], const float uni
     const float arg = std::sqrt(px * px + py * py + pz * pz) * scale;
     const float c = cos_quarter(0.5f * (arg + kHalfPiF - std::fabs(arg - kHalfPiF))) - c0;
     w[i] = c * c;
+  }
+}
+
+// The symmetric float path (docs/math.md §11.7): one grab point's weights with its
+// several squashes. Three plain loops over small stack columns (the squash loop runs
+// per neighbour over all points, so the inner loop is the one over points).
+TWISTER_SIMD_CLONES
+void image_weights_simd(const DecaySpan& s, const float grab_hi[3], const float grab_lo[3],
+                        const float* squash, std::size_t count, float radius) {
+  const std::size_t n = std::min(s.n, kImageChunk);
+  float vx[kImageChunk];
+  float vy[kImageChunk];
+  float vz[kImageChunk];
+  float d2[kImageChunk];
+  float most[kImageChunk];
+  {
+    const float* __restrict x = s.x;
+    const float* __restrict y = s.y;
+    const float* __restrict z = s.z;
+    const float hx = grab_hi[0], hy = grab_hi[1], hz = grab_hi[2];
+    const float lx = grab_lo[0], ly = grab_lo[1], lz = grab_lo[2];
+    for (std::size_t i = 0; i < n; ++i) {
+      const float px = (x[i] - hx) - lx;
+      const float py = (y[i] - hy) - ly;
+      const float pz = (z[i] - hz) - lz;
+      vx[i] = px;
+      vy[i] = py;
+      vz[i] = pz;
+      float d = px * px;
+      d += py * py;
+      d += pz * pz;
+      d2[i] = d;
+      most[i] = d;
+    }
+  }
+  for (std::size_t j = 0; j < count; ++j) {
+    const float ux = squash[4 * j], uy = squash[4 * j + 1], uz = squash[4 * j + 2];
+    const float stretch = squash[4 * j + 3];
+    for (std::size_t i = 0; i < n; ++i) {
+      float proj = vx[i] * ux;
+      proj += vy[i] * uy;
+      proj += vz[i] * uz;
+      // |v + k u|^2 = d^2 + k (2 proj + k), k = max(proj, 0) stretch; the largest
+      // (the smallest weight) by max(a, b) = (a + b + |a - b|) / 2, branch-free.
+      const float k = 0.5f * (proj + std::fabs(proj)) * stretch;
+      const float sq = d2[i] + k * (proj + proj + k);
+      most[i] = 0.5f * (most[i] + sq + std::fabs(most[i] - sq));
+    }
+  }
+  constexpr float kHalfPiF = 1.57079632679489662f;
+  const float scale = kHalfPiF / radius;
+  float* __restrict w = s.w;
+  // The weight cos^2 inside the ball, exactly 0 outside, and 0 below 2^-32 too: a
+  // weight that small moves a point by < 2^-32 of the hand's motion, and in the warp
+  // kernel the cube of its sine would underflow (denormal assists cost more than the
+  // kernel). A plain select keeps this loop scalar, so 8 lanes are written with vector
+  // extensions (GCC and Clang), the comparisons as bit masks.
+  constexpr float kTiny = 0x1p-32f;
+  for (std::size_t i = 0; i < n; ++i) most[i] = std::sqrt(most[i]) * scale;
+  using V = float __attribute__((vector_size(32)));
+  using M = std::int32_t __attribute__((vector_size(32)));
+  std::size_t i = 0;
+  for (; i + 8 <= n; i += 8) {
+    V arg;
+    std::memcpy(&arg, most + i, sizeof arg);
+    // cos_quarter's polynomial (no vector function: a 32-byte vector argument would
+    // change the baseline clone's ABI).
+    const V x2 = arg * arg;
+    V q = x2 * -2.62979313e-07f + 2.47745993e-05f;
+    q = q * x2 - 1.38886517e-03f;
+    q = q * x2 + 4.16666605e-02f;
+    q = q * x2 - 0.5f;
+    const V c = 1.0f + x2 * q;
+    const V wv = c * c;
+    const M keep = (arg < kHalfPiF) & (wv > kTiny);
+    M bits;
+    std::memcpy(&bits, &wv, sizeof bits);
+    bits &= keep;
+    std::memcpy(w + i, &bits, sizeof bits);
+  }
+  for (; i < n; ++i) {
+    const float c = cos_quarter(most[i]);
+    w[i] = most[i] < kHalfPiF && c * c > kTiny ? c * c : 0.0f;
+  }
+}
+
+namespace {
+
+template <bool kWide>
+TWISTER_ALWAYS_INLINE void displacement_body(const HandF& h, float share, const float* __restrict x,
+                                             const float* __restrict y, const float* __restrict z,
+                                             const float* __restrict w, float* __restrict dx,
+                                             float* __restrict dy, float* __restrict dz,
+                                             std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) {
+    float rx = 0.0f;
+    float ry = 0.0f;
+    float rz = 0.0f;
+    accumulate<kWide>(h, x[i], y[i], z[i], w[i], rx, ry, rz);
+    dx[i] += share * rx;
+    dy[i] += share * ry;
+    dz[i] += share * rz;
+  }
+}
+
+TWISTER_SIMD_CLONES
+void displacement_loop(HandF h, float share, const float* __restrict x, const float* __restrict y,
+                       const float* __restrict z, const float* __restrict w, float* __restrict dx,
+                       float* __restrict dy, float* __restrict dz, std::size_t n) {
+  displacement_body<false>(h, share, x, y, z, w, dx, dy, dz, n);
+}
+
+TWISTER_SIMD_CLONES
+void displacement_loop_wide(HandF h, float share, const float* __restrict x,
+                            const float* __restrict y, const float* __restrict z,
+                            const float* __restrict w, float* __restrict dx, float* __restrict dy,
+                            float* __restrict dz, std::size_t n) {
+  displacement_body<true>(h, share, x, y, z, w, dx, dy, dz, n);
+}
+
+}  // namespace
+
+void prepare_hand(const KernelHand& h, PreparedHand& out) {
+  const HandF f = load(h);
+  static_assert(sizeof f == sizeof out.c);
+  std::memcpy(out.c, &f, sizeof f);
+  out.wide = wide(h);
+}
+
+void add_displacement_simd(const PreparedHand& h, float share, const DisplacementSpan& s) {
+  HandF f;
+  std::memcpy(&f, h.c, sizeof f);
+  if (h.wide) {
+    displacement_loop_wide(f, share, s.x, s.y, s.z, s.w, s.dx, s.dy, s.dz, s.n);
+  } else {
+    displacement_loop(f, share, s.x, s.y, s.z, s.w, s.dx, s.dy, s.dz, s.n);
   }
 }
 

@@ -61,7 +61,10 @@ WarpPlan::WarpPlan(WarpPlanStorage storage)
 }
 
 void WarpPlan::reset() {
-  if (symmetry_ != nullptr) symmetry_->warp.reset();
+  if (symmetry_ != nullptr) {
+    symmetry_->warp.reset();
+    symmetry_->fast.reset();
+  }
   hands_ = 0;
   long_turns_ = 0;
   count_ = 0;
@@ -163,19 +166,19 @@ Status WarpPlan::build_symmetric(ConstVertexColumns rest, std::span<const Frame>
   std::copy(start.begin(), start.end(), end_.begin());
   const VertexColumns& keep = symmetry_->start;
   const std::size_t room = std::min({capacity(), keep.x.size(), keep.y.size(), keep.z.size()});
-  const std::size_t points = sym.grab_point_count();
+  SymmetricFloat& fast = symmetry_->fast;
+  fast.begin(sym, symmetry_->balls, symmetry_->weights, room);
   for (std::size_t i = 0; i < rest.size(); ++i) {
     const glm::dvec3 p(rest.x[i], rest.y[i], rest.z[i]);
-    // Weights vanish beyond the radius of every grab point (the squash only lowers them).
-    bool moved = false;
-    for (std::size_t k = 0; k < points && !moved; ++k) {
-      moved = glm::length(p - sym.grab_point(k)) < radius;
-    }
-    if (!moved) continue;
+    // Weights vanish beyond the radius of every grab point (the squash only lowers them);
+    // the vertex joins the float path's ball of each grab point that reaches it.
     if (count_ == room) {
-      reset();
-      return StatusCode::resource_exhausted;
+      for (std::size_t k = 0; k < sym.grab_point_count(); ++k) {
+        if (glm::length(p - sym.grab_point(k)) < radius) return StatusCode::resource_exhausted;
+      }
+      continue;
     }
+    if (!fast.reaches(sym, p)) continue;
     // The display's weights: each hand's own grab point (the identity image).
     const double w1 = sym.weight(sym.grab_point_of(0, 0), p);
     const double w2 = hands_ == 2 ? sym.weight(sym.grab_point_of(1, 0), p) : 0.0;
@@ -184,6 +187,7 @@ Status WarpPlan::build_symmetric(ConstVertexColumns rest, std::span<const Frame>
     keep.z[count_] = rest.z[i];
     take(i, w1, w2);
   }
+  fast.finish(sym, keep, {indices_.data(), count_});
   finish_build(rest.size());
   set_kernel_hands();
   return ok_status();
@@ -226,7 +230,10 @@ Status WarpPlan::rebase(std::span<const Frame> start) {
     scodef_ = fresh;
   }
   // Symmetric: the same grab points and weights (of the chain-start positions).
-  if (symmetric()) TWISTER_TRY(symmetry_->warp.rebase(start));
+  if (symmetric()) {
+    TWISTER_TRY(symmetry_->warp.rebase(start));
+    symmetry_->fast.rebased();
+  }
   for (std::size_t h = 0; h < hands_; ++h) {
     start_[h] = start[h];
     end_[h] = start[h];
@@ -260,7 +267,12 @@ Status WarpPlan::apply(ConstVertexColumns rest, VertexColumns out) const {
   }
   if (count_ == 0) return ok_status();
   if (symmetric()) {
-    apply_symmetric(rest, out);
+    const PlanSymmetry& sym = *symmetry_;
+    if (kernel_ == KernelKind::simd && sym.fast.ready()) {
+      sym.fast.apply(sym.warp, indices(), sym.start, rest, out);
+    } else {
+      apply_symmetric(rest, out);
+    }
     return ok_status();
   }
   if (method_ == WarpMethod::scodef) {
@@ -322,8 +334,10 @@ void WarpPlan::apply_symmetric(ConstVertexColumns rest, VertexColumns out) const
   // The weights come from the chain-start position (the rest position at step 0).
   const SymmetricWarp& sym = symmetry_->warp;
   const VertexColumns& keep = symmetry_->start;
+  const SymmetricFloat& fast = symmetry_->fast;
   for (std::size_t i = 0; i < count_; ++i) {
-    const std::uint32_t v = indices_[i];
+    // The chain-start columns are in the float path's sorted order once it is built.
+    const std::uint32_t v = fast.ready() ? fast.vertex(i) : indices_[i];
     const glm::dvec3 p(keep.x[i], keep.y[i], keep.z[i]);
     const glm::dvec3 q(rest.x[v], rest.y[v], rest.z[v]);
     const glm::dvec3 moved = sym.warp_point(p, q);
@@ -375,7 +389,11 @@ void float_weights(const Frame& grab, const Frame* other, double radius, const f
 
 bool WarpPlan::warp_points_float(const float* x, const float* y, const float* z, float* out_x,
                                  float* out_y, float* out_z, std::size_t n) const {
-  if (!built() || method_ == WarpMethod::scodef || symmetric() || n > kFloatChunk) return false;
+  if (!built() || method_ == WarpMethod::scodef || n > kFloatChunk) return false;
+  if (symmetric()) {
+    symmetry_->fast.warp_points(symmetry_->warp, x, y, z, out_x, out_y, out_z, n);
+    return true;
+  }
   float w1[kFloatChunk];
   float w2[kFloatChunk];
   const bool two = hands_ == 2;
@@ -417,9 +435,8 @@ bool WarpPlan::warp_points_float(const float* x, const float* y, const float* z,
 //    Lipschitz bound L = 1 + sum (4 + G |grad t|), |grad t| <= pi/(2r) max(1, r/s)
 //    (s: the distance between the grabs, the squash's stretch).
 double WarpPlan::float_error_bound(double extent_m) const {
-  if (!built() || method_ == WarpMethod::scodef || symmetric()) {
-    return std::numeric_limits<double>::infinity();
-  }
+  if (!built() || method_ == WarpMethod::scodef) return std::numeric_limits<double>::infinity();
+  if (symmetric()) return symmetry_->fast.error_bound(symmetry_->warp, extent_m);
   constexpr double kWeight = 0x1p-18;
   constexpr double kKernel = 0x1p-16;
   double bound = 0x1p-23 * 1.7320508075688772 * extent_m;

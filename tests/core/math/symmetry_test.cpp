@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <numbers>
 #include <vector>
 
@@ -315,9 +316,211 @@ TEST(SymmetricWarp, NoHeapAllocation) {
   EXPECT_TRUE(std::isfinite(out.x));
 }
 
-TEST(SymmetricWarp, ReportWorstErrors) {
+// The float path (docs/math.md §11.7): WarpPlan::apply under a group with the simd
+// kernel and PlanSymmetry's sorted order and weights.
+double g_worst_float_vs_double = 0.0;
+double g_worst_float_symmetry = 0.0;
+double g_worst_float_grab = 0.0;
+
+struct FloatScene {
+  std::vector<float> x, y, z, ox, oy, oz, sx, sy, sz, w1, w2, weights;
+  std::vector<std::uint32_t> indices;
+  std::vector<std::uint64_t> balls;
+  PlanSymmetry symmetry;
+  std::unique_ptr<WarpPlan> plan;
+  std::size_t base_points = 0;     // points 0 .. base_points-1 have their images at orbit
+  std::vector<std::size_t> orbit;  // orbit[i * order + g]: the vertex fl(g p_i)
+
+  void add(glm::dvec3 p) {
+    x.push_back(static_cast<float>(p.x));
+    y.push_back(static_cast<float>(p.y));
+    z.push_back(static_cast<float>(p.z));
+  }
+  glm::dvec3 at(std::size_t i) const { return {x[i], y[i], z[i]}; }
+  glm::dvec3 out(std::size_t i) const { return {ox[i], oy[i], oz[i]}; }
+  // Allocates the plan's storage for the current points (with_weights: the kept
+  // weights; else recomputed per apply).
+  void make_plan(bool with_weights) {
+    const std::size_t n = x.size();
+    ox = x;
+    oy = y;
+    oz = z;
+    for (auto* v : {&sx, &sy, &sz, &w1, &w2}) v->assign(n, 0.0f);
+    indices.assign(n, 0);
+    balls.assign(SymmetricFloat::words_for(n), 0);
+    weights.assign(with_weights ? SymmetricFloat::weights_for(n) : 0, 0.0f);
+    symmetry.start = VertexColumns{sx, sy, sz};
+    symmetry.balls = balls;
+    symmetry.weights = weights;
+    plan = std::make_unique<WarpPlan>(WarpPlanStorage{indices, w1, w2, &symmetry});
+  }
+};
+
+// Random points, points near every grab point and image, the grab points and images
+// themselves, each with its images under the group (rounded to float).
+void fill_scene(FloatScene& sc, const SymmetryGroup& group, const SymmetricWarp& warp) {
+  std::vector<glm::dvec3> base;
+  for (int i = 0; i < 24; ++i) base.push_back(*gen_point(2.0));
+  for (std::size_t k = 0; k < warp.grab_point_count(); ++k) {
+    base.push_back(warp.grab_point(k));
+    for (int i = 0; i < 6; ++i) base.push_back(warp.grab_point(k) + *gen_point(warp.radius()));
+  }
+  const std::size_t order = group.order();
+  sc.base_points = base.size();
+  for (const glm::dvec3& p : base) sc.add(p);
+  sc.orbit.assign(base.size() * order, 0);
+  for (std::size_t i = 0; i < base.size(); ++i) {
+    sc.orbit[i * order] = i;
+    for (std::size_t g = 1; g < order; ++g) {
+      sc.orbit[i * order + g] = sc.x.size();
+      sc.add(group.element(g) * sc.at(i));
+    }
+  }
+}
+
+void check_float_stroke(const SymmetryGroup& group, Stroke s, bool with_weights) {
+  // Grab points that are float points (a vertex can sit exactly on one).
+  // (Through volatile floats: GCC 12 at -O3 left some components unrounded, the
+  // double -> float -> double round trip folded away.)
+  std::vector<Frame> rounded;
+  for (const Frame& f : s.start) {
+    volatile float fx = static_cast<float>(f.origin.x);
+    volatile float fy = static_cast<float>(f.origin.y);
+    volatile float fz = static_cast<float>(f.origin.z);
+    const glm::dvec3 o(fx, fy, fz);
+    rounded.push_back(Frame{o, f.u, f.v, f.w});
+  }
+  s.start = rounded;
+  SymmetricWarp reference;
+  if (!reference.build(group, s.start, s.radius, s.method).ok()) return;  // refused: above
+  RC_ASSERT(reference.update(s.end).ok());
+  FloatScene sc;
+  fill_scene(sc, group, reference);
+  sc.make_plan(with_weights);
+  const ConstVertexColumns rest{sc.x, sc.y, sc.z};
+  RC_ASSERT(sc.plan->build(rest, s.start, s.radius, s.method, group).ok());
+  RC_ASSERT(sc.symmetry.fast.ready());
+  twister::test::AllocationCounter allocations;
+  const bool updated = sc.plan->update(s.end).ok();
+  const std::size_t after_update = allocations.count();
+  const bool applied = sc.plan->apply(rest, VertexColumns{sc.ox, sc.oy, sc.oz}).ok();
+  const std::size_t after_apply = allocations.count();
+  RC_ASSERT(updated);
+  RC_ASSERT(applied);
+  RC_ASSERT(after_update == 0u);
+  RC_ASSERT(after_apply == 0u);
+  // Equal to the double warp at the same (float) points.
+  const SymmetricWarp& warp = *sc.plan->symmetric_warp();
+  std::vector<glm::dvec3> exact(sc.x.size());
+  for (std::size_t i = 0; i < sc.x.size(); ++i) {
+    exact[i] = warp.warp_point(sc.at(i));
+    const double err = distance(sc.out(i), exact[i]) / s.scale;
+    g_worst_float_vs_double = std::max(g_worst_float_vs_double, err);
+    RC_ASSERT(err <= 1e-5);
+  }
+  // The refiner's float batch (warp_points_float) within its bound of the double warp.
+  double extent = 0.0;
+  for (std::size_t i = 0; i < sc.x.size(); ++i) {
+    extent = std::max(
+        {extent, std::abs(double{sc.x[i]}), std::abs(double{sc.y[i]}), std::abs(double{sc.z[i]})});
+  }
+  const double bound = sc.plan->float_error_bound(extent);
+  for (std::size_t base = 0; base < sc.x.size(); base += WarpPlan::kFloatChunk) {
+    const std::size_t n = std::min(WarpPlan::kFloatChunk, sc.x.size() - base);
+    float bx[WarpPlan::kFloatChunk], by[WarpPlan::kFloatChunk], bz[WarpPlan::kFloatChunk];
+    RC_ASSERT(sc.plan->warp_points_float(&sc.x[base], &sc.y[base], &sc.z[base], bx, by, bz, n));
+    for (std::size_t i = 0; i < n; ++i) {
+      RC_ASSERT(distance(glm::dvec3(bx[i], by[i], bz[i]), exact[base + i]) <= bound);
+    }
+  }
+  // Symmetric: F(fl(g p)) against g F(p), beyond what the double warp itself gives for
+  // the same float inputs (fl(g p) is g p exactly for mirrors, to ~1e-7 for rotations).
+  const std::size_t order = group.order();
+  for (std::size_t i = 0; i < sc.base_points; ++i) {
+    for (std::size_t g = 1; g < order; ++g) {
+      const glm::dmat3& m = group.element(g);
+      const std::size_t j = sc.orbit[i * order + g];
+      const double input = distance(exact[j], m * exact[i]) / s.scale;
+      const double err = distance(sc.out(j), m * sc.out(i)) / s.scale;
+      g_worst_float_symmetry = std::max(g_worst_float_symmetry, err - input);
+      RC_ASSERT(err <= 1e-5 + input);
+    }
+  }
+  // Every grab point and image that is a vertex reaches its end pose as the double warp
+  // does (to 1e-6 of the scene size beyond the double warp at that float point).
+  for (std::size_t i = 0; i < sc.base_points; ++i) {
+    for (std::size_t h = 0; h < s.start.size(); ++h) {
+      if (distance(sc.at(i), s.start[h].origin) != 0.0) continue;
+      for (std::size_t g = 0; g < order; ++g) {
+        const std::size_t j = sc.orbit[i * order + g];
+        const glm::dvec3 target = expected_target(group, s, h, g);
+        const double err = distance(sc.out(j), target) / s.scale;
+        const double input = distance(exact[j], target) / s.scale;
+        g_worst_float_grab = std::max(g_worst_float_grab, err - input);
+        RC_ASSERT(err <= 1e-6 + input);
+      }
+    }
+  }
+}
+
+// A clutch chain: after a rebase the points move from the rest columns given to apply
+// (the previous step's result), with the weights of their chain start: the float path
+// against the plan's double path (the scalar kernel) on the same columns.
+void check_float_chain(const SymmetryGroup& group, const Stroke& s) {
+  SymmetricWarp reference;
+  if (!reference.build(group, s.start, s.radius, s.method).ok()) return;
+  FloatScene sc;
+  fill_scene(sc, group, reference);
+  sc.make_plan(*rc::gen::arbitrary<bool>());
+  RC_ASSERT(sc.plan->build(ConstVertexColumns{sc.x, sc.y, sc.z}, s.start, s.radius, s.method, group)
+                .ok());
+  RC_ASSERT(sc.plan->update(s.end).ok());
+  RC_ASSERT(sc.plan->apply(ConstVertexColumns{sc.x, sc.y, sc.z}, VertexColumns{sc.ox, sc.oy, sc.oz})
+                .ok());
+  // Step 2: from where step 1 left the points, the hands turn further.
+  const std::vector<float> qx = sc.ox, qy = sc.oy, qz = sc.oz;
+  RC_ASSERT(sc.plan->rebase(s.end).ok());
+  std::vector<Frame> further;
+  for (const Frame& f : s.end) further.push_back(*gen_end_frame(f, 0.3));
+  RC_ASSERT(sc.plan->update(further).ok());
+  const ConstVertexColumns q{qx, qy, qz};
+  std::vector<float> fx = qx, fy = qy, fz = qz, dx = qx, dy = qy, dz = qz;
+  RC_ASSERT(sc.plan->apply(q, VertexColumns{fx, fy, fz}).ok());
+  sc.plan->set_kernel(KernelKind::scalar);
+  RC_ASSERT(sc.plan->apply(q, VertexColumns{dx, dy, dz}).ok());
+  for (std::size_t i = 0; i < fx.size(); ++i) {
+    const double err = distance(glm::dvec3(fx[i], fy[i], fz[i]), glm::dvec3(dx[i], dy[i], dz[i]));
+    RC_ASSERT(err <= 1e-5 * (s.scale + 2.0));
+  }
+}
+
+RC_GTEST_PROP(SymmetricFloat, ClutchChainsMatchTheDoublePath, ()) {
+  const GroupSpec spec = *gen_group_of_kind(*rc::gen::inRange(0, 3));
+  check_float_chain(make_group(spec), *gen_stroke(spec));
+}
+
+RC_GTEST_PROP(SymmetricFloat, MirrorsMatchTheDoubleWarpAndAreSymmetric, ()) {
+  const GroupSpec spec = *gen_group_of_kind(0);
+  check_float_stroke(make_group(spec), *gen_stroke(spec), *rc::gen::arbitrary<bool>());
+}
+
+RC_GTEST_PROP(SymmetricFloat, RotationsMatchTheDoubleWarpAndAreSymmetric, ()) {
+  const GroupSpec spec = *gen_group_of_kind(1);
+  check_float_stroke(make_group(spec), *gen_stroke(spec), *rc::gen::arbitrary<bool>());
+}
+
+RC_GTEST_PROP(SymmetricFloat, RotationsWithMirrorMatchTheDoubleWarpAndAreSymmetric, ()) {
+  const GroupSpec spec = *gen_group_of_kind(2);
+  check_float_stroke(make_group(spec), *gen_stroke(spec), *rc::gen::arbitrary<bool>());
+}
+
+TEST(SymmetryReport, WorstErrors) {
   std::printf("symmetry: worst |F(gp) - gF(p)| %.3g, worst grab point error %.3g (x scene size)\n",
               g_worst_equivariance, g_worst_grab);
+  std::printf(
+      "symmetry float path: worst |float - double| %.3g, worst asymmetry beyond the input's "
+      "%.3g, worst grab point beyond double %.3g (x scene size)\n",
+      g_worst_float_vs_double, g_worst_float_symmetry, g_worst_float_grab);
 }
 
 }  // namespace

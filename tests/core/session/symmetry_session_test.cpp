@@ -437,7 +437,7 @@ StrokeResult stroke(SymStation& s, const math::SymmetryGroup& group,
     if (k == 1) out.separation = separation(plan);
     if (!chain) check_plan(plan, group);
     if (!chain && k == 3) {
-      // What the commit must write: F(rest) of the double warp, rounded to float.
+      // What the commit writes, to float precision: F(rest) of the double warp.
       out.expected = positions(s.mesh());
       for (const std::uint32_t v : plan.indices()) {
         out.expected[v] = glm::vec3(plan.warp_point(glm::dvec3(out.expected[v])));
@@ -488,8 +488,15 @@ RC_GTEST_PROP(SymmetricSession, StrokesStaySymmetricExactAndReplay, ()) {
     return;
   }
   const std::vector<glm::vec3> after = positions(s.mesh());
-  // The commit wrote the double warp of the rest positions, rounded (one step).
-  if (!chain) RC_ASSERT(after == done.expected);
+  // The commit wrote the warp of the rest positions (one step) by the float path
+  // (docs/math.md §11.7): within 1e-5 of the scene size of the double warp.
+  if (!chain) {
+    double worst = 0.0;
+    for (std::size_t i = 0; i < after.size(); ++i) {
+      worst = std::max(worst, static_cast<double>(glm::length(after[i] - done.expected[i])));
+    }
+    RC_ASSERT(worst <= 1e-5 * kScene);
+  }
   // The float mesh: exactly symmetric for mirrors (negation is exact in float); for
   // rotations its ~1e-7 asymmetry is amplified where grab points are close (steep warp).
   const bool mirrors = shape.spec.kind == math::SymmetryKind::mirrors;

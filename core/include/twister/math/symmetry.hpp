@@ -128,6 +128,10 @@ class SymmetricWarp {
   std::size_t stabiliser_size(std::size_t hand) const { return stab_[hand]; }
   // The start frame of hand h after snapping, and its screw.
   const Frame& start_frame(std::size_t hand) const { return start_[hand]; }
+  // The end frame of hand h after snapping (the last update; the start after build).
+  const Frame& end_frame(std::size_t hand) const { return end_[hand]; }
+  double radius() const { return radius_; }
+  WarpMethod method() const { return method_; }
   const Screw& screw(std::size_t hand) const { return screws_[hand]; }
   const SymmetryGroup& group() const { return group_; }
 

@@ -61,6 +61,35 @@ void decay_weights_simd(const DecaySpan& s, const float grab[3], const float uni
                         float radius);
 void warp_two_simd(const KernelHand& h1, const KernelHand& h2, const KernelSpan& s);
 
+// The symmetric float path (docs/math.md §11.7). The weight of one grab point for n
+// points (n <= kImageChunk) in single precision: the grab point as hi + lo floats (so
+// that p - grab is exact to float rounding of the difference, not of the coordinates),
+// `count` squashes of §11.3 as {ux, uy, uz, stretch} (unit towards the other grab
+// point, (r - s) / s), w = cos^2(pi/2 min(d/r, 1)) with d the largest squashed distance
+// (the min over the pairwise weights), 0 outside the radius.
+inline constexpr std::size_t kImageChunk = 256;
+void image_weights_simd(const DecaySpan& s, const float grab_hi[3], const float grab_lo[3],
+                        const float* squash, std::size_t count, float radius);
+// d += share * (the displacement of hand h at weight w): one image-hand (a conjugated
+// screw in kernel form) over n gathered points, accumulated into d.
+struct DisplacementSpan {
+  const float* x = nullptr;
+  const float* y = nullptr;
+  const float* z = nullptr;
+  const float* w = nullptr;
+  float* dx = nullptr;
+  float* dy = nullptr;
+  float* dz = nullptr;
+  std::size_t n = 0;
+};
+// A hand's float constants, prepared once per update (the simd kernel's own form).
+struct PreparedHand {
+  float c[13] = {};
+  bool wide = false;  // half angle past pi/2
+};
+void prepare_hand(const KernelHand& h, PreparedHand& out);
+void add_displacement_simd(const PreparedHand& h, float share, const DisplacementSpan& s);
+
 // Name of the instruction set the simd kernel dispatches to on this CPU
 // ("avx2+fma", "baseline"), for benchmark labels.
 const char* simd_kernel_isa();

@@ -30,6 +30,7 @@
 #include "twister/math/frame.hpp"
 #include "twister/math/scodef.hpp"
 #include "twister/math/screw.hpp"
+#include "twister/math/symmetric_kernel.hpp"
 #include "twister/math/symmetry.hpp"
 #include "twister/math/vertex_columns.hpp"
 #include "twister/math/warp_kernels.hpp"
@@ -54,9 +55,17 @@ void fill_kernel_hand(KernelHand& h, const Screw& s, const Frame& start, const F
 // and each plan vertex's chain-start position (the argument of its weights through a
 // clutch chain: the symmetric weights are too many to store per vertex; each column at
 // least the plan's capacity). Without it a plan builds only under the trivial group.
+// `balls` (optional, SymmetricFloat::words_for(the plan's capacity) words): the plan's
+// vertices sorted by the balls that hold them, for the float path (§11.7); without it
+// (or too small) apply() evaluates the warp in double. `weights` (optional,
+// SymmetricFloat::weights_for(capacity) floats): their weights, kept for the stroke
+// (without: recomputed at each apply).
 struct PlanSymmetry {
   SymmetricWarp warp{};
   VertexColumns start{};
+  std::span<std::uint64_t> balls{};
+  std::span<float> weights{};
+  SymmetricFloat fast{};
 };
 
 struct WarpPlanStorage {
@@ -82,8 +91,10 @@ class WarpPlan {
   // The same under a symmetry group (docs/math.md §11). The trivial group is exactly
   // build() above. Otherwise the plan's vertices are those within the radius of some
   // grab point (every image of every hand), weights1/weights2 are each hand's own
-  // (identity image) weight, for the display, and apply()/warp_point() evaluate the
-  // symmetrised warp per vertex in double (math::SymmetricWarp), float results.
+  // (identity image) weight, for the display; apply() evaluates the symmetrised warp
+  // in float, one kernel hand per image (SymmetricFloat, §11.7) with the simd kernel and
+  // PlanSymmetry::balls, else per vertex in double (math::SymmetricWarp, the scalar
+  // reference); warp_point() in double.
   // failed_precondition: no PlanSymmetry storage; invalid_argument also for scodef (not
   // symmetrised) and for a hand on another hand's image; errors as build otherwise.
   Status build(ConstVertexColumns rest, std::span<const Frame> start, double radius,

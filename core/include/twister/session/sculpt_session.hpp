@@ -244,15 +244,18 @@ struct FloatColumns {
   std::array<float, N> y{};
   std::array<float, N> z{};
 };
-// Symmetric strokes' plan storage: the warp and each plan vertex's chain-start position
-// (PlanSymmetry's columns point into `start`: not copyable).
+// Symmetric strokes' plan storage: the warp, each plan vertex's chain-start position and
+// the float path's order and weights (PlanSymmetry's spans point into them: not copyable).
 template <std::size_t N>
 struct SymmetryArrays {
   SymmetryArrays() = default;
   SymmetryArrays(const SymmetryArrays&) = delete;
   SymmetryArrays& operator=(const SymmetryArrays&) = delete;
   FloatColumns<N> start{};
-  math::PlanSymmetry plan{{}, math::VertexColumns{start.x, start.y, start.z}};
+  // The float path's sorted order and kept weights (docs/math.md §11.7).
+  std::array<std::uint64_t, math::SymmetricFloat::words_for(N)> balls{};
+  std::array<float, math::SymmetricFloat::weights_for(N)> weights{};
+  math::PlanSymmetry plan{{}, math::VertexColumns{start.x, start.y, start.z}, balls, weights};
 };
 }  // namespace internal
 
