@@ -34,6 +34,10 @@ ModelSession::ModelSession(meshio::ObjMesh model, std::size_t undo_changes,
   for (auto* v : {&lx_, &ly_, &lz_, &w1_, &w2_, &cx_, &cy_, &cz_, &sx_, &sy_, &sz_}) v->resize(n);
   symmetry_ = std::make_unique<math::PlanSymmetry>();
   symmetry_->start = math::VertexColumns{sx_, sy_, sz_};
+  balls_.resize(math::SymmetricFloat::words_for(n));
+  ball_weights_.resize(math::SymmetricFloat::weights_for(n));
+  symmetry_->balls = balls_;
+  symmetry_->weights = ball_weights_;
   plan_indices_.resize(n);
   changes_.resize(undo_changes);
   entries_.resize(std::max<std::size_t>(undo_entries, 1));

@@ -37,6 +37,10 @@ class ModelSession {
   std::vector<float> lx_, ly_, lz_, w1_, w2_;
   std::vector<float> cx_, cy_, cz_;  // a clutch chain's start (ClutchChain)
   std::vector<float> sx_, sy_, sz_;  // symmetric strokes' chain-start positions
+  // The float symmetric path's storage, as the station holds it (SymmetryMemory): a
+  // replay computes symmetric strokes exactly as the station did.
+  std::vector<std::uint64_t> balls_;
+  std::vector<float> ball_weights_;
   std::unique_ptr<math::PlanSymmetry> symmetry_;
   std::vector<std::uint32_t> plan_indices_;
   std::vector<session::VertexChange> changes_;
