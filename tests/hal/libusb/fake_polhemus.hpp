@@ -26,6 +26,7 @@
 #include "twister/tracker/fastrak_encoder.hpp"
 #include "twister/tracker/fastrak_session.hpp"
 #include "twister/tracker/liberty_encoder.hpp"
+#include "twister/tracker/liberty_startup.hpp"
 
 namespace twister::station_app::usbtest {
 
@@ -50,6 +51,7 @@ class FakePolhemus {
 
   void set_script(Script script) {
     std::lock_guard lock(mutex_);
+    liberty_lines_ = script.model != tracker::TrackerModel::fastrak;
     script_ = std::move(script);
   }
   // From now on the unit is this device model, powered up now: the host's bytes go to
@@ -57,6 +59,7 @@ class FakePolhemus {
   void set_device(const sim::FastrakDeviceConfig& config, sim::Scenario scenario) {
     std::lock_guard lock(mutex_);
     device_epoch_ = Clock::now();
+    liberty_lines_ = config.model != sim::DeviceModel::fastrak;
     device_ = std::make_unique<sim::FastrakDevice>(config, std::move(scenario), 0);
   }
   const sim::FastrakDevice* device() {
@@ -266,6 +269,10 @@ class FakePolhemus {
     }
     for (std::size_t i = 0; i < n; ++i) {
       const char c = data[i];
+      if (liberty_lines_) {
+        liberty_byte(c);
+        continue;
+      }
       if (input_.empty() && std::strchr("cCPSfFuU\x19\r", c) != nullptr && c != '\0') {
         if (c == '\r') continue;
         commands_.emplace_back(1, c);
@@ -278,6 +285,35 @@ class FakePolhemus {
       } else {
         input_ += c;
       }
+    }
+  }
+
+  // A Liberty's command lines (docs/liberty-protocol.md §9): all end with CR but `P`;
+  // logged with ^V and ^Y spelled out.
+  void liberty_byte(char c) {
+    if (input_.empty() && c == tracker::kLibertyPoll) {
+      commands_.emplace_back(1, c);
+      return;
+    }
+    if (c != '\r') {
+      input_ += c;
+      return;
+    }
+    if (input_.empty()) return;
+    std::string logged;
+    for (const char k : input_)
+      logged += k == tracker::kCtrlV ? "^V" : k == 0x19 ? "^Y" : std::string(1, k);
+    commands_.push_back(logged);
+    if (device_ == nullptr) liberty_line(input_);
+    input_.clear();
+  }
+  void liberty_line(const std::string& line) {
+    if (line == "F1" || line == "F0") binary_ = line == "F1";
+    if (line == "U1" || line == "U0") centimetres_ = line == "U1";
+    if (line == "C") command('C');
+    if (line == std::string(1, tracker::kCtrlV)) {
+      const std::string reply = "0 Polhemus (emulated)\r\n";
+      pending_.insert(pending_.end(), reply.begin(), reply.end());
     }
   }
 
@@ -326,7 +362,9 @@ class FakePolhemus {
   }
 
   std::mutex mutex_;
-  std::unique_ptr<sim::FastrakDevice> device_;  // the unit, when a device model plays it
+  std::unique_ptr<sim::FastrakDevice> device_;
+  bool liberty_lines_ =
+      false;  // the unit reads the Liberty dialect  // the unit, when a device model plays it
   Clock::time_point device_epoch_{};
   Script script_;
   bool gone_ = false;
@@ -348,18 +386,6 @@ class FakePolhemus {
 
 inline gboolean on_ioctl(UMockdevIoctlBase*, UMockdevIoctlClient* client, gpointer fake) {
   return static_cast<FakePolhemus*>(fake)->handle(client);
-}
-
-inline std::string hex16le(std::uint16_t v) {
-  char s[8];
-  std::snprintf(s, sizeof s, "%02x%02x", v & 0xff, v >> 8);
-  return s;
-}
-
-inline std::string hex8(std::uint8_t v) {
-  char s[4];
-  std::snprintf(s, sizeof s, "%02x", v);
-  return s;
 }
 
 }  // namespace twister::station_app::usbtest

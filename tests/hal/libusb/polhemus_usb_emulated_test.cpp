@@ -89,18 +89,20 @@ TEST_P(PolhemusUsbModels, StreamsRecordsEqualToTheEncoderThroughNoise) {
                                     : session_->liberty_parser_counters().resyncs;
   EXPECT_GE(resyncs, fake_.noise_runs() - 1);
   EXPECT_EQ(session_->counters().streams_started, 1u);
-  // The start-up the serial path sends: ladder `c`, `S`, station enables, lists in the
-  // model's codes, hemispheres, e1,0, units, binary, `S` again, then `C`.
+  // The start-up the serial path sends. A FASTRAK: ladder `c`, `S`, station enables,
+  // lists, hemispheres, e1,0, units, binary, `S` again, then `C`. The Liberty family
+  // (docs/liberty-protocol.md §9): ladder CR F0 CR P (the Latus without the first CR),
+  // WhoAmI, lists in the model's codes, hemispheres, (`@B0` on a Latus), U0, F1, C.
   const std::vector<std::string> cmds = fake_.commands();
-  const std::vector<std::string> want =
-      m.session_model == tracker::TrackerModel::fastrak
-          ? std::vector<std::string>{"c",        "S",    "l1,1",      "O1,2,11,16,1",
-                                     "H1,1,0,0", "l2,1", "O2,2,11,1", "H2,1,0,0",
-                                     "l3,0",     "l4,0", "e1,0",      "U",
-                                     "f",        "S",    "C"}
-          : std::vector<std::string>{"c",    "S",        "l1,1",     "O1,2,7,10,1", "H1,1,0,0",
-                                     "l2,1", "O2,2,7,1", "H2,1,0,0", "l3,0",        "l4,0",
-                                     "e1,0", "U",        "f",        "S",           "C"};
+  std::vector<std::string> want;
+  if (m.session_model == tracker::TrackerModel::fastrak) {
+    want = {"c",         "S",        "l1,1", "O1,2,11,16,1", "H1,1,0,0", "l2,1",
+            "O2,2,11,1", "H2,1,0,0", "l3,0", "l4,0",         "e1,0",     "U",
+            "f",         "S",        "C"};
+  } else {
+    want = {"F0", "P", "^V", "O1,2,7,10,1", "H1,1,0,0", "O2,2,7,1", "H2,1,0,0", "U0", "F1", "C"};
+    if (m.session_model == tracker::TrackerModel::latus) want.insert(want.end() - 3, "@B0");
+  }
   EXPECT_EQ(cmds, want);
   EXPECT_EQ(fake_.endpoints_used(), (std::array<std::uint8_t, 2>{m.endpoint_out, m.endpoint_in}));
 }
@@ -138,7 +140,9 @@ TEST_P(PolhemusUsbModels, UnplugAndReplugRecoverWithinTwoSeconds) {
   EXPECT_LT(recovery_s, 2.0);
   EXPECT_EQ(session_->counters().streams_started, 2u);
   const std::vector<std::string> cmds = fake_.commands();  // the whole start-up again
-  EXPECT_EQ(std::count(cmds.begin(), cmds.end(), "S"), 4) << describe();
+  const bool fastrak = m.session_model == tracker::TrackerModel::fastrak;
+  EXPECT_EQ(std::count(cmds.begin(), cmds.end(), fastrak ? "S" : "^V"), fastrak ? 4 : 2)
+      << describe();
   EXPECT_EQ(std::count(cmds.begin(), cmds.end(), "C"), 2) << describe();
   // The log's lines: found, then not found (while gone), then found at the new address.
   ASSERT_GE(reports_.size(), 2u);

@@ -21,6 +21,18 @@ namespace twister::station_app::usbtest {
 
 using hal::PolhemusUsbModel;
 
+inline std::string hex16le(std::uint16_t v) {
+  char s[8];
+  std::snprintf(s, sizeof s, "%02x%02x", v & 0xff, v >> 8);
+  return s;
+}
+
+inline std::string hex8(std::uint8_t v) {
+  char s[4];
+  std::snprintf(s, sizeof s, "%02x", v);
+  return s;
+}
+
 struct ModelCase {
   const char* name;
   std::uint16_t product_id;
