@@ -1,10 +1,8 @@
-// FakePolhemus: a Polhemus tracker emulated at usbdevfs for the tests that run the
-// station's USB backend (real libusb) under umockdev's preload. umockdev routes the
-// usbdevfs ioctls libusb issues (SUBMITURB, REAPURB(NDELAY), DISCARDURB, claim, ...) on
-// the emulated /dev/bus/usb node to handle() (umockdev's thread). The unit answers the
-// start-up and, after `C`, streams either a script (poses written by core's encoders,
-// noise between them) or what a sim::FastrakDevice (the device model of twister-sim)
-// sends, the model then reading the host's commands itself.
+// FakePolhemus: a Polhemus tracker emulated at usbdevfs (umockdev routes libusb's
+// SUBMITURB, REAPURB(NDELAY), DISCARDURB, claim, ... on its node to handle(), on
+// umockdev's thread). It answers the start-up and, after `C`, streams a script (poses
+// by core's encoders, noise between them) or what a sim::FastrakDevice (twister-sim's
+// device model, then reading the host's commands itself) sends.
 #pragma once
 
 #include <linux/ioctl.h>
@@ -74,6 +72,12 @@ class FakePolhemus {
       streaming_ = false;
       pending_.clear();
       input_.clear();
+      // URBs of the unplugged node's connection (closed by the host) are not the new
+      // node's: never given back on it.
+      for (auto* queue : {&in_flight_, &done_, &discarded_}) {
+        for (UMockdevIoctlData* urb : *queue) umockdev_ioctl_data_unref(urb);
+        queue->clear();
+      }
     }
   }
   std::vector<std::string> commands() {
@@ -83,6 +87,10 @@ class FakePolhemus {
   std::size_t sent() {
     std::lock_guard lock(mutex_);
     return next_pose_;
+  }
+  std::size_t reaped() {
+    std::lock_guard lock(mutex_);
+    return reaped_;
   }
   std::size_t noise_runs() {
     std::lock_guard lock(mutex_);
@@ -211,6 +219,7 @@ class FakePolhemus {
       pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(n));
       urb->actual_length = static_cast<int>(n);
       urb->status = 0;
+      ++reaped_;
     }
     if (urb_data == nullptr) {
       umockdev_ioctl_client_complete(client, -1, gone_ ? ENODEV : EAGAIN);
@@ -362,9 +371,9 @@ class FakePolhemus {
   }
 
   std::mutex mutex_;
-  std::unique_ptr<sim::FastrakDevice> device_;
-  bool liberty_lines_ =
-      false;  // the unit reads the Liberty dialect  // the unit, when a device model plays it
+  std::unique_ptr<sim::FastrakDevice> device_;  // the unit, when a device model plays it
+  std::size_t reaped_ = 0;                      // IN URBs given back with data
+  bool liberty_lines_ = false;                  // the unit reads the Liberty dialect
   Clock::time_point device_epoch_{};
   Script script_;
   bool gone_ = false;
