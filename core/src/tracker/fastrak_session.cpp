@@ -5,52 +5,23 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <utility>
 
 namespace twister::tracker {
-const char* session_state_name(SessionState s) {
-  switch (s) {
-    case SessionState::backoff:
-      return "backoff";
-    case SessionState::ladder:
-      return "ladder";
-    case SessionState::settle:
-      return "settle";
-    case SessionState::await_status:
-      return "await_status";
-    case SessionState::configuring:
-      return "configuring";
-    case SessionState::verify_status:
-      return "verify_status";
-    case SessionState::streaming:
-      return "streaming";
-  }
-  return "unknown";
-}
-
-const char* tracker_model_name(TrackerModel model) {
-  switch (model) {
-    case TrackerModel::fastrak:
-      return "FASTRAK";
-    case TrackerModel::liberty:
-      return "Liberty";
-    case TrackerModel::patriot:
-      return "Patriot";
-    case TrackerModel::latus:
-      return "Latus";
-  }
-  return "unknown";
-}
-
 namespace {
+LibertyModel liberty_family(TrackerModel model) {
+  return model == TrackerModel::patriot ? LibertyModel::patriot
+         : model == TrackerModel::latus ? LibertyModel::latus
+                                        : LibertyModel::liberty;
+}
+
 // A Liberty-family model needs binary output and lists with a Liberty equivalent.
 bool configure_frames(const FastrakSessionConfig& config, LibertyParser& parser) {
   if (config.model == TrackerModel::fastrak) return true;
   if (config.protocol.format != Format::binary) return false;
-  const LibertyModel family = config.model == TrackerModel::patriot ? LibertyModel::patriot
-                              : config.model == TrackerModel::latus ? LibertyModel::latus
-                                                                    : LibertyModel::liberty;
   LibertyConfig frames;
-  return to_liberty_config(config.protocol, family, frames).ok() && parser.configure(frames).ok();
+  return to_liberty_config(config.protocol, liberty_family(config.model), frames).ok() &&
+         parser.configure(frames).ok();
 }
 }  // namespace
 
@@ -60,27 +31,27 @@ FastrakSession::FastrakSession(ports::ByteStream& stream, ports::Clock& clock,
       clock_(clock),
       config_(config),
       continuity_(config.continuity, config.protocol.units, config.protocol.format) {
-  config_ok_ = parsers_.fastrak.configure(config_.protocol).ok() &&
-               configure_frames(config_, parsers_.liberty) && config_.reset_rung_limit >= 1;
+  flags_.config_ok = parsers_.fastrak.configure(config_.protocol).ok() &&
+                     configure_frames(config_, parsers_.liberty) && config_.reset_rung_limit >= 1;
   recovery_.backoff_us = config_.backoff.initial_us;
   timers_.deadline = clock_.now_us();
-  if (config_ok_) build_commands();
+  if (flags_.config_ok) build_commands();
 }
 
 void FastrakSession::build_commands() {
   // One command per '\0'-terminated entry; sent one per command pause.
   commands_.len = 0;
+  if (config_.model != TrackerModel::fastrak) {
+    const bool ok = build_liberty_commands();
+    TWISTER_ASSERT(ok);  // 16 commands of at most 128 bytes fit the buffer
+    return;
+  }
   bool ok = true;
   for (int s = 1; s <= kMaxStations; ++s) {
     const ReceiverConfig& st = config_.protocol.stations[static_cast<std::size_t>(s - 1)];
     ok = ok && add_command(station_state_command(s, st.enabled));
     if (!st.enabled) continue;
-    if (config_.model == TrackerModel::fastrak) {
-      ok = ok && add_command(output_list_command(s, st.list));
-    } else {
-      // The family's own item codes (docs/liberty-protocol.md §3), as the parser frames them.
-      ok = ok && add_liberty_list(s);
-    }
+    ok = ok && add_command(output_list_command(s, st.list));
     ok = ok &&
          add_command(hemisphere_command(s, config_.hemisphere[static_cast<std::size_t>(s - 1)]));
   }
@@ -96,16 +67,6 @@ void FastrakSession::build_commands() {
   const bool ascii = config_.protocol.format == Format::ascii;
   ok = ok && add_command(Mode{ascii ? ModeCommand::ascii : ModeCommand::binary});
   TWISTER_ASSERT(ok);  // 4 stations x 32 items always fit the buffer
-}
-
-bool FastrakSession::add_liberty_list(int station) {
-  const auto room = std::span<char>(commands_.data).subspan(commands_.len);
-  const auto& list = parsers_.liberty.config().stations[static_cast<std::size_t>(station - 1)].list;
-  const Result<std::size_t> n = encode_liberty_output_list(station, list, room);
-  if (!n.ok() || *n >= room.size()) return false;
-  commands_.len += *n;
-  commands_.data[commands_.len++] = '\0';
-  return true;
 }
 
 bool FastrakSession::add_command(const FastrakCommand& command) {
@@ -150,6 +111,13 @@ void FastrakSession::start_ladder(ports::TimestampUs now) {
   if (recovery_.rung < 1) recovery_.rung = 1;
   ++counters_.inits;
   ladder_.len = 0;
+  if (config_.model != TrackerModel::fastrak) {  // docs/liberty-protocol.md §9
+    ladder_.len = liberty_ladder(liberty_family(config_.model), recovery_.rung, ladder_.data);
+    ladder_.pos = 0;
+    timers_.deadline = now;
+    enter(SessionState::ladder);
+    return;
+  }
   if (recovery_.rung >= 2) ladder_.data[ladder_.len++] = kCr;  // ends a half-typed command
   ladder_.data[ladder_.len++] = static_cast<char>(ModeCommand::polled);  // leave continuous mode
   if (recovery_.rung >= 3) {
@@ -163,7 +131,7 @@ void FastrakSession::start_ladder(ports::TimestampUs now) {
 void FastrakSession::fault(ports::TimestampUs now) {
   parsers_.reset();
   rx_.len = rx_.pos = 0;
-  port_open_ = false;  // the port is reopened (VRPN closes and reopens as well)
+  flags_.port_open = false;  // the port is reopened (VRPN closes and reopens as well)
   timers_.deadline = now + recovery_.backoff_us;
   recovery_.backoff_us = std::min(recovery_.backoff_us * 2, config_.backoff.max_us);
   enter(SessionState::backoff);
@@ -174,7 +142,7 @@ void FastrakSession::reinitialise() {
   const ports::TimestampUs now = clock_.now_us();
   parsers_.reset();
   rx_.len = rx_.pos = 0;
-  port_open_ = false;
+  flags_.port_open = false;
   recovery_.rung = 1;
   timers_.deadline = now;
   enter(SessionState::backoff);
@@ -195,16 +163,22 @@ void FastrakSession::step_timers(ports::TimestampUs now) {
         fault(now);
         return;
       }
-      port_open_ = true;
+      flags_.port_open = true;
       start_ladder(now);
       return;
     }
     case SessionState::ladder: {
       if (now < timers_.deadline) return;
       if (ladder_.pos < ladder_.len) {
-        const char c = ladder_.data[ladder_.pos++];
-        if (!send(std::span<const char>(&c, 1), now)) return;
-        const bool reset = c == static_cast<char>(ModeCommand::reinitialise);
+        // A byte at a time; a Liberty's ladder a line (up to its CR) at a time.
+        const bool liberty = config_.model != TrackerModel::fastrak;
+        const std::size_t from = ladder_.pos;
+        while (ladder_.pos++ < ladder_.len - 1 && liberty && ladder_.data[ladder_.pos - 1] != kCr) {
+        }
+        const std::span<const char> chunk(ladder_.data.data() + from, ladder_.pos - from);
+        if (!send(chunk, now)) return;
+        // The unit re-initialises after ^Y (a Liberty: after the CR that ends it).
+        const bool reset = std::find(chunk.begin(), chunk.end(), kCtrlY) != chunk.end();
         timers_.deadline = now + (reset ? config_.reset_wait_us : config_.ladder_char_pause_us);
         return;
       }
@@ -218,13 +192,23 @@ void FastrakSession::step_timers(ports::TimestampUs now) {
       stream_.discard_input();
       parsers_.reset();
       rx_.len = rx_.pos = 0;
-      if (!send_command(Mode{ModeCommand::status}, now)) return;
+      // A Liberty has no `S`: WhoAmI (docs/liberty-protocol.md §9).
+      flags_.whoami_first = 0;
+      const bool sent = config_.model == TrackerModel::fastrak
+                            ? send_command(Mode{ModeCommand::status}, now)
+                            : send(std::span<const char>(kLibertyWhoAmI), now);
+      if (!sent) return;
       timers_.deadline = now + config_.reply_timeout_us;
       enter(SessionState::await_status);
       return;
     }
     case SessionState::await_status:
     case SessionState::verify_status: {
+      // A WhoAmI reply is complete when no byte came for a command pause.
+      if (flags_.whoami_first != 0 && now - timers_.last_byte >= config_.command_pause_us) {
+        judge_whoami(now);
+        return;
+      }
       if (now < timers_.deadline) return;
       ++counters_.status_timeouts;
       if (recovery_.rung < config_.reset_rung_limit) {
@@ -244,8 +228,15 @@ void FastrakSession::step_timers(ports::TimestampUs now) {
         if (!send(std::span<const char>(cmd, n), now)) return;
         // The unit is deaf while it processes a command (filters take longest).
         const bool filter = cmd[0] == static_cast<char>(ParameterCommand::position_filter) ||
-                            cmd[0] == static_cast<char>(ParameterCommand::attitude_filter);
+                            cmd[0] == static_cast<char>(ParameterCommand::attitude_filter) ||
+                            cmd[0] == kLibertyPositionFilter || cmd[0] == kLibertyAttitudeFilter;
         timers_.deadline = now + (filter ? config_.filter_pause_us : config_.command_pause_us);
+        return;
+      }
+      if (config_.model != TrackerModel::fastrak) {
+        // No status record to check format and units against: the frames show the
+        // format; the units are taken as set (docs/liberty-protocol.md §9).
+        if (send(std::span<const char>(kLibertyStartContinuous), now)) start_streaming(now);
         return;
       }
       if (!send_command(Mode{ModeCommand::status}, now)) return;
@@ -297,16 +288,19 @@ void FastrakSession::handle_event(const FastrakEvent& ev, ports::TimestampUs now
           fault(now);
           return;
         }
-        if (!send_command(Mode{ModeCommand::continuous}, now)) return;
-        ++counters_.streams_started;
-        recovery_.rung = 0;
-        recovery_.backoff_us = config_.backoff.initial_us;
-        timers_.last_pose = timers_.last_byte = now;
-        continuity_.reset();
-        enter(SessionState::streaming);
+        if (send_command(Mode{ModeCommand::continuous}, now)) start_streaming(now);
       }
       return;
   }
+}
+
+void FastrakSession::start_streaming(ports::TimestampUs now) {
+  ++counters_.streams_started;
+  recovery_.rung = 0;
+  recovery_.backoff_us = config_.backoff.initial_us;
+  timers_.last_pose = timers_.last_byte = now;
+  continuity_.reset();
+  enter(SessionState::streaming);
 }
 
 bool FastrakSession::take_pose(const FastrakPose& pose, ports::TimestampUs now) {
@@ -332,7 +326,7 @@ Result<FastrakEvent> FastrakSession::next_event() {
 }
 
 Result<FastrakPose> FastrakSession::poll() {
-  if (!config_ok_) return StatusCode::invalid_argument;
+  if (!flags_.config_ok) return StatusCode::invalid_argument;
   const ports::TimestampUs now = clock_.now_us();
   // While streaming, silence is judged only once the input is drained: a host that
   // stalled (a slow fsync, a starved process) finds the records that came meanwhile
@@ -350,7 +344,7 @@ Result<FastrakPose> FastrakSession::poll() {
       handle_event(*ev, now);
       continue;
     }
-    if (!port_open_) return StatusCode::unavailable;
+    if (!flags_.port_open) return StatusCode::unavailable;
     auto n = stream_.read(rx_.data);
     if (!n.ok()) {
       ++counters_.io_errors;
@@ -364,6 +358,12 @@ Result<FastrakPose> FastrakSession::poll() {
     rx_.len = *n;
     rx_.pos = 0;
     timers_.last_byte = now;
+    if (config_.model != TrackerModel::fastrak && state_ == SessionState::await_status) {
+      // A WhoAmI reply is text, not a record: only its first byte is judged.
+      if (flags_.whoami_first == 0) flags_.whoami_first = static_cast<char>(rx_.data[0]);
+      rx_.pos = rx_.len;
+      if (flags_.whoami_first == 0) flags_.whoami_first = 1;  // a NUL: not '0' either
+    }
   }
 }
 

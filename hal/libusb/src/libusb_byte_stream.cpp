@@ -89,7 +89,11 @@ void LibusbCallbacks::on_in_transfer(libusb_transfer* transfer) {
     }
     // Back-pressure: the next transfer only while the ring has room for all it may
     // bring; until read() makes room the unit keeps its data (USB flow control).
-    if (s->handle_ != nullptr && s->room_for_transfer() && libusb_submit_transfer(transfer) == 0)
+    // Never while close() waits for the cancelled transfer: a transfer that completed
+    // before the cancellation took effect would otherwise go out again and stay in
+    // flight as the handle is closed.
+    if (s->handle_ != nullptr && !s->closing_ && s->room_for_transfer() &&
+        libusb_submit_transfer(transfer) == 0)
       s->in_flight_ = true;
     return;
   }
@@ -149,6 +153,7 @@ Status LibusbByteStream::gone(int error) {
 
 void LibusbByteStream::close() {
   if (handle_ == nullptr) return;
+  closing_ = true;
   if (in_flight_) {
     libusb_cancel_transfer(in_transfer_);
     // The cancellation completes through the event loop; wait for it so the buffer
@@ -163,6 +168,7 @@ void LibusbByteStream::close() {
   libusb_close(handle_);
   handle_ = nullptr;
   removed_ = false;
+  closing_ = false;
 }
 
 bool LibusbByteStream::do_device_arrived() {

@@ -1,6 +1,10 @@
 #include "twister/sim/command_input.hpp"
 
 #include <algorithm>
+#include <string_view>
+#include <variant>
+
+#include "twister/tracker/liberty_startup.hpp"
 
 namespace twister::sim {
 
@@ -52,6 +56,10 @@ CommandInput::Heard CommandInput::take_buffered() {
 
 CommandInput::Heard CommandInput::frame(char byte, ports::TimestampUs now) {
   if (!in_parameter_) return take_first(byte, now);
+  if (byte == tracker::kCr && liberty_) {
+    in_parameter_ = false;
+    return liberty_line(now);
+  }
   if (byte == tracker::kCr) {
     in_parameter_ = false;
     pending_ += byte;
@@ -75,6 +83,11 @@ CommandInput::Heard CommandInput::frame(char byte, ports::TimestampUs now) {
 
 CommandInput::Heard CommandInput::take_first(char byte, ports::TimestampUs now) {
   if (byte == tracker::kCr || byte == tracker::kLf) return Heard::nothing;
+  if (liberty_ && byte != tracker::kLibertyPoll) {  // a line up to CR
+    in_parameter_ = true;
+    pending_.assign(1, byte);
+    return Heard::nothing;
+  }
   if (const auto mode = tracker::mode_command(byte)) {
     echo_.assign(1, byte);
     return finish(tracker::Mode{*mode}, now);
@@ -86,6 +99,48 @@ CommandInput::Heard CommandInput::take_first(char byte, ports::TimestampUs now) 
   }
   echo_.assign(1, byte);
   return fail(-99);
+}
+
+CommandInput::Heard CommandInput::liberty_line(ports::TimestampUs now) {
+  using tracker::ModeCommand;
+  echo_ = pending_;
+  const std::string line = pending_;
+  pending_.clear();
+  struct Word {
+    std::string_view text;
+    ModeCommand mode;
+  };
+  static constexpr Word kWords[] = {
+      {tracker::kLibertyAscii, ModeCommand::ascii},
+      {tracker::kLibertyBinary, ModeCommand::binary},
+      {tracker::kLibertyInches, ModeCommand::inches},
+      {tracker::kLibertyCentimetres, ModeCommand::centimetres},
+      {tracker::kLibertyStartContinuous, ModeCommand::continuous},
+  };
+  for (const Word& w : kWords) {
+    if (w.text.substr(0, w.text.size() - 1) == line) return finish(tracker::Mode{w.mode}, now);
+  }
+  if (line == std::string(1, tracker::kCtrlY)) {
+    return finish(tracker::Mode{ModeCommand::reinitialise}, now);
+  }
+  if (line == std::string(1, tracker::kCtrlV)) {
+    done_ = now + command_time(tracker::kCtrlV);
+    deaf_until_ = std::max(deaf_until_, done_);
+    return Heard::who_am_i;
+  }
+  if (line + tracker::kCr == tracker::kLatusUsbBufferingOff) return Heard::nothing;  // no effect
+  std::string fastrak = line;
+  if (line[0] == tracker::kLibertyPositionFilter || line[0] == tracker::kLibertyAttitudeFilter) {
+    fastrak[0] = line[0] == tracker::kLibertyPositionFilter ? 'x' : 'v';
+    // FLOW = 1 switches the filter off (VRPN's `X0,1,0,0`): the Fastrak's `x,1`.
+    const std::size_t comma = line.find(',');
+    if (comma != std::string::npos && line.compare(comma, 3, ",1,") == 0)
+      fastrak = fastrak.substr(0, 1) + ",1";
+  }
+  fastrak += tracker::kCr;
+  const auto decoded = tracker::decode(std::span<const char>(fastrak.data(), fastrak.size()));
+  if (!decoded.ok() || !std::holds_alternative<tracker::Parameters>(*decoded)) return fail(-99);
+  return finish(*decoded, now);
 }
 
 CommandInput::Heard CommandInput::finish(const tracker::FastrakCommand& command,

@@ -68,6 +68,9 @@ void FastrakDevice::power_up(ports::TimestampUs now) {
   settings_.power_up({config_.baud, config_.start_continuous, config_.start_format,
                       scenario_.receivers, config_.start_position_filter,
                       config_.start_attitude_filter});
+  // A Liberty's stylus leaves the stream alone (assumed, docs/liberty-protocol.md §9: no
+  // public driver sets its mode, and VRPN's reads it as a button while streaming).
+  if (config_.model != DeviceModel::fastrak) settings_.stylus_mode = 0;
   solver_.reset();
   // A line hit's budget belongs to the stream it hit, not to the next one.
   counters_.drop_expired += faults_.expire_drop();

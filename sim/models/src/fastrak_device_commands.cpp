@@ -13,6 +13,7 @@
 #include <string>
 
 #include "twister/tracker/fastrak_encoder.hpp"
+#include "twister/tracker/liberty_startup.hpp"
 
 namespace twister::sim {
 
@@ -59,6 +60,13 @@ void FastrakDevice::heard(CommandInput::Heard what, ports::TimestampUs at) {
     case CommandInput::Heard::command:
       execute(input_.command(), input_.echo(), input_.done());
       input_.hold_until(input_.done());
+      break;
+    case CommandInput::Heard::who_am_i:  // the text is assumed; VRPN checks the '0'
+      ++counters_.commands;
+      reply(std::string(1, tracker::kLibertyWhoAmIFirst) + " Polhemus " +
+                (config_.model == DeviceModel::patriot ? "PATRIOT" : "LIBERTY") +
+                " (twister-sim device model)\r\n",
+            input_.done());
       break;
   }
 }

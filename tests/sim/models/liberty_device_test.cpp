@@ -45,9 +45,14 @@ ModelRun run(DeviceModel model, bool binary) {
   // A Liberty-family unit takes its own item codes (position 2, quaternion 7, stylus 10,
   // CR LF 1; docs/liberty-protocol.md §3); the same lists as the Fastrak's 2, 11, 16, 1.
   const bool codes = model != DeviceModel::fastrak;
-  const std::vector<std::string> commands = {codes ? "O1,2,7,10,1\r" : "O1,2,11,16,1\r",
-                                             codes ? "O2,2,7,1\r" : "O2,2,11,1\r",
-                                             binary ? "f" : "F", "C"};
+  // Each in its dialect (docs/liberty-protocol.md §9); the Fastrak's stylus told not to
+  // toggle the stream (`e1,0`, as the station does), the Liberty's leaves it alone (an
+  // empty line in its place keeps the commands' times the same).
+  const std::vector<std::string> commands =
+      codes ? std::vector<std::string>{"O1,2,7,10,1\r", "O2,2,7,1\r", "\r",
+                                       binary ? "F1\r" : "F0\r", "C\r"}
+            : std::vector<std::string>{"O1,2,11,16,1\r", "O2,2,11,1\r", "e1,0\r",
+                                       binary ? "f" : "F", "C"};
   ModelRun r;
   std::int64_t t = 0;
   for (std::size_t i = 0; i <= commands.size(); ++i) {
@@ -94,6 +99,7 @@ void expect_same_poses(const std::vector<FastrakPose>& a, const std::vector<Fast
   // The first record may be cut by the start of collection; longer frames finish later,
   // so the last one may still be on the wire. Align on the first common record.
   ASSERT_GT(a.size(), 400u);
+  ASSERT_GT(b.size(), 400u);
   std::size_t ia = 0, ib = 0;
   while (ib < b.size() && !(b[ib].position == a[0].position)) ++ib;
   if (ib == b.size()) {

@@ -76,11 +76,18 @@ void check_model(DeviceModel model, tracker::LibertyModel family, const char* na
   ASSERT_TRUE(host.ok());
   // One command at a time: the unit is deaf while it processes one.
   // The family's own item codes: position 2, quaternion 7, stylus 10, CR LF 1.
-  for (const char* cmd : {"O1,2,7,10,1\r", "O2,2,7,1\r"}) {
+  // The Liberty's dialect (docs/liberty-protocol.md §9): WhoAmI answered with a line
+  // starting '0', then binary (`F1`) and continuous (`C`), each a line.
+  host.send("\x16\r");
+  EXPECT_EQ(
+      host.read_until([](const std::string& s) { return s.find('\n') != std::string::npos; }, 2000)
+          .substr(0, 1),
+      "0");
+  for (const char* cmd : {"O1,2,7,10,1\r", "O2,2,7,1\r", "F1\r"}) {
     host.send(cmd);
     host.read_for(200);
   }
-  host.send("fC");
+  host.send("C\r");
   const std::string bytes =
       host.read_until([](const std::string& s) { return s.size() >= 42u * 200u; }, 6000);
   sim.join();

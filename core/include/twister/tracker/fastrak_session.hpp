@@ -11,6 +11,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <string_view>
 
 #include "twister/base/result.hpp"
 #include "twister/ports/byte_stream.hpp"
@@ -20,14 +21,18 @@
 #include "twister/tracker/fastrak_parser.hpp"
 #include "twister/tracker/fastrak_wire.hpp"
 #include "twister/tracker/liberty_parser.hpp"
+#include "twister/tracker/liberty_startup.hpp"
 #include "twister/tracker/pose_continuity.hpp"
 
 namespace twister::tracker {
 
-// The unit on the line. A Liberty, Patriot or Latus (Liberty HS) takes the Fastrak's start-up, but
-// its `O` lists in its own item codes (to_liberty_config(protocol)); in binary its records are
-// Liberty-family frames (docs/liberty-protocol.md), so once streaming the session reads
-// them with LibertyParser configured the same way. Those models need Format::binary.
+// The unit on the line. A Liberty, Patriot or Latus (Liberty HS) is started as the public
+// drivers start it (liberty_startup.hpp, docs/liberty-protocol.md §9): the reset ladder
+// back to ASCII, WhoAmI in place of `S`, `O` lists in its own item codes
+// (to_liberty_config(protocol)), `H`, its filters `X` / `Y`, (`@B0` on a Latus), `U0`/`U1`,
+// `F1`, then `C`; in binary its records are Liberty-family frames, so once streaming the
+// session reads them with LibertyParser configured the same way. Those models need
+// Format::binary.
 // A FASTRAK 3 is a fastrak here (the same records).
 enum class TrackerModel : std::uint8_t { fastrak, liberty, patriot, latus };
 // "FASTRAK", "Liberty", "Patriot", "Latus"
@@ -126,7 +131,15 @@ class FastrakSession {
   bool send(std::span<const char> text, ports::TimestampUs now);
   bool send_command(const FastrakCommand& command, ports::TimestampUs now);
   void start_ladder(ports::TimestampUs now);
+  // `C` sent: the stream starts, the recovery state is reset.
+  void start_streaming(ports::TimestampUs now);
+  // A Liberty's WhoAmI reply, once it has stopped coming: configure, or a fault.
+  void judge_whoami(ports::TimestampUs now);
   void build_commands();
+  // The Liberty family's configuration commands (docs/liberty-protocol.md §9).
+  bool build_liberty_commands();
+  // Appends `text` as one configuration command.
+  bool add_text(std::string_view text);
   // Appends one encoded command to the configuration commands.
   bool add_command(const FastrakCommand& command);
   // Appends a Liberty-family `O` command for `station` (its list from the frame parser).
@@ -170,8 +183,12 @@ class FastrakSession {
   FastrakSessionConfig config_;
   Parsers parsers_;
   PoseContinuity continuity_;
-  bool config_ok_ = false;
-  bool port_open_ = false;
+  struct Flags {
+    bool config_ok = false;
+    bool port_open = false;
+    char whoami_first = 0;  // a Liberty's WhoAmI reply's first byte (0: none yet)
+  };
+  Flags flags_{};
   SessionState state_ = SessionState::backoff;
   Timers timers_{};
   Recovery recovery_{};

@@ -123,6 +123,7 @@ class LibusbByteStream final : public ports::ByteStream, public PollSource, publ
   libusb_device_handle* handle_ = nullptr;
   libusb_transfer* in_transfer_ = nullptr;
   bool in_flight_ = false;
+  bool closing_ = false;  // close() is cancelling the IN transfer: no resubmission
   bool hotplug_ = false;
   bool arrived_ = false;
   bool removed_ = false;

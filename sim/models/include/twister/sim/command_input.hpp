@@ -6,7 +6,11 @@
 // buffer (kInputBufferBytes, as a UART's receive interrupt fills a firmware ring) and are
 // read when it is done; a byte arriving at a full buffer is lost (an overrun), as is
 // everything buffered when the unit resets. A unit configured with no buffer
-// (input_buffer 0) loses every byte sent while it is busy. Not thread-safe.
+// (input_buffer 0) loses every byte sent while it is busy. A Liberty or Patriot frames
+// every command up to CR but `P` (the Liberty dialect, tracker/liberty_startup.hpp,
+// docs/liberty-protocol.md §9): `F0`/`F1`, `U0`/`U1`, `C`, ^Y and `X`/`Y` read as the
+// Fastrak's `F`/`f`, `U`/`u`, `C`, ^Y and `x`/`v`, ^V is WhoAmI, `@B0` is taken without
+// effect, `O` and `H` as the Fastrak's. Not thread-safe.
 #pragma once
 
 #include <array>
@@ -39,10 +43,14 @@ inline constexpr std::size_t kInputBufferBytes = 256;
 
 class CommandInput {
  public:
-  enum class Heard : std::uint8_t { nothing, lost, command, error };
+  // who_am_i: a Liberty's ^V, done at done().
+  enum class Heard : std::uint8_t { nothing, lost, command, error, who_am_i };
 
-  explicit CommandInput(const CommandTimes& times, std::size_t buffer = kInputBufferBytes)
-      : times_(times), buffer_limit_(buffer < kInputBufferBytes ? buffer : kInputBufferBytes) {
+  explicit CommandInput(const CommandTimes& times, std::size_t buffer = kInputBufferBytes,
+                        bool liberty = false)
+      : times_(times),
+        buffer_limit_(buffer < kInputBufferBytes ? buffer : kInputBufferBytes),
+        liberty_(liberty) {
     pending_.reserve(96);
     echo_.reserve(96);
   }
@@ -73,12 +81,15 @@ class CommandInput {
  private:
   Heard frame(char byte, ports::TimestampUs now);
   Heard take_first(char byte, ports::TimestampUs now);
+  // A Liberty's command line (without its CR) as the shared command it means.
+  Heard liberty_line(ports::TimestampUs now);
   Heard finish(const tracker::FastrakCommand& command, ports::TimestampUs now);
   Heard fail(int code);
   std::int64_t command_time(char letter) const;
 
   const CommandTimes& times_;
   std::size_t buffer_limit_;
+  bool liberty_ = false;                          // the Liberty dialect
   std::array<char, kInputBufferBytes> buffer_{};  // ring of bytes waiting to be read
   std::size_t buffer_head_ = 0;
   std::size_t buffered_ = 0;

@@ -44,9 +44,11 @@
 
 namespace twister::sim {
 
-// Which unit the model plays. A Liberty or Patriot takes the same commands and sends
-// the same ASCII records here; in binary it frames each record with the family's header
-// (docs/liberty-protocol.md; the ASCII records are an assumption, docs/fastrak.md).
+// Which unit the model plays. A Liberty or Patriot takes its own dialect of the commands
+// (CommandInput: lines up to CR, `F1`, `U1`, `C`, `X`/`Y`, WhoAmI ^V answered with a line
+// starting '0') and sends the Fastrak's ASCII records here; in binary it frames each
+// record with the family's header (docs/liberty-protocol.md; the ASCII records and the
+// WhoAmI text are assumptions, docs/fastrak.md).
 enum class DeviceModel : std::uint8_t { fastrak, liberty, patriot };
 const char* device_model_name(DeviceModel model);
 
@@ -200,7 +202,8 @@ class FastrakDevice final : private ReplySink {
   std::mt19937 rng_;
   UnitSettings settings_;
   ParameterCommands parameters_{settings_, *this, config_.model != DeviceModel::fastrak};
-  CommandInput input_{config_.command_time_us, config_.input_buffer_bytes};
+  CommandInput input_{config_.command_time_us, config_.input_buffer_bytes,
+                      config_.model != DeviceModel::fastrak};
   FaultSchedule faults_{scenario_.faults, scenario_origin_};
   StationSolver solver_;
   PacedLine line_;
