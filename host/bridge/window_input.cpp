@@ -45,6 +45,8 @@ KeyAction key_action(int key) {
       return KeyAction::redo;
     case GLFW_KEY_M:
       return KeyAction::next_method;
+    case GLFW_KEY_S:
+      return KeyAction::cycle_symmetry;
     default:
       return KeyAction::none;
   }
@@ -87,6 +89,8 @@ bool WindowInput::apply(KeyAction action) {
       return app_.send_command({link::CommandKind::redo, 0});
     case KeyAction::next_method:
       return app_.send_command({link::CommandKind::next_method, 0});
+    case KeyAction::cycle_symmetry:
+      return app_.send_command({link::CommandKind::cycle_symmetry, 0});
   }
   return false;
 }

@@ -2,7 +2,8 @@
 //   mouse: left drag orbits, right or middle drag pans, the wheel zooms;
 //   keys:  arrows orbit, + / - zoom, F or Home frames the model again (the view's
 //          defaults), H shows or hides the heads-up text, C the cues;
-//          Z undo, Y redo, M next warp method: sent to the station as link
+//          Z undo, Y redo, M next warp method, S next symmetry group (the
+//          station's [sculpt] symmetry_cycle): sent to the station as link
 //          commands (BridgeApp::send_command), which it takes only from the
 //          admitted display and runs through the session's command path.
 // With a fixed camera (a kiosk's camera file) the mouse and the camera keys do
@@ -32,6 +33,7 @@ enum class KeyAction : std::uint8_t {
   undo,
   redo,
   next_method,
+  cycle_symmetry,
 };
 
 // The action of a GLFW key code (GLFW_KEY_*) pressed or repeated.

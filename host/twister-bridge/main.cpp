@@ -302,6 +302,10 @@ int run(const Options& opt) {
 }
 
 void add_options(CLI::App& cli, Options& opt) {
+  cli.footer(
+      "Keys (window): arrows orbit, + / - zoom, F or Home frame the model, H heads-up text, "
+      "C cues; sent to the station: Z undo, Y redo, M next warp method, S next symmetry group "
+      "(the station's [sculpt] symmetry_cycle).");
   cli.add_option("--connect", opt.connect,
                  "station link: unix:PATH, tcp:HOST:PORT or serial:DEVICE")
       ->required();
