@@ -30,9 +30,9 @@ void SceneView::draw(const SceneReplica& replica, HudInput input) {
     input.fps = options_.offscreen ? 0.0 : fps_;
     if (options_.offscreen) input.hands_rate_hz = -1.0;
     if (replica.live().active && replica.live().refine_threshold_m > 0.0 &&
-        replica.live().method != math::WarpMethod::scodef) {
-      input.preview = renderer_.refining_live() ? HudInput::Preview::refined
-                                                : HudInput::Preview::unrefined;
+        !replica.live().cpu_path()) {
+      input.preview =
+          renderer_.refining_live() ? HudInput::Preview::refined : HudInput::Preview::unrefined;
     }
     input.now_s = 1e-6 * static_cast<double>(now_us);
     text_ = hud_model_.update(replica, input);
