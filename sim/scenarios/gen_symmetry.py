@@ -2,7 +2,7 @@
 # python3 gen_symmetry.py sim/scenarios. Each is one-hand strokes of receiver 1 (grab line 0); receiver 2 parked.
 import sys
 M = 39.37007874  # inches per metre
-def scenario(header, strokes, park, seed):
+def scenario(header, strokes, park, seed, park0):
     keys = []
     buttons = []
     t = 2.0  # the station's tracker is streaming by then
@@ -17,7 +17,8 @@ def scenario(header, strokes, park, seed):
         t += 0.5; keys.append((t, end))
         buttons.append((t, 0))
         t += 0.5; keys.append((t, end))
-    t += 0.5
+    t += 1.5
+    keys.append((t, park0))  # hand 0 away: the last pictures show the model untinted
     out = list(header)
     out += ["seed %d" % seed, "receivers 2", "duration %g" % (t + 0.5)]
     for (tt, p) in keys:
@@ -84,5 +85,5 @@ mask = [
   (mouth, moved(mouth, (0.0, 0.0, 0.02))),
 ]
 d = sys.argv[1]
-open(d + "/vase_rot6.scn", "w").write(scenario(vase_header, vase, (0.60, 0.45, 0.0), 26))
-open(d + "/mask_mirror.scn", "w").write(scenario(mask_header, mask, (0.60, -0.45, 0.0), 27))
+open(d + "/vase_rot6.scn", "w").write(scenario(vase_header, vase, (0.60, 0.45, 0.0), 26, (0.55, -0.45, -0.2)))
+open(d + "/mask_mirror.scn", "w").write(scenario(mask_header, mask, (0.60, -0.45, 0.0), 27, (0.75, 0.45, -0.2)))
