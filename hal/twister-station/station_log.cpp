@@ -8,6 +8,7 @@
 #include "twister/math/warp_method.hpp"
 #include "twister/mesh/mesh_refiner.hpp"
 #include "twister/session/session_command.hpp"
+#include "twister/session/symmetry_cycle.hpp"
 
 namespace twister::station_app {
 namespace {
@@ -209,6 +210,12 @@ bool log_session(const SessionEvent& e, ports::LogSink& log, int storage_errno) 
       log.write(level, station_event_component(e), "warp method %s for the next strokes",
                 {math::warp_method_name(e.method().method).data()});
       return true;
+    case K::symmetry_changed: {
+      char label[session::kSymmetryLabelSize];
+      session::symmetry_label(e.symmetry().spec, label);
+      log.write(level, station_event_component(e), "symmetry %s for the next strokes", {label});
+      return true;
+    }
     case K::undone:
       log.write(level, station_event_component(e), "undo (journal record %u)",
                 {e.record().sequence});
@@ -275,6 +282,7 @@ const char* station_event_component(const SessionEvent& e) {
     case K::radius_set:
     case K::radius_changed:
     case K::method_changed:
+    case K::symmetry_changed:
       return "sculpt";
     case K::undone:
     case K::redone:
@@ -310,6 +318,7 @@ LogLevel station_event_level(const SessionEvent& e) {
     case K::undone:
     case K::redone:
     case K::method_changed:
+    case K::symmetry_changed:
     case K::history_overflow:
       return LogLevel::notice;
     case K::radius_changed:  // every step of the gesture

@@ -21,6 +21,8 @@ input::ButtonRole role_of(SculptAction a) {
       return input::ButtonRole::redo;
     case SculptAction::method_cycle:
       return input::ButtonRole::method_cycle;
+    case SculptAction::symmetry_cycle:
+      return input::ButtonRole::symmetry_cycle;
   }
   return input::ButtonRole::none;
 }
@@ -68,6 +70,12 @@ void set_sculpt(const StationFileConfig& config, session::SculptSessionConfig& s
   s.refine.enabled = sc.refine;
   s.refine.threshold_m = sc.refine_threshold_m;
   s.symmetry = symmetry_of(sc.symmetry);
+  s.symmetry_cycle = {};
+  for (const SymmetryConfig& g : sc.symmetry_cycle) {
+    if (!s.symmetry_cycle.push(symmetry_of(g)).ok() && error.empty()) {
+      error = "sculpt.symmetry_cycle: not a symmetry group";
+    }
+  }
   if (!sc.buttons_configured) return;
   s.buttons = input::ButtonMap{};
   for (const ButtonBindingConfig& b : sc.buttons) {

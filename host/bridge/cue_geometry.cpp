@@ -2,6 +2,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "symmetry_cues.hpp"
 #include "twister/math/decay.hpp"
 #include "twister/math/screw.hpp"
 
@@ -183,6 +184,7 @@ void build_cues(const SceneReplica& replica, const glm::mat4& model, float scene
   out.overlay.clear();
   add_hands(replica, model, scene_radius_m, options, out);
   add_stroke(replica, model, scene_radius_m, options, out);
+  if (options.glyphs) add_symmetry_cues(replica, model, scene_radius_m, out);
   bool moving = false;
   for (const HandView& v : replica.hands()) moving = moving || (v.present && v.move_object);
   if (options.object_frame && moving) {

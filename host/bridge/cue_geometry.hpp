@@ -8,7 +8,9 @@
 //   - during a stroke, per stroke hand: the screw axis as a pink cylinder and the
 //     grab point's trajectory from rest to now as a yellow tube (core
 //     math::screw_at; rottran_at for rottran; none for scodef, which has no screw);
-//   - while a hand holds move-object: the object frame (larger RGB axes).
+//   - while a hand holds move-object: the object frame (larger RGB axes);
+//   - under a symmetry group (with the glyphs): ghost cursors and glyphs at the hands'
+//     images, the mirror planes or the rotation axis, lightly (symmetry_cues.hpp).
 // Sizes scale with the model's bounding radius (`scene_radius_m`).
 #pragma once
 

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <numbers>
 
+#include "symmetry_cues.hpp"
+
 namespace twister::bridge {
 namespace {
 
@@ -107,6 +109,7 @@ HudText HudModel::update(const SceneReplica& r, const HudInput& in) {
                    in.hands_rate_hz, missed)
           : format("link: %s%s, hands missed %llu", link_text(in.link), handshake, missed));
   station_lines(r, out.lines);
+  if (std::string sym = symmetry_hud_line(r); !sym.empty()) out.lines.push_back(std::move(sym));
   for (std::size_t h = 0; h < r.hands().size(); ++h)
     out.lines.push_back(hand_line(h, r.hands()[h]));
   out.lines.push_back(format("radius: %.3f m", static_cast<double>(r.radius_m())));

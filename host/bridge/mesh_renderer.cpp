@@ -237,7 +237,7 @@ void MeshRenderer::set_live(const LiveState* live) {
   hand_mask_ = 0;
   cpu_live_ = false;
   if (live == nullptr || !live->active) return;
-  if (live->method == math::WarpMethod::scodef) {  // CPU path (positions uploaded)
+  if (live->cpu_path()) {  // scodef or a symmetry group: CPU path (positions uploaded)
     cpu_live_ = true;
     return;
   }

@@ -53,7 +53,7 @@ void SceneView::draw(const SceneReplica& replica, HudInput input) {
   if (options_.hud) {
     input.fps = options_.offscreen ? 0.0 : fps_;
     if (replica.live().active && replica.live().refine_threshold_m > 0.0 &&
-        replica.live().method != math::WarpMethod::scodef) {
+        !replica.live().cpu_path()) {
       input.preview =
           renderer_.refining_live() ? HudInput::Preview::refined : HudInput::Preview::unrefined;
     }

@@ -51,6 +51,8 @@ KeyAction key_action(int key) {
       return KeyAction::new_sculpture;
     case GLFW_KEY_U:
       return KeyAction::undo_new_sculpture;
+    case GLFW_KEY_S:
+      return KeyAction::cycle_symmetry;
     default:
       return KeyAction::none;
   }
@@ -109,6 +111,8 @@ bool WindowInput::apply(KeyAction action) {
       }
       return command({link::CommandKind::undo_new_sculpture, 0});
     }
+    case KeyAction::cycle_symmetry:
+      return command({link::CommandKind::cycle_symmetry, 0});
   }
   return false;
 }
@@ -135,6 +139,7 @@ const char* key_help() {
          "  Z                   undo the last stroke (sent to the station)\n"
          "  Y                   redo\n"
          "  M                   next warp method\n"
+         "  S                   next symmetry group (the station's [sculpt] symmetry_cycle)\n"
          "  N                   new sculpture: the station archives this one and starts over\n"
          "  U                   undo the new sculpture (while the station's grace time is open)\n"
          "A command key that does nothing (no link, a --spectator display, U too late) says why "

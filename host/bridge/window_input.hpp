@@ -2,7 +2,8 @@
 //   mouse: left drag orbits, right or middle drag pans, the wheel zooms;
 //   keys:  arrows orbit, + / - zoom, F or Home frames the model again (the view's
 //          defaults), H shows or hides the heads-up text, C the cues;
-//          Z undo, Y redo, M next warp method: sent to the station as link
+//          Z undo, Y redo, M next warp method, S next symmetry group (the
+//          station's [sculpt] symmetry_cycle): sent to the station as link
 //          commands (BridgeApp::send_command), which it takes only from the
 //          admitted display and runs through the session's command path;
 //          N new sculpture (the station archives this one and starts over), U
@@ -40,6 +41,7 @@ enum class KeyAction : std::uint8_t {
   toggle_audience,
   new_sculpture,
   undo_new_sculpture,
+  cycle_symmetry,
 };
 
 // Every key, one line each, for twister-bridge --help.

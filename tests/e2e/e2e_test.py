@@ -93,6 +93,8 @@ def main():
     ap.add_argument("--min-commits", type=int, default=1)
     ap.add_argument("--min-caught", type=int, default=0,
                     help="at least this many poses rejected or held back (fault scenarios)")
+    ap.add_argument("--checksum", default=None,
+                    help="the station's final model checksum must be this (16 hex digits)")
     a = ap.parse_args()
     problems = []
     ref, ref_sums = run([a.scenario, "--bin", a.bin, "--out", os.path.join(a.out, "reference")])
@@ -105,6 +107,8 @@ def main():
     print(chain.stdout)
     if chain.returncode != 0:
         problems.append("the chain run failed (exit %d): %s" % (chain.returncode, chain.stderr))
+    if a.checksum is not None and ref_sums.get("station") != a.checksum:
+        problems.append("station checksum %s, fixed %s" % (ref_sums.get("station"), a.checksum))
     for k in ("station", "display", "replay"):
         if sums.get(k) != ref_sums.get("station"):
             problems.append("%s checksum %s, reference %s" % (k, sums.get(k), ref_sums["station"]))

@@ -22,6 +22,8 @@ const char* button_role_name(ButtonRole role) {
       return "redo";
     case ButtonRole::method_cycle:
       return "method_cycle";
+    case ButtonRole::symmetry_cycle:
+      return "symmetry_cycle";
   }
   return "unknown";
 }
@@ -34,6 +36,11 @@ ButtonMap ButtonMap::paper_default() {
   map.bind(3, 1, ButtonRole::grab).ignore();
   map.bind(4, 1, ButtonRole::radius).ignore();
   map.bind(5, 1, ButtonRole::freeze).ignore();
+  // Hold the right radius, press the right freeze: the next symmetry group. Radius
+  // alone does nothing and freeze alone does nothing from idle; while grabbing the
+  // press is the chord's (refused: a stroke keeps its group), not the clutch.
+  const std::uint8_t symmetry_chord[] = {4, 5};
+  map.bind_chord(symmetry_chord, 1, ButtonRole::symmetry_cycle).ignore();
   return map;
 }
 
@@ -105,6 +112,7 @@ void ButtonMap::set_level(const ButtonBinding& b, bool pressed,
     case ButtonRole::undo:
     case ButtonRole::redo:
     case ButtonRole::method_cycle:
+    case ButtonRole::symmetry_cycle:
       return;
   }
 }

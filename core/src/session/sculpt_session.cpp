@@ -16,6 +16,8 @@ SessionCommandKind command_for(input::ButtonRole role) {
       return SessionCommandKind::redo;
     case input::ButtonRole::method_cycle:
       return SessionCommandKind::next_method;
+    case input::ButtonRole::symmetry_cycle:
+      return SessionCommandKind::cycle_symmetry;
     default:
       return SessionCommandKind::undo;
   }
@@ -67,7 +69,8 @@ SculptSession::SculptSession(const SculptSessionConfig& config, mesh::Mesh& mesh
       strokes_(plan_, mesh_, poses_, history_, config.method, config.turns),
       mover_(poses_),
       replay_(plan_, mesh_, history_, poses_),
-      normals_(storage.normals) {
+      normals_(storage.normals),
+      symmetry_cycle_(config.symmetry_cycle.resolved(config.symmetry)) {
   history_.set_refinement(&refinement_);
   // An invalid group (the configuration checks it) leaves strokes unsymmetrised.
   strokes_.set_symmetry(config.symmetry).ignore();
@@ -232,6 +235,8 @@ void SculptSession::run_command(const SessionCommand& c, SessionEvents& out) {
       return;
     }
     case SessionCommandKind::cycle_symmetry:
+      run_symmetry_command(c, out);
+      return;
     case SessionCommandKind::new_sculpture:
     case SessionCommandKind::undo_new_sculpture:
       // Vocabulary of protocol 7; the station acts on them where the feature is on.
@@ -258,6 +263,23 @@ void SculptSession::run_history_command(const SessionCommand& c, SessionEvents& 
   }
   out.push(make_event(SessionEventKind::command_refused, c.hand,
                       payload::CommandRefusal{c.kind, reason}, s));
+}
+
+void SculptSession::run_symmetry_command(const SessionCommand& c, SessionEvents& out) {
+  // The open stroke keeps its group (its weights and journal record use it).
+  input::Reason reason = input::Reason::busy;
+  Status status(StatusCode::failed_precondition);
+  if (!strokes_.active()) {
+    const Result<math::SymmetrySpec> next = symmetry_cycle_.next(strokes_.symmetry());
+    status = next.ok() ? strokes_.set_symmetry(*next) : next.status();
+    if (status.ok()) {
+      out.push(make_event(SessionEventKind::symmetry_changed, c.hand, payload::Symmetry{*next}));
+      return;
+    }
+    reason = input::Reason::not_available;  // one group only: nothing to cycle to
+  }
+  out.push(make_event(SessionEventKind::command_refused, c.hand,
+                      payload::CommandRefusal{c.kind, reason}, status));
 }
 
 Status SculptSession::undo() { return step_history(journal::RecordType::undo); }

@@ -53,6 +53,8 @@ const char* session_event_kind_name(SessionEventKind kind) {
       return "turn_limit_left";
     case K::method_changed:
       return "method_changed";
+    case K::symmetry_changed:
+      return "symmetry_changed";
     case K::command_refused:
       return "command_refused";
     case K::refined:
@@ -101,6 +103,8 @@ std::size_t payload_index(SessionEventKind kind) {
       return index_of<payload::TurnLimit>();
     case K::method_changed:
       return index_of<payload::Method>();
+    case K::symmetry_changed:
+      return index_of<payload::Symmetry>();
     case K::command_refused:
       return index_of<payload::CommandRefusal>();
     case K::refined:

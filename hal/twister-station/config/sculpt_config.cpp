@@ -26,6 +26,8 @@ const char* to_string(SculptAction a) {
       return "redo";
     case SculptAction::method_cycle:
       return "method_cycle";
+    case SculptAction::symmetry_cycle:
+      return "symmetry_cycle";
   }
   return "?";
 }
@@ -48,8 +50,9 @@ namespace internal {
 namespace {
 
 constexpr std::array<SculptAction, kSculptActionCount> kActions{
-    SculptAction::grab, SculptAction::radius, SculptAction::freeze,      SculptAction::move_object,
-    SculptAction::undo, SculptAction::redo,   SculptAction::method_cycle};
+    SculptAction::grab,         SculptAction::radius,        SculptAction::freeze,
+    SculptAction::move_object,  SculptAction::undo,          SculptAction::redo,
+    SculptAction::method_cycle, SculptAction::symmetry_cycle};
 constexpr std::array<const char*, 2> kHandNames{"left", "right"};
 
 std::string binding_key(const ButtonBindingConfig& b) {
@@ -181,27 +184,61 @@ void read_radius(ConfigReader& s, SculptConfig& sc) {
   }
 }
 
+// A group's name in [sculpt] ("none", "x".."xyz", "rot") into `sym` (mode, mirrors);
+// false: not a name.
+bool symmetry_mode_of(const std::string& text, SymmetryConfig& sym) {
+  if (text == "none") {
+    sym.mode = SymmetryMode::none;
+  } else if (text == "rot") {
+    sym.mode = SymmetryMode::rotation;
+  } else {
+    for (const char* name : {"x", "y", "z", "xy", "xz", "yz", "xyz"}) {
+      if (text != name) continue;
+      sym.mode = SymmetryMode::mirrors;
+      sym.mirrors = 0;
+      for (const char c : text)
+        sym.mirrors = static_cast<std::uint8_t>(sym.mirrors | 1u << (c - 'x'));
+      return true;
+    }
+    return false;
+  }
+  return true;
+}
+
+// symmetry_cycle: the groups the symmetry_cycle chord and a display's key step through,
+// by the names of `symmetry` ("rot" with symmetry_axis/order/mirror).
+void read_symmetry_cycle(ConfigReader& s, SculptConfig& sc) {
+  const toml::array* list = s.array("symmetry_cycle", false);
+  if (list == nullptr) return;
+  if (list->size() < 1 || list->size() > kMaxSymmetryCycle) {
+    s.error(s.node("symmetry_cycle"), "symmetry_cycle",
+            "expected 1 to " + std::to_string(kMaxSymmetryCycle) + " groups");
+    return;
+  }
+  sc.symmetry_cycle.clear();
+  for (const toml::node& item : *list) {
+    const std::optional<std::string> text = item.value<std::string>();
+    SymmetryConfig group = sc.symmetry;
+    if (!text || !symmetry_mode_of(*text, group)) {
+      s.error(&item, "symmetry_cycle",
+              "expected \"none\", \"x\", \"y\", \"z\", \"xy\", \"xz\", \"yz\", \"xyz\" or "
+              "\"rot\"");
+      return;
+    }
+    if (group.mode != SymmetryMode::none && sc.method == SculptMethod::scodef) {
+      s.error(&item, "symmetry_cycle", "scodef strokes are not symmetrised: only \"none\"");
+      return;
+    }
+    sc.symmetry_cycle.push_back(group);
+  }
+}
+
 // symmetry, symmetry_axis, symmetry_order, symmetry_mirror (docs/math.md §11).
 void read_symmetry(ConfigReader& s, SculptConfig& sc) {
   SymmetryConfig& sym = sc.symmetry;
   std::string text;
   if (s.string("symmetry", false, text, {"none", "x", "y", "z", "xy", "xz", "yz", "xyz", "rot"})) {
-    if (text == "none") {
-      sym.mode = SymmetryMode::none;
-    } else if (text == "rot") {
-      sym.mode = SymmetryMode::rotation;
-    } else {
-      sym.mode = SymmetryMode::mirrors;
-      sym.mirrors = 0;
-      for (const char c : text)
-        sym.mirrors = static_cast<std::uint8_t>(sym.mirrors | 1u << (c - 'x'));
-    }
-  }
-  const bool rotation = sym.mode == SymmetryMode::rotation;
-  for (const char* key : {"symmetry_axis", "symmetry_order", "symmetry_mirror"}) {
-    if (s.has(key) && !rotation) {
-      s.error(s.node(key), key, "only with sculpt.symmetry = \"rot\" (an n-fold rotation)");
-    }
+    symmetry_mode_of(text, sym);
   }
   if (s.string("symmetry_axis", false, text, {"x", "y", "z"})) {
     sym.axis = static_cast<std::uint8_t>(text[0] - 'x');
@@ -210,6 +247,17 @@ void read_symmetry(ConfigReader& s, SculptConfig& sc) {
   if (s.integer("symmetry_order", false, 2, 12, order))
     sym.order = static_cast<std::uint8_t>(order);
   s.boolean("symmetry_mirror", sym.mirror);
+  read_symmetry_cycle(s, sc);
+  bool rotation = sym.mode == SymmetryMode::rotation;
+  for (const SymmetryConfig& g : sc.symmetry_cycle)
+    rotation = rotation || g.mode == SymmetryMode::rotation;
+  for (const char* key : {"symmetry_axis", "symmetry_order", "symmetry_mirror"}) {
+    if (s.has(key) && !rotation) {
+      s.error(s.node(key), key,
+              "only with sculpt.symmetry = \"rot\" (an n-fold rotation) or \"rot\" in "
+              "symmetry_cycle");
+    }
+  }
   if (sym.mode != SymmetryMode::none && sc.method == SculptMethod::scodef) {
     s.error(s.node("symmetry"), "symmetry",
             "scodef strokes are not symmetrised: use method = \"twister\" or \"rottran\", or "

@@ -160,10 +160,11 @@ enum class SculptAction : std::uint8_t {
   undo,
   redo,
   method_cycle,
+  symmetry_cycle,
 };
-inline constexpr std::size_t kSculptActionCount = 7;
+inline constexpr std::size_t kSculptActionCount = 8;
 // The key of an action: "grab", "radius", "freeze", "move_object", "undo", "redo",
-// "method_cycle".
+// "method_cycle", "symmetry_cycle".
 const char* to_string(SculptAction a);
 
 // Button lines: line i is buttons.gpiod.lines[i] or buttons.hidapi.buttons[i];
@@ -184,6 +185,8 @@ struct ButtonBindingConfig {
 // the object frame, or repeated n times about one of its axes (optionally with the
 // mirrors through that axis).
 enum class SymmetryMode : std::uint8_t { none, mirrors, rotation };
+
+inline constexpr std::size_t kMaxSymmetryCycle = 8;  // session::kMaxSymmetryCycle
 
 struct SymmetryConfig {
   SymmetryMode mode = SymmetryMode::none;
@@ -208,6 +211,9 @@ struct SculptConfig {
   // session::kDefaultRefineThresholdM (a test checks).
   double refine_threshold_m = 0.0005;
   SymmetryConfig symmetry{};
+  // symmetry_cycle: the groups the symmetry_cycle chord / a display's key step through
+  // ("rot" entries use symmetry_axis/order/mirror); empty: none and `symmetry`.
+  std::vector<SymmetryConfig> symmetry_cycle;
   bool buttons_configured = false;  // [sculpt.buttons] given (else the paper's map)
   std::vector<ButtonBindingConfig> buttons;
 };

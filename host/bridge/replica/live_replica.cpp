@@ -23,6 +23,11 @@ void set_buttons(HandView& v, std::uint8_t bits) {
 
 }  // namespace
 
+math::SymmetrySpec stroke_symmetry(const link::StrokeBegin& s) {
+  return {static_cast<math::SymmetryKind>(s.symmetry[0]), s.symmetry[1], s.symmetry[2],
+          s.symmetry[3]};
+}
+
 void SceneReplica::on_stroke(const link::StrokeBegin& s) {
   if (stroke_known_ && s.stroke == stroke_.stroke && s.mesh_version == stroke_.mesh_version) {
     return;  // the once-a-second repeat of the segment we hold
@@ -40,8 +45,21 @@ bool SceneReplica::ensure_plan() {
   plan_->indices.resize(n);
   plan_->w1.resize(n);
   plan_->w2.resize(n);
-  auto plan =
-      std::make_unique<math::WarpPlan>(math::WarpPlanStorage{plan_->indices, plan_->w1, plan_->w2});
+  const math::SymmetrySpec spec = stroke_symmetry(stroke_);
+  math::SymmetryGroup group;
+  if (!group.set(spec).ok()) {
+    ++counters_.plan_errors;  // a group the station would not have built
+    return false;
+  }
+  if (!group.trivial()) {
+    plan_->sx.resize(n);
+    plan_->sy.resize(n);
+    plan_->sz.resize(n);
+    plan_->symmetry = std::make_unique<math::PlanSymmetry>();
+    plan_->symmetry->start = math::VertexColumns{plan_->sx, plan_->sy, plan_->sz};
+  }
+  auto plan = std::make_unique<math::WarpPlan>(
+      math::WarpPlanStorage{plan_->indices, plan_->w1, plan_->w2, plan_->symmetry.get()});
   std::array<math::Frame, 2> start{};
   std::size_t hands = 0;
   for (std::size_t h = 0; h < link::kLinkHands; ++h) {
@@ -54,7 +72,7 @@ bool SceneReplica::ensure_plan() {
   live_.weights_changed = true;
   const math::ConstVertexColumns rest{mesh_.x, mesh_.y, mesh_.z};
   if (!plan->build(rest, std::span<const math::Frame>(start.data(), hands), stroke_.radius_m,
-                   static_cast<math::WarpMethod>(stroke_.method))
+                   static_cast<math::WarpMethod>(stroke_.method), group)
            .ok()) {
     ++counters_.plan_errors;
     return false;
@@ -137,6 +155,7 @@ void SceneReplica::update_live(const link::Hands& h) {
   }
   if (!ensure_plan()) return;
   live_.method = static_cast<math::WarpMethod>(stroke_.method);
+  live_.symmetry = plan_->plan->symmetry();
   live_.hand_mask = stroke_.hand_mask;
   live_.radius_m = stroke_.radius_m;
   live_.refine_threshold_m = stroke_.refine_threshold_m;
@@ -161,6 +180,23 @@ MeshData SceneReplica::cpu_warp() const {
   MeshData out = mesh_;
   const math::WarpPlan& plan = *plan_->plan;
   const math::ConstVertexColumns rest{mesh_.x, mesh_.y, mesh_.z};
+  if (plan.symmetric()) {
+    // Every image of every hand (math::SymmetricWarp, per vertex in double): the
+    // station's own update and apply, with its turn sense per hand, so the preview is
+    // what the commit writes.
+    math::PlanFrames end;
+    std::uint8_t long_turns = 0;
+    for (std::size_t i = 0; i < live_.hands.size(); ++i) {
+      end.push_back(live_.hands[i].end).ignore();  // as many as the plan's hands: fits
+      if (live_.hands[i].screw.angle > 3.141592653589793) {
+        long_turns = static_cast<std::uint8_t>(long_turns | (1u << i));
+      }
+    }
+    math::WarpPlan& live_plan = *plan_->plan;  // the cached plan follows the hands
+    if (!live_plan.update_turns(end, long_turns).ok()) return {};
+    (void)live_plan.apply(rest, math::VertexColumns{out.x, out.y, out.z});
+    return out;
+  }
   if (live_.method == math::WarpMethod::scodef) {
     // scodef has no screw: the plan's own update from the end frames.
     math::WarpPlan copy = plan;

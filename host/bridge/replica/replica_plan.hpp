@@ -14,6 +14,10 @@ namespace twister::bridge {
 struct SceneReplica::Plan {
   std::vector<std::uint32_t> indices;
   std::vector<float> w1, w2;
+  // Symmetric strokes (docs/math.md §11): the plan's symmetrised warp and chain-start
+  // columns, as the station's SculptStorage::plan.symmetry.
+  std::vector<float> sx, sy, sz;
+  std::unique_ptr<math::PlanSymmetry> symmetry;
   std::unique_ptr<math::WarpPlan> plan;
   std::uint32_t stroke = 0;  // the segment it was built for
 };

@@ -31,6 +31,7 @@
 #include "twister/link/link_message.hpp"
 #include "twister/math/frame.hpp"
 #include "twister/math/screw.hpp"
+#include "twister/math/symmetry.hpp"
 #include "twister/math/warp_method.hpp"
 
 namespace twister::bridge {
@@ -100,7 +101,18 @@ struct LiveState {
   // derivative it gives the warped surface's normal (smooth shading while warping).
   std::vector<float> gradient1, gradient2;
   bool weights_changed = false;  // set when rebuilt; the display clears it
+  // The stroke's symmetry group (docs/math.md §11; kind none: plain). Under a group the
+  // display draws cpu_warp() (every image of every hand), as for scodef.
+  math::SymmetrySpec symmetry{};
+  // Whether the display draws this stroke from cpu_warp() (scodef or a group) rather
+  // than warping it in the vertex shader.
+  bool cpu_path() const {
+    return method == math::WarpMethod::scodef || symmetry.kind != math::SymmetryKind::none;
+  }
 };
+
+// The group a stroke message carries (StrokeBegin::symmetry: kind, mirrors, axis, order).
+math::SymmetrySpec stroke_symmetry(const link::StrokeBegin& s);
 
 class SceneReplica {
  public:

@@ -100,15 +100,16 @@ TEST(EventCounters, EachKindCountsWhereTheSummaryReadsIt) {
 
 TEST(EventCounters, TheOtherKindsCountNothing) {
   for (const SessionEventKind kind :
-       {SessionEventKind::grab_begin, SessionEventKind::tracking_lost,
-        SessionEventKind::tracking_resumed, SessionEventKind::radius_changed,
-        SessionEventKind::radius_set, SessionEventKind::move_begin,
-        SessionEventKind::move_committed, SessionEventKind::move_cancelled,
-        SessionEventKind::history_overflow, SessionEventKind::disengaged, SessionEventKind::engaged,
-        SessionEventKind::turn_limit_reached, SessionEventKind::turn_limit_left,
-        SessionEventKind::method_changed, SessionEventKind::journal_recovered,
+       {SessionEventKind::grab_begin,        SessionEventKind::tracking_lost,
+        SessionEventKind::tracking_resumed,  SessionEventKind::radius_changed,
+        SessionEventKind::radius_set,        SessionEventKind::move_begin,
+        SessionEventKind::move_committed,    SessionEventKind::move_cancelled,
+        SessionEventKind::history_overflow,  SessionEventKind::disengaged,
+        SessionEventKind::engaged,           SessionEventKind::turn_limit_reached,
+        SessionEventKind::turn_limit_left,   SessionEventKind::method_changed,
+        SessionEventKind::symmetry_changed,  SessionEventKind::journal_recovered,
         SessionEventKind::tracker_streaming, SessionEventKind::tracker_lost,
-        SessionEventKind::buttons_lost, SessionEventKind::buttons_found}) {
+        SessionEventKind::buttons_lost,      SessionEventKind::buttons_found}) {
     EventCounters c;
     c.count(sample(kind));
     const EventCounters zero;

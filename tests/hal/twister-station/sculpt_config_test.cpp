@@ -145,19 +145,20 @@ TEST(SculptConfig, UnknownKeysAreErrors) {
                                 "radius_gesture, radius_min_m, radius_max_m, radius_m, "
                                 "turn_tracking, turn_limit_deg, lost_timeout_ms, refine, "
                                 "refine_threshold_m, symmetry, symmetry_axis, symmetry_order, "
-                                "symmetry_mirror, buttons)"));
+                                "symmetry_mirror, symmetry_cycle, buttons)"));
   EXPECT_THAT(one_error("[sculpt.buttons.middle]\ngrab = 0\n"),
               HasSubstr("sculpt.buttons.middle: unknown key (allowed here: left, right)"));
-  EXPECT_THAT(one_error("[sculpt.buttons.left]\ngrip = 0\n"),
-              HasSubstr(at(2) + "sculpt.buttons.left.grip: unknown key (allowed here: grab, "
-                                "radius, freeze, move_object, undo, redo, method_cycle)"));
+  EXPECT_THAT(
+      one_error("[sculpt.buttons.left]\ngrip = 0\n"),
+      HasSubstr(at(2) + "sculpt.buttons.left.grip: unknown key (allowed here: grab, "
+                        "radius, freeze, move_object, undo, redo, method_cycle, symmetry_cycle)"));
 }
 
 // Every action of both hands takes a line and a chord, and refuses a bad value.
 TEST(SculptConfig, EveryButtonActionTakesALineOrAChord) {
   for (const char* hand : {"left", "right"}) {
-    for (const char* action :
-         {"grab", "radius", "freeze", "move_object", "undo", "redo", "method_cycle"}) {
+    for (const char* action : {"grab", "radius", "freeze", "move_object", "undo", "redo",
+                               "method_cycle", "symmetry_cycle"}) {
       const std::string table = std::string("[sculpt.buttons.") + hand + "]\n";
       const std::string key = std::string("sculpt.buttons.") + hand + "." + action;
       const auto line = parse(table + action + " = 4\n");
@@ -323,14 +324,49 @@ TEST(SculptConfig, SymmetryErrors) {
             at(3) + "sculpt.symmetry_axis: expected one of \"x\" \"y\" \"z\", got \"w\"");
   EXPECT_EQ(
       one_error("[sculpt]\nsymmetry = \"x\"\nsymmetry_order = 4\n"),
-      at(3) + "sculpt.symmetry_order: only with sculpt.symmetry = \"rot\" (an n-fold rotation)");
+      at(3) +
+          "sculpt.symmetry_order: only with sculpt.symmetry = \"rot\" (an n-fold rotation) or "
+          "\"rot\" in symmetry_cycle");
   EXPECT_EQ(
       one_error("[sculpt]\nsymmetry_mirror = true\n"),
-      at(2) + "sculpt.symmetry_mirror: only with sculpt.symmetry = \"rot\" (an n-fold rotation)");
+      at(2) +
+          "sculpt.symmetry_mirror: only with sculpt.symmetry = \"rot\" (an n-fold rotation) or "
+          "\"rot\" in symmetry_cycle");
   EXPECT_EQ(one_error("[sculpt]\nmethod = \"scodef\"\nsymmetry = \"xy\"\n"),
             at(3) +
                 "sculpt.symmetry: scodef strokes are not symmetrised: use method = \"twister\" or "
                 "\"rottran\", or symmetry = \"none\"");
+}
+
+session::SymmetryCycle cycle_of(const std::string& sculpt) {
+  const auto r = parse(sculpt);
+  EXPECT_TRUE(r.ok()) << messages(r);
+  const auto setup = make_station_setup(r.config);
+  EXPECT_TRUE(setup) << setup.error().message;
+  return setup ? setup->sculpt.symmetry_cycle : session::SymmetryCycle{};
+}
+
+TEST(SculptConfig, SymmetryCycleListsGroupsByTheirNames) {
+  using K = math::SymmetryKind;
+  EXPECT_EQ(cycle_of("").count, 0u);  // the session's default: none and `symmetry`
+  const session::SymmetryCycle c = cycle_of(
+      "[sculpt]\nsymmetry_cycle = [\"none\", \"x\", \"rot\"]\nsymmetry_order = 5\n"
+      "symmetry_axis = \"y\"\n");
+  ASSERT_EQ(c.count, 3u);
+  EXPECT_EQ(c.groups[0], math::SymmetrySpec{});
+  EXPECT_EQ(c.groups[1], (math::SymmetrySpec{K::mirrors, 1, 0, 0}));
+  EXPECT_EQ(c.groups[2], (math::SymmetrySpec{K::rotation, 0, 1, 5}));
+}
+
+TEST(SculptConfig, SymmetryCycleErrors) {
+  EXPECT_EQ(one_error("[sculpt]\nsymmetry_cycle = [\"none\", \"w\"]\n"),
+            at(2) +
+                "sculpt.symmetry_cycle: expected \"none\", \"x\", \"y\", \"z\", \"xy\", \"xz\", "
+                "\"yz\", \"xyz\" or \"rot\"");
+  EXPECT_EQ(one_error("[sculpt]\nsymmetry_cycle = []\n"),
+            at(2) + "sculpt.symmetry_cycle: expected 1 to 8 groups");
+  EXPECT_EQ(one_error("[sculpt]\nmethod = \"scodef\"\nsymmetry_cycle = [\"none\", \"x\"]\n"),
+            at(3) + "sculpt.symmetry_cycle: scodef strokes are not symmetrised: only \"none\"");
 }
 
 }  // namespace

@@ -9,6 +9,10 @@
 
 #include "bridge_link_rig.hpp"
 #include "twister/link/link_codec.hpp"
+#include "window_input.hpp"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
 
 namespace twister::bridge::test_support {
 namespace {
@@ -78,6 +82,30 @@ TEST(BridgeCommand, EachLinkCommandMapsToItsSessionCommand) {
   const session::SessionCommand set = station::session_command({link::CommandKind::set_method, 2});
   EXPECT_EQ(set.kind, SessionCommandKind::set_method);
   EXPECT_EQ(set.method, math::WarpMethod::scodef);
+}
+
+// Issue 26: key S sends cycle_symmetry; the station steps its configured cycle and the
+// display's status shows the next stroke's group.
+TEST(BridgeCommand, SymmetryKeyCyclesTheStationsGroupAndTheStatusFollows) {
+  EXPECT_EQ(key_action(GLFW_KEY_S), KeyAction::cycle_symmetry);
+  EXPECT_EQ(station::session_command({link::CommandKind::cycle_symmetry, 0}).kind,
+            session::SessionCommandKind::cycle_symmetry);
+  session::SculptSessionConfig config = session::test_support::test_config();
+  const math::SymmetrySpec rot6{math::SymmetryKind::rotation, 0, 2, 6};
+  ASSERT_TRUE(config.symmetry_cycle.push({}).ok());
+  ASSERT_TRUE(config.symmetry_cycle.push(rot6).ok());
+  ports::NullLogSink log;
+  BridgeLinkRig rig(log, config);
+  rig.run();
+  ASSERT_TRUE(rig.bridge.ready());
+  ASSERT_TRUE(rig.bridge.replica().has_status());
+  EXPECT_EQ(rig.bridge.replica().station_status().symmetry, (std::array<std::uint8_t, 4>{}));
+  ASSERT_TRUE(rig.bridge.send_command({link::CommandKind::cycle_symmetry, 0}));
+  rig.run(2);
+  (void)rig.station.tick();
+  rig.run(4);
+  EXPECT_EQ(rig.bridge.replica().station_status().symmetry,
+            (std::array<std::uint8_t, 4>{2, 0, 2, 6}));  // rotation about z, 6-fold
 }
 
 }  // namespace

@@ -23,8 +23,10 @@ using session::test_support::Station;
 using session::test_support::z_turn;
 
 struct BridgeLinkRig {
-  explicit BridgeLinkRig(ports::LogSink& log)
-      : station_end(wire, true),
+  explicit BridgeLinkRig(ports::LogSink& log,
+                         session::SculptSessionConfig config = session::test_support::test_config())
+      : station(33, config),
+        station_end(wire, true),
         bridge_end(wire, false),
         bridge(bridge_end, clock, nullptr, {}, log) {
     const std::size_t n = station.mesh.vertex_capacity();

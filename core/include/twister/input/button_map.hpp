@@ -4,7 +4,7 @@
 // freeze (the clutch: press while grabbing to commit and let the hand move freely,
 // release to grab on from where the hand is, same weights), move_object (hold to move
 // the whole model rigidly with this hand). Commands fire once per press: undo, redo,
-// method_cycle (the next warp method).
+// method_cycle (the next warp method), symmetry_cycle (the next symmetry group).
 // A line has at most one role of its own. A chord binds a role to several lines:
 // hold every line but the last, then press the last (the trigger); the trigger then
 // acts as the chord's role instead of its own until it is released (its own role
@@ -12,7 +12,8 @@
 // grab = undo; grabbing first and then pressing freeze is still a freeze.
 // Default, three buttons per hand as on the paper's station (lines 0-2 hand 0,
 // lines 3-5 hand 1): hand 0 (non-dominant) grab, radius, move_object;
-// hand 1 (dominant, the one that twists) grab, radius, freeze.
+// hand 1 (dominant, the one that twists) grab, radius, freeze; and the chord hold
+// line 4 (right radius), press line 5 (right freeze) = symmetry_cycle.
 #pragma once
 
 #include <array>
@@ -37,14 +38,18 @@ enum class ButtonRole : std::uint8_t {
   undo,
   redo,
   method_cycle,
+  symmetry_cycle,
 };
-inline constexpr std::uint8_t kButtonRoleCount = 8;
+inline constexpr std::uint8_t kButtonRoleCount = 9;
 
-// undo, redo and method_cycle fire on the press; the others are held levels.
+// undo, redo, method_cycle and symmetry_cycle fire on the press; the others are held
+// levels.
 constexpr bool is_command(ButtonRole role) {
-  return role == ButtonRole::undo || role == ButtonRole::redo || role == ButtonRole::method_cycle;
+  return role == ButtonRole::undo || role == ButtonRole::redo || role == ButtonRole::method_cycle ||
+         role == ButtonRole::symmetry_cycle;
 }
-// "none", "grab", "radius", "freeze", "move_object", "undo", "redo", "method_cycle".
+// "none", "grab", "radius", "freeze", "move_object", "undo", "redo", "method_cycle",
+// "symmetry_cycle".
 const char* button_role_name(ButtonRole role);
 
 inline constexpr std::size_t kMaxChords = 8;

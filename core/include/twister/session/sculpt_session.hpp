@@ -67,6 +67,7 @@
 #include "twister/session/session_poses.hpp"
 #include "twister/session/session_state.hpp"
 #include "twister/session/stroke_controller.hpp"
+#include "twister/session/symmetry_cycle.hpp"
 #include "twister/session/undo_history.hpp"
 
 namespace twister::session {
@@ -88,6 +89,9 @@ struct SculptSessionConfig {
   // Every stroke mirrored or repeated about an axis (docs/math.md §11; none by default).
   // Needs SculptStorage::plan.symmetry (else a symmetric grab is refused).
   math::SymmetrySpec symmetry{};
+  // The groups the symmetry_cycle chord and the cycle_symmetry command step through
+  // (empty: none and `symmetry`).
+  SymmetryCycle symmetry_cycle{};
 };
 
 // Caller-owned working memory, sized once at start-up.
@@ -136,7 +140,8 @@ class SculptSession {
   SessionEvents step(ports::TimestampUs now_us);
 
   // Queues a command for the next step (its result comes as that step's event:
-  // undone / redone / method_changed, or command_refused with the reason).
+  // undone / redone / method_changed / symmetry_changed, or command_refused with the
+  // reason).
   // resource_exhausted: kMaxQueuedCommands already queued; invalid_argument: hand
   // out of range.
   Status submit(const SessionCommand& command);
@@ -216,6 +221,7 @@ class SculptSession {
   Status step_history(journal::RecordType type);
   void run_command(const SessionCommand& command, SessionEvents& out);
   void run_history_command(const SessionCommand& command, SessionEvents& out);
+  void run_symmetry_command(const SessionCommand& command, SessionEvents& out);
   // Recomputes the normals when the model changed since they were computed.
   void refresh_normals();
 
@@ -234,6 +240,7 @@ class SculptSession {
   InlineVector<SessionCommand, kMaxQueuedCommands> queued_;
   mesh::NormalColumns normals_{};
   std::uint32_t normals_sequence_ = 0;  // next_sequence() when they were computed
+  SymmetryCycle symmetry_cycle_{};      // resolved against the configured symmetry
 };
 
 namespace internal {

@@ -22,6 +22,7 @@
 #include "twister/base/inline_vector.hpp"
 #include "twister/base/status.hpp"
 #include "twister/input/interaction_machine.hpp"
+#include "twister/math/symmetry.hpp"
 #include "twister/math/warp_method.hpp"
 #include "twister/mesh/mesh_refiner.hpp"
 #include "twister/ports/clock.hpp"
@@ -66,6 +67,7 @@ enum class SessionEventKind : std::uint8_t {
   turn_limit_reached,  // `hand` turned past the limit: the warp holds -> TurnLimit
   turn_limit_left,     // `hand` turned back within the limit: follows again -> TurnLimit
   method_changed,      // -> Method (for strokes begun from now)
+  symmetry_changed,    // -> Symmetry: the group of strokes begun from now (cycle_symmetry)
   command_refused,     // -> CommandRefusal: reason busy / nothing_to_*, or status
                        // io_error: an undo/redo whose record could not be saved (taken
                        // back: the model is unchanged)
@@ -74,16 +76,16 @@ enum class SessionEventKind : std::uint8_t {
                        // resource_exhausted): the commit stands, the mesh is conforming,
                        // edges over the threshold are left
   // The station around the session.
-  journal_recovered,    // start() -> JournalRecovered
-  tracker_streaming,    // the Fastrak session reached streaming -> TrackerStreaming
-  tracker_lost,         // streaming stopped (unplug, silence, garbage); re-init follows. none
-  buttons_lost,         // the button device is missing (status unavailable: not there at
-                        // start-up) or vanished (io_error); the station runs without it, ends
-                        // the strokes of its buttons as on lost tracking, and opens it again
-                        // when it appears. none
-  buttons_found,        // the button device is back (opened again). none
-  checkpoint_written,   // -> CheckpointWritten
-  checkpoint_failed,    // writing a checkpoint failed (status); the previous one stays. none
+  journal_recovered,   // start() -> JournalRecovered
+  tracker_streaming,   // the Fastrak session reached streaming -> TrackerStreaming
+  tracker_lost,        // streaming stopped (unplug, silence, garbage); re-init follows. none
+  buttons_lost,        // the button device is missing (status unavailable: not there at
+                       // start-up) or vanished (io_error); the station runs without it, ends
+                       // the strokes of its buttons as on lost tracking, and opens it again
+                       // when it appears. none
+  buttons_found,       // the button device is back (opened again). none
+  checkpoint_written,  // -> CheckpointWritten
+  checkpoint_failed,   // writing a checkpoint failed (status); the previous one stays. none
 };
 inline constexpr std::size_t kSessionEventKindCount =
     static_cast<std::size_t>(SessionEventKind::checkpoint_failed) + 1;
@@ -115,6 +117,10 @@ struct TurnLimit {
 // method_changed.
 struct Method {
   math::WarpMethod method = math::WarpMethod::twister;
+};
+// symmetry_changed.
+struct Symmetry {
+  math::SymmetrySpec spec{};
 };
 // command_refused.
 struct CommandRefusal {
@@ -151,7 +157,7 @@ using EventPayload =
     std::variant<std::monostate, payload::StrokeEnd, payload::Reasoned, payload::Radius,
                  payload::RecordRef, payload::TurnLimit, payload::Method, payload::CommandRefusal,
                  payload::Refinement, payload::RefinementStop, payload::JournalRecovered,
-                 payload::CheckpointWritten, payload::TrackerStreaming>;
+                 payload::CheckpointWritten, payload::TrackerStreaming, payload::Symmetry>;
 
 // The EventPayload alternative (index) a kind carries.
 std::size_t payload_index(SessionEventKind kind);
@@ -171,6 +177,7 @@ struct SessionEvent {
   const payload::TurnLimit& turn_limit() const { return get<payload::TurnLimit>(); }
   const payload::Method& method() const { return get<payload::Method>(); }
   const payload::CommandRefusal& command_refusal() const { return get<payload::CommandRefusal>(); }
+  const payload::Symmetry& symmetry() const { return get<payload::Symmetry>(); }
   const payload::Refinement& refinement() const { return get<payload::Refinement>(); }
   const payload::RefinementStop& refinement_stop() const { return get<payload::RefinementStop>(); }
   const payload::JournalRecovered& journal_recovered() const {

@@ -1,0 +1,99 @@
+// Issue 26, image test under Mesa's software renderer (offscreen, as
+// bridge_cues_image_test): with a symmetry group the display draws a ghost cursor at
+// each image of each hand. The images are projected through the display's camera and
+// the pixels there must show the ghost cursor colour; without the group they must not.
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+#include <optional>
+
+#include "bridge_image_rig.hpp"
+#include "symmetry_cues.hpp"
+#include "twister/link/math_conversion.hpp"
+
+namespace twister::bridge::test {
+namespace {
+
+constexpr float kSphereM = 0.1F;
+
+bool ghost_like(std::array<int, 3> c, glm::vec4 want) {
+  return std::abs(c[0] - int(255 * want.r)) + std::abs(c[1] - int(255 * want.g)) +
+             std::abs(c[2] - int(255 * want.b)) <
+         40;
+}
+
+class SymmetryCues : public DisplayRig {
+ protected:
+  void SetUp() override {
+    DisplayRig::SetUp();
+    if (HasFatalFailure()) return;
+    load_mesh(app_->replica(), sphere_mesh(kSphereM));
+    app_->step();
+  }
+  void send_status(const std::array<std::uint8_t, 4>& symmetry) {
+    link::StatusReport m;
+    m.tracker_state = 1;
+    m.vertex_count = static_cast<std::uint32_t>(app_->replica().mesh().vertex_count());
+    m.vertex_capacity = 100000;
+    m.triangle_capacity = 200000;
+    m.symmetry = symmetry;
+    (void)app_->replica().apply(m);
+  }
+  // Hands at `p` (hand h present where given).
+  void send_hands(std::array<std::optional<glm::dvec3>, 2> p) {
+    link::Hands m;
+    m.sequence = sequence_++;
+    m.radius_m = 0.03F;
+    for (std::size_t h = 0; h < 2; ++h) {
+      if (!p[h]) continue;
+      m.flags = static_cast<std::uint8_t>(m.flags | (link::kHandSample0 << h) |
+                                          (link::kHandTracked0 << h));
+      m.hands[h] = link::to_compact(math::identity_frame(*p[h]));
+    }
+    (void)app_->replica().apply(m);
+  }
+  std::uint16_t sequence_ = 0;
+  // Ghost cursors drawn in `img` at the projected images (counted), of how many.
+  std::pair<int, int> ghosts_seen(const Image& img, const math::SymmetrySpec& spec) {
+    int seen = 0;
+    int total = 0;
+    for (const GhostCursor& g : ghost_cursors(app_->replica(), spec)) {
+      const auto px = project_object(g.position);
+      if (!px) continue;
+      ++total;
+      const glm::vec4 colour = g.hand == 0 ? kGhostHand0 : kGhostHand1;
+      if (ghost_like(img.at(int(px->x), int(px->y)), colour)) ++seen;
+    }
+    return {seen, total};
+  }
+};
+
+TEST_F(SymmetryCues, GhostCursorsAtTheSixFoldImagesOfTheHand) {
+  const math::SymmetrySpec rot6{math::SymmetryKind::rotation, 0, 2, 6};
+  send_hands({glm::dvec3{0.09, 0.05, 0.06}, std::nullopt});
+  send_status({});
+  const Image plain = frame();
+  expect_live_frame(plain);
+  EXPECT_EQ(ghosts_seen(plain, rot6).first, 0) << "ghost colour without a group";
+  send_status({2, 0, 2, 6});
+  const Image ghosts = frame();
+  expect_live_frame(ghosts);
+  const auto [seen, total] = ghosts_seen(ghosts, rot6);
+  EXPECT_EQ(total, 5);
+  EXPECT_EQ(seen, total) << "ghost cursors missing at the hand's images";
+}
+
+TEST_F(SymmetryCues, GhostCursorsOfBothHandsInTwoMirrors) {
+  const math::SymmetrySpec xy{math::SymmetryKind::mirrors, 3, 0, 0};
+  send_status({1, 3, 0, 0});
+  send_hands({glm::dvec3{0.08, 0.07, 0.07}, glm::dvec3{-0.03, 0.09, 0.08}});
+  const Image img = frame();
+  expect_live_frame(img);
+  const auto [seen, total] = ghosts_seen(img, xy);
+  EXPECT_EQ(total, 6);  // 3 images of each hand
+  EXPECT_EQ(seen, total);
+  EXPECT_EQ(symmetry_hud_line(app_->replica()), "symmetry: xy (next strokes)");
+}
+
+}  // namespace
+}  // namespace twister::bridge::test
