@@ -30,6 +30,28 @@ const char* sculpture_end_name(SculptureEnd end) {
   return "unknown";
 }
 
+const char* visitor_note_name(VisitorNote note) {
+  switch (note) {
+    case VisitorNote::began:
+      return "began";
+    case VisitorNote::ended:
+      return "ended";
+    case VisitorNote::undone:
+      return "undone";
+    case VisitorNote::archived:
+      return "archived";
+    case VisitorNote::archive_failed:
+      return "archive_failed";
+    case VisitorNote::disk_full:
+      return "disk_full";
+    case VisitorNote::refused:
+      return "refused";
+    case VisitorNote::rotate_failed:
+      return "rotate_failed";
+  }
+  return "unknown";
+}
+
 void VisitorLifecycle::start(bool has_sculpture, ports::TimestampUs now_us) {
   phase_ = has_sculpture ? VisitorPhase::sculpting : VisitorPhase::attract;
   end_ = SculptureEnd::none;

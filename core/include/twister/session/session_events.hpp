@@ -26,6 +26,7 @@
 #include "twister/mesh/mesh_refiner.hpp"
 #include "twister/ports/clock.hpp"
 #include "twister/session/session_command.hpp"
+#include "twister/session/visitor_lifecycle.hpp"
 
 namespace twister::session {
 
@@ -74,19 +75,21 @@ enum class SessionEventKind : std::uint8_t {
                        // resource_exhausted): the commit stands, the mesh is conforming,
                        // edges over the threshold are left
   // The station around the session.
-  journal_recovered,    // start() -> JournalRecovered
-  tracker_streaming,    // the Fastrak session reached streaming -> TrackerStreaming
-  tracker_lost,         // streaming stopped (unplug, silence, garbage); re-init follows. none
-  buttons_lost,         // the button device is missing (status unavailable: not there at
-                        // start-up) or vanished (io_error); the station runs without it, ends
-                        // the strokes of its buttons as on lost tracking, and opens it again
-                        // when it appears. none
-  buttons_found,        // the button device is back (opened again). none
-  checkpoint_written,   // -> CheckpointWritten
-  checkpoint_failed,    // writing a checkpoint failed (status); the previous one stays. none
+  journal_recovered,   // start() -> JournalRecovered
+  tracker_streaming,   // the Fastrak session reached streaming -> TrackerStreaming
+  tracker_lost,        // streaming stopped (unplug, silence, garbage); re-init follows. none
+  buttons_lost,        // the button device is missing (status unavailable: not there at
+                       // start-up) or vanished (io_error); the station runs without it, ends
+                       // the strokes of its buttons as on lost tracking, and opens it again
+                       // when it appears. none
+  buttons_found,       // the button device is back (opened again). none
+  checkpoint_written,  // -> CheckpointWritten
+  checkpoint_failed,   // writing a checkpoint failed (status); the previous one stays. none
+  visitor,             // exhibit mode: the visitor lifecycle moved or the archive acted
+                       // -> Visitor (status: why an archive or a rotation failed)
 };
 inline constexpr std::size_t kSessionEventKindCount =
-    static_cast<std::size_t>(SessionEventKind::checkpoint_failed) + 1;
+    static_cast<std::size_t>(SessionEventKind::visitor) + 1;
 const char* session_event_kind_name(SessionEventKind kind);
 
 namespace payload {
@@ -142,6 +145,13 @@ struct CheckpointWritten {
   std::uint64_t bytes = 0;
 };
 // tracker_streaming.
+struct Visitor {
+  VisitorNote note = VisitorNote::began;
+  SculptureEnd end = SculptureEnd::none;  // ended: why
+  std::uint32_t visitor = 0;              // today's number of the visitor it concerns
+  std::uint32_t sculpture = 0;            // the sculpture's journal identity
+  std::uint32_t records = 0;              // its journal records
+};
 struct TrackerStreaming {
   std::uint64_t start_ups = 0;  // streams started so far, this one included
 };
@@ -151,7 +161,7 @@ using EventPayload =
     std::variant<std::monostate, payload::StrokeEnd, payload::Reasoned, payload::Radius,
                  payload::RecordRef, payload::TurnLimit, payload::Method, payload::CommandRefusal,
                  payload::Refinement, payload::RefinementStop, payload::JournalRecovered,
-                 payload::CheckpointWritten, payload::TrackerStreaming>;
+                 payload::CheckpointWritten, payload::TrackerStreaming, payload::Visitor>;
 
 // The EventPayload alternative (index) a kind carries.
 std::size_t payload_index(SessionEventKind kind);
@@ -173,6 +183,7 @@ struct SessionEvent {
   const payload::CommandRefusal& command_refusal() const { return get<payload::CommandRefusal>(); }
   const payload::Refinement& refinement() const { return get<payload::Refinement>(); }
   const payload::RefinementStop& refinement_stop() const { return get<payload::RefinementStop>(); }
+  const payload::Visitor& visitor() const { return get<payload::Visitor>(); }
   const payload::JournalRecovered& journal_recovered() const {
     return get<payload::JournalRecovered>();
   }

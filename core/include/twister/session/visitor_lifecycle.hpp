@@ -32,6 +32,21 @@ const char* visitor_phase_name(VisitorPhase phase);
 enum class SculptureEnd : std::uint8_t { none = 0, idle = 1, chord = 2, command = 3 };
 const char* sculpture_end_name(SculptureEnd end);
 
+// What the station reports about the lifecycle (SessionEventKind::visitor).
+enum class VisitorNote : std::uint8_t {
+  began = 0,           // a visitor's first grab: sculpting
+  ended = 1,           // the sculpture ended (idle, chord, command): the grace runs
+  undone = 2,          // the end was undone in the grace: sculpting again
+  archived = 3,        // archived, the journal rotated, the model is the base again
+  archive_failed = 4,  // the archive could not be written (status): tried again later,
+                       // the model and the journal stay as they are
+  disk_full = 5,       // ... because the archive's disk is full
+  refused = 6,         // new / undo command (or chord) with nothing to act on
+  rotate_failed = 7,   // archived, but the new journal could not be begun (status):
+                       // strokes are not saved until it can (tried again)
+};
+const char* visitor_note_name(VisitorNote note);
+
 struct VisitorConfig {
   bool enabled = false;  // exhibit mode off: the lifecycle never acts
   ports::TimestampUs idle_us = 90'000'000;
