@@ -83,6 +83,10 @@ void Station::act(session::VisitorAction action, ports::TimestampUs now_us) {
 }
 
 void Station::end_sculpture(ports::TimestampUs now_us) {
+  if (journal_records() == 0) {  // a visitor who made nothing: nothing to keep
+    exhibit_.life().archived(true, now_us);
+    return;
+  }
   SculptureSummary summary;
   summary.sculpture = writer_.format().id;
   summary.visitor = exhibit_.visitor();
