@@ -51,21 +51,24 @@ double from_srgb(double s) { return s <= 0.04045 ? s / 12.92 : std::pow((s + 0.0
 glm::dvec3 shade(glm::dvec3 n, const View& v) {
   if (glm::dot(n, v.toward) < 0.0) n = -n;  // the inside of an open mesh
   const glm::dvec3 clay(from_srgb(0.80), from_srgb(0.56), from_srgb(0.44));
-  const glm::dvec3 key = glm::normalize(-0.55 * v.right + 0.75 * v.up + 0.55 * v.toward);
-  const glm::dvec3 fill = glm::normalize(0.85 * v.right + 0.1 * v.up + 0.5 * v.toward);
-  const glm::dvec3 rim = glm::normalize(-0.7 * v.toward + 0.6 * v.up + 0.3 * v.right);
-  const double k = std::max(0.0, glm::dot(n, key));
+  const glm::dvec3 key = glm::normalize(-0.8 * v.right + 0.7 * v.up + 0.45 * v.toward);
+  const glm::dvec3 fill = glm::normalize(0.9 * v.right + 0.1 * v.up + 0.45 * v.toward);
+  const glm::dvec3 rim = glm::normalize(-0.8 * v.toward + 0.5 * v.up + 0.4 * v.right);
+  // A little wrap on the key keeps the terminator soft.
+  const double k = std::max(0.0, (glm::dot(n, key) + 0.15) / 1.15);
   const double f = std::max(0.0, glm::dot(n, fill));
-  const double r = std::pow(std::max(0.0, glm::dot(n, rim)), 2.0) *
-                   std::pow(1.0 - std::max(0.0, glm::dot(n, v.toward)), 1.5);
+  const double edge = 1.0 - std::max(0.0, glm::dot(n, v.toward));
+  const double r = std::max(0.0, glm::dot(n, rim)) * edge * edge;
   const double sky = 0.5 + 0.5 * n.z;
   const glm::dvec3 ambient =
-      glm::mix(glm::dvec3(0.10, 0.08, 0.07), glm::dvec3(0.22, 0.23, 0.26), sky);
+      glm::mix(glm::dvec3(0.03, 0.025, 0.02), glm::dvec3(0.08, 0.085, 0.10), sky);
   const glm::dvec3 half = glm::normalize(key + v.toward);
-  const double spec = 0.10 * std::pow(std::max(0.0, glm::dot(n, half)), 28.0);
-  return clay * (ambient + 0.95 * k * glm::dvec3(1.0, 0.96, 0.90) +
-                 0.22 * f * glm::dvec3(0.80, 0.88, 1.0)) +
-         glm::dvec3(0.55 * r + spec);
+  const double spec = 0.12 * std::pow(std::max(0.0, glm::dot(n, half)), 32.0);
+  const double occlusion = 0.7 + 0.3 * sky;  // darker toward the ground
+  return clay * occlusion *
+             (ambient + 1.1 * k * glm::dvec3(1.0, 0.95, 0.86) +
+              0.10 * f * glm::dvec3(0.75, 0.85, 1.0)) +
+         glm::dvec3(0.35 * r + spec);
 }
 
 // The background (a quiet vertical gradient) with a soft contact shadow under the
@@ -78,7 +81,7 @@ glm::dvec3 background(double x, double y, const View& v, glm::dvec2 shadow, glm:
   const glm::dvec3 c = glm::mix(top, bottom, t);
   const double dx = (x - shadow.x) / radii.x;
   const double dy = (y - shadow.y) / radii.y;
-  return c * (1.0 - 0.45 * std::exp(-2.5 * (dx * dx + dy * dy)));
+  return c * (1.0 - 0.5 * std::exp(-2.0 * (dx * dx + dy * dy)));
 }
 
 struct Raster {
@@ -173,7 +176,7 @@ hal::Expected<ThumbnailImage> render_thumbnail(const mesh::Mesh& mesh, glm::vec3
   const glm::dvec3 ground_centre(0.0, 0.0, frame->lo.z);
   const glm::dvec3 g = project(v, ground_centre);
   const double radius =
-      0.6 * std::max(frame->hi.x - frame->lo.x, frame->hi.y - frame->lo.y) * v.scale;
+      0.75 * std::max(frame->hi.x - frame->lo.x, frame->hi.y - frame->lo.y) * v.scale;
   const glm::dvec2 radii(std::max(radius, 1.0), std::max(radius * std::sin(20.0 * kDegree), 1.0));
   ThumbnailImage image{size, size,
                        std::vector<std::uint8_t>(4 * static_cast<std::size_t>(size) *
