@@ -125,8 +125,8 @@ bool parse_archive_name(const std::string& name, std::uint32_t* id, std::uint32_
       name[17] != 'v' || name[22] != '-') {
     return false;
   }
-  for (std::size_t i : {0u, 1u, 2u, 3u, 4u, 5u, 6u, 7u, 9u, 10u, 11u, 12u, 13u, 14u, 18u, 19u,
-                        20u, 21u}) {
+  for (std::size_t i :
+       {0u, 1u, 2u, 3u, 4u, 5u, 6u, 7u, 9u, 10u, 11u, 12u, 13u, 14u, 18u, 19u, 20u, 21u}) {
     if (name[i] < '0' || name[i] > '9') return false;
   }
   for (std::size_t i = 23; i < 31; ++i) {
@@ -138,8 +138,9 @@ bool parse_archive_name(const std::string& name, std::uint32_t* id, std::uint32_
   return true;
 }
 
-ExhibitArchive::ExhibitArchive(ExhibitArchiveConfig config, ArchiveModelWriter& writer)
-    : config_(std::move(config)), writer_(writer) {
+ExhibitArchive::ExhibitArchive(ExhibitArchiveConfig config,
+                               std::unique_ptr<ArchiveModelWriter> writer)
+    : config_(std::move(config)), writer_(std::move(writer)) {
   if (!config_.wall_clock) config_.wall_clock = [] { return std::time(nullptr); };
   if (config_.keep_count == 0) config_.keep_count = 1;
 }
@@ -262,13 +263,14 @@ station::ArchiveOutcome ExhibitArchive::do_archive(const station::SculptureSumma
   if (::mkdir(tmp.c_str(), 0755) != 0) return fail(errno, "archive " + tmp, "");
   // The journal, byte for byte.
   {
-    const int fd = ::open((tmp + "/journal.twj").c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC,
-                          0644);
+    const int fd =
+        ::open((tmp + "/journal.twj").c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
     if (fd < 0) return fail(errno, "archive journal", tmp);
     std::array<std::byte, 65536> buf{};
     int err = 0;
     for (std::uint64_t at = 0; at < journal_bytes && err == 0;) {
-      const auto want = static_cast<std::size_t>(std::min<std::uint64_t>(buf.size(), journal_bytes - at));
+      const auto want =
+          static_cast<std::size_t>(std::min<std::uint64_t>(buf.size(), journal_bytes - at));
       auto n = journal.read_at(at, std::span(buf).first(want));
       if (!n.ok() || *n == 0) {
         err = EIO;
@@ -281,13 +283,13 @@ station::ArchiveOutcome ExhibitArchive::do_archive(const station::SculptureSumma
     ::close(fd);
     if (err != 0) return fail(err, "archive journal", tmp);
   }
-  if (const int err = writer_.write_stl(tmp + "/model.stl", mesh, pose); err != 0) {
+  if (const int err = writer_->write_stl(tmp + "/model.stl", mesh, pose); err != 0) {
     return fail(err, "archive model.stl", tmp);
   }
-  if (const int err = writer_.write_glb(tmp + "/model.glb", mesh, pose); err != 0) {
+  if (const int err = writer_->write_glb(tmp + "/model.glb", mesh, pose); err != 0) {
     return fail(err, "archive model.glb", tmp);
   }
-  if (const int err = writer_.write_thumbnail(tmp + "/thumbnail.png", mesh, pose); err != 0) {
+  if (const int err = writer_->write_thumbnail(tmp + "/thumbnail.png", mesh, pose); err != 0) {
     return fail(err, "archive thumbnail.png", tmp);
   }
   for (const char* f : {"model.stl", "model.glb", "thumbnail.png"}) {
@@ -300,22 +302,22 @@ station::ArchiveOutcome ExhibitArchive::do_archive(const station::SculptureSumma
     return now - static_cast<std::time_t>((mono - t) / 1'000'000);
   };
   std::array<char, 1024> json{};
-  std::snprintf(
-      json.data(), json.size(),
-      "{\n  \"format\": \"twister-sculpture-1\",\n  \"sculpture\": \"%s\",\n"
-      "  \"visitor\": %u,\n  \"day\": \"%s\",\n  \"began_utc\": \"%s\",\n"
-      "  \"ended_utc\": \"%s\",\n  \"archived_utc\": \"%s\",\n  \"sculpting_s\": %.1f,\n"
-      "  \"end\": \"%s\",\n  \"journal_records\": %u,\n  \"strokes\": %u,\n"
-      "  \"object_moves\": %u,\n  \"undos\": %u,\n  \"redos\": %u,\n"
-      "  \"journal_bytes\": %" PRIu64 ",\n  \"vertices\": %zu,\n  \"triangles\": %zu,\n"
-      "  \"model_checksum\": \"%016" PRIx64 "\"\n}\n",
-      id.c_str(), s.visitor, utc(now, "%Y-%m-%d").c_str(),
-      utc(ago(s.began_us), "%Y-%m-%dT%H:%M:%SZ").c_str(),
-      utc(ago(s.ended_us), "%Y-%m-%dT%H:%M:%SZ").c_str(),
-      utc(now, "%Y-%m-%dT%H:%M:%SZ").c_str(),
-      static_cast<double>(s.ended_us - s.began_us) / 1e6, session::sculpture_end_name(s.end),
-      c.records, c.strokes, c.moves, c.undos, c.redos, journal_bytes, mesh.vertex_count(),
-      mesh.triangle_count(), s.checksum);
+  std::snprintf(json.data(), json.size(),
+                "{\n  \"format\": \"twister-sculpture-1\",\n  \"sculpture\": \"%s\",\n"
+                "  \"visitor\": %u,\n  \"day\": \"%s\",\n  \"began_utc\": \"%s\",\n"
+                "  \"ended_utc\": \"%s\",\n  \"archived_utc\": \"%s\",\n  \"sculpting_s\": %.1f,\n"
+                "  \"end\": \"%s\",\n  \"journal_records\": %u,\n  \"strokes\": %u,\n"
+                "  \"object_moves\": %u,\n  \"undos\": %u,\n  \"redos\": %u,\n"
+                "  \"journal_bytes\": %" PRIu64
+                ",\n  \"vertices\": %zu,\n  \"triangles\": %zu,\n"
+                "  \"model_checksum\": \"%016" PRIx64 "\"\n}\n",
+                id.c_str(), s.visitor, utc(now, "%Y-%m-%d").c_str(),
+                utc(ago(s.began_us), "%Y-%m-%dT%H:%M:%SZ").c_str(),
+                utc(ago(s.ended_us), "%Y-%m-%dT%H:%M:%SZ").c_str(),
+                utc(now, "%Y-%m-%dT%H:%M:%SZ").c_str(),
+                static_cast<double>(s.ended_us - s.began_us) / 1e6,
+                session::sculpture_end_name(s.end), c.records, c.strokes, c.moves, c.undos, c.redos,
+                journal_bytes, mesh.vertex_count(), mesh.triangle_count(), s.checksum);
   if (const int err = write_new_file(tmp + "/record.json", json.data()); err != 0) {
     return fail(err, "archive record.json", tmp);
   }
@@ -345,7 +347,7 @@ void ExhibitArchive::prune(const std::string& keep) {
   std::size_t count = names.size();
   for (std::size_t i = 0; i < names.size(); ++i) {
     if (count <= config_.keep_count && total <= config_.keep_bytes) break;
-    if (names[i] == keep || count <= 1) continue;  // never the current sculpture
+    if (names[i] == keep || count <= 1) continue;                     // never the current sculpture
     if (!remove_archive_dir(config_.dir + "/" + names[i])) continue;  // not only ours: left
     ++stats_.pruned;
     --count;

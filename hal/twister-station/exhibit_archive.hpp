@@ -19,7 +19,10 @@
 #include <cstdint>
 #include <ctime>
 #include <functional>
+#include <glm/vec3.hpp>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "twister/hal/expected.hpp"
 #include "twister/station/sculpture_archive.hpp"
@@ -36,13 +39,14 @@ class ArchiveModelWriter {
   virtual int write_thumbnail(const std::string& path, const mesh::Mesh& mesh,
                               const Pose& pose) = 0;
 };
-// The built-in writers (binary STL, minimal binary glTF, a small shaded PNG).
-ArchiveModelWriter& builtin_model_writer();
+// hal/meshio's writers (exhibit_model_files.cpp): `up` is the model's up in its own
+// frame (+Z with a calibrated work frame, -Z in the transmitter frame).
+std::unique_ptr<ArchiveModelWriter> meshio_model_writer(glm::vec3 up);
 
 struct ExhibitArchiveConfig {
-  std::string dir;                  // the archive directory (created when missing)
-  std::string journal_path;         // the station's journal (recover())
-  std::uint32_t keep_count = 500;   // archives kept (at least 1)
+  std::string dir;                 // the archive directory (created when missing)
+  std::string journal_path;        // the station's journal (recover())
+  std::uint32_t keep_count = 500;  // archives kept (at least 1)
   std::uint64_t keep_bytes = 2ULL << 30;
   // Wall-clock seconds (UTC) for names and records; the day test's virtual day.
   std::function<std::time_t()> wall_clock;
@@ -62,17 +66,16 @@ struct ArchiveStats {
   std::uint64_t failed = 0;
   std::uint64_t disk_full = 0;
   std::uint64_t pruned = 0;
-  std::uint32_t kept = 0;            // archives present after the last prune
+  std::uint32_t kept = 0;  // archives present after the last prune
   std::uint64_t kept_bytes = 0;
   int last_errno = 0;
-  std::string last_error;            // what failed, for the log
-  std::string last_archive;          // the directory of the last archive written
+  std::string last_error;    // what failed, for the log
+  std::string last_archive;  // the directory of the last archive written
 };
 
 class ExhibitArchive final : public station::SculptureArchive {
  public:
-  explicit ExhibitArchive(ExhibitArchiveConfig config,
-                          ArchiveModelWriter& writer = builtin_model_writer());
+  ExhibitArchive(ExhibitArchiveConfig config, std::unique_ptr<ArchiveModelWriter> writer);
   // Start-up (after the journal's lock is taken, before the station reads it).
   hal::Expected<ArchiveRecovery> recover();
   const ArchiveStats& stats() const { return stats_; }
@@ -88,7 +91,7 @@ class ExhibitArchive final : public station::SculptureArchive {
   void prune(const std::string& keep);
 
   ExhibitArchiveConfig config_;
-  ArchiveModelWriter& writer_;
+  std::unique_ptr<ArchiveModelWriter> writer_;
   ArchiveStats stats_;
 };
 

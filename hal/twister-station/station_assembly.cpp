@@ -212,7 +212,10 @@ hal::Expected<void> open_exhibit(StationParts& parts, const StationFileConfig& c
   a.keep_bytes = config.exhibit.keep_archive_mb << 20;
   ports::Clock* clock = parts.backends.clock.get();
   a.mono_clock = [clock] { return clock->now_us(); };
-  parts.archive = std::make_unique<ExhibitArchive>(a);
+  // The model's up: +Z in a calibrated work frame, else the transmitter's -Z.
+  const glm::vec3 up = config.tracker.calibration.has_work_frame ? glm::vec3(0.0F, 0.0F, 1.0F)
+                                                                 : glm::vec3(0.0F, 0.0F, -1.0F);
+  parts.archive = std::make_unique<ExhibitArchive>(a, meshio_model_writer(up));
   auto recovered = parts.archive->recover();
   if (!recovered) return recovered.error();
   if (recovered->temporaries_removed > 0) {

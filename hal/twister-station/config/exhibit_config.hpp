@@ -2,8 +2,8 @@
 // the archive directory and its retention budget (docs/hardware.md "[exhibit]").
 #pragma once
 
-#include "config_reader.hpp"
 #include "config/station_config.hpp"
+#include "config_reader.hpp"
 
 namespace twister::station_app::internal {
 
