@@ -67,6 +67,8 @@ const char* reason_name(Reason reason) {
       return "nothing_to_redo";
     case Reason::stopped:
       return "stopped";
+    case Reason::not_available:
+      return "not_available";
   }
   return "unknown";
 }

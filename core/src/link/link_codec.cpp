@@ -112,6 +112,8 @@ TWISTER_LINK_INSTANTIATE(ObjectPose)
 TWISTER_LINK_INSTANTIATE(StatusReport)
 TWISTER_LINK_INSTANTIATE(Command)
 TWISTER_LINK_INSTANTIATE(Workspace)
+TWISTER_LINK_INSTANTIATE(VisitorState)
+TWISTER_LINK_INSTANTIATE(Notice)
 #undef TWISTER_LINK_INSTANTIATE
 
 Status decode_payload(std::span<const std::byte> payload, LinkMessage& out) {

@@ -157,6 +157,8 @@ void write_status(ByteWriter& w, const StatusReport& s) {
   w.u64(s.traffic.live_sent);
   w.u64(s.traffic.live_dropped);
   w.u64(s.traffic.frames_rejected);
+  write_bytes(w, s.symmetry);
+  w.u8(s.spectators);
 }
 
 bool read_workspace(ByteReader& r, Workspace& s) {
@@ -188,9 +190,35 @@ bool read_status(ByteReader& r, StatusReport& s) {
   s.traffic.live_sent = r.u64();
   s.traffic.live_dropped = r.u64();
   s.traffic.frames_rejected = r.u64();
+  read_bytes(r, s.symmetry);
+  s.spectators = r.u8();
   return s.tracker_state <= 2 && s.buttons_state <= 1 && s.method <= 2 && s.clutch <= 3 &&
          std::isfinite(s.tracker_rate_hz) && std::isfinite(s.turned_rad) &&
-         std::isfinite(s.turn_limit_rad);
+         std::isfinite(s.turn_limit_rad) && valid_symmetry(s.symmetry);
+}
+
+void write_visitor(ByteWriter& w, const VisitorState& v) {
+  w.u8(static_cast<std::uint8_t>(v.phase));
+  w.u8(v.flags);
+  w.u32(v.visitor);
+  w.u32(v.sculpture);
+  w.u32(v.strokes);
+  w.f32(v.idle_left_s);
+  w.f32(v.grace_left_s);
+}
+
+bool read_visitor(ByteReader& r, VisitorState& v) {
+  const std::uint8_t phase = r.u8();
+  v.phase = static_cast<VisitorPhase>(phase);
+  v.flags = r.u8();
+  v.visitor = r.u32();
+  v.sculpture = r.u32();
+  v.strokes = r.u32();
+  v.idle_left_s = r.f32();
+  v.grace_left_s = r.f32();
+  return phase <= kLastVisitorPhase && (v.flags & ~kVisitorFlagMask) == 0 &&
+         std::isfinite(v.idle_left_s) && v.idle_left_s >= 0.0F && std::isfinite(v.grace_left_s) &&
+         v.grace_left_s >= 0.0F;
 }
 
 bool read_vertices(ByteReader& r, Vertices& v) {
@@ -225,7 +253,7 @@ bool read_hello(ByteReader& r, Hello& h) {
   read_bytes(r, h.nonce);
   return (role == static_cast<std::uint8_t>(Role::station) ||
           role == static_cast<std::uint8_t>(Role::bridge)) &&
-         (h.flags & ~(kHelloAuth | kHelloYield)) == 0;
+         (h.flags & ~kHelloFlagMask) == 0;
 }
 
 template <class T>
@@ -316,7 +344,23 @@ bool write_body(ByteWriter& w, const ObjectPose& m) {
 }
 
 bool write_body(ByteWriter& w, const StatusReport& m) {
+  if (!valid_symmetry(m.symmetry)) return false;
   write_status(w, m);
+  return true;
+}
+
+bool write_body(ByteWriter& w, const VisitorState& m) {
+  if (static_cast<std::uint8_t>(m.phase) > kLastVisitorPhase ||
+      (m.flags & ~kVisitorFlagMask) != 0) {
+    return false;
+  }
+  write_visitor(w, m);
+  return true;
+}
+
+bool write_body(ByteWriter& w, const Notice& m) {
+  w.u8(static_cast<std::uint8_t>(m.code));
+  w.u8(m.detail);
   return true;
 }
 
@@ -378,6 +422,13 @@ bool read_small(ByteReader& r, MessageType type, LinkMessage& m) {
       c.method = r.u8();
       return kind >= 1 && kind <= kLastCommandKind && c.method <= 2;
     }
+    case MessageType::notice: {
+      Notice& n = reset_as<Notice>(m);
+      const std::uint8_t code = r.u8();
+      n.code = static_cast<NoticeCode>(code);
+      n.detail = r.u8();
+      return code >= 1 && code <= kLastNoticeCode;
+    }
     default:
       return false;
   }
@@ -414,6 +465,9 @@ bool read_body(ByteReader& r, MessageType type, LinkMessage& m) {
       break;
     case MessageType::workspace:
       good = read_workspace(r, reset_as<Workspace>(m));
+      break;
+    case MessageType::visitor:
+      good = read_visitor(r, reset_as<VisitorState>(m));
       break;
     default:
       good = read_small(r, type, m);

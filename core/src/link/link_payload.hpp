@@ -25,6 +25,8 @@ bool write_body(ByteWriter& w, const ObjectPose& m);
 bool write_body(ByteWriter& w, const StatusReport& m);
 bool write_body(ByteWriter& w, const Command& m);
 bool write_body(ByteWriter& w, const Workspace& m);
+bool write_body(ByteWriter& w, const VisitorState& m);
+bool write_body(ByteWriter& w, const Notice& m);
 
 // Reads the body of a `type` message into `m` (which then holds that
 // alternative); false: short/long body or a field out of range.

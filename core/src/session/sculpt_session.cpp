@@ -45,6 +45,12 @@ const char* session_command_name(SessionCommandKind kind) {
       return "next_method";
     case SessionCommandKind::set_method:
       return "set_method";
+    case SessionCommandKind::cycle_symmetry:
+      return "cycle_symmetry";
+    case SessionCommandKind::new_sculpture:
+      return "new_sculpture";
+    case SessionCommandKind::undo_new_sculpture:
+      return "undo_new_sculpture";
   }
   return "unknown";
 }
@@ -235,6 +241,11 @@ void SculptSession::run_command(const SessionCommand& c, SessionEvents& out) {
       out.push(make_event(SessionEventKind::method_changed, c.hand, payload::Method{m}));
       return;
     }
+    case SessionCommandKind::cycle_symmetry:
+    case SessionCommandKind::new_sculpture:
+    case SessionCommandKind::undo_new_sculpture:
+      // Vocabulary of protocol 7; the station acts on them where the feature is on.
+      return refuse(input::Reason::not_available, Status(StatusCode::failed_precondition));
   }
 }
 

@@ -115,6 +115,15 @@ session::SessionCommand session_command(const link::Command& c) {
       out.kind = session::SessionCommandKind::set_method;
       out.method = static_cast<math::WarpMethod>(c.method);
       break;
+    case link::CommandKind::cycle_symmetry:
+      out.kind = session::SessionCommandKind::cycle_symmetry;
+      break;
+    case link::CommandKind::new_sculpture:
+      out.kind = session::SessionCommandKind::new_sculpture;
+      break;
+    case link::CommandKind::undo_new_sculpture:
+      out.kind = session::SessionCommandKind::undo_new_sculpture;
+      break;
   }
   return out;
 }

@@ -128,7 +128,7 @@ LinkMessage random_message() {
     case MessageType::hello: {
       Hello& h = m.emplace<Hello>();
       h.role = *rc::gen::element(Role::station, Role::bridge);
-      h.flags = static_cast<std::uint8_t>(*rc::gen::inRange(0, 2));
+      h.flags = static_cast<std::uint8_t>(*rc::gen::inRange(0, kHelloFlagMask + 1));
       h.mesh_version = *rc::gen::arbitrary<std::uint32_t>();
       h.mesh_checksum = *rc::gen::arbitrary<std::uint64_t>();
       h.nonce[3] = *rc::gen::arbitrary<std::uint8_t>();
@@ -160,6 +160,9 @@ LinkMessage random_message() {
       s.traffic.live_dropped = *rc::gen::arbitrary<std::uint64_t>();
       s.buttons_state = static_cast<std::uint8_t>(*rc::gen::inRange(0, 2));
       s.strokes_not_saved = *rc::gen::arbitrary<std::uint64_t>();
+      // Protocol 7: the next stroke's group and the spectators.
+      if (*rc::gen::arbitrary<bool>()) s.symmetry = {2, 0, 1, 6};
+      s.spectators = *rc::gen::arbitrary<std::uint8_t>();
       break;
     }
     case MessageType::command:
@@ -174,6 +177,21 @@ LinkMessage random_message() {
       w.max = {random_float(), random_float(), random_float()};
       break;
     }
+    case MessageType::visitor: {
+      VisitorState& v = m.emplace<VisitorState>();
+      v.phase = static_cast<VisitorPhase>(*rc::gen::inRange(0, kLastVisitorPhase + 1));
+      v.flags = static_cast<std::uint8_t>(*rc::gen::inRange(0, kVisitorFlagMask + 1));
+      v.visitor = *rc::gen::arbitrary<std::uint32_t>();
+      v.sculpture = *rc::gen::arbitrary<std::uint32_t>();
+      v.strokes = *rc::gen::arbitrary<std::uint32_t>();
+      v.idle_left_s = std::abs(random_float());
+      v.grace_left_s = std::abs(random_float());
+      break;
+    }
+    case MessageType::notice:
+      m = Notice{static_cast<NoticeCode>(*rc::gen::inRange(1, kLastNoticeCode + 1)),
+                 *rc::gen::arbitrary<std::uint8_t>()};
+      break;
   }
   return m;
 }
@@ -299,6 +317,35 @@ TEST(LinkCodec, CommandsOfUnknownKindOrMethodAreRefused) {
     for (const std::byte b : bytes) decoded += decoder.process(b).ok() ? 1 : 0;
     EXPECT_EQ(decoded, 0u) << static_cast<int>(bad.kind) << " " << int{bad.method};
   }
+}
+
+// Protocol 7 (issue 25): the visitor state and the notices round-trip; times that
+// are negative or not finite, unknown codes and malformed groups are refused.
+TEST(LinkCodec, VisitorNoticeAndStatusOfProtocol7) {
+  LinkDecoder d;
+  LinkMessage got;
+  VisitorState v{VisitorPhase::sculpting, kVisitorResetUndoable, 12, 340, 7, 41.5F, 0.0F};
+  ASSERT_EQ(feed(d, encode(v), &got).size(), 1u);
+  EXPECT_EQ(std::get<VisitorState>(got).sculpture, 340u);
+  EXPECT_EQ(std::get<VisitorState>(got).idle_left_s, 41.5F);
+  for (const float bad : {-1.0F, std::numeric_limits<float>::quiet_NaN()}) {
+    v.grace_left_s = bad;
+    EXPECT_TRUE(feed(d, encode(v)).empty()) << bad;
+  }
+  for (const auto code : {0, kLastNoticeCode + 1}) {
+    EXPECT_TRUE(feed(d, encode(Notice{static_cast<NoticeCode>(code), 0})).empty()) << code;
+  }
+  ASSERT_EQ(feed(d, encode(Notice{NoticeCode::disk_full, 3}), &got).size(), 1u);
+  EXPECT_EQ(std::get<Notice>(got).detail, 3u);
+  StatusReport s;
+  s.symmetry = {1, 5, 0, 0};
+  s.spectators = 2;
+  ASSERT_EQ(feed(d, encode(s), &got).size(), 1u);
+  EXPECT_EQ(std::get<StatusReport>(got).symmetry, s.symmetry);
+  EXPECT_EQ(std::get<StatusReport>(got).spectators, 2u);
+  s.symmetry = {1, 0, 0, 0};  // mirrors without a plane: not a group the station sends
+  std::vector<std::byte> out(kMaxFrameBytes);
+  EXPECT_FALSE(encode_frame(s, out).ok());
 }
 
 }  // namespace

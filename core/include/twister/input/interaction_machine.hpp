@@ -65,6 +65,7 @@ enum class Reason : std::uint8_t {
   nothing_to_undo,   // undo with an empty history
   nothing_to_redo,   // redo with nothing undone
   stopped,           // cancelled from outside: the station stops (SculptSession::cancel_open)
+  not_available,     // a command whose feature is off here (no exhibit, no symmetry cycle)
 };
 
 const char* action_kind_name(ActionKind kind);
@@ -135,7 +136,7 @@ class InteractionMachine {
     ports::TimestampUs since_us = 0;
     HandButtons previous{};
     glm::vec3 last_valid_m{0.0f};
-    bool disengaged = false;  // freeze held during the stroke (dragging states only)
+    bool disengaged = false;    // freeze held during the stroke (dragging states only)
     bool buttons_gone = false;  // its button device vanished during this stroke or move
   };
 

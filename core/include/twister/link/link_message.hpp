@@ -1,7 +1,7 @@
 // Link messages between twister-station and twister-bridge (protocol version 6,
 // docs/link-protocol.md). Each message type is its own small struct naming its
 // MessageType (kType); one frame on the wire carries one of them (see
-// link_codec.hpp for the framing). LinkMessage, a std::variant of all fourteen, is
+// link_codec.hpp for the framing). LinkMessage, a std::variant of all sixteen, is
 // what a decoder yields: senders encode the type they send directly and never
 // build a LinkMessage for it. Units: metres, radians; poses are in the station's
 // object frame (the mesh's own frame, the journal's frames) except the object pose,
@@ -19,7 +19,7 @@
 
 namespace twister::link {
 
-inline constexpr std::uint8_t kProtocolVersion = 6;
+inline constexpr std::uint8_t kProtocolVersion = 7;
 // Largest payload (version byte .. last body byte, without CRC) of one frame.
 inline constexpr std::size_t kMaxPayload = 4096;
 inline constexpr std::size_t kMaxVerticesPerChunk = 200;   // 16 bytes each
@@ -51,8 +51,10 @@ enum class MessageType : std::uint8_t {
   status = 12,         // S->B: station status (tracker, capacity, counters)
   command = 13,        // B->S: a sculptor's key (undo, redo, method), admitted display only
   workspace = 14,      // S->B: the hands' working volume and the up axis (protocol 5)
+  visitor = 15,        // S->B: the exhibit's visitor lifecycle (protocol 7)
+  notice = 16,         // S->B: a short reason shown on screen (protocol 7)
 };
-inline constexpr std::uint8_t kLastMessageType = 14;
+inline constexpr std::uint8_t kLastMessageType = 16;
 
 enum class Role : std::uint8_t { station = 1, bridge = 2 };
 
@@ -61,6 +63,10 @@ inline constexpr std::uint8_t kHelloAuth = 1;  // the sender holds a key: challe
 // A displaced display trying again: admit it only while no display holds the link
 // (otherwise bye: busy), so two displays never take the link from each other.
 inline constexpr std::uint8_t kHelloYield = 2;
+// A read-only display (protocol 7): receives the same stream as the display that may
+// send commands, never displaces it, and its commands are refused (notice).
+inline constexpr std::uint8_t kHelloSpectator = 4;
+inline constexpr std::uint8_t kHelloFlagMask = 7;
 
 struct Hello {
   static constexpr MessageType kType = MessageType::hello;
@@ -220,13 +226,25 @@ struct StatusReport {
   std::uint64_t strokes_not_saved = 0;  // commits whose journal append failed
   std::uint64_t capacity_stops = 0;     // refined commits stopped by the mesh's capacity
   LinkTraffic traffic{};
+  // Protocol 7: the next stroke's symmetry group (StrokeBegin::symmetry's bytes) and
+  // the read-only displays admitted now.
+  std::array<std::uint8_t, 4> symmetry{};
+  std::uint8_t spectators = 0;
 };
 
 // A command from the display's keyboard, routed by the station into the session's
 // command path (the same as the hands' undo/redo/method buttons). The station acts
 // only on an admitted display's commands.
-enum class CommandKind : std::uint8_t { undo = 1, redo = 2, next_method = 3, set_method = 4 };
-inline constexpr std::uint8_t kLastCommandKind = 4;
+enum class CommandKind : std::uint8_t {
+  undo = 1,
+  redo = 2,
+  next_method = 3,
+  set_method = 4,
+  cycle_symmetry = 5,      // protocol 7: the next stroke's group, in the config's cycle
+  new_sculpture = 6,       // protocol 7: end this visitor's sculpture (archive, reset)
+  undo_new_sculpture = 7,  // protocol 7: within the grace time, bring it back
+};
+inline constexpr std::uint8_t kLastCommandKind = 7;
 
 struct Command {
   static constexpr MessageType kType = MessageType::command;
@@ -250,12 +268,54 @@ struct Workspace {
   glm::vec3 max{0.0F};
 };
 
+// The exhibit's visitor lifecycle (protocol 7, docs/interaction.md "A day at the
+// exhibit"): sent when it changes and about once a second.
+enum class VisitorPhase : std::uint8_t { attract = 0, sculpting = 1, finished = 2 };
+inline constexpr std::uint8_t kLastVisitorPhase = 2;
+// VisitorState flags.
+inline constexpr std::uint8_t kVisitorResetUndoable = 1;  // "undo the reset" is open
+inline constexpr std::uint8_t kVisitorArchiveFailed = 2;  // the last archive was not written
+inline constexpr std::uint8_t kVisitorDiskFull = 4;       // the archive's disk is full
+inline constexpr std::uint8_t kVisitorFlagMask = 7;
+
+struct VisitorState {
+  static constexpr MessageType kType = MessageType::visitor;
+  VisitorPhase phase = VisitorPhase::attract;
+  std::uint8_t flags = 0;
+  std::uint32_t visitor = 0;    // today's visitor number, 1-based (0: none yet)
+  std::uint32_t sculpture = 0;  // the sculpture's id (the archive's number)
+  std::uint32_t strokes = 0;    // strokes committed in this sculpture
+  float idle_left_s = 0.0F;     // until an idle sculpture ends (0: not counting)
+  float grace_left_s = 0.0F;    // "undo the reset" time left (0: none)
+};
+
+// Why nothing happened, or what just happened (protocol 7): the display shows it
+// briefly. `detail` qualifies some codes (documented per code in link-protocol.md).
+enum class NoticeCode : std::uint8_t {
+  undo_refused = 1,               // nothing to undo (or a stroke is open)
+  redo_refused = 2,               // nothing to redo
+  command_refused_spectator = 3,  // a read-only display sent a command
+  nothing_to_act_on = 4,          // a gesture found nothing (e.g. a grab with no vertex)
+  sculpture_archived = 5,         // a sculpture ended and was archived
+  archive_failed = 6,             // it ended but its archive was not written
+  disk_full = 7,                  // the archive's disk is full: sculpting goes on
+  new_sculpture_undone = 8,       // the reset was undone within the grace time
+  symmetry_changed = 9,           // the next stroke's group changed (see status)
+};
+inline constexpr std::uint8_t kLastNoticeCode = 9;
+
+struct Notice {
+  static constexpr MessageType kType = MessageType::notice;
+  NoticeCode code = NoticeCode::undo_refused;
+  std::uint8_t detail = 0;
+};
+
 // One decoded message: the alternative is its type, in MessageType order (index
 // + 1 is the type byte). As large as its largest alternative (Triangles) plus the
 // index: only decoders hold one.
-using LinkMessage =
-    std::variant<Hello, Auth, Bye, MeshBegin, Vertices, Triangles, MeshEnd, ResendRequest,
-                 StrokeBegin, Hands, ObjectPose, StatusReport, Command, Workspace>;
+using LinkMessage = std::variant<Hello, Auth, Bye, MeshBegin, Vertices, Triangles, MeshEnd,
+                                 ResendRequest, StrokeBegin, Hands, ObjectPose, StatusReport,
+                                 Command, Workspace, VisitorState, Notice>;
 static_assert(std::variant_size_v<LinkMessage> == kLastMessageType);
 
 inline MessageType type_of(const LinkMessage& m) { return static_cast<MessageType>(m.index() + 1); }

@@ -13,13 +13,17 @@
 namespace twister::session {
 
 enum class SessionCommandKind : std::uint8_t {
-  undo,         // undo the newest commit (journaled); refused while a stroke/move is open
-  redo,         // redo the newest undone commit (journaled); likewise
-  next_method,  // twister -> rottran -> scodef -> twister, for strokes begun from now on
-  set_method,   // `method`, for strokes begun from now on
+  undo,                // undo the newest commit (journaled); refused while a stroke/move is open
+  redo,                // redo the newest undone commit (journaled); likewise
+  next_method,         // twister -> rottran -> scodef -> twister, for strokes begun from now on
+  set_method,          // `method`, for strokes begun from now on
+  cycle_symmetry,      // the next group in the configured cycle, for strokes begun from now on
+  new_sculpture,       // exhibit: end this visitor's sculpture (archive, reset to the base)
+  undo_new_sculpture,  // exhibit: within the grace time, bring the ended sculpture back
 };
-inline constexpr std::uint8_t kSessionCommandKindCount = 4;
-// "undo", "redo", "next_method", "set_method".
+inline constexpr std::uint8_t kSessionCommandKindCount = 7;
+// "undo", "redo", "next_method", "set_method", "cycle_symmetry", "new_sculpture",
+// "undo_new_sculpture".
 const char* session_command_name(SessionCommandKind kind);
 
 struct SessionCommand {
