@@ -34,6 +34,19 @@ void Station::note(session::VisitorNote what, ports::TimestampUs now_us, Status 
   v.sculpture = writer_.format().id;
   v.records = journal_records();
   emit(session::make_event(session::SessionEventKind::visitor, 0, v, status), now_us);
+  if (what != session::VisitorNote::began && what != session::VisitorNote::ended) {
+    exhibit_.tell(what);
+  }
+}
+
+Status Station::submit(const session::SessionCommand& command) {
+  if (exhibit_.enabled()) {
+    if (command.kind == session::SessionCommandKind::new_sculpture) return new_sculpture();
+    if (command.kind == session::SessionCommandKind::undo_new_sculpture) {
+      return undo_new_sculpture();
+    }
+  }
+  return sculpt_.submit(command);
 }
 
 void Station::step_exhibit(ports::TimestampUs now_us) {

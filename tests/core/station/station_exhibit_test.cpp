@@ -6,7 +6,9 @@
 // no heap in the loop. Label exhibit.
 #include <vector>
 
+#include "fakes/memory_wire.hpp"
 #include "station_fixture.hpp"
+#include "twister/station/station_link.hpp"
 
 namespace twister::station {
 namespace {
@@ -273,6 +275,105 @@ TEST_F(ExhibitStation, ARotationAllocatesNothing) {
   right_stroke(1.0f);
   EXPECT_EQ(counter.count(), archive_.allocations);  // the fake's journal copy alone
   EXPECT_EQ(station_.exhibit_counters().archived, 1u);
+}
+
+// The display's side (link protocol 7): VisitorState on change and about once a second,
+// the lifecycle's notices, new_sculpture / undo_new_sculpture commands acted on, and the
+// base model sent after the rotation.
+TEST_F(ExhibitStation, TheDisplayIsToldTheVisitorStateAndNoticesAndItsCommandsAct) {
+  using namespace link;  // NOLINT
+  test::MemoryWire wire;
+  test::MemoryLinkEnd station_end(wire, true);
+  test::MemoryLinkEnd bridge_end(wire, false);
+  const std::size_t n = mesh_->vertex_capacity();
+  std::vector<float> x(n), y(n), z(n);
+  std::vector<std::uint32_t> idx(3 * mesh_->triangle_capacity());
+  std::vector<std::byte> out(64 * kMaxFrameBytes);
+  StationLink link(station_end, StationLinkStorage{x, y, z, idx, out}, StationLinkConfig{});
+  start();
+  ASSERT_TRUE(link.start(station_.sculpt()).ok());
+  LinkDecoder decoder;
+  const auto send = [&](const auto& m) {
+    std::vector<std::byte> f(kMaxFrameBytes);
+    const auto k = encode_frame(m, f);
+    ASSERT_TRUE(k.ok());
+    f.resize(*k);
+    ASSERT_EQ(*bridge_end.send(f), f.size());
+  };
+  const auto receive = [&] {
+    std::vector<LinkMessage> got;
+    std::vector<std::byte> buf(1 << 16);
+    for (;;) {
+      const auto k = bridge_end.receive(buf);
+      if (!k.ok() || *k == 0) break;
+      for (std::size_t i = 0; i < *k; ++i) {
+        if (const auto m = decoder.process(buf[i]); m.ok()) got.push_back(**m);
+      }
+    }
+    return got;
+  };
+  const auto run = [&](double seconds) {
+    for (int i = 0; i < static_cast<int>(seconds * 120); ++i) {
+      run_ticks(1);
+      link.poll(station_, clock_.now_us());
+    }
+  };
+  const auto visitors = [](const std::vector<LinkMessage>& ms) {
+    std::vector<VisitorState> v;
+    for (const auto& m : ms) {
+      if (const auto* s = std::get_if<VisitorState>(&m)) v.push_back(*s);
+    }
+    return v;
+  };
+  const auto notices = [](const std::vector<LinkMessage>& ms) {
+    std::vector<NoticeCode> v;
+    for (const auto& m : ms) {
+      if (const auto* s = std::get_if<Notice>(&m)) v.push_back(s->code);
+    }
+    return v;
+  };
+  send(Hello{Role::bridge, 0, 0, 0, {}});
+  run(0.5);
+  std::vector<LinkMessage> got = receive();
+  ASSERT_FALSE(visitors(got).empty());
+  EXPECT_EQ(visitors(got).back().phase, link::VisitorPhase::attract);
+  EXPECT_EQ(visitors(got).back().visitor, 4u);
+  run(3.0);  // nothing changes: about once a second
+  const std::size_t quiet = visitors(receive()).size();
+  EXPECT_GE(quiet, 2u);
+  EXPECT_LE(quiet, 4u);
+  send(Command{CommandKind::new_sculpture, 0});  // nothing to end yet
+  run(0.2);
+  EXPECT_EQ(notices(receive()), std::vector<NoticeCode>{NoticeCode::nothing_to_act_on});
+  right_stroke(2.0f);
+  run(0.2);
+  got = receive();
+  EXPECT_EQ(visitors(got).back().phase, link::VisitorPhase::sculpting);
+  EXPECT_EQ(visitors(got).back().strokes, 1u);
+  EXPECT_EQ(visitors(got).back().visitor, 5u);
+  send(Command{CommandKind::new_sculpture, 0});
+  run(0.5);
+  got = receive();
+  EXPECT_EQ(visitors(got).back().phase, link::VisitorPhase::finished);
+  EXPECT_EQ(visitors(got).back().flags, kVisitorResetUndoable);
+  EXPECT_GT(visitors(got).back().grace_left_s, 2.0f);
+  send(Command{CommandKind::undo_new_sculpture, 0});
+  run(0.2);
+  got = receive();
+  EXPECT_EQ(notices(got), std::vector<NoticeCode>{NoticeCode::new_sculpture_undone});
+  EXPECT_EQ(visitors(got).back().phase, link::VisitorPhase::sculpting);
+  send(Command{CommandKind::new_sculpture, 0});
+  run(4.0);
+  got = receive();
+  EXPECT_EQ(notices(got), std::vector<NoticeCode>{NoticeCode::sculpture_archived});
+  EXPECT_EQ(visitors(got).back().phase, link::VisitorPhase::attract);
+  EXPECT_EQ(visitors(got).back().sculpture, 0x5C000001u);
+  EXPECT_EQ(visitors(got).back().strokes, 0u);
+  bool base_sent = false;
+  for (const auto& m : got) {
+    if (const auto* e = std::get_if<MeshEnd>(&m)) base_sent |= e->checksum == base_->checksum();
+  }
+  EXPECT_TRUE(base_sent);  // the display shows the fresh model
 }
 
 class ExhibitOff : public ExhibitStation {

@@ -157,7 +157,9 @@ class Station {
   // Queues a session command (undo, redo, method) for the next poll(): the path
   // of the hands' buttons, also used by the display's keys (StationLink commands).
   // Errors as SculptSession::submit().
-  Status submit(const session::SessionCommand& command) { return sculpt_.submit(command); }
+  // Exhibit mode: new_sculpture / undo_new_sculpture act on the visitor lifecycle at
+  // once (new_sculpture(), undo_new_sculpture()); with it off the session refuses them.
+  Status submit(const session::SessionCommand& command);
   const mesh::Mesh& mesh() const { return sculpt_.mesh(); }
   // Records in the journal file: the ones found at start() plus every record
   // appended (and synced) since.
@@ -189,7 +191,10 @@ class Station {
   Status undo_new_sculpture();
   // The visitor's phase, number, time left (as of the last poll()).
   VisitorView visitor_view() const;
+  bool visitor_view_enabled() const { return exhibit_.enabled(); }
   const ExhibitCounters& exhibit_counters() const { return exhibit_.counters(); }
+  // The newest lifecycle note for the display (StationLink sends it as a Notice).
+  const StationExhibit::Told& visitor_told() const { return exhibit_.told(); }
 
  private:
   // start()'s steps (station_start.cpp).
