@@ -233,6 +233,17 @@ struct SystemdConfig {
   bool watchdog = true;  // WATCHDOG=1 at half of WATCHDOG_USEC when the unit sets it
 };
 
+// [health]: the fleet metrics (hal/health; docs/exhibit.md "Fleet health").
+struct HealthSection {
+  // Prometheus text for node_exporter's textfile collector ("" = none); relative to
+  // the config file's folder. Refused at start when a file there is not ours.
+  std::string metrics_file;
+  double period_s = 15.0;  // between writes of the file and of systemd STATUS=
+  std::string
+      archive_path;    // whose file system's free space is reported ("" = the journal's folder)
+  bool status = true;  // systemd STATUS= (with [systemd] notify)
+};
+
 struct StationFileConfig {
   StationSection station;
   TrackerConfig tracker;
@@ -240,6 +251,7 @@ struct StationFileConfig {
   SculptConfig sculpt;
   SystemdConfig systemd;
   LinkSection link;
+  HealthSection health;
 };
 
 // One problem in a config file. to_string(): "FILE:LINE: KEY: MESSAGE".
