@@ -74,19 +74,25 @@ glm::dvec3 shade(glm::dvec3 n, const View& v) {
 // The background (a quiet vertical gradient) with a soft contact shadow under the
 // model: an ellipse (the ground circle under the model, seen from the view's
 // elevation) darkening toward its centre.
-glm::dvec3 background(double x, double y, const View& v, glm::dvec2 shadow, glm::dvec2 radii) {
-  const double t = y / v.samples;
-  const glm::dvec3 top(from_srgb(0.94), from_srgb(0.94), from_srgb(0.96));
-  const glm::dvec3 bottom(from_srgb(0.80), from_srgb(0.81), from_srgb(0.84));
-  const glm::dvec3 c = glm::mix(top, bottom, t);
-  const double dx = (x - shadow.x) / radii.x;
-  const double dy = (y - shadow.y) / radii.y;
-  return c * (1.0 - 0.5 * std::exp(-2.0 * (dx * dx + dy * dy)));
-}
+struct Backdrop {
+  glm::dvec3 top{from_srgb(0.94), from_srgb(0.94), from_srgb(0.96)};
+  glm::dvec3 bottom{from_srgb(0.80), from_srgb(0.81), from_srgb(0.84)};
+  glm::dvec2 shadow{0.0};
+  glm::dvec2 radii{1.0};
 
+  glm::dvec3 at(double x, double y, int samples) const {
+    const glm::dvec3 c = glm::mix(top, bottom, y / samples);
+    const double dx = (x - shadow.x) / radii.x;
+    const double dy = (y - shadow.y) / radii.y;
+    return c * (1.0 - 0.5 * std::exp(-2.0 * (dx * dx + dy * dy)));
+  }
+};
+
+// Depth and the interpolated normal of the nearest surface per sample (shaded once
+// each, after every triangle is drawn).
 struct Raster {
   std::vector<double> depth;
-  std::vector<glm::dvec3> colour;
+  std::vector<glm::dvec3> normal;
   std::vector<bool> covered;
 };
 
@@ -118,12 +124,9 @@ void draw_triangle(Raster& r, const View& v, const glm::dvec3 s[3], const glm::d
       const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(v.samples) +
                             static_cast<std::size_t>(x);
       if (r.covered[i] && z <= r.depth[i]) continue;
-      glm::dvec3 normal = w0 * n[0] + w1 * n[1] + w2 * n[2];
-      const double len = glm::length(normal);
-      normal = len > 1e-12 ? normal / len : v.toward;
       r.depth[i] = z;
       r.covered[i] = true;
-      r.colour[i] = shade(normal, v);
+      r.normal[i] = w0 * n[0] + w1 * n[1] + w2 * n[2];
     }
   }
 }
@@ -140,6 +143,41 @@ void frame_view(View& v, const mesh::Mesh& mesh, const internal::UprightFrame& f
   const double extent = std::max({hi.x - lo.x, hi.y - lo.y, 1e-9});
   v.scale = (1.0 - 2.0 * kMargin) * v.samples / extent;
   v.centre = 0.5 * (lo + hi);
+}
+
+// Shades each covered sample, averages ss x ss samples per pixel, sRGB.
+ThumbnailImage resolve(const Raster& r, const View& v, const Backdrop& backdrop, int size, int ss) {
+  const auto n = static_cast<std::size_t>(size);
+  ThumbnailImage image{size, size, std::vector<std::uint8_t>(4 * n * n), 0};
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) {
+      glm::dvec3 sum(0.0);
+      int hits = 0;
+      for (int sy = 0; sy < ss; ++sy) {
+        for (int sx = 0; sx < ss; ++sx) {
+          const int px = x * ss + sx;
+          const int py = y * ss + sy;
+          const std::size_t i = static_cast<std::size_t>(py) * static_cast<std::size_t>(v.samples) +
+                                static_cast<std::size_t>(px);
+          if (r.covered[i]) {
+            ++hits;
+            const double len = glm::length(r.normal[i]);
+            sum += shade(len > 1e-12 ? r.normal[i] / len : v.toward, v);
+          } else {
+            sum += backdrop.at(px + 0.5, py + 0.5, v.samples);
+          }
+        }
+      }
+      sum /= static_cast<double>(ss * ss);
+      if (2 * hits >= ss * ss) ++image.covered_pixels;
+      const std::size_t o = 4 * (static_cast<std::size_t>(y) * n + static_cast<std::size_t>(x));
+      image.rgba[o] = to_srgb(sum.x);
+      image.rgba[o + 1] = to_srgb(sum.y);
+      image.rgba[o + 2] = to_srgb(sum.z);
+      image.rgba[o + 3] = 255;
+    }
+  }
+  return image;
 }
 
 }  // namespace
@@ -173,41 +211,13 @@ hal::Expected<ThumbnailImage> render_thumbnail(const mesh::Mesh& mesh, glm::vec3
     draw_triangle(r, v, s, n);
   }
   // The contact shadow: the ground circle under the model, projected.
-  const glm::dvec3 ground_centre(0.0, 0.0, frame->lo.z);
-  const glm::dvec3 g = project(v, ground_centre);
+  Backdrop backdrop;
+  backdrop.shadow = glm::dvec2(project(v, glm::dvec3(0.0, 0.0, frame->lo.z)));
   const double radius =
       0.75 * std::max(frame->hi.x - frame->lo.x, frame->hi.y - frame->lo.y) * v.scale;
-  const glm::dvec2 radii(std::max(radius, 1.0), std::max(radius * std::sin(20.0 * kDegree), 1.0));
-  ThumbnailImage image{size, size,
-                       std::vector<std::uint8_t>(4 * static_cast<std::size_t>(size) *
-                                                 static_cast<std::size_t>(size)),
-                       0};
-  for (int y = 0; y < size; ++y) {
-    for (int x = 0; x < size; ++x) {
-      glm::dvec3 sum(0.0);
-      int hits = 0;
-      for (int sy = 0; sy < ss; ++sy) {
-        for (int sx = 0; sx < ss; ++sx) {
-          const int px = x * ss + sx;
-          const int py = y * ss + sy;
-          const std::size_t i = static_cast<std::size_t>(py) * static_cast<std::size_t>(v.samples) +
-                                static_cast<std::size_t>(px);
-          if (r.covered[i]) ++hits;
-          sum +=
-              r.covered[i] ? r.colour[i] : background(px + 0.5, py + 0.5, v, glm::dvec2(g), radii);
-        }
-      }
-      sum /= static_cast<double>(ss * ss);
-      if (2 * hits >= ss * ss) ++image.covered_pixels;
-      const std::size_t o = 4 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(size) +
-                                 static_cast<std::size_t>(x));
-      image.rgba[o] = to_srgb(sum.x);
-      image.rgba[o + 1] = to_srgb(sum.y);
-      image.rgba[o + 2] = to_srgb(sum.z);
-      image.rgba[o + 3] = 255;
-    }
-  }
-  return image;
+  backdrop.radii =
+      glm::dvec2(std::max(radius, 1.0), std::max(radius * std::sin(20.0 * kDegree), 1.0));
+  return resolve(r, v, backdrop, size, ss);
 }
 
 hal::Expected<void> render_thumbnail_png(const mesh::Mesh& mesh, glm::vec3 up, int size,

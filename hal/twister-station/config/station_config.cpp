@@ -15,6 +15,7 @@
 #include "calibration_config.hpp"
 #include "config_reader.hpp"
 #include "exhibit_config.hpp"
+#include "health_config.hpp"
 #include "link_config.hpp"
 #include "sculpt_config.hpp"
 
@@ -293,6 +294,7 @@ ConfigParseResult parse_station_config(std::string_view text, std::string_view f
   read_systemd(root, out.config);
   internal::read_link(root, out.config);
   internal::read_exhibit(root, out.config);
+  internal::read_health(root, out.config);
   root.finish();
   std::stable_sort(out.errors.begin(), out.errors.end(),
                    [](const ConfigError& a, const ConfigError& b) { return a.line < b.line; });

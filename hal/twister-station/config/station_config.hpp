@@ -245,6 +245,15 @@ struct ExhibitSection {
   double retry_seconds = 5.0;          // a failed archive is tried again after
   std::uint32_t keep_archives = 500;   // retention: archives kept (count) ...
   std::uint64_t keep_archive_mb = 2048;  // ... and MiB
+// [health]: the fleet metrics (hal/health; docs/exhibit.md "Fleet health").
+struct HealthSection {
+  // Prometheus text for node_exporter's textfile collector ("" = none); relative to
+  // the config file's folder. Refused at start when a file there is not ours.
+  std::string metrics_file;
+  double period_s = 15.0;  // between writes of the file and of systemd STATUS=
+  std::string
+      archive_path;    // whose file system's free space is reported ("" = the journal's folder)
+  bool status = true;  // systemd STATUS= (with [systemd] notify)
 };
 
 struct StationFileConfig {
@@ -255,6 +264,7 @@ struct StationFileConfig {
   SystemdConfig systemd;
   LinkSection link;
   ExhibitSection exhibit;
+  HealthSection health;
 };
 
 // One problem in a config file. to_string(): "FILE:LINE: KEY: MESSAGE".
