@@ -35,7 +35,9 @@ void StationHealth::sample(const station::Station& core, const Backends& backend
   m.archive_free_bytes =
       config_.archive_path.empty() ? -1 : hal::free_bytes_at(config_.archive_path.c_str());
   m.uptime_s = static_cast<double>(now_us - start_us_) / 1e6;
-  // visitors_today, spectators: filled by their owners through metrics().
+  // Exhibit mode: today's visitors (the current one counted from the first grab).
+  if (core.visitor_view_enabled()) m.visitors_today = core.visitor_view().visitor;
+  // spectators: filled by its owner through metrics().
 }
 
 void StationHealth::report(const station::Station& core, const Backends& backends,

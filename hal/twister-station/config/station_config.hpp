@@ -245,6 +245,8 @@ struct ExhibitSection {
   double retry_seconds = 5.0;          // a failed archive is tried again after
   std::uint32_t keep_archives = 500;   // retention: archives kept (count) ...
   std::uint64_t keep_archive_mb = 2048;  // ... and MiB
+};
+
 // [health]: the fleet metrics (hal/health; docs/exhibit.md "Fleet health").
 struct HealthSection {
   // Prometheus text for node_exporter's textfile collector ("" = none); relative to

@@ -39,6 +39,7 @@
 #include "../../core/station/station_fixture.hpp"
 #include "exhibit_archive.hpp"
 #include "fakes/fake_storage.hpp"
+#include "station_health.hpp"
 #include "twister/checkpoint/session_checkpoint.hpp"
 #include "twister/hal/posix_file_sink.hpp"
 #include "twister/hal/posix_file_storage.hpp"
@@ -137,6 +138,17 @@ class Life {
     wait_s(5.0);
     station_->stop();
     drain();
+    // The metrics an operator watches, written as the loop writes them at its end.
+    if (auto file = hal::MetricsFile::open(paths_.dir + "/metrics.prom")) {
+      StationHealthConfig hc;
+      hc.file = std::move(*file);
+      hc.archive_path = paths_.archive;
+      StationHealth health(std::move(hc));
+      Backends backends;
+      DisplayLink display;
+      health.report(*station_, backends, display, hal::process_log(), clock_.now_us());
+    }
+    say("committed %u\n", static_cast<unsigned>(station_->counters().events.strokes_committed));
     say("disk_full %u not_saved %u\n",
         static_cast<unsigned>(station_->exhibit_counters().disk_full),
         static_cast<unsigned>(station_->counters().events.strokes_not_saved));
@@ -265,7 +277,7 @@ struct Reported {
   bool done = false;
   std::uint32_t visitors = 0;
   int temporaries_removed = 0, rotations_finished = 0;
-  unsigned disk_full = 0, not_saved = 0;
+  unsigned disk_full = 0, not_saved = 0, last_committed = 0;
 };
 
 void parse(const std::string& text, Reported& r) {
@@ -286,6 +298,7 @@ void parse(const std::string& text, Reported& r) {
       r.rotations_finished += fin;
     } else if (std::sscanf(line.c_str(), "disk_full %u not_saved %u", &r.disk_full, &r.not_saved) ==
                2) {
+    } else if (std::sscanf(line.c_str(), "committed %u", &r.last_committed) == 1) {
     } else if (line == "done") {
       r.done = true;
     }
@@ -483,6 +496,26 @@ TEST(ExhibitDay, VisitorsKillsAndAFullDiskLoseNothingAndEveryArchiveReplays) {
   }
   EXPECT_EQ(lost, 0u);
   EXPECT_GE(r.order.size(), want_visitors) << "visitors with saved strokes";
+  // The metrics file: valid for promtool, its numbers the day's.
+  const fs::path prom = dir / "metrics.prom";
+  ASSERT_TRUE(fs::is_regular_file(prom));
+  const std::string text = read_file(prom);
+  const auto metric = [&](const std::string& name) {
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+      if (line.rfind(name + " ", 0) == 0) return std::stod(line.substr(name.size() + 1));
+    }
+    return -1.0;
+  };
+  EXPECT_EQ(metric("twister_visitors_today"), static_cast<double>(r.order.size()));
+  EXPECT_EQ(metric("twister_strokes_committed_total"), static_cast<double>(r.last_committed));
+  EXPECT_GT(metric("twister_archive_free_bytes"), 0.0);
+  if (std::system("command -v promtool >/dev/null 2>&1") == 0) {
+    const std::string check = "promtool check metrics < " + prom.string() + " >/dev/null 2>&1";
+    EXPECT_EQ(std::system(check.c_str()), 0) << "promtool check metrics refuses " << prom;
+  } else {
+    std::printf("promtool not installed: the metrics file is not checked by it\n");
+  }
   std::printf("exhibit day: %zu sculptures with saved strokes (%" PRIu64
               " strokes reported saved, 0 lost), %d SIGKILLs, %zu archives kept (%" PRIu64
               " bytes), current journal %u records; full disk: %u archive attempts refused, %u "
