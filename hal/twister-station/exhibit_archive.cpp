@@ -348,7 +348,15 @@ void ExhibitArchive::prune(const std::string& keep) {
   for (std::size_t i = 0; i < names.size(); ++i) {
     if (count <= config_.keep_count && total <= config_.keep_bytes) break;
     if (names[i] == keep || count <= 1) continue;                     // never the current sculpture
-    if (!remove_archive_dir(config_.dir + "/" + names[i])) continue;  // not only ours: left
+    // Out of the archive's names first (atomic), so a crash mid-removal leaves a
+    // temporary the next start removes, never a half archive under a final name.
+    const std::string from = config_.dir + "/" + names[i];
+    const std::string doomed = config_.dir + "/.tmp-prune-" + names[i];
+    if (::rename(from.c_str(), doomed.c_str()) != 0) continue;
+    if (!remove_archive_dir(doomed)) {  // not only ours: put back, left alone
+      (void)::rename(doomed.c_str(), from.c_str());
+      continue;
+    }
     ++stats_.pruned;
     --count;
     total -= bytes[i];
