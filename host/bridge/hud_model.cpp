@@ -91,8 +91,8 @@ void station_lines(const SceneReplica& r, std::vector<std::string>& lines) {
       "mesh: v%u, %u / %u vertices, %u / %u triangles%s; strokes %llu "
       "(%llu not saved)",
       s.mesh_version, s.vertex_count, s.vertex_capacity, s.triangle_count, s.triangle_capacity,
-      full(s) ? " (full)" : "", static_cast<unsigned long long>(s.strokes_committed),
-      static_cast<unsigned long long>(s.strokes_not_saved)));
+      full(s) ? " (full)" : "", static_cast<unsigned long long>(s.strokes.committed),
+      static_cast<unsigned long long>(s.strokes.not_saved)));
 }
 
 }  // namespace
@@ -125,12 +125,12 @@ HudText HudModel::update(const SceneReplica& r, const HudInput& in) {
   }
   // Capacity reached: a refined commit was stopped by the mesh's capacity (for
   // kShowS after the count grows), or this display refused a mesh above its limits.
-  const std::uint64_t stops = r.has_status() ? r.station_status().capacity_stops : 0;
+  const std::uint64_t stops = r.has_status() ? r.station_status().strokes.capacity_stops : 0;
   if (stops > capacity_stops_) capacity_since_s_ = in.now_s;
   capacity_stops_ = stops;
   const bool capacity =
       (stops > 0 && in.now_s - capacity_since_s_ < kShowS) || r.counters().over_capacity > 0;
-  const std::uint64_t not_saved = r.has_status() ? r.station_status().strokes_not_saved : 0;
+  const std::uint64_t not_saved = r.has_status() ? r.station_status().strokes.not_saved : 0;
   if (not_saved > not_saved_) not_saved_since_s_ = in.now_s;
   not_saved_ = not_saved;
   if (in.link == LinkView::lost || in.link == LinkView::displaced || in.link == LinkView::refused) {

@@ -151,9 +151,9 @@ void write_status(ByteWriter& w, const StatusReport& s) {
   w.u8(s.clutch);
   w.f32(s.turned_rad);
   w.f32(s.turn_limit_rad);
-  w.u64(s.strokes_committed);
-  w.u64(s.strokes_not_saved);
-  w.u64(s.capacity_stops);
+  w.u64(s.strokes.committed);
+  w.u64(s.strokes.not_saved);
+  w.u64(s.strokes.capacity_stops);
   w.u64(s.traffic.live_sent);
   w.u64(s.traffic.live_dropped);
   w.u64(s.traffic.frames_rejected);
@@ -184,9 +184,9 @@ bool read_status(ByteReader& r, StatusReport& s) {
   s.clutch = r.u8();
   s.turned_rad = r.f32();
   s.turn_limit_rad = r.f32();
-  s.strokes_committed = r.u64();
-  s.strokes_not_saved = r.u64();
-  s.capacity_stops = r.u64();
+  s.strokes.committed = r.u64();
+  s.strokes.not_saved = r.u64();
+  s.strokes.capacity_stops = r.u64();
   s.traffic.live_sent = r.u64();
   s.traffic.live_dropped = r.u64();
   s.traffic.frames_rejected = r.u64();

@@ -145,17 +145,17 @@ void LiveStream::send_status(const session::SculptSession& session, const Statio
   s.clutch = status.clutch;
   s.turned_rad = status.turned_rad;
   s.turn_limit_rad = status.turn_limit_rad;
-  s.strokes_committed = status.strokes_committed;
-  s.strokes_not_saved = status.strokes_not_saved;
-  s.capacity_stops = status.capacity_stops;
+  s.strokes.committed = status.strokes_committed;
+  s.strokes.not_saved = status.strokes_not_saved;
+  s.strokes.capacity_stops = status.capacity_stops;
   s.buttons_state = static_cast<std::uint8_t>(status.buttons_missing ? link::ButtonsState::missing
                                                                      : link::ButtonsState::present);
   const math::SymmetrySpec next = session.symmetry();
   s.symmetry = {static_cast<std::uint8_t>(next.kind), next.mirrors, next.axis, next.order};
   const link::StatusReport& last = status_.last;
   const bool changed =
-      s.tracker_state != last.tracker_state || s.strokes_not_saved != last.strokes_not_saved ||
-      s.capacity_stops != last.capacity_stops || s.turn_limit_rad != last.turn_limit_rad ||
+      s.tracker_state != last.tracker_state || s.strokes.not_saved != last.strokes.not_saved ||
+      s.strokes.capacity_stops != last.strokes.capacity_stops || s.turn_limit_rad != last.turn_limit_rad ||
       s.method != last.method || s.clutch != last.clutch || s.mesh_version != last.mesh_version ||
       s.buttons_state != last.buttons_state || s.symmetry != last.symmetry;
   if (status_.sent && !changed && now_us - status_.last_us < config_.status_interval_us) return;

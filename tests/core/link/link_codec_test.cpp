@@ -159,7 +159,7 @@ LinkMessage random_message() {
       s.tracker_rate_hz = random_float();
       s.traffic.live_dropped = *rc::gen::arbitrary<std::uint64_t>();
       s.buttons_state = static_cast<std::uint8_t>(*rc::gen::inRange(0, 2));
-      s.strokes_not_saved = *rc::gen::arbitrary<std::uint64_t>();
+      s.strokes.not_saved = *rc::gen::arbitrary<std::uint64_t>();
       // Protocol 7: the next stroke's group and the spectators.
       if (*rc::gen::arbitrary<bool>()) s.symmetry = {2, 0, 1, 6};
       s.spectators = *rc::gen::arbitrary<std::uint8_t>();

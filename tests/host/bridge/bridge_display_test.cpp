@@ -151,7 +151,7 @@ TEST(BridgeDisplay, ReplicaShowsHandsButtonsRadiusObjectAndStatusWithoutAGrab) {
   EXPECT_EQ(st.vertex_count, s.mesh.vertex_count());
   EXPECT_EQ(st.vertex_capacity, s.mesh.vertex_capacity());
   EXPECT_EQ(st.triangle_capacity, s.mesh.triangle_capacity());
-  EXPECT_EQ(st.strokes_not_saved, 0u);
+  EXPECT_EQ(st.strokes.not_saved, 0u);
 }
 
 // The refinement engineer's edge splits rewrite triangles and append some: the

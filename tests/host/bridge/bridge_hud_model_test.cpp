@@ -20,8 +20,8 @@ link::StatusReport status(std::uint8_t tracker, std::uint32_t vertices, std::uin
   m.vertex_capacity = capacity;
   m.triangle_count = 2 * vertices;
   m.triangle_capacity = 4 * capacity;
-  m.strokes_not_saved = not_saved;
-  m.capacity_stops = capacity_stops;
+  m.strokes.not_saved = not_saved;
+  m.strokes.capacity_stops = capacity_stops;
   return m;
 }
 

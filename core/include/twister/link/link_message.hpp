@@ -200,6 +200,13 @@ enum class TrackerState : std::uint8_t { starting = 0, streaming = 1, lost = 2 }
 // Button device states in StatusReport (protocol 4).
 enum class ButtonsState : std::uint8_t { present = 0, missing = 1 };
 
+// The session's stroke counters in StatusReport.
+struct StrokeCounts {
+  std::uint64_t committed = 0;
+  std::uint64_t not_saved = 0;       // commits whose journal append failed
+  std::uint64_t capacity_stops = 0;  // refined commits stopped by the mesh's capacity
+};
+
 // The link's own traffic counters in StatusReport (StationLink's, not the session's).
 struct LinkTraffic {
   std::uint64_t live_sent = 0;
@@ -222,9 +229,7 @@ struct StatusReport {
   std::uint8_t clutch = 0;         // bit h: hand h's clutch is in (freeze held)
   float turned_rad = 0.0F;         // the most any hand has turned in the open stroke
   float turn_limit_rad = 0.0F;     // limit of one stroke; 0 = not reported
-  std::uint64_t strokes_committed = 0;
-  std::uint64_t strokes_not_saved = 0;  // commits whose journal append failed
-  std::uint64_t capacity_stops = 0;     // refined commits stopped by the mesh's capacity
+  StrokeCounts strokes{};
   LinkTraffic traffic{};
   // Protocol 7: the next stroke's symmetry group (StrokeBegin::symmetry's bytes) and
   // the read-only displays admitted now.
