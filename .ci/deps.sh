@@ -20,7 +20,9 @@ packages=(
   # host tools and display
   libpng-dev libglfw3-dev libepoxy-dev libegl-dev
   libimgui-dev  # the display's heads-up text (Dear ImGui with its OpenGL 3 back end)
-  libtinygltf-dev  # twister-bridge --export FILE.glb / .gltf
+  libtinygltf-dev  # .glb export (hal/meshio: twister export, twister-bridge --export, the station)
+  admesh  # checks the exported STL (tests/host/twister export_command_test)
+  prometheus  # promtool checks the station's metrics file (tests/hal/health)
   libgl1-mesa-dri xvfb xauth  # xvfb: the bridge's window path is tested on a virtual X server
   libcairo2-dev fonts-dejavu-core  # twister figure8 draws its SVG/PNG with cairo, text in DejaVu Sans
   imagemagick  # the showcase's figure rows and animated GIF (sim/scenarios/showcase.sh)

@@ -42,6 +42,8 @@ class DisplayLink {
   hal::Expected<void> open(const LinkSection& settings, const session::SculptSession& session,
                            const link::Workspace& workspace, hal::Logger& log);
   bool is_open() const { return link_ != nullptr; }
+  // The main display is connected and admitted now.
+  bool connected() const { return link_ != nullptr && link_->admitted(); }
   // One link step; the admitted display's commands (its undo/redo/method keys) go
   // to the session's command path inside core (StationLink -> Station::submit);
   // their results come as the next step's session events, logged like the buttons'.

@@ -21,6 +21,7 @@
 #include "config/station_config.hpp"
 #include "station_assembly.hpp"
 #include "station_checks.hpp"
+#include "station_health.hpp"
 #include "station_loop.hpp"
 #include "station_setup.hpp"
 #include "twister/hal/logger.hpp"
@@ -143,8 +144,15 @@ void log_link_summary(hal::Logger& results, const app::DisplayLink& display) {
 
 int run(const Options& opt, const StationFileConfig& cfg, hal::Logger& log, hal::Logger& results,
         hal::StartupSignals& startup_signals) {
-  auto assembled = app::assemble_station(
-      cfg, {std::filesystem::path(opt.config_path).parent_path(), opt.link_address});
+  const std::filesystem::path config_dir = std::filesystem::path(opt.config_path).parent_path();
+  // [health] first: a metrics path that is not ours is refused before anything opens.
+  auto health_config = app::make_health_config(cfg, config_dir.string());
+  if (!health_config) {
+    log.error("", "%s", health_config.error().message.c_str());
+    return kExitFailure;
+  }
+  app::StationHealth health(std::move(*health_config));
+  auto assembled = app::assemble_station(cfg, {config_dir, opt.link_address});
   if (!assembled) {
     log.error("", "%s", assembled.error().message.c_str());
     return kExitFailure;
@@ -185,6 +193,7 @@ int run(const Options& opt, const StationFileConfig& cfg, hal::Logger& log, hal:
                  twister::tracker::tracker_model_name(parts.core->tracker_session().config().model),
                  parts.backends.buttons_name.c_str(), cfg.station.journal.c_str());
   loop.watch_journal(&parts.journal);
+  loop.report_health(&health);
   const twister::Status flushed = loop.run();
   log_summary(results, *parts.core, loop, flushed);
   log_link_summary(results, parts.display);

@@ -201,6 +201,42 @@ hal::Expected<void> stop_requested(const char* during) {
 
 }  // namespace
 
+// Exhibit mode: the archive (its start-up recovery finishes or rolls back a rotation a
+// crash interrupted, before the station reads the journal) and the base model.
+hal::Expected<void> open_exhibit(StationParts& parts, const StationFileConfig& config,
+                                 station::StationFiles& files) {
+  ExhibitArchiveConfig a;
+  a.dir = config.exhibit.archive_dir;
+  a.journal_path = config.station.journal;
+  a.keep_count = config.exhibit.keep_archives;
+  a.keep_bytes = config.exhibit.keep_archive_mb << 20;
+  ports::Clock* clock = parts.backends.clock.get();
+  a.mono_clock = [clock] { return clock->now_us(); };
+  // The model's up: +Z in a calibrated work frame, else the transmitter's -Z.
+  const glm::vec3 up = config.tracker.calibration.has_work_frame ? glm::vec3(0.0F, 0.0F, 1.0F)
+                                                                 : glm::vec3(0.0F, 0.0F, -1.0F);
+  parts.archive = std::make_unique<ExhibitArchive>(a, meshio_model_writer(up));
+  auto recovered = parts.archive->recover();
+  if (!recovered) return recovered.error();
+  if (recovered->temporaries_removed > 0) {
+    parts.recovery_notes.push_back(
+        {true, "exhibit: removed " + std::to_string(recovered->temporaries_removed) +
+                   " unfinished archive(s) (the journal still holds the sculpture)"});
+  }
+  if (recovered->rotation_finished) {
+    parts.recovery_notes.push_back(
+        {true, "exhibit: the journal was archived as " + recovered->archive_of_journal +
+                   " before the stop; the rotation is finished (a new journal begins)"});
+  }
+  auto base = load_station_mesh(parts.mesh_path, 0);
+  if (!base) return base.error();
+  parts.base_model = std::move(*base);
+  files.archive = parts.archive.get();
+  files.base_model = &parts.base_model->mesh();
+  files.visitors_today = recovered->visitors_today;
+  return {};
+}
+
 hal::Expected<std::unique_ptr<meshio::MeshBuffer>> load_station_mesh(
     const std::filesystem::path& path, std::size_t spare_vertices) {
   meshio::ObjOptions options;
@@ -268,6 +304,9 @@ hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationFileC
   files.checkpoint_in = parts->checkpoint_in.get();
   files.checkpoint_out = parts->checkpoint_out.get();
   files.new_journal_id = random_journal_id();
+  if (config.exhibit.enabled) {
+    if (auto opened = open_exhibit(*parts, config, files); !opened) return opened.error();
+  }
   parts->core = std::make_unique<station::Station>(*b.tracker, *b.buttons, *b.clock, parts->journal,
                                                    mesh, storage, *setup, files);
   // Nothing is written to the journal (no torn tail cut, no new header) until every
@@ -291,7 +330,9 @@ hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationFileC
     return start_error(s, core.recovery(), config.station.journal, parts->journal,
                        *parts->tail_archive);
   }
-  parts->recovery_notes = recovery_notes(core.recovery(), *parts);
+  for (const StationParts::Note& n : recovery_notes(core.recovery(), *parts)) {
+    parts->recovery_notes.push_back(n);
+  }
   if (parts->stale_temporaries > 0) {
     parts->recovery_notes.push_back(
         {false, "removed " + std::to_string(parts->stale_temporaries) +

@@ -22,6 +22,7 @@
 #include "twister/hal/posix_file_storage.hpp"
 #include "twister/meshio/mesh_buffer.hpp"
 #include "twister/session/sculpt_session.hpp"
+#include "exhibit_archive.hpp"
 #include "twister/station/station.hpp"
 
 namespace twister::station_app {
@@ -57,6 +58,10 @@ struct StationParts {
   std::unique_ptr<WorkMemory> work;
   std::unique_ptr<RefineMemory> refine;      // [sculpt] refine on
   std::unique_ptr<SymmetryMemory> symmetry;  // symmetric strokes (always)
+  // [exhibit] enabled: the archive and the base model the mesh is reset to after
+  // each sculpture (the model file loaded again, without spare capacity).
+  std::unique_ptr<ExhibitArchive> archive;
+  std::unique_ptr<meshio::MeshBuffer> base_model;
   std::unique_ptr<station::Station> core;    // started: the journal is replayed
   DisplayLink display;                       // open when a link address is set
 };

@@ -92,6 +92,14 @@ bool log_station_side(const SessionEvent& e, ports::LogSink& log) {
     case K::buttons_found:
       log.write(level, c, "device found: buttons work again");
       return true;
+    case K::visitor: {
+      const auto& v = e.visitor();
+      log.write(level, c, "%s: visitor %u, sculpture %08x, %u journal records (end %s%s%s)",
+                {session::visitor_note_name(v.note), v.visitor, v.sculpture, v.records,
+                 session::sculpture_end_name(v.end), e.status.ok() ? "" : "; ",
+                 e.status.ok() ? "" : e.status.name()});
+      return true;
+    }
     case K::refine_stopped:
       log.write(level, c,
                 "journal record %u: refinement stopped, the mesh's %s is used up "
@@ -272,6 +280,8 @@ const char* station_event_component(const SessionEvent& e) {
     case K::buttons_lost:
     case K::buttons_found:
       return "buttons";
+    case K::visitor:
+      return "exhibit";
     case K::refined:
     case K::refine_stopped:
       return "refine";
@@ -302,6 +312,8 @@ LogLevel station_event_level(const SessionEvent& e) {
     case K::checkpoint_failed:  // the previous one stays; start-up replays more
     case K::refine_stopped:
       return LogLevel::warning;
+    case K::visitor:  // a failed archive or rotation is trouble, the rest the day's course
+      return e.status.ok() ? LogLevel::notice : LogLevel::warning;
     case K::cancelled:  // the stop policy is no trouble
       return e.status.ok() && e.stroke_end().reason == input::Reason::stopped ? LogLevel::notice
                                                                               : LogLevel::warning;

@@ -111,6 +111,7 @@ bool StationLoop::step() {
   log_events();
   retry_buttons(now_us);
   pet_watchdog(now_us);
+  if (health_ != nullptr) health_->poll(core_, backends_, display_, log_, now_us);
   if (time_is_up(now_us)) {
     stop_reason_ = StopReason::end_of_run;
     return false;
@@ -187,8 +188,9 @@ void StationLoop::retry_buttons(ports::TimestampUs now_us) {
   last_button_retry_us_ = now_us;
   const Status s = backends_.buttons_poll->reopen();
   if (!s.ok() && s.code() != StatusCode::unavailable && s.code() != last_retry_code_) {
-    log_.warning("buttons", "device there but cannot be opened (%s); still running without "
-                            "buttons, retrying",
+    log_.warning("buttons",
+                 "device there but cannot be opened (%s); still running without "
+                 "buttons, retrying",
                  s.name());
   }
   last_retry_code_ = s.code();
@@ -210,7 +212,12 @@ Status StationLoop::finish() {
   core_.stop();
   log_events();
   display_.drain(core_, backends_.clock->now_us(), 2.0);
-  return core_.flush();
+  const Status flushed = core_.flush();
+  // The final counts (the file then stays as the run left it; its age tells a stop).
+  if (health_ != nullptr && health_->enabled()) {
+    health_->report(core_, backends_, display_, log_, backends_.clock->now_us());
+  }
+  return flushed;
 }
 
 Status StationLoop::run() {

@@ -25,6 +25,7 @@
 
 #include "backend_factory.hpp"
 #include "display_link.hpp"
+#include "station_health.hpp"
 #include "twister/hal/expected.hpp"
 #include "twister/hal/logger.hpp"
 #include "twister/hal/posix_file_storage.hpp"
@@ -67,7 +68,8 @@ class StationLoop {
   // One pass. false once the loop stops (stop_reason() says why).
   bool step();
   // Ends the run: STOPPING=1, Station::stop() (an open stroke is cancelled), the
-  // display link drained (until 2 s pass without progress), the journal flushed; returns the flush status.
+  // display link drained (until 2 s pass without progress), the journal flushed; returns the flush
+  // status.
   Status finish();
   // start(), step() until the loop stops, finish(). The flush status, or the
   // start() error as io_error.
@@ -75,6 +77,8 @@ class StationLoop {
 
   // The journal file whose errno names the reason of a stroke that was not saved.
   void watch_journal(const hal::PosixFileStorage* journal) { journal_ = journal; }
+  // Reports the station's health every pass it is due ([health]); nullptr: none.
+  void report_health(StationHealth* health) { health_ = health; }
 
   StopReason stop_reason() const { return stop_reason_; }
   std::uint64_t passes() const { return passes_; }
@@ -95,6 +99,7 @@ class StationLoop {
   DisplayLink& display_;
   hal::Logger& log_;
   const hal::PosixFileStorage* journal_ = nullptr;
+  StationHealth* health_ = nullptr;
   StationLoopConfig config_;
   std::array<pollfd, kMaxPollFds> fds_{};
   int signal_fd_ = -1;
@@ -107,8 +112,8 @@ class StationLoop {
   ports::TimestampUs last_button_retry_us_ = 0;
   StatusCode last_retry_code_ = StatusCode::unavailable;  // of the last button reopen
   std::uint64_t passes_ = 0;
-  bool tracker_found_ = false;          // the tracker has streamed since start
-  bool tracker_missing_said_ = false;   // "not found yet" was logged
+  bool tracker_found_ = false;             // the tracker has streamed since start
+  bool tracker_missing_said_ = false;      // "not found yet" was logged
   std::uint32_t tracker_report_seen_ = 0;  // DeviceReport::changes() last logged
   StopReason stop_reason_ = StopReason::end_of_run;
 };

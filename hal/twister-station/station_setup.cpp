@@ -235,11 +235,27 @@ std::string set_stylus(const StationFileConfig& config, station::StationConfig& 
 
 }  // namespace
 
+// [exhibit] -> the station's exhibit mode (seconds to microseconds, lines to a mask).
+void set_exhibit(const ExhibitSection& x, station::ExhibitConfig& c) {
+  const auto us = [](double s) { return static_cast<ports::TimestampUs>(s * 1e6); };
+  c.visitor.enabled = x.enabled;
+  c.visitor.idle_us = us(x.idle_seconds);
+  c.visitor.grace_us = us(x.grace_seconds);
+  c.visitor.chord_hold_us = us(x.chord_hold_seconds);
+  c.visitor.retry_us = us(x.retry_seconds);
+  c.visitor.motion_threshold_m = x.motion_threshold_m;
+  c.chord_lines = 0;
+  for (const std::uint8_t l : x.new_sculpture_chord) {
+    c.chord_lines = static_cast<std::uint16_t>(c.chord_lines | (1u << l));
+  }
+}
+
 hal::Expected<station::StationConfig> make_station_setup(const StationFileConfig& config) {
   station::StationConfig c;
   set_tracker(config, c);
   set_calibration(config, c);
   c.checkpoint_interval = config.station.checkpoint_interval;
+  set_exhibit(config.exhibit, c.exhibit);
   c.sculpt.debounce.interval_us.fill(static_cast<ports::TimestampUs>(config.buttons.debounce_ms) *
                                      1000);
   std::string error;

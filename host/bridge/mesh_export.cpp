@@ -7,9 +7,9 @@
 #include <span>
 #include <string>
 
-#include "gltf_export.hpp"
 #include "twister/hal/output_file.hpp"
 #include "twister/hal/posix_file_sink.hpp"
+#include "twister/meshio/mesh_export.hpp"
 #include "twister/meshio/obj_file.hpp"
 
 namespace twister::bridge {
@@ -54,9 +54,9 @@ hal::Expected<void> export_ply(const std::string& path, const MeshData& m, bool 
 
 hal::Expected<void> check_export_path(const std::string& path, bool force) {
   if (!path.ends_with(".obj") && !path.ends_with(".ply") && !path.ends_with(".glb") &&
-      !path.ends_with(".gltf")) {
+      !path.ends_with(".gltf") && !path.ends_with(".stl")) {
     return hal::make_error(StatusCode::invalid_argument,
-                           "unknown mesh format (use .obj, .ply, .glb or .gltf): " + path);
+                           "unknown mesh format (use .obj, .ply, .glb, .gltf or .stl): " + path);
   }
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {
@@ -78,29 +78,39 @@ hal::Expected<void> check_export_path(const std::string& path, bool force) {
 }
 
 hal::Expected<void> export_mesh(const std::string& path, const MeshData& m,
-                                const ShadedMesh& shaded, bool force) {
+                                const ShadedMesh& shaded, bool force, glm::vec3 up) {
   if (path.ends_with(".ply")) return export_ply(path, m, force);
-  if (path.ends_with(".glb") || path.ends_with(".gltf")) {
-    if (shaded.mesh_vertices != m.vertex_count()) {
-      return hal::make_error(StatusCode::invalid_argument, "shading of another mesh: " + path);
-    }
-    hal::Expected<std::string> bytes = gltf_bytes(m, shaded, path.ends_with(".glb"));
-    if (!bytes) return bytes.error();
-    return write_file(path, *bytes, force);
-  }
-  if (!path.ends_with(".obj")) {
+  const bool gltf = path.ends_with(".glb") || path.ends_with(".gltf");
+  if (!gltf && !path.ends_with(".obj") && !path.ends_with(".stl")) {
     return hal::make_error(StatusCode::invalid_argument,
-                           "unknown mesh format (use .obj, .ply, .glb or .gltf): " + path);
+                           "unknown mesh format (use .obj, .ply, .glb, .gltf or .stl): " + path);
   }
   const auto core = to_core_mesh(m);
   if (!core) {
     return hal::make_error(StatusCode::invalid_argument, "triangle index out of range: " + path);
   }
-  return meshio::save_obj(path, core->mesh(), force);
+  if (path.ends_with(".obj")) return meshio::save_obj(path, core->mesh(), force);
+  meshio::ExportOptions options;
+  options.up = up;
+  options.force = force;
+  if (path.ends_with(".stl")) {
+    auto written = meshio::write_stl(path, core->mesh(), options);
+    if (!written) return written.error();
+    return {};
+  }
+  if (shaded.mesh_vertices != m.vertex_count()) {
+    return hal::make_error(StatusCode::invalid_argument, "shading of another mesh: " + path);
+  }
+  const meshio::GlbShading shading{shaded.source, shaded.normals, shaded.indices};
+  hal::Expected<std::string> bytes =
+      meshio::glb_bytes(core->mesh(), options, shading, path.ends_with(".glb"));
+  if (!bytes) return hal::Error{bytes.error().status, path + ": " + bytes.error().message};
+  return write_file(path, *bytes, force);
 }
 
-hal::Expected<void> export_mesh(const std::string& path, const MeshData& m, bool force) {
-  return export_mesh(path, m, shade_with_creases(m, kDefaultCreaseAngleDeg), force);
+hal::Expected<void> export_mesh(const std::string& path, const MeshData& m, bool force,
+                                glm::vec3 up) {
+  return export_mesh(path, m, shade_with_creases(m, kDefaultCreaseAngleDeg), force, up);
 }
 
 }  // namespace twister::bridge

@@ -195,8 +195,11 @@ int export_final_mesh(const std::string& path, bool force, const BridgeApp& app)
     logger().error("export", "no mesh received; nothing exported");
     return kExitFailure;
   }
-  if (const Expected<void> done =
-          twister::bridge::export_mesh(path, app.replica().mesh(), app.replica().shading(), force);
+  // Upright from the station's up (its work frame's +Z when calibrated).
+  const glm::vec3 up = app.replica().has_workspace() ? app.replica().workspace().up
+                                                     : twister::bridge::kTransmitterUp;
+  if (const Expected<void> done = twister::bridge::export_mesh(path, app.replica().mesh(),
+                                                               app.replica().shading(), force, up);
       !done) {
     logger().error("export", "%s", done.error().message.c_str());
     return kExitFailure;
@@ -333,7 +336,9 @@ void add_options(CLI::App& cli, Options& opt) {
                  "with --snapshots: also frame-<n>.png after every N-th hands update (the "
                  "station sends at most one per 8 ms of its clock): frames for an animation");
   cli.add_option("--export", opt.export_path,
-                 "write the final mesh at exit: .obj, .ply, .glb or .gltf (checked at start)");
+                 "write the final mesh at exit (checked at start): .obj or .ply in the model's "
+                 "frame, metres; .glb / .gltf (metres, +Y up, a material) or .stl "
+                 "(millimetres, +Z up) upright from the station's up and centred");
   cli.add_flag("--force", opt.force,
                "--export may replace an existing file of the same kind (never a journal, "
                "checkpoint, a file a running station holds, or another kind of file)");

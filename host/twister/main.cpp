@@ -3,9 +3,10 @@
 #include <CLI/CLI.hpp>
 #include <exception>
 
-#include "cli_exit_code.hpp"
 #include "calibrate_command.hpp"
+#include "cli_exit_code.hpp"
 #include "cli_log.hpp"
+#include "export_command.hpp"
 #include "fastrak_dump_command.hpp"
 #include "figure8_command.hpp"
 #include "journal_command.hpp"
@@ -28,6 +29,7 @@ int run(int argc, char** argv) {
   twister::cli::add_mesh_command(app, exit_code);
   twister::cli::add_journal_command(app, exit_code);
   twister::cli::add_calibrate_command(app, exit_code);
+  twister::cli::add_export_command(app, exit_code);
 
   try {
     app.parse(argc, argv);

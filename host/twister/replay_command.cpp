@@ -1,51 +1,22 @@
 #include "replay_command.hpp"
 
-#include <algorithm>
 #include <cinttypes>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
 #include <glm/mat3x3.hpp>
-#include <iterator>
 #include <memory>
-#include <optional>
 #include <string>
-#include <vector>
 
 #include "cli_exit_code.hpp"
 #include "cli_log.hpp"
+#include "journal_replay.hpp"
 #include "model_session.hpp"
-#include "twister/session/commit_refinement.hpp"
 #include "twister/hal/output_file.hpp"
-#include "twister/journal/journal_format.hpp"
-#include "twister/journal/journal_reader.hpp"
-#include "twister/journal/journal_scanner.hpp"
 #include "twister/meshio/obj_file.hpp"
+#include "twister/session/commit_refinement.hpp"
 #include "twister/session/sculpt_session.hpp"
 
 namespace twister::cli {
 namespace {
-
-// The journal file held in memory, read-only: replay never changes the journal
-// (a torn tail is reported, the station truncates it on its next start).
-class ReadOnlyStorage final : public ports::Storage {
- public:
-  explicit ReadOnlyStorage(std::vector<std::byte> bytes) : bytes_(std::move(bytes)) {}
-
- private:
-  Result<std::uint64_t> do_size() override { return std::uint64_t{bytes_.size()}; }
-  Result<std::size_t> do_read_at(std::uint64_t offset, std::span<std::byte> dest) override {
-    if (offset >= bytes_.size()) return std::size_t{0};
-    const std::size_t n = std::min<std::size_t>(dest.size(), bytes_.size() - offset);
-    std::memcpy(dest.data(), bytes_.data() + offset, n);
-    return n;
-  }
-  Status do_append(std::span<const std::byte>) override { return StatusCode::not_supported; }
-  Status do_sync() override { return ok_status(); }
-  Status do_truncate(std::uint64_t) override { return StatusCode::not_supported; }
-
-  std::vector<std::byte> bytes_;
-};
 
 struct Options {
   std::string journal;
@@ -60,16 +31,6 @@ struct Options {
   bool progress = false;
   bool force = false;  // --force: replace an existing OBJ (never anything else)
 };
-
-// The whole file, or nothing when it cannot be opened.
-std::optional<std::vector<std::byte>> read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::vector<char> chars((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::vector<std::byte> bytes(chars.size());
-  std::memcpy(bytes.data(), chars.data(), chars.size());
-  return bytes;
-}
 
 // Object frame -> world: p_world = origin + [U V W] p.
 void to_world(mesh::Mesh& m, const math::Frame& pose) {
@@ -110,24 +71,6 @@ int check_output(const Options& o) {
   return kExitOk;
 }
 
-// A damaged record with valid records after it, or a complete record that is refused
-// (unknown version or type, invalid values, another journal's, out of order), is
-// corruption, not a torn tail: replaying up to it would silently drop later strokes,
-// and twister-station refuses the same journal. "" when there is none.
-std::string corruption(ports::Storage& storage) {
-  const auto survey = journal::survey_journal(storage);
-  if (!survey.ok() || !survey->corrupt()) return "";
-  const bool refused =
-      survey->refused_records > 0 &&
-      (survey->later_records == 0 || survey->first_refused_offset <= survey->good_end);
-  const std::uint64_t at = refused ? survey->first_refused_offset : survey->good_end;
-  const journal::TailProblem what = refused ? survey->first_refused : survey->problem;
-  return "record at offset " + std::to_string(at) + ": " + journal::tail_problem_text(what) + " (" +
-         journal::tail_problem_name(what) + "); " + std::to_string(survey->later_records) +
-         " valid record(s) after the first damage; nothing written (`twister journal salvage` "
-         "makes a copy of what can be kept)";
-}
-
 int run_replay(const Options& o) {
   if (const int refused = check_output(o); refused != kExitOk) return refused;
   auto model = ModelSession::open(o.mesh_in, o.spare_vertices, o.undo_changes, o.undo_entries);
@@ -135,53 +78,9 @@ int run_replay(const Options& o) {
   mesh::Mesh& mesh = (*model)->mesh();
   session::SculptSession& session = (*model)->session();
 
-  auto bytes = read_file(o.journal);
-  if (!bytes) return fail(kExitBadInput, "cannot open journal '" + o.journal + "'");
-  ReadOnlyStorage storage(std::move(*bytes));
-  journal::JournalReader reader(storage);
-  if (const Status opened = reader.open(); !opened.ok()) {
-    return fail(kExitBadInput, "'" + o.journal +
-                                   (opened.code() == StatusCode::not_supported
-                                        ? "' is a journal of a newer format than this twister reads"
-                                        : "' is not a Twister journal"));
-  }
-  const std::uint64_t total_bytes = storage.size().value_or(0);
-  if (const std::string why = corruption(storage); !why.empty()) {
-    return fail(kExitBadInput, o.journal + ": " + why);
-  }
-
-  // Progress for long journals: a line per 10% of the file, on stderr (notice).
-  const bool show_progress = o.progress || total_bytes > (std::uint64_t{1} << 16);
-  int shown_decile = 0;
-  std::size_t applied = 0;
-  for (;;) {
-    auto record = reader.next();
-    if (!record.ok()) {
-      if (record.status().code() == StatusCode::unavailable ||
-          record.status().code() == StatusCode::data_loss)
-        break;
-      return fail(kExitFailure, "reading '" + o.journal + "': " + record.status().name());
-    }
-    const Status s = session.apply_record(*record);
-    if (!s.ok()) {
-      return fail(kExitFailure, "record " + std::to_string(applied + 1) + " (sequence " +
-                                    std::to_string(record->sequence) +
-                                    ") cannot be applied: " + s.name());
-    }
-    ++applied;
-    if (show_progress && total_bytes > 0) {
-      const int decile = static_cast<int>(10 * reader.good_end() / total_bytes);
-      if (decile > shown_decile) {
-        shown_decile = decile;
-        cli_log().notice("", "%3d%% (%zu records)", 10 * decile, applied);
-      }
-    }
-  }
-  if (reader.problem() != journal::TailProblem::none) {
-    cli_log().warning("", "%s: %s tail of %llu bytes at offset %llu not applied", o.journal.c_str(),
-                      journal::tail_problem_name(reader.problem()), reader.tail_bytes(),
-                      reader.good_end());
-  }
+  const JournalReplay replayed = replay_journal(o.journal, **model, o.progress);
+  if (replayed.exit_code != kExitOk) return replayed.exit_code;
+  const std::size_t applied = replayed.applied;
   if (o.world) to_world(mesh, session.object_pose());
   if (auto saved = meshio::save_obj(o.mesh_out, mesh, o.force); !saved) {
     return fail(kExitFailure, saved.error().message);

@@ -46,6 +46,14 @@ Status JournalWriter::open() {
   return ok_status();
 }
 
+Status JournalWriter::restart(std::uint32_t id) {
+  TWISTER_TRY(storage_.truncate(0));  // failed: the journal is as it was, still open
+  opened_ = false;
+  new_id_ = id;
+  TWISTER_TRY(storage_.sync());
+  return open();
+}
+
 Status JournalWriter::append(const JournalRecord& record) {
   if (!opened_ || broken_) return StatusCode::failed_precondition;
   TWISTER_TRY_ASSIGN(const std::size_t n, encode_record(record, buffer_, format_));

@@ -95,6 +95,16 @@ void SculptSession::checkpoint_restored() {
   refresh_normals();
 }
 
+Status SculptSession::reset_model(const mesh::Mesh& base) {
+  if (busy()) return StatusCode::failed_precondition;
+  TWISTER_TRY(mesh_.mesh().copy_from(base));
+  history_.restorable().clear();
+  history_.restart_sequence();
+  poses_.set_object(math::Frame{});  // as constructed
+  checkpoint_restored();             // no chain, normals of the new model
+  return ok_status();
+}
+
 mesh::NormalColumns SculptSession::normals() const {
   if (normals_.x.empty()) return {};
   const std::size_t n = mesh_.mesh().vertex_count();

@@ -75,6 +75,8 @@ const char* session_event_kind_name(SessionEventKind kind) {
       return "checkpoint_written";
     case K::checkpoint_failed:
       return "checkpoint_failed";
+    case K::visitor:
+      return "visitor";
   }
   return "unknown";
 }
@@ -117,6 +119,8 @@ std::size_t payload_index(SessionEventKind kind) {
       return index_of<payload::CheckpointWritten>();
     case K::tracker_streaming:
       return index_of<payload::TrackerStreaming>();
+    case K::visitor:
+      return index_of<payload::Visitor>();
     case K::grab_begin:
     case K::tracking_lost:
     case K::tracking_resumed:

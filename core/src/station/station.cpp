@@ -23,7 +23,8 @@ Station::Station(ports::ByteStream& tracker, ports::ButtonSource& buttons, ports
       writer_(storage),
       sculpt_(config.sculpt, mesh, work, &writer_),
       checkpoints_(files.checkpoint_out, config.checkpoint_interval,
-                   config.checkpoint_bytes_per_poll) {}
+                   config.checkpoint_bytes_per_poll),
+      exhibit_(config.exhibit) {}
 
 void Station::emit(session::SessionEvent event, ports::TimestampUs now_us) {
   event.time_us = now_us;
@@ -42,6 +43,7 @@ void Station::drain_buttons(ports::TimestampUs now_us) {
     auto edge = buttons_.poll();
     if (edge.ok()) {
       ++counters_.input.button_edges;
+      exhibit_.feed_edge(*edge);
       if (!sculpt_.feed_button(*edge).ok()) ++counters_.input.button_errors;
       continue;
     }
@@ -66,6 +68,7 @@ Status Station::poll() {
   StylusEdges stylus;
   if (auto change = tracker_.drain(now_us, stylus, counters_.input)) emit(*change, now_us);
   for (const ports::ButtonEdge& edge : stylus.items()) {
+    exhibit_.feed_edge(edge);
     if (!sculpt_.feed_button(edge).ok()) ++counters_.input.button_errors;
   }
   drain_buttons(now_us);
@@ -77,6 +80,7 @@ Status Station::poll() {
     }
   }
   emit_all(sculpt_.step(now_us), now_us);
+  step_exhibit(now_us);
   if (auto done = checkpoints_.step(sculpt_, checkpoint_anchor())) emit(*done, now_us);
   counters_.checkpoints_restarted = checkpoints_.restarted();
   return ok_status();

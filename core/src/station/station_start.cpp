@@ -48,6 +48,9 @@ Status Station::recover() {
   if (s0 < 1 || s0 > tracker::kMaxStations || s1 < 1 || s1 > tracker::kMaxStations || s0 == s1) {
     return StatusCode::failed_precondition;
   }
+  if (exhibit_.enabled() && (files_.archive == nullptr || files_.base_model == nullptr)) {
+    return StatusCode::failed_precondition;
+  }
   recovery_ = {};
   checkpoints_.reset(sculpt_.mesh().checksum(), 0);
   // The checkpoint's anchor is checked against the journal in the same scan.
@@ -121,6 +124,7 @@ Status Station::begin_appending() {
   checkpoints_.reset(checkpoints_.base_checksum(), recovery_.checkpoint_records);
   recovery_.outcome = O::ok;
   started_ = true;
+  exhibit_.start(journal_records() > 0, files_.visitors_today, clock_.now_us());
   emit(session::make_event(session::SessionEventKind::journal_recovered, 0,
                            session::payload::JournalRecovered{
                                static_cast<std::uint32_t>(survey.records), recovery_.tail_cut}),

@@ -65,6 +65,9 @@ bool is_kind(OutputKind kind, const std::array<char, 64>& head, std::size_t n) {
       return starts_with(head, n, "\x89PNG\r\n\x1a\n", 8);
     case OutputKind::svg:
       return starts_with(head, n, "<?xml", 5) || starts_with(head, n, "<svg", 4);
+    case OutputKind::stl:
+      return starts_with(head, n, "solid", 5) ||
+             starts_with(head, n, kStlHeaderPrefix, sizeof kStlHeaderPrefix - 1);
   }
   return false;
 }
@@ -158,7 +161,8 @@ bool output_kind_of(const std::string& path, OutputKind& kind) {
   };
   constexpr Ending kEndings[] = {{".obj", OutputKind::obj}, {".ply", OutputKind::ply},
                                  {".glb", OutputKind::glb}, {".gltf", OutputKind::gltf},
-                                 {".png", OutputKind::png}, {".svg", OutputKind::svg}};
+                                 {".png", OutputKind::png}, {".svg", OutputKind::svg},
+                                 {".stl", OutputKind::stl}};
   for (const Ending& e : kEndings) {
     if (path.ends_with(e.ending)) {
       kind = e.kind;
@@ -182,6 +186,8 @@ const char* output_kind_name(OutputKind kind) {
       return "PNG";
     case OutputKind::svg:
       return "SVG";
+    case OutputKind::stl:
+      return "STL";
   }
   return "unknown";
 }

@@ -14,6 +14,8 @@
 
 #include "calibration_config.hpp"
 #include "config_reader.hpp"
+#include "exhibit_config.hpp"
+#include "health_config.hpp"
 #include "link_config.hpp"
 #include "sculpt_config.hpp"
 
@@ -291,6 +293,8 @@ ConfigParseResult parse_station_config(std::string_view text, std::string_view f
   internal::read_sculpt(root, out.config);
   read_systemd(root, out.config);
   internal::read_link(root, out.config);
+  internal::read_exhibit(root, out.config);
+  internal::read_health(root, out.config);
   root.finish();
   std::stable_sort(out.errors.begin(), out.errors.end(),
                    [](const ConfigError& a, const ConfigError& b) { return a.line < b.line; });

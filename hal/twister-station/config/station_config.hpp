@@ -239,6 +239,31 @@ struct SystemdConfig {
   bool watchdog = true;  // WATCHDOG=1 at half of WATCHDOG_USEC when the unit sets it
 };
 
+// [exhibit] (issue 25; docs/hardware.md): exhibit mode, off by default.
+struct ExhibitSection {
+  bool enabled = false;
+  std::string archive_dir;             // REQUIRED when enabled; created when missing
+  double idle_seconds = 90.0;          // no grab, no hand motion: the sculpture ends
+  double grace_seconds = 6.0;          // the end can be undone (model kept) this long
+  std::vector<std::uint8_t> new_sculpture_chord;  // lines held together; empty: none
+  double chord_hold_seconds = 1.5;
+  double motion_threshold_m = 0.02;    // a hand moving less is idle
+  double retry_seconds = 5.0;          // a failed archive is tried again after
+  std::uint32_t keep_archives = 500;   // retention: archives kept (count) ...
+  std::uint64_t keep_archive_mb = 2048;  // ... and MiB
+};
+
+// [health]: the fleet metrics (hal/health; docs/exhibit.md "Fleet health").
+struct HealthSection {
+  // Prometheus text for node_exporter's textfile collector ("" = none); relative to
+  // the config file's folder. Refused at start when a file there is not ours.
+  std::string metrics_file;
+  double period_s = 15.0;  // between writes of the file and of systemd STATUS=
+  std::string
+      archive_path;    // whose file system's free space is reported ("" = the journal's folder)
+  bool status = true;  // systemd STATUS= (with [systemd] notify)
+};
+
 struct StationFileConfig {
   StationSection station;
   TrackerConfig tracker;
@@ -246,6 +271,8 @@ struct StationFileConfig {
   SculptConfig sculpt;
   SystemdConfig systemd;
   LinkSection link;
+  ExhibitSection exhibit;
+  HealthSection health;
 };
 
 // One problem in a config file. to_string(): "FILE:LINE: KEY: MESSAGE".

@@ -1,16 +1,17 @@
 // Mesh export of the replica: OBJ reloads bit-identically (same checksum); PLY has
 // the header and exact binary size; binary glTF reloads (tinygltf) with the same
-// positions, triangles and unit normals; unknown formats and unwritable paths are
-// refused by the start-up check.
+// positions turned upright (+Y up, the transmitter frame's -Z by default) and
+// centred, the same triangles, unit normals and a material; STL is binary and
+// upright; unknown formats and unwritable paths are refused by the start-up check.
 #include <gtest/gtest.h>
-
-#include <glm/geometric.hpp>
 #include <tiny_gltf.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <glm/geometric.hpp>
 #include <sstream>
 
 #include "mesh_export.hpp"
@@ -63,10 +64,36 @@ TEST(BridgeMeshExport, PlyHeaderAndSize) {
 }
 
 TEST(BridgeMeshExport, UnknownFormatAndBadPathAreErrors) {
-  const hal::Expected<void> stl = export_mesh(temp("m.stl"), tetra());
-  ASSERT_FALSE(stl);
-  EXPECT_NE(stl.error().message.find("unknown mesh format"), std::string::npos);
+  const hal::Expected<void> xyz = export_mesh(temp("m.xyz"), tetra());
+  ASSERT_FALSE(xyz);
+  EXPECT_NE(xyz.error().message.find("unknown mesh format"), std::string::npos);
   EXPECT_FALSE(export_mesh("/nonexistent-dir/m.ply", tetra()));
+}
+
+// STL through meshio: binary, millimetres, +Z up: the transmitter frame's -Z up
+// becomes +Z (the tetrahedron's apex at z = 0.1234567 m goes to the bottom).
+TEST(BridgeMeshExport, StlIsUprightInMillimetres) {
+  const std::string path = temp("m.stl");
+  ASSERT_TRUE(export_mesh(path, tetra()));
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream all;
+  all << in.rdbuf();
+  const std::string b = all.str();
+  ASSERT_EQ(b.size(), 84u + 4u * 50u);
+  EXPECT_EQ(b.rfind("twister-station export, units mm, +Z up", 0), 0u);
+  float lo = 1e9F;
+  float hi = -1e9F;
+  for (std::size_t t = 0; t < 4; ++t) {
+    for (std::size_t v = 0; v < 3; ++v) {
+      float z = 0;
+      std::memcpy(&z, b.data() + 84 + 50 * t + 12 + 12 * v + 8, 4);
+      lo = std::min(lo, z);
+      hi = std::max(hi, z);
+    }
+  }
+  EXPECT_NEAR(hi - lo, 123.4567F, 1e-3F);
+  EXPECT_NEAR(hi + lo, 0.0F, 1e-3F);
+  std::filesystem::remove(path);
 }
 
 // The float3 / uint32 data of an accessor (tightly packed, as the exporter writes).
@@ -98,13 +125,19 @@ TEST(BridgeMeshExport, GlbReloadsWithTheSamePositionsTrianglesAndCreaseNormals) 
   ASSERT_EQ(model.meshes.size(), 1u);
   const tinygltf::Primitive& p = model.meshes[0].primitives.at(0);
   EXPECT_EQ(p.mode, TINYGLTF_MODE_TRIANGLES);
+  ASSERT_EQ(model.materials.size(), 1u);
+  EXPECT_EQ(p.material, 0);
   const auto pos = accessor_data<float>(model, p.attributes.at("POSITION"), 3);
   ASSERT_EQ(pos.size(), 3 * shaded.vertex_count());
+  // Upright: the model's up (-Z, the transmitter frame's) is glTF's +Y, so (x, y, z)
+  // is (x, -z, y) moved by one offset that centres the box: x 0..0.1, -z
+  // -0.1234567..0, y 0..0.1.
+  const glm::vec3 offset(-0.05F, 0.1234567F / 2.0F, -0.05F);
   for (std::size_t i = 0; i < shaded.vertex_count(); ++i) {
     const std::uint32_t v = shaded.source[i];
-    EXPECT_EQ(pos[3 * i], m.x[v]);
-    EXPECT_EQ(pos[3 * i + 1], m.y[v]);
-    EXPECT_EQ(pos[3 * i + 2], m.z[v]);
+    EXPECT_NEAR(pos[3 * i], m.x[v] + offset.x, 1e-6F);
+    EXPECT_NEAR(pos[3 * i + 1], -m.z[v] + offset.y, 1e-6F);
+    EXPECT_NEAR(pos[3 * i + 2], m.y[v] + offset.z, 1e-6F);
   }
   const auto indices = accessor_data<std::uint32_t>(model, p.indices, 1);
   ASSERT_EQ(indices.size(), m.indices.size());
@@ -131,7 +164,8 @@ TEST(BridgeMeshExport, GlbReloadsWithTheSamePositionsTrianglesAndCreaseNormals) 
 TEST(BridgeMeshExport, StartUpCheckRefusesBadFormatsAndPaths) {
   EXPECT_TRUE(check_export_path(temp("m.obj")));
   EXPECT_TRUE(check_export_path(temp("m.gltf")));
-  EXPECT_FALSE(check_export_path(temp("m.stl")));
+  EXPECT_TRUE(check_export_path(temp("m.stl")));
+  EXPECT_FALSE(check_export_path(temp("m.xyz")));
   EXPECT_FALSE(check_export_path(temp("m")));
   EXPECT_FALSE(check_export_path("/nonexistent-dir/m.glb"));
   const std::string folder = temp("folder.glb");

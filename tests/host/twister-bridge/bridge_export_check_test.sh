@@ -14,7 +14,7 @@ unset DISPLAY WAYLAND_DISPLAY
 bridge() { "$build/bin/twister-bridge" --offscreen --size 64x48 --connect "unix:$work/absent.sock" "$@"; }
 fail() { echo "FAIL: $*"; exit 1; }
 touch "$work/file"
-for bad in "$work/no/such/dir/final.glb" "$work/file/final.glb" "$work/final.stl" "$work/final"; do
+for bad in "$work/no/such/dir/final.glb" "$work/file/final.glb" "$work/final.xyz" "$work/final"; do
   start=$(date +%s%N)
   rc=0
   bridge --timeout 30 --export "$bad" 2> "$work/err.log" || rc=$?

@@ -42,7 +42,15 @@ class JournalWriter {
   // failing (still broken); failed_precondition: not opened. No-op when healthy.
   Status repair();
 
+  // Rotation (issue 25, exhibit mode): the journal's bytes are durably archived
+  // elsewhere; the file is cut to nothing and a new journal with identity `id` begins
+  // in it (header written and synced), as open() does for an empty file. io_error:
+  // the cut or the header failed (opened() is then false: call open() again later;
+  // a failed cut leaves the old journal as it was).
+  Status restart(std::uint32_t id);
+
   bool healthy() const { return opened_ && !broken_; }
+  bool opened() const { return opened_; }
   std::uint64_t size() const { return size_; }
   // Records appended (and synced) since open().
   std::uint64_t appended() const { return appended_; }

@@ -74,9 +74,9 @@ struct RefineStatus {
   std::uint64_t capacity_stops = 0;  // refined commits stopped by a capacity
   mesh::RefineStop last_stop = mesh::RefineStop::done;  // of the last refined commit
   std::uint32_t last_vertices_added = 0;
-  std::uint32_t last_blocked = 0;  // edges over the threshold it could not split
-  std::uint64_t refined_chains = 0;      // clutch chains refined at their end
-  std::uint64_t chains_too_long = 0;     // chains ended unrefined: over kMaxChainSteps
+  std::uint32_t last_blocked = 0;     // edges over the threshold it could not split
+  std::uint64_t refined_chains = 0;   // clutch chains refined at their end
+  std::uint64_t chains_too_long = 0;  // chains ended unrefined: over kMaxChainSteps
 };
 
 class CommitRefinement {
@@ -116,8 +116,8 @@ class CommitRefinement {
   bool available() const { return refiner_.fits(mesh_.mesh()); }
 
   // The hook of a commit of `plan` (warped into the live columns from the mesh's
-  // positions, which are not yet changed, the undo entry open): refines the rest mesh to `threshold_m`
-  // (0 or not finite: nothing), places the new vertices and records the topology in
+  // positions, which are not yet changed, the undo entry open): refines the rest mesh to
+  // `threshold_m` (0 or not finite: nothing), places the new vertices and records the topology in
   // `undo`. A threshold > 0 needs available() (asserted).
   // `local`: mesh::MeshRefiner::refine_around the plan's vertices (else the whole mesh).
   RefineReport refine(const math::WarpPlan& plan, double threshold_m, UndoHistory& undo,

@@ -212,6 +212,12 @@ class SculptSession {
   };
   RestoreTarget restore_target() { return {mesh_.mesh(), history_.restorable(), poses_, history_}; }
   void checkpoint_restored();
+  // Exhibit rotation (issue 25): the model becomes `base` again (same vertices,
+  // triangles), the undo history is emptied, the object pose is the identity and
+  // records are numbered from 0 (a new journal). Only between strokes (busy() false):
+  // failed_precondition otherwise; invalid_argument/resource_exhausted: `base` does
+  // not fit the mesh's capacity (nothing changed).
+  Status reset_model(const mesh::Mesh& base);
 
  private:
   void apply_action(const input::Action& action, SessionEvents& out);

@@ -27,6 +27,7 @@
 #include "twister/mesh/mesh_refiner.hpp"
 #include "twister/ports/clock.hpp"
 #include "twister/session/session_command.hpp"
+#include "twister/session/visitor_lifecycle.hpp"
 
 namespace twister::session {
 
@@ -86,9 +87,11 @@ enum class SessionEventKind : std::uint8_t {
   buttons_found,       // the button device is back (opened again). none
   checkpoint_written,  // -> CheckpointWritten
   checkpoint_failed,   // writing a checkpoint failed (status); the previous one stays. none
+  visitor,             // exhibit mode: the visitor lifecycle moved or the archive acted
+                       // -> Visitor (status: why an archive or a rotation failed)
 };
 inline constexpr std::size_t kSessionEventKindCount =
-    static_cast<std::size_t>(SessionEventKind::checkpoint_failed) + 1;
+    static_cast<std::size_t>(SessionEventKind::visitor) + 1;
 const char* session_event_kind_name(SessionEventKind kind);
 
 namespace payload {
@@ -148,6 +151,13 @@ struct CheckpointWritten {
   std::uint64_t bytes = 0;
 };
 // tracker_streaming.
+struct Visitor {
+  VisitorNote note = VisitorNote::began;
+  SculptureEnd end = SculptureEnd::none;  // ended: why
+  std::uint32_t visitor = 0;              // today's number of the visitor it concerns
+  std::uint32_t sculpture = 0;            // the sculpture's journal identity
+  std::uint32_t records = 0;              // its journal records
+};
 struct TrackerStreaming {
   std::uint64_t start_ups = 0;  // streams started so far, this one included
 };
@@ -157,7 +167,8 @@ using EventPayload =
     std::variant<std::monostate, payload::StrokeEnd, payload::Reasoned, payload::Radius,
                  payload::RecordRef, payload::TurnLimit, payload::Method, payload::CommandRefusal,
                  payload::Refinement, payload::RefinementStop, payload::JournalRecovered,
-                 payload::CheckpointWritten, payload::TrackerStreaming, payload::Symmetry>;
+                 payload::CheckpointWritten, payload::TrackerStreaming, payload::Symmetry,
+                 payload::Visitor>;
 
 // The EventPayload alternative (index) a kind carries.
 std::size_t payload_index(SessionEventKind kind);
@@ -180,6 +191,7 @@ struct SessionEvent {
   const payload::Symmetry& symmetry() const { return get<payload::Symmetry>(); }
   const payload::Refinement& refinement() const { return get<payload::Refinement>(); }
   const payload::RefinementStop& refinement_stop() const { return get<payload::RefinementStop>(); }
+  const payload::Visitor& visitor() const { return get<payload::Visitor>(); }
   const payload::JournalRecovered& journal_recovered() const {
     return get<payload::JournalRecovered>();
   }

@@ -79,6 +79,8 @@ class SessionHistory final : public StrokeCommitSink {
   Status apply_history_step(journal::RecordType type);
   // The record `sequence` was applied: the next record gets sequence + 1.
   void resume_after(std::uint32_t sequence) { next_sequence_ = sequence + 1; }
+  // A new journal (exhibit rotation): records are numbered from 0 again.
+  void restart_sequence() { next_sequence_ = 0; }
 
   std::uint32_t next_sequence() const { return next_sequence_; }
   const UndoHistory& undo_history() const { return history_; }

@@ -40,8 +40,10 @@
 #include "twister/session/session_events.hpp"
 #include "twister/station/checkpoint_schedule.hpp"
 #include "twister/station/event_queue.hpp"
+#include "twister/station/sculpture_archive.hpp"
 #include "twister/station/station_config.hpp"
 #include "twister/station/station_counters.hpp"
+#include "twister/station/station_exhibit.hpp"
 #include "twister/station/station_status.hpp"
 #include "twister/station/tracker_hands.hpp"
 #include "twister/tracker/fastrak_session.hpp"
@@ -60,6 +62,13 @@ struct StationFiles {
   ports::FileSink* checkpoint_out = nullptr;
   // The identity a new journal gets (journal_format.hpp; the program picks a random one).
   std::uint32_t new_journal_id = 0;
+  // Exhibit mode (config.exhibit.visitor.enabled; both required then): where finished
+  // sculptures are archived, and the initial model the mesh is reset to after each
+  // (the same model the mesh held at construction; it must outlive the station).
+  SculptureArchive* archive = nullptr;
+  const mesh::Mesh* base_model = nullptr;
+  // Sculptures archived today before this run (the visitor numbers go on from it).
+  std::uint32_t visitors_today = 0;
 };
 
 // What start() found in the journal (for the start-up log and its error messages).
@@ -148,7 +157,9 @@ class Station {
   // Queues a session command (undo, redo, method) for the next poll(): the path
   // of the hands' buttons, also used by the display's keys (StationLink commands).
   // Errors as SculptSession::submit().
-  Status submit(const session::SessionCommand& command) { return sculpt_.submit(command); }
+  // Exhibit mode: new_sculpture / undo_new_sculpture act on the visitor lifecycle at
+  // once (new_sculpture(), undo_new_sculpture()); with it off the session refuses them.
+  Status submit(const session::SessionCommand& command);
   const mesh::Mesh& mesh() const { return sculpt_.mesh(); }
   // Records in the journal file: the ones found at start() plus every record
   // appended (and synced) since.
@@ -172,6 +183,19 @@ class Station {
   // What the display link reports about the station (as of the last poll()).
   StationStatus status() const;
 
+  // Exhibit mode (issue 25; docs/interaction.md "The visitor lifecycle"). The display's
+  // new_sculpture / undo_new_sculpture commands: the sculpture ends (the grace
+  // begins) / its end is undone in the grace. failed_precondition: nothing to act on
+  // (also reported as a visitor event, note refused), or exhibit mode is off.
+  Status new_sculpture();
+  Status undo_new_sculpture();
+  // The visitor's phase, number, time left (as of the last poll()).
+  VisitorView visitor_view() const;
+  bool visitor_view_enabled() const { return exhibit_.enabled(); }
+  const ExhibitCounters& exhibit_counters() const { return exhibit_.counters(); }
+  // The newest lifecycle note for the display (StationLink sends it as a Notice).
+  const StationExhibit::Told& visitor_told() const { return exhibit_.told(); }
+
  private:
   // start()'s steps (station_start.cpp).
   Status replay_journal(journal::JournalReader& reader);
@@ -183,6 +207,13 @@ class Station {
   // Every event the station reports passes here: stamped, counted, queued.
   void emit(session::SessionEvent event, ports::TimestampUs now_us);
   void emit_all(const session::SessionEvents& events, ports::TimestampUs now_us);
+  // Exhibit mode (station_exhibit.cpp): one lifecycle step, what its action asks
+  // (archive, rotate, reset), and a new journal begun again after a failure.
+  void step_exhibit(ports::TimestampUs now_us);
+  void act(session::VisitorAction action, ports::TimestampUs now_us);
+  void end_sculpture(ports::TimestampUs now_us);
+  Status rotate_journal(ports::TimestampUs now_us);
+  void note(session::VisitorNote what, ports::TimestampUs now_us, Status status = {});
 
   ports::ButtonSource& buttons_;
   ports::Clock& clock_;
@@ -196,6 +227,7 @@ class Station {
   CheckpointSchedule checkpoints_;
   EventQueue events_;
   StationCounters counters_{};
+  StationExhibit exhibit_;
   std::uint64_t records_at_start_ = 0;
   bool started_ = false;
 };

@@ -10,6 +10,7 @@
 #include "twister/input/button_map.hpp"
 #include "twister/ports/clock.hpp"
 #include "twister/session/sculpt_session.hpp"
+#include "twister/station/station_exhibit.hpp"
 #include "twister/tracker/fastrak_session.hpp"
 #include "twister/tracker/pose_conversion.hpp"
 
@@ -33,6 +34,9 @@ struct StationConfig {
   // stays unchanged (a commit meanwhile starts it over later).
   std::uint32_t checkpoint_interval = 256;
   std::size_t checkpoint_bytes_per_poll = std::size_t{256} << 10;
+  // Exhibit mode (issue 25; off by default): the visitor lifecycle, one journal per
+  // sculpture, the archive (StationFiles::archive, base_model).
+  ExhibitConfig exhibit{};
 };
 
 }  // namespace twister::station

@@ -126,6 +126,15 @@ class StationLink final : private AdmissionListener {
   template <class Submit>
   void route_commands(Submit submit);
   void refresh_counters();
+  // Exhibit mode (station_link_visitor.cpp): the VisitorState when it changes and about
+  // once a second, and the lifecycle's newest note as a Notice.
+  void send_visitor(const Station& station, ports::TimestampUs now_us);
+  struct VisitorSent {
+    bool sent = false;
+    link::VisitorState last{};
+    ports::TimestampUs last_us = 0;
+    std::uint32_t told_seq = 0;
+  };
 
   FrameQueues queues_;
   LinkAdmission admission_;
@@ -138,6 +147,7 @@ class StationLink final : private AdmissionListener {
   std::uint64_t commands_routed_ = 0;
   std::uint64_t commands_refused_ = 0;  // queue full here or in the session
   StationLinkCounters counters_{};
+  VisitorSent visitor_{};
 };
 
 }  // namespace twister::station

@@ -26,14 +26,16 @@
 
 namespace twister::hal {
 
-enum class OutputKind : std::uint8_t { obj, ply, glb, gltf, png, svg };
+enum class OutputKind : std::uint8_t { obj, ply, glb, gltf, png, svg, stl };
 
 struct OutputRule {
   OutputKind kind = OutputKind::obj;
   bool force = false;  // replace a regular file of `kind` (never anything else)
 };
 
-// The kind a file name asks for (.obj .ply .glb .gltf .png .svg); false: none.
+// The kind a file name asks for (.obj .ply .glb .gltf .png .svg .stl); false: none.
+// An STL is recognised by an ASCII "solid" or the header our writer gives a binary
+// one ("twister-station export"); any other binary STL is another kind.
 bool output_kind_of(const std::string& path, OutputKind& kind);
 const char* output_kind_name(OutputKind kind);
 
@@ -75,5 +77,7 @@ const char* file_type_name(mode_t mode);
 // checkpoint::kCheckpointMagic).
 inline constexpr char kJournalMagic[4] = {'T', 'W', 'J', 'L'};
 inline constexpr char kCheckpointMagic[4] = {'T', 'W', 'C', 'K'};
+// The first bytes of the 80-byte header of a binary STL twister writes (meshio).
+inline constexpr char kStlHeaderPrefix[] = "twister-station export";
 
 }  // namespace twister::hal

@@ -1,0 +1,534 @@
+// The exhibit day (issue 25, label exhibit): a simulated day in virtual time. Each
+// "life" of the station is a forked child running the real core Station (fake tracker
+// and buttons, virtual clock) on real files: the journal (PosixFileStorage, locked),
+// its checkpoint (PosixFileSink) and the archive (ExhibitArchive with hal/meshio's
+// writers). Visitors come one after another with random strokes and idle gaps and end
+// by idle, by the chord or by the display's command (some undone in the grace). The
+// parent SIGKILLs the first lives at random real moments (anywhere: start-up, strokes,
+// checkpoints, the archive, the rotation) and restarts the station on the same files;
+// the last life fills the disk for a while (RLIMIT_FSIZE: writes past the limit fail
+// with EFBIG) and stops cleanly. Then every check runs on what is on disk:
+//   - every archive is complete (five files) and its journal replays to the model
+//     checksum its record.json names; every archived journal holds one sculpture;
+//   - every stroke a life reported saved (journal identity, sequence) is in its
+//     sculpture's archived journal or the current journal; a sculpture with no archive
+//     left is older than every archive kept (retention pruned it);
+//   - the current journal is one sculpture (its identity is no archive's);
+//   - the retention budget holds; no temporary is left.
+// EXHIBIT_DAY_VISITORS (default 50), EXHIBIT_DAY_KILLS (5), EXHIBIT_DAY_SEED set the day.
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cinttypes>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "../../core/station/station_fixture.hpp"
+#include "exhibit_archive.hpp"
+#include "fakes/fake_storage.hpp"
+#include "station_health.hpp"
+#include "twister/checkpoint/session_checkpoint.hpp"
+#include "twister/hal/posix_file_sink.hpp"
+#include "twister/hal/posix_file_storage.hpp"
+
+namespace twister::station_app {
+namespace {
+
+using namespace station::test_fixture;  // NOLINT: the station fixture's names
+namespace fs = std::filesystem;
+
+constexpr ports::TimestampUs kS = 1'000'000;
+constexpr std::time_t kDay0 = 1'795'000'000;  // 2026-11-18 (a virtual day's morning)
+constexpr std::uint32_t kKeepArchives = 30;
+constexpr std::uint8_t kLeftRadius = 1, kRightFreeze = 5, kRightGrab = 3;
+
+std::uint64_t env(const char* name, std::uint64_t fallback) {
+  const char* v = std::getenv(name);
+  return v == nullptr ? fallback : std::strtoull(v, nullptr, 10);
+}
+
+station::StationConfig day_config() {
+  station::StationConfig c = test_config();
+  c.checkpoint_interval = 3;
+  c.exhibit.visitor.enabled = true;
+  c.exhibit.visitor.idle_us = 20 * kS;
+  c.exhibit.visitor.grace_us = 3 * kS;
+  c.exhibit.visitor.chord_hold_us = kS;
+  c.exhibit.visitor.retry_us = 2 * kS;
+  c.exhibit.chord_lines = (1u << kLeftRadius) | (1u << kRightFreeze);
+  return c;
+}
+
+struct Paths {
+  std::string dir, journal, archive;
+};
+
+// One life of the station, in the child. Reports to `fd` one line per fact:
+// "saved ID SEQ", "t US" (virtual time), "visitors N", "done".
+class Life {
+ public:
+  Life(const Paths& p, int fd, ports::TimestampUs t0, std::uint64_t seed)
+      : paths_(p),
+        fd_(fd),
+        rng_(seed),
+        config_(day_config()),
+        clock_(t0),
+        responder_(stream_, config_.session.protocol) {}
+
+  int run(std::uint32_t visitors, bool full_disk) {
+    ::signal(SIGXFSZ, SIG_IGN);
+    if (!journal_.open({paths_.journal, true, true, false}).ok()) return 3;
+    ExhibitArchiveConfig a;
+    a.dir = paths_.archive;
+    a.journal_path = paths_.journal;
+    a.keep_count = kKeepArchives;
+    a.wall_clock = [this] { return kDay0 + static_cast<std::time_t>(clock_.now_us() / kS); };
+    a.mono_clock = [this] { return clock_.now_us(); };
+    ExhibitArchive archive(a, meshio_model_writer({0.0F, 0.0F, 1.0F}));
+    auto recovered = archive.recover();
+    if (!recovered) return 4;
+    say("recovered %d %d\n", recovered->temporaries_removed, recovered->rotation_finished ? 1 : 0);
+    make_grid(*mesh_);
+    make_grid(*base_);
+    hal::PosixFileSinkConfig out;
+    out.path = paths_.journal + ".ckpt";
+    out.replace = hal::PosixFileSinkConfig::Replace::own_magic;
+    out.magic.assign(checkpoint::kCheckpointMagic.begin(), checkpoint::kCheckpointMagic.end());
+    hal::PosixFileSink checkpoint_out(out);
+    hal::PosixFileStorage checkpoint_in;
+    const bool have_in = checkpoint_in.open({out.path, false, false, true}).ok();
+    station::StationFiles files{nullptr,
+                                have_in ? &checkpoint_in : nullptr,
+                                &checkpoint_out,
+                                static_cast<std::uint32_t>(rng_() | 1u),
+                                &archive,
+                                base_.get(),
+                                recovered->visitors_today};
+    station_ = std::make_unique<station::Station>(stream_, buttons_, clock_, journal_, *mesh_,
+                                                  work_->spans(), config_, files);
+    if (!station_->start().ok()) return 5;
+    for (int i = 0; i < 500 && !station_->tracker_session().streaming(); ++i) tick();
+    for (std::uint32_t v = 0; v < visitors; ++v) {
+      visit(full_disk && v == 1);
+      const station::VisitorView view = station_->visitor_view();
+      const station::StationCounters& c = station_->counters();
+      const station::ExhibitCounters& x = station_->exhibit_counters();
+      say("visitors %u phase %u visitor %u sculpture %08x flags %u committed %u not_saved %u "
+          "refused %u archived %u failed %u rotate_failed %u tracker %u tx %zu\n",
+          v + 1, static_cast<unsigned>(view.phase), view.visitor, view.sculpture,
+          static_cast<unsigned>(view.flags), static_cast<unsigned>(c.events.strokes_committed),
+          static_cast<unsigned>(c.events.strokes_not_saved),
+          static_cast<unsigned>(c.events.refused), static_cast<unsigned>(x.archived),
+          static_cast<unsigned>(x.archive_failures), static_cast<unsigned>(x.rotate_failures),
+          static_cast<unsigned>(station_->status().tracker), stream_.tx().size());
+    }
+    wait_s(5.0);
+    station_->stop();
+    drain();
+    // The metrics an operator watches, written as the loop writes them at its end.
+    if (auto file = hal::MetricsFile::open(paths_.dir + "/metrics.prom")) {
+      StationHealthConfig hc;
+      hc.file = std::move(*file);
+      hc.archive_path = paths_.archive;
+      StationHealth health(std::move(hc));
+      Backends backends;
+      DisplayLink display;
+      health.report(*station_, backends, display, hal::process_log(), clock_.now_us());
+    }
+    say("committed %u\n", static_cast<unsigned>(station_->counters().events.strokes_committed));
+    say("disk_full %u not_saved %u\n",
+        static_cast<unsigned>(station_->exhibit_counters().disk_full),
+        static_cast<unsigned>(station_->counters().events.strokes_not_saved));
+    say("done\n");
+    return 0;
+  }
+
+ private:
+  template <typename... A>
+  void say(const char* format, A... args) {
+    char line[512];
+    const int n = std::snprintf(line, sizeof line, format, args...);
+    if (n > 0) (void)!::write(fd_, line, std::min(sizeof line - 1, static_cast<std::size_t>(n)));
+  }
+  void drain() {
+    for (auto e = station_->next_event(); e.ok(); e = station_->next_event()) {
+      if (e->kind == SessionEventKind::committed && e->status.ok() && !e->stroke_end().repeat) {
+        say("saved %08x %u\n", station_->visitor_view().sculpture, e->stroke_end().sequence);
+      }
+    }
+  }
+  void tick(ports::TimestampUs step = 8'333) {
+    responder_.service();
+    responder_.emit(1, left_, false);
+    responder_.emit(2, right_, false);
+    (void)station_->poll();
+    drain();
+    responder_.service();
+    clock_.advance_us(step);
+    if (clock_.now_us() - said_us_ >= kS) {
+      said_us_ = clock_.now_us();
+      say("t %lld\n", static_cast<long long>(said_us_));
+    }
+  }
+  void wait_s(double s) {
+    const ports::TimestampUs end = clock_.now_us() + static_cast<ports::TimestampUs>(s * kS);
+    while (clock_.now_us() < end) tick(50'000);
+  }
+  void stroke() {
+    std::uniform_real_distribution<float> d(-3.0F, 3.0F);
+    right_ = {10.0F + d(rng_), d(rng_), 5.0F + 0.3F * d(rng_)};
+    for (int i = 0; i < 3; ++i) tick();
+    buttons_.press(kRightGrab, true, clock_.now_us());
+    for (int i = 0; i < 3; ++i) tick();
+    for (int k = 0; k < 6; ++k) {
+      right_[0] += 0.2F * d(rng_);
+      right_[1] += 0.2F * d(rng_);
+      tick();
+    }
+    buttons_.press(kRightGrab, false, clock_.now_us());
+    for (int i = 0; i < 3; ++i) tick();
+  }
+  void chord(double hold_s) {
+    buttons_.press(kLeftRadius, true, clock_.now_us());
+    buttons_.press(kRightFreeze, true, clock_.now_us());
+    wait_s(hold_s);
+    buttons_.press(kLeftRadius, false, clock_.now_us());
+    buttons_.press(kRightFreeze, false, clock_.now_us());
+    tick();
+  }
+  void visit(bool full_disk) {
+    const int strokes = std::uniform_int_distribution<int>(1, 5)(rng_);
+    for (int s = 0; s < strokes; ++s) {
+      stroke();
+      wait_s(std::uniform_real_distribution<double>(0.2, 8.0)(rng_));
+    }
+    if (full_disk) {  // the disk fills: the end's archive fails until it is freed
+      const rlimit small{4096, RLIM_INFINITY};
+      (void)::setrlimit(RLIMIT_FSIZE, &small);
+      stroke();  // likely not saved (the journal is past the limit)
+    }
+    switch (std::uniform_int_distribution<int>(0, 2)(rng_)) {
+      case 0:
+        wait_s(21.0);  // idle ends it
+        break;
+      case 1:
+        chord(1.2);
+        if (std::uniform_int_distribution<int>(0, 4)(rng_) == 0) {  // changed their mind
+          wait_s(0.5);
+          chord(1.2);
+          stroke();
+          chord(1.2);
+        }
+        break;
+      default:
+        (void)station_->new_sculpture();
+        if (std::uniform_int_distribution<int>(0, 4)(rng_) == 0) {
+          wait_s(1.0);
+          (void)station_->undo_new_sculpture();
+          stroke();
+          (void)station_->new_sculpture();
+        }
+        break;
+    }
+    if (full_disk) {
+      wait_s(8.0);
+      const rlimit freed{RLIM_INFINITY, RLIM_INFINITY};
+      (void)::setrlimit(RLIMIT_FSIZE, &freed);
+    }
+    // Grace, archive (retried every 2 s), then nobody for a while.
+    wait_s(std::uniform_real_distribution<double>(6.0, 15.0)(rng_));
+  }
+
+  Paths paths_;
+  int fd_;
+  std::mt19937_64 rng_;
+  station::StationConfig config_;
+  test::FakeByteStream stream_;
+  test::FakeClock clock_;
+  test::FakeButtonSourceWithStorage<1 << 16> buttons_;  // a day of presses
+  FastrakResponder responder_;
+  hal::PosixFileStorage journal_;
+  std::unique_ptr<TestMesh> mesh_ = std::make_unique<TestMesh>();
+  std::unique_ptr<TestMesh> base_ = std::make_unique<TestMesh>();
+  std::unique_ptr<TestWork> work_ = std::make_unique<TestWork>();
+  std::unique_ptr<station::Station> station_;
+  std::array<float, 3> left_{-10.0F, 0.0F, 5.0F};
+  std::array<float, 3> right_{10.0F, 0.0F, 5.0F};
+  ports::TimestampUs said_us_ = 0;
+};
+
+struct Reported {
+  std::vector<std::uint32_t> order;  // sculptures in the order strokes were saved
+  std::map<std::uint32_t, std::set<std::uint32_t>> saved;
+  ports::TimestampUs t = 0;
+  bool done = false;
+  std::uint32_t visitors = 0;
+  int temporaries_removed = 0, rotations_finished = 0;
+  unsigned disk_full = 0, not_saved = 0, last_committed = 0;
+};
+
+void parse(const std::string& text, Reported& r) {
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    unsigned id = 0, seq = 0;
+    long long t = 0;
+    if (std::sscanf(line.c_str(), "saved %x %u", &id, &seq) == 2) {
+      if (!r.saved.count(id)) r.order.push_back(id);
+      r.saved[id].insert(seq);
+    } else if (std::sscanf(line.c_str(), "t %lld", &t) == 1) {
+      r.t = std::max<ports::TimestampUs>(r.t, t);
+    } else if (std::sscanf(line.c_str(), "visitors %u", &seq) == 1) {
+      r.visitors = seq;
+    } else if (int tmp = 0, fin = 0;
+               std::sscanf(line.c_str(), "recovered %d %d", &tmp, &fin) == 2) {
+      r.temporaries_removed += tmp;
+      r.rotations_finished += fin;
+    } else if (std::sscanf(line.c_str(), "disk_full %u not_saved %u", &r.disk_full, &r.not_saved) ==
+               2) {
+    } else if (std::sscanf(line.c_str(), "committed %u", &r.last_committed) == 1) {
+    } else if (line == "done") {
+      r.done = true;
+    }
+  }
+}
+
+// Forks a life; kills it after `kill_after_ms` of real time (0: runs to its end).
+// Returns its exit status (or -SIGKILL) and appends its report.
+int run_life(const Paths& p, Reported& r, std::uint64_t seed, std::uint32_t visitors,
+             bool full_disk, int kill_after_ms) {
+  int pipe_fds[2];
+  if (::pipe(pipe_fds) != 0) return -1;
+  const ports::TimestampUs t0 = r.t + 10 * kS;
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::close(pipe_fds[0]);
+    int rc = 0;
+    {
+      Life life(p, pipe_fds[1], t0, seed);
+      rc = life.run(visitors, full_disk);
+    }
+    ::_exit(rc);
+  }
+  ::close(pipe_fds[1]);
+  std::string text;
+  const auto start = std::chrono::steady_clock::now();
+  ::fcntl(pipe_fds[0], F_SETFL, O_NONBLOCK);
+  bool killed = false;
+  for (;;) {
+    char buf[4096];
+    const ssize_t n = ::read(pipe_fds[0], buf, sizeof buf);
+    if (n > 0) {
+      text.append(buf, static_cast<std::size_t>(n));
+      continue;
+    }
+    if (n == 0) break;  // the child is gone
+    if (!killed && kill_after_ms > 0 &&
+        std::chrono::steady_clock::now() - start > std::chrono::milliseconds(kill_after_ms)) {
+      ::kill(pid, SIGKILL);
+      killed = true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  ::close(pipe_fds[0]);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  parse(text, r);
+  if (std::getenv("EXHIBIT_DAY_VERBOSE") != nullptr) std::fputs(text.c_str(), stdout);
+  if (WIFSIGNALED(status)) return -WTERMSIG(status);
+  return WEXITSTATUS(status);
+}
+
+std::string read_file(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
+}
+
+std::string json_value(const std::string& json, const std::string& key) {
+  const auto at = json.find("\"" + key + "\": ");
+  if (at == std::string::npos) return "";
+  auto from = at + key.size() + 4;
+  auto to = json.find_first_of(",\n", from);
+  std::string v = json.substr(from, to - from);
+  if (!v.empty() && v.front() == '"') v = v.substr(1, v.size() - 2);
+  return v;
+}
+
+// Replays `bytes` as a journal onto the base grid: the model's checksum, its records
+// and its identity (the station's own start-up path, on an in-memory copy).
+struct Replayed {
+  bool ok = false;
+  std::uint64_t checksum = 0;
+  std::uint32_t records = 0, id = 0;
+};
+Replayed replay(const std::string& bytes) {
+  Replayed out;
+  auto storage = std::make_unique<test::FakeStorageWithStorage<>>();
+  storage->load(std::as_bytes(std::span(bytes.data(), bytes.size())));
+  auto mesh = std::make_unique<TestMesh>();
+  make_grid(*mesh);
+  auto work = std::make_unique<TestWork>();
+  test::FakeByteStream stream;
+  test::FakeButtonSource buttons;
+  test::FakeClock clock(1);
+  station::StationConfig c = day_config();
+  c.exhibit = {};
+  station::Station s(stream, buttons, clock, *storage, *mesh, work->spans(), c);
+  if (!s.recover().ok()) return out;
+  const station::JournalRecovery& r = s.recovery();
+  out.ok = !r.survey.torn_tail() && !r.survey.corrupt();
+  out.checksum = s.mesh().checksum();
+  out.records = static_cast<std::uint32_t>(r.survey.records);
+  journal::JournalReader reader(*storage);
+  if (reader.open().ok()) out.id = reader.format().id;
+  return out;
+}
+
+TEST(ExhibitDay, VisitorsKillsAndAFullDiskLoseNothingAndEveryArchiveReplays) {
+  const std::uint64_t want_visitors = env("EXHIBIT_DAY_VISITORS", 50);
+  const std::uint64_t kills = env("EXHIBIT_DAY_KILLS", 5);
+  const std::uint64_t seed = env("EXHIBIT_DAY_SEED", 2511);
+  std::mt19937_64 rng(seed);
+  const fs::path dir = fs::temp_directory_path() / ("exhibit_day_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const Paths p{dir.string(), (dir / "journal.twj").string(), (dir / "archive").string()};
+  Reported r;
+  int killed = 0;
+  for (std::uint64_t life = 0; life < kills; ++life) {
+    const int after = std::uniform_int_distribution<int>(40, 900)(rng);
+    const int rc = run_life(p, r, seed * 100 + life, 1000, false, after);
+    ASSERT_TRUE(rc == -SIGKILL || rc == 0) << "life " << life << " exited with " << rc;
+    killed += rc == -SIGKILL;
+    std::printf("life %d: %s after %d ms, %zu sculptures so far, virtual %.0f s\n",
+                static_cast<int>(life), rc == -SIGKILL ? "SIGKILL" : "ended", after, r.order.size(),
+                static_cast<double>(r.t) / kS);
+  }
+  // The last life: the rest of the day, with the full disk; stops cleanly.
+  const std::uint32_t so_far = static_cast<std::uint32_t>(r.order.size());
+  const std::uint32_t rest = std::max<std::uint32_t>(
+      3, static_cast<std::uint32_t>(want_visitors) -
+             std::min<std::uint32_t>(so_far, static_cast<std::uint32_t>(want_visitors)) + 1);
+  ASSERT_EQ(run_life(p, r, seed * 100 + 99, rest, true, 0), 0);
+  ASSERT_TRUE(r.done);
+  EXPECT_EQ(killed, static_cast<int>(kills));
+
+  // The archives: complete, each journal one sculpture replaying to its record.
+  std::map<std::uint32_t, Replayed> archived;
+  std::vector<std::string> names;
+  std::uint64_t bytes = 0;
+  for (const auto& e : fs::directory_iterator(p.archive)) {
+    const std::string name = e.path().filename().string();
+    ASSERT_TRUE(parse_archive_name(name, nullptr, nullptr, nullptr))
+        << "left in the archive: " << name;
+    names.push_back(name);
+  }
+  std::sort(names.begin(), names.end());
+  for (const std::string& name : names) {
+    const fs::path a = fs::path(p.archive) / name;
+    for (const char* f :
+         {"journal.twj", "model.stl", "model.glb", "thumbnail.png", "record.json"}) {
+      ASSERT_TRUE(fs::is_regular_file(a / f) && fs::file_size(a / f) > 0) << name << "/" << f;
+      bytes += fs::file_size(a / f);
+    }
+    const std::string json = read_file(a / "record.json");
+    const Replayed rep = replay(read_file(a / "journal.twj"));
+    ASSERT_TRUE(rep.ok) << name;
+    std::uint32_t id = 0;
+    (void)parse_archive_name(name, &id, nullptr, nullptr);
+    EXPECT_EQ(rep.id, id) << name;
+    char sum[20];
+    std::snprintf(sum, sizeof sum, "%016" PRIx64, rep.checksum);
+    EXPECT_EQ(json_value(json, "model_checksum"), sum) << name << ": replay differs";
+    EXPECT_EQ(json_value(json, "journal_records"), std::to_string(rep.records)) << name;
+    EXPECT_GT(rep.records, 0u) << name;
+    EXPECT_EQ(archived.count(id), 0u) << "two archives of sculpture " << id;
+    archived[id] = rep;
+  }
+  EXPECT_LE(names.size(), kKeepArchives);
+  // Visitor numbers go on across restarts: the kept archives are the newest, numbered
+  // one after the other, the last one the day's last visitor.
+  std::uint32_t previous = 0;
+  for (const std::string& name : names) {
+    std::uint32_t v = 0;
+    (void)parse_archive_name(name, nullptr, &v, nullptr);
+    if (previous != 0) {
+      EXPECT_EQ(v, previous + 1) << name;
+    }
+    previous = v;
+  }
+  EXPECT_EQ(previous, r.order.size());
+  // The full disk was met: archives refused (EFBIG counts as full) and retried.
+  EXPECT_GE(r.disk_full, 1u);
+  // The current journal: one sculpture, none of the archived ones.
+  const Replayed current = replay(read_file(p.journal));
+  ASSERT_TRUE(current.ok);
+  EXPECT_EQ(archived.count(current.id), 0u);
+  // Every stroke reported saved is in its sculpture's journal; sculptures without an
+  // archive are older than every archive kept (pruned) or the current one.
+  std::size_t first_kept = r.order.size();
+  for (std::size_t i = 0; i < r.order.size(); ++i) {
+    if (archived.count(r.order[i])) first_kept = std::min(first_kept, i);
+  }
+  std::uint64_t strokes = 0, lost = 0;
+  for (std::size_t i = 0; i < r.order.size(); ++i) {
+    const std::uint32_t id = r.order[i];
+    const std::set<std::uint32_t>& seqs = r.saved[id];
+    strokes += seqs.size();
+    const Replayed* in = archived.count(id) ? &archived[id] : id == current.id ? &current : nullptr;
+    if (in == nullptr) {
+      EXPECT_LT(i, first_kept) << "sculpture " << std::hex << id << " has no archive";
+      continue;
+    }
+    for (const std::uint32_t s : seqs) lost += s >= in->records;
+  }
+  EXPECT_EQ(lost, 0u);
+  EXPECT_GE(r.order.size(), want_visitors) << "visitors with saved strokes";
+  // The metrics file: valid for promtool, its numbers the day's.
+  const fs::path prom = dir / "metrics.prom";
+  ASSERT_TRUE(fs::is_regular_file(prom));
+  const std::string text = read_file(prom);
+  const auto metric = [&](const std::string& name) {
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+      if (line.rfind(name + " ", 0) == 0) return std::stod(line.substr(name.size() + 1));
+    }
+    return -1.0;
+  };
+  EXPECT_EQ(metric("twister_visitors_today"), static_cast<double>(r.order.size()));
+  EXPECT_EQ(metric("twister_strokes_committed_total"), static_cast<double>(r.last_committed));
+  EXPECT_GT(metric("twister_archive_free_bytes"), 0.0);
+  if (std::system("command -v promtool >/dev/null 2>&1") == 0) {
+    const std::string check = "promtool check metrics < " + prom.string() + " >/dev/null 2>&1";
+    EXPECT_EQ(std::system(check.c_str()), 0) << "promtool check metrics refuses " << prom;
+  } else {
+    std::printf("promtool not installed: the metrics file is not checked by it\n");
+  }
+  std::printf("exhibit day: %zu sculptures with saved strokes (%" PRIu64
+              " strokes reported saved, 0 lost), %d SIGKILLs, %zu archives kept (%" PRIu64
+              " bytes), current journal %u records; full disk: %u archive attempts refused, %u "
+              "strokes not saved; restarts removed %d unfinished archive(s), finished %d "
+              "rotation(s)\n",
+              r.order.size(), strokes, killed, names.size(), bytes, current.records, r.disk_full,
+              r.not_saved, r.temporaries_removed, r.rotations_finished);
+  if (::testing::Test::HasFailure()) {
+    std::printf("kept for inspection: %s\n", dir.c_str());
+  } else {
+    fs::remove_all(dir);
+  }
+}
+
+}  // namespace
+}  // namespace twister::station_app
