@@ -86,6 +86,11 @@ std::vector<Case> cases() {
       {make_event(K::checkpoint_written, 0, payload::CheckpointWritten{4242, 777}),
        {"4242", "777"}},
       {make_event(K::checkpoint_failed, 0, {}, StatusCode::io_error), {"io_error"}},
+      {make_event(K::visitor, 0,
+                  payload::Visitor{session::VisitorNote::archive_failed,
+                                   session::SculptureEnd::idle, 12, 0x2a, 77},
+                  StatusCode::io_error),
+       {"visitor 12", "0000002a", "77 journal records", "idle", "io_error"}},
   };
 }
 
