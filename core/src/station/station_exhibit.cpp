@@ -17,6 +17,7 @@ void StationExhibit::start(bool has_sculpture, std::uint32_t visitors_today,
   began_us_ = now_us;
   ended_us_ = now_us;
   now_us_ = now_us;
+  counters_.ended_today = visitors_today;
   life_.start(has_sculpture, now_us);
 }
 
@@ -133,6 +134,7 @@ void Station::end_sculpture(ports::TimestampUs now_us) {
       return;
     }
   }
+  ++exhibit_.counters().ended_today;
   exhibit_.life().archived(true, now_us);
   note(session::VisitorNote::archived, now_us);
 }

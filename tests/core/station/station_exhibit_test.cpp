@@ -136,7 +136,8 @@ class ExhibitStation : public ::testing::Test {
 TEST_F(ExhibitStation, IdleEndsTheGraceArchivesTheJournalRotatesAndTheModelIsTheBase) {
   start();
   EXPECT_EQ(station_.visitor_view().phase, VisitorPhase::attract);
-  EXPECT_EQ(station_.visitor_view().visitor, 4u);  // four archived today before this run
+  EXPECT_EQ(station_.visitor_view().visitor, 4u);          // four archived today before this run
+  EXPECT_EQ(station_.exhibit_counters().ended_today, 4u);  // the metrics' visitors today
   const std::uint64_t base = station_.mesh().checksum();
   right_stroke(2.0f);
   right_stroke(-1.0f);
@@ -146,6 +147,7 @@ TEST_F(ExhibitStation, IdleEndsTheGraceArchivesTheJournalRotatesAndTheModelIsThe
   EXPECT_EQ(v.visitor, 5u);
   EXPECT_EQ(v.records, 2u);
   EXPECT_EQ(v.sculpture, 0x5B000001u);
+  EXPECT_EQ(station_.exhibit_counters().ended_today, 4u);  // visitor 5 is not ended yet
   const std::uint64_t sculpted = station_.mesh().checksum();
   EXPECT_NE(sculpted, base);
   const std::vector<std::byte> journal(storage_.bytes().begin(), storage_.bytes().end());
@@ -155,7 +157,8 @@ TEST_F(ExhibitStation, IdleEndsTheGraceArchivesTheJournalRotatesAndTheModelIsThe
   EXPECT_EQ(notes(), std::vector<VisitorNote>{VisitorNote::ended});
   EXPECT_EQ(station_.visitor_view().phase, VisitorPhase::finished);
   EXPECT_TRUE(station_.visitor_view().flags & kVisitorFlagResetUndoable);
-  EXPECT_EQ(station_.mesh().checksum(), sculpted);  // the grace: nothing reset yet
+  EXPECT_EQ(station_.mesh().checksum(), sculpted);         // the grace: nothing reset yet
+  EXPECT_EQ(station_.exhibit_counters().ended_today, 4u);  // counted once archived
   run_seconds(3.5);
   EXPECT_EQ(notes(), std::vector<VisitorNote>{VisitorNote::archived});
   ASSERT_EQ(archive_.entries.size(), 1u);
@@ -180,6 +183,7 @@ TEST_F(ExhibitStation, IdleEndsTheGraceArchivesTheJournalRotatesAndTheModelIsThe
   ASSERT_TRUE(r.ok());
   EXPECT_EQ(r->sequence, 0u);
   EXPECT_EQ(station_.exhibit_counters().archived, 1u);
+  EXPECT_EQ(station_.exhibit_counters().ended_today, 5u);
 }
 
 TEST_F(ExhibitStation, TheChordEndsTheChordAgainUndoesTheEndInTheGrace) {
@@ -250,6 +254,7 @@ TEST_F(ExhibitStation, AFullArchiveDiskChangesNothingIsReportedAndRetried) {
   EXPECT_EQ(archive_.entries[0].summary.records, 2u);
   EXPECT_EQ(station_.visitor_view().flags, 0);
   EXPECT_EQ(station_.exhibit_counters().disk_full, 1u);
+  EXPECT_EQ(station_.exhibit_counters().ended_today, 5u);  // once, the refused try not
 }
 
 TEST_F(ExhibitStation, ARestartOnAJournalHoldingASculptureIsSculptingItsVisitorCounted) {
