@@ -136,7 +136,15 @@ void Station::end_sculpture(ports::TimestampUs now_us) {
   }
   ++exhibit_.counters().ended_today;
   exhibit_.life().archived(true, now_us);
-  note(session::VisitorNote::archived, now_us);
+  // Told about the sculpture archived (the journal is the new one by now).
+  session::payload::Visitor v;
+  v.note = session::VisitorNote::archived;
+  v.end = summary.end;
+  v.visitor = summary.visitor;
+  v.sculpture = summary.sculpture;
+  v.records = summary.records;
+  emit(session::make_event(session::SessionEventKind::visitor, 0, v, ok_status()), now_us);
+  exhibit_.tell(session::VisitorNote::archived);
 }
 
 Status Station::rotate_journal(ports::TimestampUs now_us) {

@@ -108,10 +108,14 @@ class ExhibitStation : public ::testing::Test {
   std::vector<VisitorNote> notes() {
     std::vector<VisitorNote> out;
     for (auto e = station_.next_event(); e.ok(); e = station_.next_event()) {
-      if (e->kind == SessionEventKind::visitor) out.push_back(e->visitor().note);
+      if (e->kind == SessionEventKind::visitor) {
+        out.push_back(e->visitor().note);
+        last_note_ = e->visitor();
+      }
     }
     return out;
   }
+  session::payload::Visitor last_note_{};
   std::uint32_t journal_id() {
     journal::JournalReader reader(storage_);
     EXPECT_TRUE(reader.open().ok());
@@ -161,6 +165,11 @@ TEST_F(ExhibitStation, IdleEndsTheGraceArchivesTheJournalRotatesAndTheModelIsThe
   EXPECT_EQ(station_.exhibit_counters().ended_today, 4u);  // counted once archived
   run_seconds(3.5);
   EXPECT_EQ(notes(), std::vector<VisitorNote>{VisitorNote::archived});
+  // The note names the sculpture archived, not the new journal it rotated to.
+  EXPECT_EQ(last_note_.sculpture, 0x5B000001u);
+  EXPECT_EQ(last_note_.visitor, 5u);
+  EXPECT_EQ(last_note_.records, 2u);
+  EXPECT_EQ(last_note_.end, session::SculptureEnd::idle);
   ASSERT_EQ(archive_.entries.size(), 1u);
   const FakeArchive::Entry& a = archive_.entries[0];
   EXPECT_EQ(a.journal, journal);  // the whole journal, byte for byte
