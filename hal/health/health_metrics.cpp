@@ -77,7 +77,8 @@ std::size_t format_prometheus(const HealthMetrics& m, std::span<char> out) {
   }
   gauge(t, "twister_tracker_rate_hertz", "Tracker poses used per second, both hands.",
         m.tracker_rate_hz);
-  gauge(t, "twister_visitors_today", "Visitors whose sculpture ended today (local time).",
+  gauge(t, "twister_visitors_today",
+        "Visitors whose sculpture ended and was archived today (UTC day).",
         static_cast<double>(m.visitors_today));
   counter(t, "twister_strokes_committed_total", "Strokes committed since the station started.",
           m.strokes_committed);

@@ -16,6 +16,7 @@
 #include <random>
 #include <vector>
 
+#include "twister/hal/posix_file_sink.hpp"
 #include "twister/journal/journal_reader.hpp"
 
 namespace twister::station_app {
@@ -73,9 +74,15 @@ std::string utc(std::time_t t, const char* format) {
   return b.data();
 }
 
-// Removes our files from `dir`, then `dir` (left when it holds anything else).
+// Removes our files from `dir`, then `dir` (left when it holds anything else). Our
+// files include the writers' temporaries (`NAME.tmp-PID-N`, PosixFileSink's names) a
+// crash inside a writer leaves behind.
 bool remove_archive_dir(const std::string& dir) {
-  for (const char* f : kArchiveFiles) (void)::unlink((dir + "/" + f).c_str());
+  for (const char* f : kArchiveFiles) {
+    const std::string path = dir + "/" + f;
+    (void)::unlink(path.c_str());
+    (void)hal::PosixFileSink::remove_stale_temporaries(path);
+  }
   return ::rmdir(dir.c_str()) == 0;
 }
 
@@ -261,6 +268,7 @@ station::ArchiveOutcome ExhibitArchive::do_archive(const station::SculptureSumma
   const std::string tmp = config_.dir + "/.tmp-" + id + "-" + std::to_string(::getpid());
   (void)remove_archive_dir(tmp);
   if (::mkdir(tmp.c_str(), 0755) != 0) return fail(errno, "archive " + tmp, "");
+  step(ArchiveStep::temporary_made);
   // The journal, byte for byte.
   {
     const int fd =
@@ -283,15 +291,19 @@ station::ArchiveOutcome ExhibitArchive::do_archive(const station::SculptureSumma
     ::close(fd);
     if (err != 0) return fail(err, "archive journal", tmp);
   }
+  step(ArchiveStep::journal_copied);
   if (const int err = writer_->write_stl(tmp + "/model.stl", mesh, pose); err != 0) {
     return fail(err, "archive model.stl", tmp);
   }
+  step(ArchiveStep::stl_written);
   if (const int err = writer_->write_glb(tmp + "/model.glb", mesh, pose); err != 0) {
     return fail(err, "archive model.glb", tmp);
   }
+  step(ArchiveStep::glb_written);
   if (const int err = writer_->write_thumbnail(tmp + "/thumbnail.png", mesh, pose); err != 0) {
     return fail(err, "archive thumbnail.png", tmp);
   }
+  step(ArchiveStep::thumbnail_written);
   for (const char* f : {"model.stl", "model.glb", "thumbnail.png"}) {
     if (const int err = fsync_path(tmp + "/" + f, false); err != 0) return fail(err, f, tmp);
   }
@@ -321,15 +333,19 @@ station::ArchiveOutcome ExhibitArchive::do_archive(const station::SculptureSumma
   if (const int err = write_new_file(tmp + "/record.json", json.data()); err != 0) {
     return fail(err, "archive record.json", tmp);
   }
+  step(ArchiveStep::record_written);
   // Durable under its final name, or not there at all.
   if (const int err = fsync_path(tmp, true); err != 0) return fail(err, "archive " + tmp, tmp);
+  step(ArchiveStep::temporary_synced);
   const std::string final_path = config_.dir + "/" + name;
   struct stat st {};
   if (::lstat(final_path.c_str(), &st) == 0) return fail(EEXIST, "archive " + final_path, tmp);
   if (::rename(tmp.c_str(), final_path.c_str()) != 0) return fail(errno, "archive " + name, tmp);
+  step(ArchiveStep::renamed);
   if (const int err = fsync_path(config_.dir, true); err != 0) {
     return fail(err, "archive " + config_.dir, "");
   }
+  step(ArchiveStep::archive_synced);
   ++stats_.written;
   stats_.last_archive = name;
   prune(name);
@@ -347,12 +363,13 @@ void ExhibitArchive::prune(const std::string& keep) {
   std::size_t count = names.size();
   for (std::size_t i = 0; i < names.size(); ++i) {
     if (count <= config_.keep_count && total <= config_.keep_bytes) break;
-    if (names[i] == keep || count <= 1) continue;                     // never the current sculpture
+    if (names[i] == keep || count <= 1) continue;  // never the current sculpture
     // Out of the archive's names first (atomic), so a crash mid-removal leaves a
     // temporary the next start removes, never a half archive under a final name.
     const std::string from = config_.dir + "/" + names[i];
     const std::string doomed = config_.dir + "/.tmp-prune-" + names[i];
     if (::rename(from.c_str(), doomed.c_str()) != 0) continue;
+    step(ArchiveStep::prune_renamed);
     if (!remove_archive_dir(doomed)) {  // not only ours: put back, left alone
       (void)::rename(doomed.c_str(), from.c_str());
       continue;

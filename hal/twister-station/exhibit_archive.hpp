@@ -43,6 +43,21 @@ class ArchiveModelWriter {
 // frame (+Z with a calibrated work frame, -Z in the transmitter frame).
 std::unique_ptr<ArchiveModelWriter> meshio_model_writer(glm::vec3 up);
 
+// The steps of the on-disk protocol (docs/reliability.md "Exhibit mode"), for the
+// crash tests' hook: each is reported once it is done.
+enum class ArchiveStep : std::uint8_t {
+  temporary_made,     // ARCHIVE/.tmp-ID-PID created
+  journal_copied,     // journal.twj written and fsynced
+  stl_written,        // model.stl
+  glb_written,        // model.glb
+  thumbnail_written,  // thumbnail.png
+  record_written,     // record.json written and fsynced
+  temporary_synced,   // the temporary directory fsynced
+  renamed,            // renamed to its final name (ARCHIVE not yet fsynced)
+  archive_synced,     // ARCHIVE fsynced: archive() is about to return ok
+  prune_renamed,      // an old archive renamed to ARCHIVE/.tmp-prune-NAME (not emptied)
+};
+
 struct ExhibitArchiveConfig {
   std::string dir;                 // the archive directory (created when missing)
   std::string journal_path;        // the station's journal (recover())
@@ -52,6 +67,8 @@ struct ExhibitArchiveConfig {
   std::function<std::time_t()> wall_clock;
   // The monotonic clock's now (the station's Clock) for the records' times.
   std::function<ports::TimestampUs()> mono_clock;
+  // Tests only (crash injection): called after each step; empty in the station.
+  std::function<void(ArchiveStep)> step_hook;
 };
 
 struct ArchiveRecovery {
@@ -89,6 +106,9 @@ class ExhibitArchive final : public station::SculptureArchive {
   std::uint32_t do_next_journal_id() override;
   station::ArchiveOutcome fail(int err, const std::string& what, const std::string& tmp);
   void prune(const std::string& keep);
+  void step(ArchiveStep s) const {
+    if (config_.step_hook) config_.step_hook(s);
+  }
 
   ExhibitArchiveConfig config_;
   std::unique_ptr<ArchiveModelWriter> writer_;

@@ -35,8 +35,9 @@ void StationHealth::sample(const station::Station& core, const Backends& backend
   m.archive_free_bytes =
       config_.archive_path.empty() ? -1 : hal::free_bytes_at(config_.archive_path.c_str());
   m.uptime_s = static_cast<double>(now_us - start_us_) / 1e6;
-  // Exhibit mode: today's visitors (the current one counted from the first grab).
-  if (core.visitor_view_enabled()) m.visitors_today = core.visitor_view().visitor;
+  // Exhibit mode: today's sculptures that ended and were archived (the current
+  // visitor's counts once it is archived).
+  if (core.visitor_view_enabled()) m.visitors_today = core.exhibit_counters().ended_today;
   // spectators: filled by its owner through metrics().
 }
 

@@ -17,6 +17,7 @@ void StationExhibit::start(bool has_sculpture, std::uint32_t visitors_today,
   began_us_ = now_us;
   ended_us_ = now_us;
   now_us_ = now_us;
+  counters_.ended_today = visitors_today;
   life_.start(has_sculpture, now_us);
 }
 
@@ -133,8 +134,17 @@ void Station::end_sculpture(ports::TimestampUs now_us) {
       return;
     }
   }
+  ++exhibit_.counters().ended_today;
   exhibit_.life().archived(true, now_us);
-  note(session::VisitorNote::archived, now_us);
+  // Told about the sculpture archived (the journal is the new one by now).
+  session::payload::Visitor v;
+  v.note = session::VisitorNote::archived;
+  v.end = summary.end;
+  v.visitor = summary.visitor;
+  v.sculpture = summary.sculpture;
+  v.records = summary.records;
+  emit(session::make_event(session::SessionEventKind::visitor, 0, v, ok_status()), now_us);
+  exhibit_.tell(session::VisitorNote::archived);
 }
 
 Status Station::rotate_journal(ports::TimestampUs now_us) {

@@ -108,10 +108,14 @@ class ExhibitStation : public ::testing::Test {
   std::vector<VisitorNote> notes() {
     std::vector<VisitorNote> out;
     for (auto e = station_.next_event(); e.ok(); e = station_.next_event()) {
-      if (e->kind == SessionEventKind::visitor) out.push_back(e->visitor().note);
+      if (e->kind == SessionEventKind::visitor) {
+        out.push_back(e->visitor().note);
+        last_note_ = e->visitor();
+      }
     }
     return out;
   }
+  session::payload::Visitor last_note_{};
   std::uint32_t journal_id() {
     journal::JournalReader reader(storage_);
     EXPECT_TRUE(reader.open().ok());
@@ -136,7 +140,8 @@ class ExhibitStation : public ::testing::Test {
 TEST_F(ExhibitStation, IdleEndsTheGraceArchivesTheJournalRotatesAndTheModelIsTheBase) {
   start();
   EXPECT_EQ(station_.visitor_view().phase, VisitorPhase::attract);
-  EXPECT_EQ(station_.visitor_view().visitor, 4u);  // four archived today before this run
+  EXPECT_EQ(station_.visitor_view().visitor, 4u);          // four archived today before this run
+  EXPECT_EQ(station_.exhibit_counters().ended_today, 4u);  // the metrics' visitors today
   const std::uint64_t base = station_.mesh().checksum();
   right_stroke(2.0f);
   right_stroke(-1.0f);
@@ -146,6 +151,7 @@ TEST_F(ExhibitStation, IdleEndsTheGraceArchivesTheJournalRotatesAndTheModelIsThe
   EXPECT_EQ(v.visitor, 5u);
   EXPECT_EQ(v.records, 2u);
   EXPECT_EQ(v.sculpture, 0x5B000001u);
+  EXPECT_EQ(station_.exhibit_counters().ended_today, 4u);  // visitor 5 is not ended yet
   const std::uint64_t sculpted = station_.mesh().checksum();
   EXPECT_NE(sculpted, base);
   const std::vector<std::byte> journal(storage_.bytes().begin(), storage_.bytes().end());
@@ -155,9 +161,15 @@ TEST_F(ExhibitStation, IdleEndsTheGraceArchivesTheJournalRotatesAndTheModelIsThe
   EXPECT_EQ(notes(), std::vector<VisitorNote>{VisitorNote::ended});
   EXPECT_EQ(station_.visitor_view().phase, VisitorPhase::finished);
   EXPECT_TRUE(station_.visitor_view().flags & kVisitorFlagResetUndoable);
-  EXPECT_EQ(station_.mesh().checksum(), sculpted);  // the grace: nothing reset yet
+  EXPECT_EQ(station_.mesh().checksum(), sculpted);         // the grace: nothing reset yet
+  EXPECT_EQ(station_.exhibit_counters().ended_today, 4u);  // counted once archived
   run_seconds(3.5);
   EXPECT_EQ(notes(), std::vector<VisitorNote>{VisitorNote::archived});
+  // The note names the sculpture archived, not the new journal it rotated to.
+  EXPECT_EQ(last_note_.sculpture, 0x5B000001u);
+  EXPECT_EQ(last_note_.visitor, 5u);
+  EXPECT_EQ(last_note_.records, 2u);
+  EXPECT_EQ(last_note_.end, session::SculptureEnd::idle);
   ASSERT_EQ(archive_.entries.size(), 1u);
   const FakeArchive::Entry& a = archive_.entries[0];
   EXPECT_EQ(a.journal, journal);  // the whole journal, byte for byte
@@ -180,6 +192,7 @@ TEST_F(ExhibitStation, IdleEndsTheGraceArchivesTheJournalRotatesAndTheModelIsThe
   ASSERT_TRUE(r.ok());
   EXPECT_EQ(r->sequence, 0u);
   EXPECT_EQ(station_.exhibit_counters().archived, 1u);
+  EXPECT_EQ(station_.exhibit_counters().ended_today, 5u);
 }
 
 TEST_F(ExhibitStation, TheChordEndsTheChordAgainUndoesTheEndInTheGrace) {
@@ -250,6 +263,7 @@ TEST_F(ExhibitStation, AFullArchiveDiskChangesNothingIsReportedAndRetried) {
   EXPECT_EQ(archive_.entries[0].summary.records, 2u);
   EXPECT_EQ(station_.visitor_view().flags, 0);
   EXPECT_EQ(station_.exhibit_counters().disk_full, 1u);
+  EXPECT_EQ(station_.exhibit_counters().ended_today, 5u);  // once, the refused try not
 }
 
 TEST_F(ExhibitStation, ARestartOnAJournalHoldingASculptureIsSculptingItsVisitorCounted) {

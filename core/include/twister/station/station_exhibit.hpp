@@ -46,6 +46,10 @@ struct ExhibitCounters {
   std::uint64_t rotate_failures = 0;   // new journals that could not be begun
   std::uint64_t undone = 0;            // ends undone in the grace
   std::uint64_t refused = 0;           // new / undo with nothing to act on
+  // Sculptures ended today and archived (the journal rotated): at start-up the highest
+  // visitor number of today's archives (the hal's count), plus each archived since
+  // (the metrics' visitors today).
+  std::uint64_t ended_today = 0;
 };
 
 class StationExhibit {

@@ -33,7 +33,7 @@ const char* tracker_health_name(TrackerHealth state);
 struct HealthMetrics {
   TrackerHealth tracker = TrackerHealth::starting;
   double tracker_rate_hz = 0.0;          // poses used per second, both hands
-  std::uint64_t visitors_today = 0;      // the visitor lifecycle fills it (0 until then)
+  std::uint64_t visitors_today = 0;      // sculptures ended and archived today (exhibit)
   std::uint64_t strokes_committed = 0;   // since the station started
   std::uint64_t strokes_not_saved = 0;   // commits whose journal record was not made durable
   bool link_open = false;                // a display link is configured and listening
