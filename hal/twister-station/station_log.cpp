@@ -219,8 +219,8 @@ bool log_session(const SessionEvent& e, ports::LogSink& log, int storage_errno) 
                 {math::warp_method_name(e.method().method).data()});
       return true;
     case K::symmetry_changed: {
-      char label[session::kSymmetryLabelSize];
-      session::symmetry_label(e.symmetry().spec, label);
+      char label[math::kSymmetryLabelSize];
+      math::symmetry_label(e.symmetry().spec, label);
       log.write(level, station_event_component(e), "symmetry %s for the next strokes", {label});
       return true;
     }

@@ -115,24 +115,8 @@ void add_symmetry_cues(const SceneReplica& replica, const glm::mat4& model, floa
 }
 
 std::string symmetry_name(const math::SymmetrySpec& spec) {
-  // The station's names (session::symmetry_label; the bridge links no session code).
-  switch (spec.kind) {
-    case math::SymmetryKind::none:
-      return "none";
-    case math::SymmetryKind::mirrors: {
-      std::string planes;
-      for (int a = 0; a < 3; ++a) {
-        if ((spec.mirrors & (1u << a)) != 0) planes += static_cast<char>('x' + a);
-      }
-      return planes;
-    }
-    case math::SymmetryKind::rotation:
-    case math::SymmetryKind::rotation_mirror:
-      return "rot" + std::to_string(spec.order) +
-             (spec.kind == math::SymmetryKind::rotation_mirror ? "m " : " ") +
-             static_cast<char>('x' + spec.axis % 3);
-  }
-  return "none";
+  char label[math::kSymmetryLabelSize] = {};
+  return {label, math::symmetry_label(spec, label)};
 }
 
 std::string symmetry_hud_line(const SceneReplica& replica) {

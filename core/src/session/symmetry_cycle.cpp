@@ -25,36 +25,4 @@ Result<math::SymmetrySpec> SymmetryCycle::next(const math::SymmetrySpec& current
   return groups[0];
 }
 
-std::size_t symmetry_label(const math::SymmetrySpec& spec, std::span<char> out) {
-  char text[kSymmetryLabelSize] = {};
-  std::size_t n = 0;
-  const auto put = [&](char c) {
-    if (n + 1 < sizeof text) text[n++] = c;
-  };
-  switch (spec.kind) {
-    case math::SymmetryKind::none:
-      for (const char c : {'n', 'o', 'n', 'e'}) put(c);
-      break;
-    case math::SymmetryKind::mirrors:
-      for (std::uint8_t axis = 0; axis < 3; ++axis) {
-        if ((spec.mirrors & (1u << axis)) != 0) put(static_cast<char>('x' + axis));
-      }
-      break;
-    case math::SymmetryKind::rotation:
-    case math::SymmetryKind::rotation_mirror:
-      for (const char c : {'r', 'o', 't'}) put(c);
-      if (spec.order >= 10) put(static_cast<char>('0' + spec.order / 10));
-      put(static_cast<char>('0' + spec.order % 10));
-      if (spec.kind == math::SymmetryKind::rotation_mirror) put('m');
-      put(' ');
-      put(static_cast<char>('x' + (spec.axis % 3)));
-      break;
-  }
-  if (out.empty()) return 0;
-  const std::size_t written = n < out.size() ? n : out.size() - 1;
-  for (std::size_t i = 0; i < written; ++i) out[i] = text[i];
-  out[written] = '\0';
-  return written;
-}
-
 }  // namespace twister::session

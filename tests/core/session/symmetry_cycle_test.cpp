@@ -23,8 +23,8 @@ const SymmetrySpec kX{SymmetryKind::mirrors, math::kMirrorX, 0, 0};
 const SymmetrySpec kRot6{SymmetryKind::rotation, 0, 2, 6};
 
 std::string label(const SymmetrySpec& s) {
-  char text[kSymmetryLabelSize];
-  symmetry_label(s, text);
+  char text[math::kSymmetryLabelSize];
+  math::symmetry_label(s, text);
   return text;
 }
 
@@ -57,7 +57,7 @@ TEST(SymmetryCycle, LabelsAreTheConfigNames) {
   EXPECT_EQ(label(kRot6), "rot6 z");
   EXPECT_EQ(label(SymmetrySpec{SymmetryKind::rotation_mirror, 0, 1, 12}), "rot12m y");
   char tiny[3];
-  EXPECT_EQ(symmetry_label(kRot6, tiny), 2u);  // truncated, terminated
+  EXPECT_EQ(math::symmetry_label(kRot6, tiny), 2u);  // truncated, terminated
   EXPECT_EQ(std::string(tiny), "ro");
 }
 

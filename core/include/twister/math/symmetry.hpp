@@ -48,6 +48,13 @@ struct SymmetrySpec {
 // Whether `spec` names a group (canonical: unused fields 0).
 bool valid_symmetry(const SymmetrySpec& spec);
 
+// Longest label symmetry_label() writes, with its terminating zero.
+inline constexpr std::size_t kSymmetryLabelSize = 16;
+// Writes the group's name as the config names it ("none", "xy", "rot6 z", "rot6m z")
+// into `out` (kSymmetryLabelSize: never truncated); returns the characters written
+// (no zero counted). The station's log and the display's HUD both use it.
+std::size_t symmetry_label(const SymmetrySpec& spec, std::span<char> out);
+
 class SymmetryGroup {
  public:
   static constexpr std::size_t kMaxOrder = 2 * kMaxRotationOrder;

@@ -1,7 +1,7 @@
 // SymmetryCycle: the groups a sculptor steps through with the symmetry_cycle button
 // chord or a display's cycle_symmetry command ([sculpt] symmetry_cycle; default: none
 // and the configured symmetry). next() is the group after the current one (the first
-// when the current one is not in the cycle). symmetry_label() names a group the way the
+// when the current one is not in the cycle). math::symmetry_label() names a group the way the
 // configuration does ("none", "x", "xz", "rot6 z", "rot6m y"). Plain data, no heap.
 #pragma once
 
@@ -32,11 +32,5 @@ struct SymmetryCycle {
   // failed_precondition: fewer than two groups (nothing to cycle to).
   Result<math::SymmetrySpec> next(const math::SymmetrySpec& current) const;
 };
-
-// Longest label symmetry_label() writes, with its terminating zero.
-inline constexpr std::size_t kSymmetryLabelSize = 16;
-// Writes the group's name into `out` (kSymmetryLabelSize: never truncated); returns
-// the characters written (no zero counted).
-std::size_t symmetry_label(const math::SymmetrySpec& spec, std::span<char> out);
 
 }  // namespace twister::session
