@@ -169,6 +169,7 @@ std::vector<journal::JournalRecord> read_journal(const std::string& path) {
 TEST(RefineStation, AtCapacityTheStationSaysWhyAndCarriesOn) {
   const std::string journal = temp_path("small.bin");
   ::unlink(journal.c_str());
+  ::unlink((journal + ".ckpt").c_str());  // its checkpoint
   const ProcessRun r = run(std::string(TWISTER_STATION_BIN) + " --config " +
                            station_config(journal, 25, "two_hands"));
   EXPECT_EQ(r.exit_code, 0) << r.output;
@@ -178,11 +179,13 @@ TEST(RefineStation, AtCapacityTheStationSaysWhyAndCarriesOn) {
   EXPECT_THAT(r.output, HasSubstr("strokes committed 1"));
   ASSERT_EQ(read_journal(journal).size(), 1u);
   ::unlink(journal.c_str());
+  ::unlink((journal + ".ckpt").c_str());  // its checkpoint
 }
 
 TEST(RefineStation, StartUpReplayAndTwisterReplayAgreeOnTheRefinedMesh) {
   const std::string journal = temp_path("big.bin");
   ::unlink(journal.c_str());
+  ::unlink((journal + ".ckpt").c_str());  // its checkpoint
   const ProcessRun live = run(std::string(TWISTER_STATION_BIN) + " --log-level info --config " +
                               station_config(journal, 20000, "two_hands"));
   ASSERT_EQ(live.exit_code, 0) << live.output;
@@ -206,6 +209,7 @@ TEST(RefineStation, StartUpReplayAndTwisterReplayAgreeOnTheRefinedMesh) {
   EXPECT_THAT(replay.output, HasSubstr("checksum " + checksum));
   ::unlink((journal + ".obj").c_str());
   ::unlink(journal.c_str());
+  ::unlink((journal + ".ckpt").c_str());  // its checkpoint
 }
 
 // A clutch chain (sim/scenarios/freeze_360.scn: hand 0 holds, hand 1 turns a full turn
@@ -215,6 +219,7 @@ TEST(RefineStation, AClutchChainIsRefinedAtItsEndAndReplaysTheSame) {
   const std::string journal = temp_path("chain.bin");
   const std::string box = temp_path("chain_box.obj");
   ::unlink(journal.c_str());
+  ::unlink((journal + ".ckpt").c_str());  // its checkpoint
   const ProcessRun made = run(std::string(TWISTER_CLI_BIN) +
                               " mesh box -n 12 --size 0.20 --center 0.55 0 0.10 --out " + box);
   ASSERT_EQ(made.exit_code, 0) << made.output;
@@ -252,8 +257,23 @@ TEST(RefineStation, AClutchChainIsRefinedAtItsEndAndReplaysTheSame) {
                                 box + " --spare-vertices 20000 --out " + journal + ".obj");
   ASSERT_EQ(replay.exit_code, 0) << replay.output;
   EXPECT_THAT(replay.output, HasSubstr("checksum " + checksum));
-  for (const std::string& f : {journal + ".obj", journal, box}) ::unlink(f.c_str());
+  for (const std::string& f : {journal + ".obj", journal, journal + ".ckpt", box,
+                               temp_path("chain_chain.toml"), temp_path("chain_idle.toml")}) {
+    ::unlink(f.c_str());
+  }
 }
+
+// The configs station_config() writes, removed once every test has run.
+class RemoveStationConfigs : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    for (const char* scenario : {"two_hands", "idle"}) {
+      ::unlink(temp_path(std::string("station_") + scenario + ".toml").c_str());
+    }
+  }
+};
+[[maybe_unused]] ::testing::Environment* const kRemoveStationConfigs =
+    ::testing::AddGlobalTestEnvironment(new RemoveStationConfigs);
 
 }  // namespace
 }  // namespace twister::station_app

@@ -91,6 +91,7 @@ TEST(StationHealthLoop, MetricsFileFollowsTheRunWithoutAllocating) {
   const std::string journal = temp_path("journal.bin");
   const std::string metrics = temp_path("twister.prom");
   ::unlink(journal.c_str());
+  ::unlink((journal + ".ckpt").c_str());  // its checkpoint
   ::unlink(metrics.c_str());
   const std::string text = "[station]\njournal = \"" + journal +
                            "\"\nmesh = \"" TWISTER_DEPLOY_DIR
@@ -156,6 +157,7 @@ TEST(StationHealthLoop, MetricsFileFollowsTheRunWithoutAllocating) {
   EXPECT_EQ(out, "");
   ::unlink(metrics.c_str());
   ::unlink(journal.c_str());
+  ::unlink((journal + ".ckpt").c_str());  // its checkpoint
 }
 
 }  // namespace

@@ -135,6 +135,7 @@ TEST(StationLoopAllocation, SteadyStateWithStrokesButtonsLinkAndLogAllocatesNoth
   const std::string log_path = temp_path("log.txt");
   const std::string address = "unix:" + temp_path("link.sock");
   ::unlink(journal.c_str());
+  ::unlink((journal + ".ckpt").c_str());  // its checkpoint
   const StationFileConfig config = loop_config(journal);
   auto assembled = assemble_station(config, {TWISTER_DEPLOY_DIR, address});
   ASSERT_TRUE(assembled) << assembled.error().message;
@@ -210,6 +211,7 @@ TEST(StationLoopAllocation, SteadyStateWithStrokesButtonsLinkAndLogAllocatesNoth
       << lines;
   ::unlink(log_path.c_str());
   ::unlink(journal.c_str());
+  ::unlink((journal + ".ckpt").c_str());  // its checkpoint
 }
 
 }  // namespace

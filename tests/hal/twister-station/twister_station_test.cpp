@@ -80,6 +80,7 @@ std::string sim_config(const std::string& journal, const char* scenario, const c
 TEST(TwisterStationTest, SimConfigRunsAScriptedStrokeIntoTheJournal) {
   const std::string journal = temp_path("sim.bin");
   ::unlink(journal.c_str());
+  ::unlink((journal + ".ckpt").c_str());  // its checkpoint
   const auto r = run(std::string("--config ") + TWISTER_DEPLOY_DIR +
                      "/sim.toml --log-level info --journal " + journal);
   EXPECT_EQ(r.exit_code, 0) << r.output;
@@ -114,6 +115,7 @@ TEST(TwisterStationTest, SimConfigRunsAScriptedStrokeIntoTheJournal) {
       << replay.output << again.output;
   ::unlink((journal + ".obj").c_str());
   ::unlink(journal.c_str());
+  ::unlink((journal + ".ckpt").c_str());  // its checkpoint
 }
 
 // [buttons] backend = "sim": the scenario's button lines press hand 0's and hand 1's
@@ -121,6 +123,7 @@ TEST(TwisterStationTest, SimConfigRunsAScriptedStrokeIntoTheJournal) {
 TEST(TwisterStationTest, SimButtonsLetBothHandsGrabTogetherIntoOneTwoHandStroke) {
   const std::string journal = temp_path("two_hands.bin");
   ::unlink(journal.c_str());
+  ::unlink((journal + ".ckpt").c_str());  // its checkpoint
   const std::string cfg =
       write_file("two_hands.toml", station_section(journal) +
                                        "[tracker]\nbackend = \"sim\"\n"
@@ -150,11 +153,13 @@ TEST(TwisterStationTest, SimButtonsLetBothHandsGrabTogetherIntoOneTwoHandStroke)
   EXPECT_NEAR(s.end[1].v.z, -s.end[0].v.z, 0.03);
   ::unlink(cfg.c_str());
   ::unlink(journal.c_str());
+  ::unlink((journal + ".ckpt").c_str());  // its checkpoint
 }
 
 TEST(TwisterStationTest, UnplugAndReplugDuringARunReinitialisesAndContinues) {
   const std::string journal = temp_path("unplug.bin");
   ::unlink(journal.c_str());
+  ::unlink((journal + ".ckpt").c_str());  // its checkpoint
   const std::string cfg = write_file("unplug.toml", sim_config(journal, "unplug", "virtual"));
   const auto r = run("--config " + cfg + " --log-level info");
   EXPECT_EQ(r.exit_code, 0) << r.output;
@@ -174,6 +179,7 @@ TEST(TwisterStationTest, UnplugAndReplugDuringARunReinitialisesAndContinues) {
     EXPECT_LT(rec.stroke.end[0].origin.x, 20.0 * kInch);
   }
   ::unlink(journal.c_str());
+  ::unlink((journal + ".ckpt").c_str());  // its checkpoint
   ::unlink(cfg.c_str());
 }
 
@@ -210,6 +216,7 @@ RunResult run_against_pty(const char* scenario, const std::string& journal, doub
 TEST(TwisterStationTest, AgainstTwisterSimOnAPtyCommitsAScriptedStroke) {
   const std::string journal = temp_path("pty.bin");
   ::unlink(journal.c_str());
+  ::unlink((journal + ".ckpt").c_str());  // its checkpoint
   const auto r = run_against_pty("pty_stroke.txt", journal, 7.0);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("tracker serial"), std::string::npos) << r.output;
@@ -221,6 +228,7 @@ TEST(TwisterStationTest, AgainstTwisterSimOnAPtyCommitsAScriptedStroke) {
   EXPECT_NEAR(records[0].stroke.end[0].origin.x, 14.0 * kInch, 0.3 * kInch);
   EXPECT_NEAR(records[0].stroke.end[0].origin.y, -6.0 * kInch, 0.3 * kInch);
   ::unlink(journal.c_str());
+  ::unlink((journal + ".ckpt").c_str());  // its checkpoint
 }
 
 // The PTY is closed mid-stroke and re-created at the same symlink 1.5 s later: the
@@ -229,6 +237,7 @@ TEST(TwisterStationTest, AgainstTwisterSimOnAPtyCommitsAScriptedStroke) {
 TEST(TwisterStationTest, AgainstTwisterSimOnAPtySurvivesUnplugAndReplug) {
   const std::string journal = temp_path("pty_unplug.bin");
   ::unlink(journal.c_str());
+  ::unlink((journal + ".ckpt").c_str());  // its checkpoint
   const auto r = run_against_pty("pty_unplug.txt", journal, 15.5);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("tracker: lost"), std::string::npos) << r.output;
@@ -242,6 +251,7 @@ TEST(TwisterStationTest, AgainstTwisterSimOnAPtySurvivesUnplugAndReplug) {
   EXPECT_NEAR(records[1].stroke.end[0].origin.x, 18.0 * kInch, 0.3 * kInch);
   EXPECT_NEAR(records[1].stroke.end[0].origin.y, -4.0 * kInch, 0.3 * kInch);
   ::unlink(journal.c_str());
+  ::unlink((journal + ".ckpt").c_str());  // its checkpoint
 }
 
 TEST(TwisterStationTest, CheckAcceptsValidAndRefusesInvalidConfigs) {
@@ -297,6 +307,7 @@ TEST(TwisterStationTest, NotAJournalIsRefusedAndLeftAlone) {
   content << in.rdbuf();
   EXPECT_EQ(content.str(), "precious data, not a journal\n");
   ::unlink(journal.c_str());
+  ::unlink((journal + ".ckpt").c_str());  // its checkpoint
   ::unlink(cfg.c_str());
 }
 
@@ -316,6 +327,7 @@ TEST(TwisterStationTest, SigtermStopsCleanlyAndSystemdIsNotified) {
 
   const std::string journal = temp_path("rt.bin");
   ::unlink(journal.c_str());
+  ::unlink((journal + ".ckpt").c_str());  // its checkpoint
   const std::string cfg = write_file("rt.toml", sim_config(journal, "idle", "real") +
                                                     "[systemd]\nnotify = true\nwatchdog = true\n");
   const pid_t pid = ::fork();
@@ -350,6 +362,7 @@ TEST(TwisterStationTest, SigtermStopsCleanlyAndSystemdIsNotified) {
   ::close(sock);
   ::unlink(sock_path.c_str());
   ::unlink(journal.c_str());
+  ::unlink((journal + ".ckpt").c_str());  // its checkpoint
   ::unlink(cfg.c_str());
 }
 
