@@ -32,11 +32,7 @@ struct Options {
   int size = 512;
   bool force = false;
   bool strict = false;
-  bool progress = false;
-  bool quiet = false;
-  std::size_t undo_changes = session::kDefaultUndoChanges;
-  std::size_t undo_entries = session::kDefaultUndoEntries;
-  std::size_t spare_vertices = session::kDefaultSpareVertices;
+  ReplaySettings replay;
 };
 
 struct Target {
@@ -135,12 +131,10 @@ int run_export(Options& o) {
     return fail(kExitBadInput, "--up: expected a non-zero direction, got 0 0 0");
   }
   if (const int refused = check_inputs(o); refused != kExitOk) return refused;
-  auto model = ModelSession::open(o.base, o.spare_vertices, o.undo_changes, o.undo_entries);
-  if (!model) return fail(kExitBadInput, model.error().message);
-  const JournalReplay replayed = replay_journal(o.journal, **model, o.progress);
-  if (replayed.exit_code != kExitOk) return replayed.exit_code;
-  const mesh::Mesh& mesh = (*model)->mesh();
-  std::printf("replayed %zu records onto %s: %zu vertices %zu triangles\n", replayed.applied,
+  const ReplayedModel replayed = open_and_replay(o.journal, o.base, o.replay);
+  if (replayed.replay.exit_code != kExitOk) return replayed.replay.exit_code;
+  const mesh::Mesh& mesh = replayed.model->mesh();
+  std::printf("replayed %zu records onto %s: %zu vertices %zu triangles\n", replayed.replay.applied,
               o.base.c_str(), mesh.vertex_count(), mesh.triangle_count());
   return write_outputs(o, mesh);
 }
@@ -182,20 +176,10 @@ void add_export_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--strict", options->strict,
                 "Exit 1 when the STL is not a watertight solid (open, non-manifold or "
                 "degenerate); the files are written either way");
-  cmd->add_option("--undo-changes", options->undo_changes,
-                  "Undo history size in vertex changes (must match the station's)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--undo-entries", options->undo_entries,
-                  "Undo history size in strokes (must match the station's)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--spare-vertices", options->spare_vertices,
-                  "Room for refinement beyond the OBJ's vertices (the station's "
-                  "station.spare_vertices; default 100000)");
-  cmd->add_flag("--progress", options->progress,
-                "Always print replay progress (default: journals > 64 KiB)");
-  cmd->add_flag("-q,--quiet", options->quiet, "Only warnings and errors on stderr (no progress)");
+  add_replay_options(*cmd, options->replay);
   cmd->callback([options, &exit_code] {
-    start_command_log("export", options->quiet ? hal::LogLevel::warning : hal::LogLevel::notice);
+    start_command_log("export",
+                      options->replay.quiet ? hal::LogLevel::warning : hal::LogLevel::notice);
     exit_code = run_export(*options);
   });
 }

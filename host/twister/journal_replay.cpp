@@ -127,4 +127,32 @@ JournalReplay replay_journal(const std::string& journal_path, ModelSession& mode
   return result;
 }
 
+void add_replay_options(CLI::App& cmd, ReplaySettings& s) {
+  cmd.add_option("--undo-changes", s.undo_changes,
+                 "Undo history size in vertex changes (must match the station's)")
+      ->check(CLI::PositiveNumber);
+  cmd.add_option("--undo-entries", s.undo_entries,
+                 "Undo history size in strokes (must match the station's)")
+      ->check(CLI::PositiveNumber);
+  cmd.add_option("--spare-vertices", s.spare_vertices,
+                 "Room for refinement beyond the OBJ's vertices, and twice as many triangles "
+                 "(the station's station.spare_vertices; default 100000, the station's)");
+  cmd.add_flag("--progress", s.progress,
+               "Always print replay progress (default: journals > 64 KiB)");
+  cmd.add_flag("-q,--quiet", s.quiet, "Only warnings and errors on stderr (no progress)");
+}
+
+ReplayedModel open_and_replay(const std::string& journal_path, const std::string& model_path,
+                              const ReplaySettings& s) {
+  ReplayedModel out;
+  auto model = ModelSession::open(model_path, s.spare_vertices, s.undo_changes, s.undo_entries);
+  if (!model) {
+    out.replay.exit_code = fail(kExitBadInput, model.error().message);
+    return out;
+  }
+  out.replay = replay_journal(journal_path, **model, s.progress);
+  if (out.replay.exit_code == kExitOk) out.model = std::move(*model);
+  return out;
+}
+
 }  // namespace twister::cli

@@ -7,12 +7,26 @@
 // 64 KiB.
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <cstddef>
+#include <memory>
 #include <string>
 
 #include "model_session.hpp"
 
 namespace twister::cli {
+
+// What a command needs to replay a journal as the station ran it (its undo history's
+// sizes and refinement room), and how much it says; add_replay_options() gives each
+// its flag (--undo-changes, --undo-entries, --spare-vertices, --progress, -q).
+struct ReplaySettings {
+  std::size_t undo_changes = session::kDefaultUndoChanges;
+  std::size_t undo_entries = session::kDefaultUndoEntries;
+  std::size_t spare_vertices = session::kDefaultSpareVertices;  // station.spare_vertices
+  bool progress = false;
+  bool quiet = false;
+};
+void add_replay_options(CLI::App& cmd, ReplaySettings& s);
 
 struct JournalReplay {
   int exit_code = 0;        // kExitOk, or what the command returns (the error is logged)
@@ -20,5 +34,14 @@ struct JournalReplay {
 };
 
 JournalReplay replay_journal(const std::string& journal_path, ModelSession& model, bool progress);
+
+// Opens the model at `model_path` as the station holds it (ModelSession::open with
+// `s`) and replays the journal onto it; `model` is empty when exit_code is not kExitOk.
+struct ReplayedModel {
+  JournalReplay replay;
+  std::unique_ptr<ModelSession> model;
+};
+ReplayedModel open_and_replay(const std::string& journal_path, const std::string& model_path,
+                              const ReplaySettings& s);
 
 }  // namespace twister::cli

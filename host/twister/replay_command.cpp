@@ -22,13 +22,8 @@ struct Options {
   std::string journal;
   std::string mesh_in;
   std::string mesh_out;
-  std::size_t undo_changes = session::kDefaultUndoChanges;
-  std::size_t undo_entries = session::kDefaultUndoEntries;
-  // Refinement's room: the station's station.spare_vertices.
-  std::size_t spare_vertices = session::kDefaultSpareVertices;
+  ReplaySettings replay;
   bool world = false;
-  bool quiet = false;
-  bool progress = false;
   bool force = false;  // --force: replace an existing OBJ (never anything else)
 };
 
@@ -52,7 +47,7 @@ void report_refinement(const session::RefineStatus& r, const Options& o) {
         "",
         "refinement stopped at this mesh's capacity in %llu commits (--spare-vertices "
         "%zu); the station's result differs unless it had the same spare capacity",
-        static_cast<unsigned long long>(r.capacity_stops), o.spare_vertices);
+        static_cast<unsigned long long>(r.capacity_stops), o.replay.spare_vertices);
   }
 }
 
@@ -73,14 +68,11 @@ int check_output(const Options& o) {
 
 int run_replay(const Options& o) {
   if (const int refused = check_output(o); refused != kExitOk) return refused;
-  auto model = ModelSession::open(o.mesh_in, o.spare_vertices, o.undo_changes, o.undo_entries);
-  if (!model) return fail(kExitBadInput, model.error().message);
-  mesh::Mesh& mesh = (*model)->mesh();
-  session::SculptSession& session = (*model)->session();
-
-  const JournalReplay replayed = replay_journal(o.journal, **model, o.progress);
-  if (replayed.exit_code != kExitOk) return replayed.exit_code;
-  const std::size_t applied = replayed.applied;
+  const ReplayedModel replayed = open_and_replay(o.journal, o.mesh_in, o.replay);
+  if (replayed.replay.exit_code != kExitOk) return replayed.replay.exit_code;
+  mesh::Mesh& mesh = replayed.model->mesh();
+  session::SculptSession& session = replayed.model->session();
+  const std::size_t applied = replayed.replay.applied;
   if (o.world) to_world(mesh, session.object_pose());
   if (auto saved = meshio::save_obj(o.mesh_out, mesh, o.force); !saved) {
     return fail(kExitFailure, saved.error().message);
@@ -108,24 +100,14 @@ void add_replay_command(CLI::App& app, int& exit_code) {
       ->required();
   cmd->add_option("--mesh", options->mesh_in, "Initial mesh (OBJ)")->required();
   cmd->add_option("--out", options->mesh_out, "Output mesh (OBJ)")->required();
-  cmd->add_option("--undo-changes", options->undo_changes,
-                  "Undo history size in vertex changes (must match the station's)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--undo-entries", options->undo_entries,
-                  "Undo history size in strokes (must match the station's)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--spare-vertices", options->spare_vertices,
-                  "Room for refinement beyond the OBJ's vertices, and twice as many triangles "
-                  "(the station's station.spare_vertices; default 100000, the station's)");
+  add_replay_options(*cmd, options->replay);
   cmd->add_flag("--force", options->force,
                 "Replace an existing OBJ at --out (never a journal, checkpoint, a file a "
                 "running station holds, or another kind of file)");
   cmd->add_flag("--world", options->world, "Write world coordinates (apply the object pose)");
-  cmd->add_flag("--progress", options->progress,
-                "Always print progress (default: journals > 64 KiB)");
-  cmd->add_flag("-q,--quiet", options->quiet, "Only warnings and errors on stderr (no progress)");
   cmd->callback([options, &exit_code] {
-    start_command_log("replay", options->quiet ? hal::LogLevel::warning : hal::LogLevel::notice);
+    start_command_log("replay",
+                      options->replay.quiet ? hal::LogLevel::warning : hal::LogLevel::notice);
     exit_code = run_replay(*options);
   });
 }

@@ -6,8 +6,11 @@
 #include <unistd.h>
 
 #include <array>
+#include <cstddef>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <span>
 #include <string>
 
 namespace twister::host_test {
@@ -46,6 +49,19 @@ inline CommandRun run_command(const std::string& command) {
   const int status = pclose(p);
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+#ifdef TWISTER_CLI
+// stdout and stderr of `twister ARGS` (the build's twister).
+inline CommandRun run_twister(const std::string& args) {
+  return run_command(std::string(TWISTER_CLI) + " " + args + " 2>&1");
+}
+#endif
+
+// Writes `bytes` to `path` (a journal or a model a test made), replacing it.
+inline void write_file(const std::filesystem::path& path, std::span<const std::byte> bytes) {
+  std::ofstream f(path, std::ios::binary);
+  f.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
 }
 
 }  // namespace twister::host_test

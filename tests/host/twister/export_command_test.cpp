@@ -23,15 +23,6 @@ namespace {
 using namespace session::test_support;
 namespace fs = std::filesystem;
 
-host_test::CommandRun run(const std::string& args) {
-  return host_test::run_command(std::string(TWISTER_CLI) + " " + args + " 2>&1");
-}
-
-void write(const fs::path& path, std::span<const std::byte> bytes) {
-  std::ofstream f(path, std::ios::binary);
-  f.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-}
-
 // A number admesh prints after `label` (e.g. "Min X = "), or NaN.
 double admesh_value(const std::string& out, const std::string& label) {
   const std::size_t at = out.find(label);
@@ -57,11 +48,11 @@ class ExportCommand : public ::testing::Test {
   void SetUp() override {
     Station live(17);
     record(live, 5);
-    write(dir_ / "visitor.twj", live.storage.bytes());
-    ASSERT_EQ(
-        run("mesh sphere -n 24 --segments 32 --size 0.3 --out " + (dir_ / "base.obj").string())
-            .exit_code,
-        0);
+    host_test::write_file(dir_ / "visitor.twj", live.storage.bytes());
+    ASSERT_EQ(host_test::run_twister("mesh sphere -n 24 --segments 32 --size 0.3 --out " +
+                                     (dir_ / "base.obj").string())
+                  .exit_code,
+              0);
   }
   std::string journal() const { return (dir_ / "visitor.twj").string(); }
   host_test::ScratchDir dir_{"twister_export_test"};
@@ -70,8 +61,8 @@ class ExportCommand : public ::testing::Test {
 TEST_F(ExportCommand, StlPassesAdmeshAndGlbReloadsWithAMaterial) {
   const fs::path out = dir_ / "out";
   const host_test::CommandRun r =
-      run("export " + journal() + " --base " + (dir_ / "base.obj").string() + " --out " +
-          out.string() + " --size 128");
+      host_test::run_twister("export " + journal() + " --base " + (dir_ / "base.obj").string() +
+                             " --out " + out.string() + " --size 128");
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("replayed 5 records"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("check closed, manifold: 0 open edges, 0 non-manifold edges"),
@@ -115,13 +106,13 @@ TEST_F(ExportCommand, OpenModelIsReportedWithItsOpenEdges) {
   ASSERT_TRUE(meshio::save_obj(dir_ / "grid.obj", grid.mesh()).has_value());
   const std::string args = "export " + journal() + " --base " + (dir_ / "grid.obj").string() +
                            " --stl --out " + (dir_ / "open").string();
-  const host_test::CommandRun r = run(args);
+  const host_test::CommandRun r = host_test::run_twister(args);
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("check open, manifold: 64 open edges"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("is not a watertight solid"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(dir_ / "open" / "visitor.glb"));  // only what was asked
   // --strict: the same, exit 1 (the file is written either way).
-  const host_test::CommandRun strict = run(args + " --strict --force");
+  const host_test::CommandRun strict = host_test::run_twister(args + " --strict --force");
   EXPECT_EQ(strict.exit_code, 1) << strict.out;
 }
 
@@ -129,21 +120,21 @@ TEST_F(ExportCommand, BadInputsExitTwoAndNothingIsReplaced) {
   // No --base and no base.obj beside the journal.
   fs::create_directories(dir_ / "alone");
   fs::copy_file(journal(), dir_ / "alone" / "v.twj");
-  const host_test::CommandRun no_base =
-      run("export " + (dir_ / "alone" / "v.twj").string() + " --out " + (dir_ / "o1").string());
+  const host_test::CommandRun no_base = host_test::run_twister(
+      "export " + (dir_ / "alone" / "v.twj").string() + " --out " + (dir_ / "o1").string());
   EXPECT_EQ(no_base.exit_code, 2) << no_base.out;
   EXPECT_NE(no_base.out.find("no base model: pass --base"), std::string::npos) << no_base.out;
   // base.obj beside the journal is taken.
   fs::copy_file(dir_ / "base.obj", dir_ / "alone" / "base.obj");
-  const host_test::CommandRun beside = run("export " + (dir_ / "alone" / "v.twj").string() +
-                                           " --glb --out " + (dir_ / "o1").string());
+  const host_test::CommandRun beside = host_test::run_twister(
+      "export " + (dir_ / "alone" / "v.twj").string() + " --glb --out " + (dir_ / "o1").string());
   EXPECT_EQ(beside.exit_code, 0) << beside.out;
   // An existing file is refused before any work, and left alone.
   fs::create_directories(dir_ / "o2");
   std::ofstream(dir_ / "o2" / "visitor.stl") << "solid mine\n";
   const host_test::CommandRun exists =
-      run("export " + journal() + " --base " + (dir_ / "base.obj").string() + " --out " +
-          (dir_ / "o2").string());
+      host_test::run_twister("export " + journal() + " --base " + (dir_ / "base.obj").string() +
+                             " --out " + (dir_ / "o2").string());
   EXPECT_EQ(exists.exit_code, 2) << exists.out;
   EXPECT_NE(exists.out.find("exists"), std::string::npos) << exists.out;
   EXPECT_EQ(fs::file_size(dir_ / "o2" / "visitor.stl"), 11U);
@@ -151,19 +142,20 @@ TEST_F(ExportCommand, BadInputsExitTwoAndNothingIsReplaced) {
   // A journal as the output's name: never replaced, not even with --force.
   fs::copy_file(journal(), dir_ / "o2" / "visitor.glb");
   const host_test::CommandRun journal_out =
-      run("export " + journal() + " --base " + (dir_ / "base.obj").string() +
-          " --glb --force --out " + (dir_ / "o2").string());
+      host_test::run_twister("export " + journal() + " --base " + (dir_ / "base.obj").string() +
+                             " --glb --force --out " + (dir_ / "o2").string());
   EXPECT_EQ(journal_out.exit_code, 2) << journal_out.out;
   EXPECT_NE(journal_out.out.find("is a journal"), std::string::npos) << journal_out.out;
   // Not a journal; a zero up.
   std::ofstream(dir_ / "nope.twj") << "hello";
-  EXPECT_EQ(run("export " + (dir_ / "nope.twj").string() + " --base " +
-                (dir_ / "base.obj").string() + " --out " + (dir_ / "o3").string())
-                .exit_code,
-            2);
+  EXPECT_EQ(
+      host_test::run_twister("export " + (dir_ / "nope.twj").string() + " --base " +
+                             (dir_ / "base.obj").string() + " --out " + (dir_ / "o3").string())
+          .exit_code,
+      2);
   const host_test::CommandRun zero =
-      run("export " + journal() + " --base " + (dir_ / "base.obj").string() + " --up 0 0 0 --out " +
-          (dir_ / "o4").string());
+      host_test::run_twister("export " + journal() + " --base " + (dir_ / "base.obj").string() +
+                             " --up 0 0 0 --out " + (dir_ / "o4").string());
   EXPECT_EQ(zero.exit_code, 2);
   EXPECT_NE(zero.out.find("--up"), std::string::npos) << zero.out;
 }
@@ -172,10 +164,10 @@ TEST_F(ExportCommand, LongJournalShowsProgress) {
   Station live(17);
   record(live, 400);
   ASSERT_GT(live.storage.bytes().size(), std::size_t{1} << 16);
-  write(dir_ / "long.twj", live.storage.bytes());
-  const host_test::CommandRun r =
-      run("export " + (dir_ / "long.twj").string() + " --base " + (dir_ / "base.obj").string() +
-          " --glb --out " + (dir_ / "long").string());
+  host_test::write_file(dir_ / "long.twj", live.storage.bytes());
+  const host_test::CommandRun r = host_test::run_twister(
+      "export " + (dir_ / "long.twj").string() + " --base " + (dir_ / "base.obj").string() +
+      " --glb --out " + (dir_ / "long").string());
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("twister export:  50% ("), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("replayed 400 records"), std::string::npos) << r.out;

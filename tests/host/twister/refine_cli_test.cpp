@@ -21,15 +21,6 @@ namespace {
 using namespace session::test_support;
 namespace fs = std::filesystem;
 
-host_test::CommandRun run(const std::string& args) {
-  return host_test::run_command(std::string(TWISTER_CLI) + " " + args + " 2>&1");
-}
-
-void write(const fs::path& path, std::span<const std::byte> bytes) {
-  std::ofstream f(path, std::ios::binary);
-  f.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-}
-
 TEST(RefineCli, MeshShapesAtAChosenResolution) {
   const host_test::ScratchDir dir("twister_refine_cli_shapes");
   struct Case {
@@ -44,7 +35,7 @@ TEST(RefineCli, MeshShapesAtAChosenResolution) {
                         Case{"sphere -n 10 --segments 20", meshio::sphere_vertices(10, 20), true},
                         Case{"plane -n 9 --size 0.5", 81, false}}) {
     const fs::path out = dir / "shape.obj";
-    const auto r = run("mesh " + c.args + " --out " + out.string() + " --force");
+    const auto r = host_test::run_twister("mesh " + c.args + " --out " + out.string() + " --force");
     ASSERT_EQ(r.exit_code, 0) << c.args << "\n" << r.out;
     const auto m = meshio::load_obj(out);
     ASSERT_TRUE(m) << m.error().message;
@@ -53,8 +44,8 @@ TEST(RefineCli, MeshShapesAtAChosenResolution) {
       EXPECT_TRUE(test_support::closed_manifold(m->buffer->mesh())) << c.args;
     }
   }
-  EXPECT_EQ(run("mesh box -n 1 --out " + (dir / "x.obj").string()).exit_code, 2);
-  EXPECT_EQ(run("mesh cone --out " + (dir / "x.obj").string()).exit_code, 2);
+  EXPECT_EQ(host_test::run_twister("mesh box -n 1 --out " + (dir / "x.obj").string()).exit_code, 2);
+  EXPECT_EQ(host_test::run_twister("mesh cone --out " + (dir / "x.obj").string()).exit_code, 2);
 }
 
 TEST(RefineCli, ReplayRebuildsARefinedSessionBitForBit) {
@@ -64,12 +55,14 @@ TEST(RefineCli, ReplayRebuildsARefinedSessionBitForBit) {
   (void)twist_box(live, -1.0);
   ASSERT_TRUE(live.session->undo().ok());
   ASSERT_GT(live.mesh().vertex_count(), 26u);
-  write(dir / "j.twj", live.storage.bytes());
-  ASSERT_EQ(run("mesh box -n 3 --size 0.5 --out " + (dir / "box.obj").string()).exit_code, 0);
+  host_test::write_file(dir / "j.twj", live.storage.bytes());
+  ASSERT_EQ(host_test::run_twister("mesh box -n 3 --size 0.5 --out " + (dir / "box.obj").string())
+                .exit_code,
+            0);
   const std::string replay = "replay " + (dir / "j.twj").string() + " --mesh " +
                              (dir / "box.obj").string() + " --out " + (dir / "out.obj").string() +
                              " --force";
-  const auto same = run(replay + " --spare-vertices 6000");
+  const auto same = host_test::run_twister(replay + " --spare-vertices 6000");
   ASSERT_EQ(same.exit_code, 0) << same.out;
   char checksum[32];
   std::snprintf(checksum, sizeof checksum, "checksum %016llx",
@@ -78,7 +71,7 @@ TEST(RefineCli, ReplayRebuildsARefinedSessionBitForBit) {
   EXPECT_NE(same.out.find("refined 2 commits"), std::string::npos) << same.out;
   EXPECT_EQ(same.out.find("warning"), std::string::npos) << same.out;
   // Too little room: the strokes still apply, the refinement stops, and it says so.
-  const auto small = run(replay + " --spare-vertices 10");
+  const auto small = host_test::run_twister(replay + " --spare-vertices 10");
   ASSERT_EQ(small.exit_code, 0) << small.out;
   EXPECT_NE(small.out.find("refinement stopped at this mesh's capacity in 2 commits"),
             std::string::npos)

@@ -18,16 +18,6 @@ namespace {
 using namespace session::test_support;
 namespace fs = std::filesystem;
 
-// stdout and stderr of `twister ARGS`.
-host_test::CommandRun run(const std::string& args) {
-  return host_test::run_command(std::string(TWISTER_CLI) + " " + args + " 2>&1");
-}
-
-void write(const fs::path& path, std::span<const std::byte> bytes) {
-  std::ofstream f(path, std::ios::binary);
-  f.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-}
-
 class ReplayCommand : public ::testing::Test {
  protected:
   // A live session on the 17 x 17 grid (as the harness builds it): a few strokes.
@@ -50,17 +40,19 @@ TEST_F(ReplayCommand, SameMeshBitIdenticalAndFinerMeshSameStrokes) {
   Station live(17);
   record(live, 5);
   ASSERT_TRUE(live.session->undo().ok());
-  write(dir_ / "j.twj", live.storage.bytes());
+  host_test::write_file(dir_ / "j.twj", live.storage.bytes());
   // The harness grid is twister mesh grid -n 17 --size 1.
   ASSERT_TRUE(meshio::save_obj(dir_ / "coarse.obj", live.mesh).has_value());
   meshio::MeshBuffer initial(17 * 17, 2 * 16 * 16);
   make_grid(initial.mesh(), 17);
   ASSERT_TRUE(meshio::save_obj(dir_ / "initial.obj", initial.mesh()).has_value());
-  ASSERT_EQ(run("mesh grid -n 33 --size 1 --out " + (dir_ / "fine.obj").string()).exit_code, 0);
+  ASSERT_EQ(host_test::run_twister("mesh grid -n 33 --size 1 --out " + (dir_ / "fine.obj").string())
+                .exit_code,
+            0);
 
-  const host_test::CommandRun same =
-      run("replay " + (dir_ / "j.twj").string() + " --mesh " + (dir_ / "initial.obj").string() +
-          " --out " + (dir_ / "out.obj").string());
+  const host_test::CommandRun same = host_test::run_twister(
+      "replay " + (dir_ / "j.twj").string() + " --mesh " + (dir_ / "initial.obj").string() +
+      " --out " + (dir_ / "out.obj").string());
   ASSERT_EQ(same.exit_code, 0) << same.out;
   EXPECT_NE(same.out.find("replayed 6 records (strokes 5, moves 0, undos 1, redos 0)"),
             std::string::npos)
@@ -69,9 +61,9 @@ TEST_F(ReplayCommand, SameMeshBitIdenticalAndFinerMeshSameStrokes) {
   ASSERT_TRUE(out) << out.error().message;
   EXPECT_EQ(out->buffer->mesh().checksum(), live.mesh.checksum());
 
-  const host_test::CommandRun fine =
-      run("replay " + (dir_ / "j.twj").string() + " --mesh " + (dir_ / "fine.obj").string() +
-          " --out " + (dir_ / "fine_out.obj").string());
+  const host_test::CommandRun fine = host_test::run_twister(
+      "replay " + (dir_ / "j.twj").string() + " --mesh " + (dir_ / "fine.obj").string() +
+      " --out " + (dir_ / "fine_out.obj").string());
   ASSERT_EQ(fine.exit_code, 0) << fine.out;
   const auto f = meshio::load_obj(dir_ / "fine_out.obj");
   ASSERT_TRUE(f);
@@ -91,13 +83,13 @@ TEST_F(ReplayCommand, LongJournalShowsProgressAndTornTailIsReported) {
   record(live, 400);
   const auto bytes = live.storage.bytes();
   ASSERT_GT(bytes.size(), std::size_t{1} << 16);
-  write(dir_ / "long.twj", bytes.first(bytes.size() - 5));  // torn last record
+  host_test::write_file(dir_ / "long.twj", bytes.first(bytes.size() - 5));  // torn last record
   meshio::MeshBuffer initial(17 * 17, 2 * 16 * 16);
   make_grid(initial.mesh(), 17);
   ASSERT_TRUE(meshio::save_obj(dir_ / "initial.obj", initial.mesh()).has_value());
-  const host_test::CommandRun r =
-      run("replay " + (dir_ / "long.twj").string() + " --mesh " + (dir_ / "initial.obj").string() +
-          " --out " + (dir_ / "out.obj").string());
+  const host_test::CommandRun r = host_test::run_twister(
+      "replay " + (dir_ / "long.twj").string() + " --mesh " + (dir_ / "initial.obj").string() +
+      " --out " + (dir_ / "out.obj").string());
   ASSERT_EQ(r.exit_code, 0) << r.out;
   EXPECT_NE(r.out.find("twister replay:  50% ("), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("torn_record tail"), std::string::npos) << r.out;
@@ -111,15 +103,15 @@ TEST_F(ReplayCommand, BadInputsExitTwo) {
   ASSERT_TRUE(meshio::make_grid(initial.mesh(), 3, 1.0f).ok());
   ASSERT_TRUE(meshio::save_obj(dir_ / "ok.obj", initial.mesh()).has_value());
   const host_test::CommandRun not_journal =
-      run("replay " + (dir_ / "not_a_journal").string() + " --mesh " + (dir_ / "ok.obj").string() +
-          " --out " + (dir_ / "o.obj").string());
+      host_test::run_twister("replay " + (dir_ / "not_a_journal").string() + " --mesh " +
+                             (dir_ / "ok.obj").string() + " --out " + (dir_ / "o.obj").string());
   EXPECT_EQ(not_journal.exit_code, 2);
   EXPECT_NE(not_journal.out.find("not a Twister journal"), std::string::npos);
   const host_test::CommandRun bad_mesh =
-      run("replay " + (dir_ / "not_a_journal").string() + " --mesh " + (dir_ / "bad.obj").string() +
-          " --out " + (dir_ / "o.obj").string());
+      host_test::run_twister("replay " + (dir_ / "not_a_journal").string() + " --mesh " +
+                             (dir_ / "bad.obj").string() + " --out " + (dir_ / "o.obj").string());
   EXPECT_EQ(bad_mesh.exit_code, 2);
-  EXPECT_EQ(run("replay").exit_code, 2);
+  EXPECT_EQ(host_test::run_twister("replay").exit_code, 2);
   EXPECT_FALSE(fs::exists(dir_ / "o.obj"));
 }
 
