@@ -18,8 +18,6 @@ using session::VisitorNote;
 using session::VisitorPhase;
 
 constexpr ports::TimestampUs kS = 1'000'000;
-constexpr std::uint8_t kLeftRadius = 1;
-constexpr std::uint8_t kRightFreeze = 5;
 
 // In memory: what archive() got, or a full disk.
 class FakeArchive final : public SculptureArchive {
@@ -49,13 +47,8 @@ class FakeArchive final : public SculptureArchive {
 };
 
 StationConfig exhibit_config(bool on) {
-  StationConfig c = test_config();
+  StationConfig c = exhibit_test_config();
   c.exhibit.visitor.enabled = on;
-  c.exhibit.visitor.idle_us = 20 * kS;
-  c.exhibit.visitor.grace_us = 3 * kS;
-  c.exhibit.visitor.chord_hold_us = kS;
-  c.exhibit.visitor.retry_us = 2 * kS;
-  c.exhibit.chord_lines = (1u << kLeftRadius) | (1u << kRightFreeze);
   return c;
 }
 

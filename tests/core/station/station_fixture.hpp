@@ -106,6 +106,23 @@ StationConfig test_config() {
   return c;
 }
 
+// The paper map's lines the exhibit tests' new-sculpture chord holds.
+constexpr std::uint8_t kLeftRadius = 1, kRightFreeze = 5;
+
+// Exhibit mode as the exhibit tests run it: idle 20 s, grace 3 s, the chord (left
+// radius + right freeze) held 1 s, a failed archive retried every 2 s.
+inline StationConfig exhibit_test_config() {
+  constexpr ports::TimestampUs kSecond = 1'000'000;
+  StationConfig c = test_config();
+  c.exhibit.visitor.enabled = true;
+  c.exhibit.visitor.idle_us = 20 * kSecond;
+  c.exhibit.visitor.grace_us = 3 * kSecond;
+  c.exhibit.visitor.chord_hold_us = kSecond;
+  c.exhibit.visitor.retry_us = 2 * kSecond;
+  c.exhibit.chord_lines = (1u << kLeftRadius) | (1u << kRightFreeze);
+  return c;
+}
+
 // 21 x 21 vertices over x in [0.1, 0.7] m, y in [-0.5, 0.1] m at z = 0.127 m (5 in):
 // around the hands of the tests.
 constexpr std::size_t kGridN = 21;

@@ -16,44 +16,29 @@
 //   - the current journal is one sculpture (its identity is no archive's);
 //   - the retention budget holds; no temporary is left.
 // EXHIBIT_DAY_VISITORS (default 50), EXHIBIT_DAY_KILLS (5), EXHIBIT_DAY_SEED set the day.
-#include <fcntl.h>
-#include <signal.h>
 #include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <chrono>
 #include <cinttypes>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <random>
 #include <set>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
-#include "../../core/station/station_fixture.hpp"
-#include "exhibit_archive.hpp"
-#include "fakes/fake_storage.hpp"
+#include "exhibit_life.hpp"
 #include "station_health.hpp"
-#include "twister/checkpoint/session_checkpoint.hpp"
-#include "twister/hal/posix_file_sink.hpp"
-#include "twister/hal/posix_file_storage.hpp"
 
 namespace twister::station_app {
 namespace {
 
-using namespace station::test_fixture;  // NOLINT: the station fixture's names
+using namespace exhibit_test;  // NOLINT: the exhibit lives' names
 namespace fs = std::filesystem;
 
-constexpr ports::TimestampUs kS = 1'000'000;
-constexpr std::time_t kDay0 = 1'795'000'000;  // 2026-11-18 (a virtual day's morning)
 constexpr std::uint32_t kKeepArchives = 30;
-constexpr std::uint8_t kLeftRadius = 1, kRightFreeze = 5, kRightGrab = 3;
 
 std::uint64_t env(const char* name, std::uint64_t fallback) {
   const char* v = std::getenv(name);
@@ -61,66 +46,27 @@ std::uint64_t env(const char* name, std::uint64_t fallback) {
 }
 
 station::StationConfig day_config() {
-  station::StationConfig c = test_config();
+  station::StationConfig c = exhibit_test_config();
   c.checkpoint_interval = 3;
-  c.exhibit.visitor.enabled = true;
-  c.exhibit.visitor.idle_us = 20 * kS;
-  c.exhibit.visitor.grace_us = 3 * kS;
-  c.exhibit.visitor.chord_hold_us = kS;
-  c.exhibit.visitor.retry_us = 2 * kS;
-  c.exhibit.chord_lines = (1u << kLeftRadius) | (1u << kRightFreeze);
   return c;
 }
 
-struct Paths {
-  std::string dir, journal, archive;
-};
-
 // One life of the station, in the child. Reports to `fd` one line per fact:
 // "saved ID SEQ", "t US" (virtual time), "visitors N", "done".
-class Life {
+class Life : StationLife {
  public:
-  Life(const Paths& p, int fd, ports::TimestampUs t0, std::uint64_t seed)
-      : paths_(p),
-        fd_(fd),
-        rng_(seed),
-        config_(day_config()),
-        clock_(t0),
-        responder_(stream_, config_.session.protocol) {}
+  Life(const LifePaths& p, int fd, ports::TimestampUs t0, std::uint64_t seed)
+      : StationLife(p, fd, t0, day_config()), rng_(seed) {
+    report_time_ = true;
+  }
 
   int run(std::uint32_t visitors, bool full_disk) {
     ::signal(SIGXFSZ, SIG_IGN);
     if (!journal_.open({paths_.journal, true, true, false}).ok()) return 3;
-    ExhibitArchiveConfig a;
-    a.dir = paths_.archive;
-    a.journal_path = paths_.journal;
-    a.keep_count = kKeepArchives;
-    a.wall_clock = [this] { return kDay0 + static_cast<std::time_t>(clock_.now_us() / kS); };
-    a.mono_clock = [this] { return clock_.now_us(); };
-    ExhibitArchive archive(a, meshio_model_writer({0.0F, 0.0F, 1.0F}));
-    auto recovered = archive.recover();
-    if (!recovered) return 4;
-    say("recovered %d %d\n", recovered->temporaries_removed, recovered->rotation_finished ? 1 : 0);
-    make_grid(*mesh_);
-    make_grid(*base_);
-    hal::PosixFileSinkConfig out;
-    out.path = paths_.journal + ".ckpt";
-    out.replace = hal::PosixFileSinkConfig::Replace::own_magic;
-    out.magic.assign(checkpoint::kCheckpointMagic.begin(), checkpoint::kCheckpointMagic.end());
-    hal::PosixFileSink checkpoint_out(out);
-    hal::PosixFileStorage checkpoint_in;
-    const bool have_in = checkpoint_in.open({out.path, false, false, true}).ok();
-    station::StationFiles files{nullptr,
-                                have_in ? &checkpoint_in : nullptr,
-                                &checkpoint_out,
-                                static_cast<std::uint32_t>(rng_() | 1u),
-                                &archive,
-                                base_.get(),
-                                recovered->visitors_today};
-    station_ = std::make_unique<station::Station>(stream_, buttons_, clock_, journal_, *mesh_,
-                                                  work_->spans(), config_, files);
-    if (!station_->start().ok()) return 5;
-    for (int i = 0; i < 500 && !station_->tracker_session().streaming(); ++i) tick();
+    ExhibitArchive archive(archive_config(kKeepArchives), meshio_model_writer({0.0F, 0.0F, 1.0F}));
+    if (const int rc = start(archive, journal_, static_cast<std::uint32_t>(rng_() | 1u)); rc != 0) {
+      return rc;
+    }
     for (std::uint32_t v = 0; v < visitors; ++v) {
       visit(full_disk && v == 1);
       const station::VisitorView view = station_->visitor_view();
@@ -157,56 +103,26 @@ class Life {
   }
 
  private:
-  template <typename... A>
-  void say(const char* format, A... args) {
-    char line[512];
-    const int n = std::snprintf(line, sizeof line, format, args...);
-    if (n > 0) (void)!::write(fd_, line, std::min(sizeof line - 1, static_cast<std::size_t>(n)));
-  }
-  void drain() {
-    for (auto e = station_->next_event(); e.ok(); e = station_->next_event()) {
-      if (e->kind == SessionEventKind::committed && e->status.ok() && !e->stroke_end().repeat) {
-        say("saved %08x %u\n", station_->visitor_view().sculpture, e->stroke_end().sequence);
-      }
-    }
-  }
-  void tick(ports::TimestampUs step = 8'333) {
-    responder_.service();
-    responder_.emit(1, left_, false);
-    responder_.emit(2, right_, false);
-    (void)station_->poll();
-    drain();
-    responder_.service();
-    clock_.advance_us(step);
-    if (clock_.now_us() - said_us_ >= kS) {
-      said_us_ = clock_.now_us();
-      say("t %lld\n", static_cast<long long>(said_us_));
-    }
-  }
-  void wait_s(double s) {
-    const ports::TimestampUs end = clock_.now_us() + static_cast<ports::TimestampUs>(s * kS);
-    while (clock_.now_us() < end) tick(50'000);
-  }
   void stroke() {
     std::uniform_real_distribution<float> d(-3.0F, 3.0F);
     right_ = {10.0F + d(rng_), d(rng_), 5.0F + 0.3F * d(rng_)};
     for (int i = 0; i < 3; ++i) tick();
-    buttons_.press(kRightGrab, true, clock_.now_us());
+    press(kRightGrab, true);
     for (int i = 0; i < 3; ++i) tick();
     for (int k = 0; k < 6; ++k) {
       right_[0] += 0.2F * d(rng_);
       right_[1] += 0.2F * d(rng_);
       tick();
     }
-    buttons_.press(kRightGrab, false, clock_.now_us());
+    press(kRightGrab, false);
     for (int i = 0; i < 3; ++i) tick();
   }
   void chord(double hold_s) {
-    buttons_.press(kLeftRadius, true, clock_.now_us());
-    buttons_.press(kRightFreeze, true, clock_.now_us());
+    press(kLeftRadius, true);
+    press(kRightFreeze, true);
     wait_s(hold_s);
-    buttons_.press(kLeftRadius, false, clock_.now_us());
-    buttons_.press(kRightFreeze, false, clock_.now_us());
+    press(kLeftRadius, false);
+    press(kRightFreeze, false);
     tick();
   }
   void visit(bool full_disk) {
@@ -252,22 +168,7 @@ class Life {
     wait_s(std::uniform_real_distribution<double>(6.0, 15.0)(rng_));
   }
 
-  Paths paths_;
-  int fd_;
   std::mt19937_64 rng_;
-  station::StationConfig config_;
-  test::FakeByteStream stream_;
-  test::FakeClock clock_;
-  test::FakeButtonSourceWithStorage<1 << 16> buttons_;  // a day of presses
-  FastrakResponder responder_;
-  hal::PosixFileStorage journal_;
-  std::unique_ptr<TestMesh> mesh_ = std::make_unique<TestMesh>();
-  std::unique_ptr<TestMesh> base_ = std::make_unique<TestMesh>();
-  std::unique_ptr<TestWork> work_ = std::make_unique<TestWork>();
-  std::unique_ptr<station::Station> station_;
-  std::array<float, 3> left_{-10.0F, 0.0F, 5.0F};
-  std::array<float, 3> right_{10.0F, 0.0F, 5.0F};
-  ports::TimestampUs said_us_ = 0;
 };
 
 struct Reported {
@@ -307,93 +208,18 @@ void parse(const std::string& text, Reported& r) {
 
 // Forks a life; kills it after `kill_after_ms` of real time (0: runs to its end).
 // Returns its exit status (or -SIGKILL) and appends its report.
-int run_life(const Paths& p, Reported& r, std::uint64_t seed, std::uint32_t visitors,
+int run_life(const LifePaths& p, Reported& r, std::uint64_t seed, std::uint32_t visitors,
              bool full_disk, int kill_after_ms) {
-  int pipe_fds[2];
-  if (::pipe(pipe_fds) != 0) return -1;
   const ports::TimestampUs t0 = r.t + 10 * kS;
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    ::close(pipe_fds[0]);
-    int rc = 0;
-    {
-      Life life(p, pipe_fds[1], t0, seed);
-      rc = life.run(visitors, full_disk);
-    }
-    ::_exit(rc);
-  }
-  ::close(pipe_fds[1]);
-  std::string text;
-  const auto start = std::chrono::steady_clock::now();
-  ::fcntl(pipe_fds[0], F_SETFL, O_NONBLOCK);
-  bool killed = false;
-  for (;;) {
-    char buf[4096];
-    const ssize_t n = ::read(pipe_fds[0], buf, sizeof buf);
-    if (n > 0) {
-      text.append(buf, static_cast<std::size_t>(n));
-      continue;
-    }
-    if (n == 0) break;  // the child is gone
-    if (!killed && kill_after_ms > 0 &&
-        std::chrono::steady_clock::now() - start > std::chrono::milliseconds(kill_after_ms)) {
-      ::kill(pid, SIGKILL);
-      killed = true;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
-  ::close(pipe_fds[0]);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  parse(text, r);
-  if (std::getenv("EXHIBIT_DAY_VERBOSE") != nullptr) std::fputs(text.c_str(), stdout);
-  if (WIFSIGNALED(status)) return -WTERMSIG(status);
-  return WEXITSTATUS(status);
-}
-
-std::string read_file(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
-}
-
-std::string json_value(const std::string& json, const std::string& key) {
-  const auto at = json.find("\"" + key + "\": ");
-  if (at == std::string::npos) return "";
-  auto from = at + key.size() + 4;
-  auto to = json.find_first_of(",\n", from);
-  std::string v = json.substr(from, to - from);
-  if (!v.empty() && v.front() == '"') v = v.substr(1, v.size() - 2);
-  return v;
-}
-
-// Replays `bytes` as a journal onto the base grid: the model's checksum, its records
-// and its identity (the station's own start-up path, on an in-memory copy).
-struct Replayed {
-  bool ok = false;
-  std::uint64_t checksum = 0;
-  std::uint32_t records = 0, id = 0;
-};
-Replayed replay(const std::string& bytes) {
-  Replayed out;
-  auto storage = std::make_unique<test::FakeStorageWithStorage<>>();
-  storage->load(std::as_bytes(std::span(bytes.data(), bytes.size())));
-  auto mesh = std::make_unique<TestMesh>();
-  make_grid(*mesh);
-  auto work = std::make_unique<TestWork>();
-  test::FakeByteStream stream;
-  test::FakeButtonSource buttons;
-  test::FakeClock clock(1);
-  station::StationConfig c = day_config();
-  c.exhibit = {};
-  station::Station s(stream, buttons, clock, *storage, *mesh, work->spans(), c);
-  if (!s.recover().ok()) return out;
-  const station::JournalRecovery& r = s.recovery();
-  out.ok = !r.survey.torn_tail() && !r.survey.corrupt();
-  out.checksum = s.mesh().checksum();
-  out.records = static_cast<std::uint32_t>(r.survey.records);
-  journal::JournalReader reader(*storage);
-  if (reader.open().ok()) out.id = reader.format().id;
-  return out;
+  const LifeRun run = fork_life(
+      [&](int fd) {
+        Life life(p, fd, t0, seed);
+        return life.run(visitors, full_disk);
+      },
+      kill_after_ms);
+  parse(run.text, r);
+  if (std::getenv("EXHIBIT_DAY_VERBOSE") != nullptr) std::fputs(run.text.c_str(), stdout);
+  return run.status;
 }
 
 TEST(ExhibitDay, VisitorsKillsAndAFullDiskLoseNothingAndEveryArchiveReplays) {
@@ -404,7 +230,7 @@ TEST(ExhibitDay, VisitorsKillsAndAFullDiskLoseNothingAndEveryArchiveReplays) {
   const fs::path dir = fs::temp_directory_path() / ("exhibit_day_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const Paths p{dir.string(), (dir / "journal.twj").string(), (dir / "archive").string()};
+  const LifePaths p{dir.string(), (dir / "journal.twj").string(), (dir / "archive").string()};
   Reported r;
   int killed = 0;
   for (std::uint64_t life = 0; life < kills; ++life) {
@@ -444,7 +270,7 @@ TEST(ExhibitDay, VisitorsKillsAndAFullDiskLoseNothingAndEveryArchiveReplays) {
       bytes += fs::file_size(a / f);
     }
     const std::string json = read_file(a / "record.json");
-    const Replayed rep = replay(read_file(a / "journal.twj"));
+    const Replayed rep = replay(read_file(a / "journal.twj"), day_config());
     ASSERT_TRUE(rep.ok) << name;
     std::uint32_t id = 0;
     (void)parse_archive_name(name, &id, nullptr, nullptr);
@@ -473,7 +299,7 @@ TEST(ExhibitDay, VisitorsKillsAndAFullDiskLoseNothingAndEveryArchiveReplays) {
   // The full disk was met: archives refused (EFBIG counts as full) and retried.
   EXPECT_GE(r.disk_full, 1u);
   // The current journal: one sculpture, none of the archived ones.
-  const Replayed current = replay(read_file(p.journal));
+  const Replayed current = replay(read_file(p.journal), day_config());
   ASSERT_TRUE(current.ok);
   EXPECT_EQ(archived.count(current.id), 0u);
   // Every stroke reported saved is in its sculpture's journal; sculptures without an
@@ -510,12 +336,10 @@ TEST(ExhibitDay, VisitorsKillsAndAFullDiskLoseNothingAndEveryArchiveReplays) {
   EXPECT_EQ(metric("twister_visitors_today"), static_cast<double>(r.order.size()));
   EXPECT_EQ(metric("twister_strokes_committed_total"), static_cast<double>(r.last_committed));
   EXPECT_GT(metric("twister_archive_free_bytes"), 0.0);
-  if (std::system("command -v promtool >/dev/null 2>&1") == 0) {
-    const std::string check = "promtool check metrics < " + prom.string() + " >/dev/null 2>&1";
-    EXPECT_EQ(std::system(check.c_str()), 0) << "promtool check metrics refuses " << prom;
-  } else {
-    std::printf("promtool not installed: the metrics file is not checked by it\n");
-  }
+  ASSERT_EQ(std::system("command -v promtool >/dev/null 2>&1"), 0)
+      << "promtool is missing (.ci/deps.sh installs Debian's prometheus)";
+  const std::string check = "promtool check metrics < " + prom.string() + " >/dev/null 2>&1";
+  EXPECT_EQ(std::system(check.c_str()), 0) << "promtool check metrics refuses " << prom;
   std::printf("exhibit day: %zu sculptures with saved strokes (%" PRIu64
               " strokes reported saved, 0 lost), %d SIGKILLs, %zu archives kept (%" PRIu64
               " bytes), current journal %u records; full disk: %u archive attempts refused, %u "

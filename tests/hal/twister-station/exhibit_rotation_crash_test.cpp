@@ -14,36 +14,24 @@
 // never partial; right after the restart the journal holds exactly the current
 // sculpture (the second one, whole, before the archive's rename; a new, empty journal
 // after it); at the end it is a new empty journal that no archive holds.
-#include <fcntl.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cinttypes>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "../../core/station/station_fixture.hpp"
-#include "exhibit_archive.hpp"
-#include "fakes/fake_storage.hpp"
-#include "twister/checkpoint/session_checkpoint.hpp"
-#include "twister/hal/posix_file_sink.hpp"
-#include "twister/hal/posix_file_storage.hpp"
+#include "exhibit_life.hpp"
 
 namespace twister::station_app {
 namespace {
 
-using namespace station::test_fixture;  // NOLINT: the station fixture's names
+using namespace exhibit_test;  // NOLINT: the exhibit lives' names
 namespace fs = std::filesystem;
-
-constexpr ports::TimestampUs kS = 1'000'000;
-constexpr std::time_t kDay0 = 1'795'000'000;
-constexpr std::uint8_t kRightGrab = 3;
 
 // Where the first life stops (after the named step).
 enum class Stop : std::uint8_t {
@@ -83,13 +71,11 @@ constexpr const char* kStopNames[] = {"temporary_made",
 bool before_rename(Stop s) { return s < Stop::renamed; }
 
 station::StationConfig crash_config() {
-  station::StationConfig c = test_config();
+  station::StationConfig c = exhibit_test_config();
   c.checkpoint_interval = 2;
-  c.exhibit.visitor.enabled = true;
   c.exhibit.visitor.idle_us = 60 * kS;
   c.exhibit.visitor.grace_us = 2 * kS;
-  c.exhibit.visitor.chord_hold_us = kS;
-  c.exhibit.visitor.retry_us = 2 * kS;
+  c.exhibit.chord_lines = 0;  // ended by the command only
   return c;
 }
 
@@ -157,20 +143,12 @@ class StoppingWriter final : public ArchiveModelWriter {
   std::function<void()> stop_;
 };
 
-struct Paths {
-  std::string journal, archive;
-};
-
 // One life in a forked child. Reports "saved ID SEQ", "recovered T F", "started ID
 // RECORDS", "ended_today N", "done" to `fd`. `stop`: where the first life stops.
-class Life {
+class Life : StationLife {
  public:
-  Life(const Paths& p, int fd, ports::TimestampUs t0)
-      : paths_(p),
-        fd_(fd),
-        config_(crash_config()),
-        clock_(t0),
-        responder_(stream_, config_.session.protocol) {}
+  Life(const LifePaths& p, int fd, ports::TimestampUs t0)
+      : StationLife(p, fd, t0, crash_config()) {}
 
   int run(bool first, Stop stop) {
     if (!journal_.open({paths_.journal, true, true, false}).ok()) return 3;
@@ -183,12 +161,7 @@ class Life {
       }
     };
     hooked.hook = at;
-    ExhibitArchiveConfig a;
-    a.dir = paths_.archive;
-    a.journal_path = paths_.journal;
-    a.keep_count = 1;  // the second archive prunes the first
-    a.wall_clock = [this] { return kDay0 + static_cast<std::time_t>(clock_.now_us() / kS); };
-    a.mono_clock = [this] { return clock_.now_us(); };
+    ExhibitArchiveConfig a = archive_config(1);  // the second archive prunes the first
     bool armed = false;
     a.step_hook = [&armed, &at](ArchiveStep s) {
       if (armed) at(static_cast<Stop>(static_cast<int>(s) + (s >= ArchiveStep::stl_written)));
@@ -197,32 +170,7 @@ class Life {
                                                    [&at] { at(Stop::writer_temporary); });
     StoppingWriter* stopping = writer.get();
     ExhibitArchive archive(a, std::move(writer));
-    auto recovered = archive.recover();
-    if (!recovered) return 4;
-    say("recovered %d %d\n", recovered->temporaries_removed, recovered->rotation_finished ? 1 : 0);
-    make_grid(*mesh_);
-    make_grid(*base_);
-    // The checkpoint (every 2 records): after the cut, the old one names the old journal.
-    hal::PosixFileSinkConfig out;
-    out.path = paths_.journal + ".ckpt";
-    out.replace = hal::PosixFileSinkConfig::Replace::own_magic;
-    out.magic.assign(checkpoint::kCheckpointMagic.begin(), checkpoint::kCheckpointMagic.end());
-    hal::PosixFileSink checkpoint_out(out);
-    hal::PosixFileStorage checkpoint_in;
-    const bool have_in = checkpoint_in.open({out.path, false, false, true}).ok();
-    station::StationFiles files{nullptr,
-                                have_in ? &checkpoint_in : nullptr,
-                                &checkpoint_out,
-                                0x1234567u + (first ? 0u : 1u),
-                                &archive,
-                                base_.get(),
-                                recovered->visitors_today};
-    station_ = std::make_unique<station::Station>(stream_, buttons_, clock_, hooked, *mesh_,
-                                                  work_->spans(), config_, files);
-    if (!station_->start().ok()) return 5;
-    say("started %08x %u\n", station_->visitor_view().sculpture,
-        static_cast<unsigned>(station_->visitor_view().records));
-    for (int i = 0; i < 500 && !station_->tracker_session().streaming(); ++i) tick();
+    if (const int rc = start(archive, hooked, 0x1234567u + (first ? 0u : 1u)); rc != 0) return rc;
     if (first) {
       sculpture(2);  // the first sculpture: archived, whole
       armed = true;
@@ -240,12 +188,6 @@ class Life {
   }
 
  private:
-  template <typename... A>
-  void say(const char* format, A... args) {
-    char line[256];
-    const int n = std::snprintf(line, sizeof line, format, args...);
-    if (n > 0) (void)!::write(fd_, line, std::min(sizeof line - 1, static_cast<std::size_t>(n)));
-  }
   void remove_one_pruned_file() {
     for (const auto& e : fs::directory_iterator(paths_.archive)) {
       if (e.path().filename().string().rfind(".tmp-prune-", 0) == 0) {
@@ -253,37 +195,17 @@ class Life {
       }
     }
   }
-  void drain() {
-    for (auto e = station_->next_event(); e.ok(); e = station_->next_event()) {
-      if (e->kind == SessionEventKind::committed && e->status.ok() && !e->stroke_end().repeat) {
-        say("saved %08x %u\n", station_->visitor_view().sculpture, e->stroke_end().sequence);
-      }
-    }
-  }
-  void tick(ports::TimestampUs step = 8'333) {
-    responder_.service();
-    responder_.emit(1, {-10.0F, 0.0F, 5.0F}, false);
-    responder_.emit(2, right_, false);
-    (void)station_->poll();
-    drain();
-    responder_.service();
-    clock_.advance_us(step);
-  }
-  void wait_s(double s) {
-    const ports::TimestampUs end = clock_.now_us() + static_cast<ports::TimestampUs>(s * kS);
-    while (clock_.now_us() < end) tick(50'000);
-  }
   void stroke(int k) {
     right_ = {10.0F + static_cast<float>(k % 3), static_cast<float>(k % 2), 5.0F};
     for (int i = 0; i < 3; ++i) tick();
-    buttons_.press(kRightGrab, true, clock_.now_us());
+    press(kRightGrab, true);
     for (int i = 0; i < 3; ++i) tick();
     for (int i = 0; i < 6; ++i) {
       right_[0] += 0.3F;
       right_[1] -= 0.2F;
       tick();
     }
-    buttons_.press(kRightGrab, false, clock_.now_us());
+    press(kRightGrab, false);
     for (int i = 0; i < 3; ++i) tick();
   }
   void end_and_archive() {
@@ -297,20 +219,6 @@ class Life {
     }
     end_and_archive();
   }
-
-  Paths paths_;
-  int fd_;
-  station::StationConfig config_;
-  test::FakeByteStream stream_;
-  test::FakeClock clock_;
-  test::FakeButtonSourceWithStorage<1 << 12> buttons_;
-  FastrakResponder responder_;
-  hal::PosixFileStorage journal_;
-  std::unique_ptr<TestMesh> mesh_ = std::make_unique<TestMesh>();
-  std::unique_ptr<TestMesh> base_ = std::make_unique<TestMesh>();
-  std::unique_ptr<TestWork> work_ = std::make_unique<TestWork>();
-  std::unique_ptr<station::Station> station_;
-  std::array<float, 3> right_{10.0F, 0.0F, 5.0F};
 };
 
 struct Report {
@@ -347,72 +255,13 @@ void parse(const std::string& text, Report& r) {
   }
 }
 
-int run_life(const Paths& p, Report& r, bool first, Stop stop, ports::TimestampUs t0) {
-  int fds[2];
-  if (::pipe(fds) != 0) return -1;
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    ::close(fds[0]);
-    int rc = 0;
-    {
-      Life life(p, fds[1], t0);
-      rc = life.run(first, stop);
-    }
-    ::_exit(rc);
-  }
-  ::close(fds[1]);
-  std::string text;
-  char buf[4096];
-  for (ssize_t n; (n = ::read(fds[0], buf, sizeof buf)) > 0;) {
-    text.append(buf, static_cast<std::size_t>(n));
-  }
-  ::close(fds[0]);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  parse(text, r);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
-}
-
-std::string read_file(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
-}
-
-std::string json_value(const std::string& json, const std::string& key) {
-  const auto at = json.find("\"" + key + "\": ");
-  if (at == std::string::npos) return "";
-  const auto from = at + key.size() + 4;
-  std::string v = json.substr(from, json.find_first_of(",\n", from) - from);
-  if (!v.empty() && v.front() == '"') v = v.substr(1, v.size() - 2);
-  return v;
-}
-
-struct Replayed {
-  bool ok = false;
-  std::uint64_t checksum = 0;
-  std::uint32_t records = 0, id = 0;
-};
-Replayed replay(const std::string& bytes) {
-  Replayed out;
-  auto storage = std::make_unique<test::FakeStorageWithStorage<>>();
-  storage->load(std::as_bytes(std::span(bytes.data(), bytes.size())));
-  auto mesh = std::make_unique<TestMesh>();
-  make_grid(*mesh);
-  auto work = std::make_unique<TestWork>();
-  test::FakeByteStream stream;
-  test::FakeButtonSource buttons;
-  test::FakeClock clock(1);
-  station::StationConfig c = crash_config();
-  c.exhibit = {};
-  station::Station s(stream, buttons, clock, *storage, *mesh, work->spans(), c);
-  if (!s.recover().ok()) return out;
-  const station::JournalRecovery& r = s.recovery();
-  out.ok = !r.survey.torn_tail() && !r.survey.corrupt();
-  out.checksum = s.mesh().checksum();
-  out.records = static_cast<std::uint32_t>(r.survey.records);
-  journal::JournalReader reader(*storage);
-  if (reader.open().ok()) out.id = reader.format().id;
-  return out;
+int run_life(const LifePaths& p, Report& r, bool first, Stop stop, ports::TimestampUs t0) {
+  const LifeRun run = fork_life([&](int fd) {
+    Life life(p, fd, t0);
+    return life.run(first, stop);
+  });
+  parse(run.text, r);
+  return run.status;
 }
 
 class RotationCrash : public ::testing::TestWithParam<Stop> {};
@@ -423,7 +272,7 @@ TEST_P(RotationCrash, TheNextStartLosesNothingAndArchivesExactlyOnce) {
                                                     "_" + kStopNames[static_cast<int>(stop)]);
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const Paths p{(dir / "journal.twj").string(), (dir / "archive").string()};
+  const LifePaths p{dir.string(), (dir / "journal.twj").string(), (dir / "archive").string()};
   Report first, second;
   ASSERT_EQ(run_life(p, first, true, stop, 1 * kS), 0) << "the first life did not stop";
   ASSERT_EQ(first.stopped, kStopNames[static_cast<int>(stop)]);
@@ -464,7 +313,7 @@ TEST_P(RotationCrash, TheNextStartLosesNothingAndArchivesExactlyOnce) {
     std::size_t entries = 0;
     for ([[maybe_unused]] const auto& f : fs::directory_iterator(e.path())) ++entries;
     EXPECT_EQ(entries, 5u) << name;
-    const Replayed rep = replay(read_file(e.path() / "journal.twj"));
+    const Replayed rep = replay(read_file(e.path() / "journal.twj"), crash_config());
     ASSERT_TRUE(rep.ok) << name;
     EXPECT_EQ(rep.id, id);
     char sum[20];
@@ -491,7 +340,7 @@ TEST_P(RotationCrash, TheNextStartLosesNothingAndArchivesExactlyOnce) {
   }
   EXPECT_EQ(lost, 0u);
   // The journal now: a new, empty one that no archive holds.
-  const Replayed current = replay(read_file(p.journal));
+  const Replayed current = replay(read_file(p.journal), crash_config());
   ASSERT_TRUE(current.ok);
   EXPECT_EQ(current.records, 0u);
   EXPECT_EQ(archives_of.count(current.id), 0u);
