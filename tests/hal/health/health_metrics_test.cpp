@@ -14,6 +14,7 @@
 #include <string>
 
 #include "allocation_counter.hpp"
+#include "prometheus_text.hpp"
 
 namespace twister::hal {
 namespace {
@@ -39,14 +40,6 @@ ToolRun run(const std::string& command) {
 std::string slurp(const fs::path& p) {
   std::ifstream in(p);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-// The value of a sample line "NAME VALUE" (NAME may carry labels).
-double sample(const std::string& text, const std::string& name) {
-  const std::string line = "\n" + name + " ";
-  const std::size_t at = text.find(line);
-  if (at == std::string::npos) return -12345.0;
-  return std::strtod(text.c_str() + at + line.size(), nullptr);
 }
 
 class HealthMetricsFile : public ::testing::Test {
@@ -85,18 +78,18 @@ TEST_F(HealthMetricsFile, PromtoolAcceptsItAndTheNumbersAreOurs) {
   const ToolRun check = run(std::string(TWISTER_PROMTOOL) + " check metrics < " + path.string());
   EXPECT_EQ(check.exit_code, 0) << check.out << text;
   EXPECT_EQ(check.out, "") << "promtool's lint findings";
-  EXPECT_EQ(sample(text, "twister_tracker_state{state=\"streaming\"}"), 1.0);
-  EXPECT_EQ(sample(text, "twister_tracker_state{state=\"lost\"}"), 0.0);
-  EXPECT_EQ(sample(text, "twister_tracker_rate_hertz"), 119.5);
-  EXPECT_EQ(sample(text, "twister_visitors_today"), 7.0);
-  EXPECT_EQ(sample(text, "twister_strokes_committed_total"), 42.0);
-  EXPECT_EQ(sample(text, "twister_strokes_not_saved_total"), 1.0);
-  EXPECT_EQ(sample(text, "twister_link_open"), 1.0);
-  EXPECT_EQ(sample(text, "twister_display_connected"), 1.0);
-  EXPECT_EQ(sample(text, "twister_spectators"), 2.0);
-  EXPECT_EQ(sample(text, "twister_archive_free_bytes"), 123456789012.0);
-  EXPECT_EQ(sample(text, "twister_uptime_seconds"), 3600.25);
-  EXPECT_EQ(sample(text, "twister_buttons_present"), 0.0);
+  EXPECT_EQ(test::prometheus_sample(text, "twister_tracker_state{state=\"streaming\"}"), 1.0);
+  EXPECT_EQ(test::prometheus_sample(text, "twister_tracker_state{state=\"lost\"}"), 0.0);
+  EXPECT_EQ(test::prometheus_sample(text, "twister_tracker_rate_hertz"), 119.5);
+  EXPECT_EQ(test::prometheus_sample(text, "twister_visitors_today"), 7.0);
+  EXPECT_EQ(test::prometheus_sample(text, "twister_strokes_committed_total"), 42.0);
+  EXPECT_EQ(test::prometheus_sample(text, "twister_strokes_not_saved_total"), 1.0);
+  EXPECT_EQ(test::prometheus_sample(text, "twister_link_open"), 1.0);
+  EXPECT_EQ(test::prometheus_sample(text, "twister_display_connected"), 1.0);
+  EXPECT_EQ(test::prometheus_sample(text, "twister_spectators"), 2.0);
+  EXPECT_EQ(test::prometheus_sample(text, "twister_archive_free_bytes"), 123456789012.0);
+  EXPECT_EQ(test::prometheus_sample(text, "twister_uptime_seconds"), 3600.25);
+  EXPECT_EQ(test::prometheus_sample(text, "twister_buttons_present"), 0.0);
   // Every metric has its HELP and TYPE.
   const std::regex sample_line(R"(\n(twister_[a-z_]+)[{ ])");
   for (auto it = std::sregex_iterator(text.begin(), text.end(), sample_line);
@@ -120,7 +113,7 @@ TEST_F(HealthMetricsFile, ReplacesItsOwnFileAtomicallyWithoutAllocating) {
   struct stat after {};
   ASSERT_EQ(::stat(path.c_str(), &after), 0);
   EXPECT_NE(before.st_ino, after.st_ino);  // a new file renamed into place
-  EXPECT_EQ(sample(slurp(path), "twister_strokes_committed_total"), 43.0);
+  EXPECT_EQ(test::prometheus_sample(slurp(path), "twister_strokes_committed_total"), 43.0);
   EXPECT_EQ((*file)->writes(), 2U);
   // No temporaries left in the collector's folder.
   std::size_t files = 0;

@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "exhibit_life.hpp"
+#include "prometheus_text.hpp"
 #include "station_health.hpp"
 
 namespace twister::station_app {
@@ -326,13 +327,7 @@ TEST(ExhibitDay, VisitorsKillsAndAFullDiskLoseNothingAndEveryArchiveReplays) {
   const fs::path prom = dir / "metrics.prom";
   ASSERT_TRUE(fs::is_regular_file(prom));
   const std::string text = read_file(prom);
-  const auto metric = [&](const std::string& name) {
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) {
-      if (line.rfind(name + " ", 0) == 0) return std::stod(line.substr(name.size() + 1));
-    }
-    return -1.0;
-  };
+  const auto metric = [&](const std::string& name) { return test::prometheus_sample(text, name); };
   EXPECT_EQ(metric("twister_visitors_today"), static_cast<double>(r.order.size()));
   EXPECT_EQ(metric("twister_strokes_committed_total"), static_cast<double>(r.last_committed));
   EXPECT_GT(metric("twister_archive_free_bytes"), 0.0);

@@ -17,6 +17,7 @@
 
 #include "allocation_counter.hpp"
 #include "config/station_config.hpp"
+#include "prometheus_text.hpp"
 #include "station_assembly.hpp"
 #include "station_loop.hpp"
 #include "twister/hal/logger.hpp"
@@ -33,13 +34,6 @@ std::string temp_path(const char* name) {
 std::string slurp(const std::string& p) {
   std::ifstream in(p);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-double sample(const std::string& text, const std::string& name) {
-  const std::string line = "\n" + name + " ";
-  const std::size_t at = text.find(line);
-  if (at == std::string::npos) return -12345.0;
-  return std::strtod(text.c_str() + at + line.size(), nullptr);
 }
 
 ConfigParseResult parse(const std::string& health) {
@@ -138,16 +132,16 @@ TEST(StationHealthLoop, MetricsFileFollowsTheRunWithoutAllocating) {
   const std::string prom = slurp(metrics);
   const auto& counters = parts.core->counters().events;
   EXPECT_EQ(counters.strokes_committed, 4U);
-  EXPECT_EQ(sample(prom, "twister_strokes_committed_total"),
+  EXPECT_EQ(test::prometheus_sample(prom, "twister_strokes_committed_total"),
             static_cast<double>(counters.strokes_committed));
-  EXPECT_EQ(sample(prom, "twister_strokes_not_saved_total"), 0.0);
-  EXPECT_EQ(sample(prom, "twister_visitors_today"), 3.0);
-  EXPECT_EQ(sample(prom, "twister_tracker_state{state=\"streaming\"}"), 1.0);
-  EXPECT_GT(sample(prom, "twister_tracker_rate_hertz"), 50.0);
-  EXPECT_EQ(sample(prom, "twister_buttons_present"), 1.0);
-  EXPECT_EQ(sample(prom, "twister_link_open"), 0.0);
-  EXPECT_GT(sample(prom, "twister_archive_free_bytes"), 0.0);
-  EXPECT_NEAR(sample(prom, "twister_uptime_seconds"), simulated_s, 0.5);
+  EXPECT_EQ(test::prometheus_sample(prom, "twister_strokes_not_saved_total"), 0.0);
+  EXPECT_EQ(test::prometheus_sample(prom, "twister_visitors_today"), 3.0);
+  EXPECT_EQ(test::prometheus_sample(prom, "twister_tracker_state{state=\"streaming\"}"), 1.0);
+  EXPECT_GT(test::prometheus_sample(prom, "twister_tracker_rate_hertz"), 50.0);
+  EXPECT_EQ(test::prometheus_sample(prom, "twister_buttons_present"), 1.0);
+  EXPECT_EQ(test::prometheus_sample(prom, "twister_link_open"), 0.0);
+  EXPECT_GT(test::prometheus_sample(prom, "twister_archive_free_bytes"), 0.0);
+  EXPECT_NEAR(test::prometheus_sample(prom, "twister_uptime_seconds"), simulated_s, 0.5);
   FILE* p = popen(("promtool check metrics < " + metrics + " 2>&1").c_str(), "r");
   ASSERT_NE(p, nullptr);
   std::array<char, 512> buf{};
