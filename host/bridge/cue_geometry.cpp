@@ -20,10 +20,6 @@ constexpr float kObjectFrameLength = 0.5F;
 constexpr int kTrajectorySamples = 33;
 constexpr float kSphereAlpha = 0.16F;
 
-glm::vec3 to_world(const glm::mat4& model, glm::dvec3 p) {
-  return glm::vec3(model * glm::vec4(glm::vec3(p), 1.0F));
-}
-
 glm::vec3 turn(const glm::mat4& model, glm::dvec3 d) {
   return glm::vec3(model * glm::vec4(glm::vec3(d), 0.0F));
 }

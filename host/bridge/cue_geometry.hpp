@@ -64,6 +64,11 @@ struct CueOptions {
   bool object_frame = true;
 };
 
+// A point of the object frame in the world (`model`: the renderer's model matrix).
+inline glm::vec3 to_world(const glm::mat4& model, glm::dvec3 p) {
+  return glm::vec3(model * glm::vec4(glm::vec3(p), 1.0F));
+}
+
 // Builds every cue of the replica's current state. `model` places the object frame
 // in the world (the renderer's model matrix).
 void build_cues(const SceneReplica& replica, const glm::mat4& model, float scene_radius_m,
