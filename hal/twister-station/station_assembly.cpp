@@ -283,8 +283,8 @@ hal::Expected<std::unique_ptr<StationParts>> assemble_station(const StationFileC
   mesh::Mesh& mesh = parts->model->mesh();
   parts->work = std::make_unique<WorkMemory>(mesh.vertex_capacity());
   session::SculptStorage storage = parts->work->storage();
-  parts->symmetry = std::make_unique<SymmetryMemory>(mesh.vertex_capacity());
-  storage = parts->symmetry->attach(storage);
+  parts->symmetry = std::make_unique<meshio::SymmetryBuffer>(mesh.vertex_capacity());
+  storage.plan.symmetry = parts->symmetry->plan_symmetry();
   if (config.sculpt.refine) {
     parts->refine =
         std::make_unique<RefineMemory>(mesh.vertex_capacity(), mesh.triangle_capacity());

@@ -15,14 +15,15 @@
 #include "backend_factory.hpp"
 #include "config/station_config.hpp"
 #include "display_link.hpp"
+#include "exhibit_archive.hpp"
 #include "station_memory.hpp"
 #include "twister/hal/expected.hpp"
 #include "twister/hal/output_file.hpp"
 #include "twister/hal/posix_file_sink.hpp"
 #include "twister/hal/posix_file_storage.hpp"
 #include "twister/meshio/mesh_buffer.hpp"
+#include "twister/meshio/symmetry_buffer.hpp"
 #include "twister/session/sculpt_session.hpp"
-#include "exhibit_archive.hpp"
 #include "twister/station/station.hpp"
 
 namespace twister::station_app {
@@ -56,14 +57,16 @@ struct StationParts {
   int stale_temporaries = 0;  // JOURNAL.ckpt.tmp-* / .torn-tail.tmp-* removed at start
   std::unique_ptr<meshio::MeshBuffer> model;
   std::unique_ptr<WorkMemory> work;
-  std::unique_ptr<RefineMemory> refine;      // [sculpt] refine on
-  std::unique_ptr<SymmetryMemory> symmetry;  // symmetric strokes (always)
+  std::unique_ptr<RefineMemory> refine;  // [sculpt] refine on
+  // Symmetric strokes' plan storage: always there, so a journal with symmetric
+  // strokes replays whatever [sculpt] symmetry says now.
+  std::unique_ptr<meshio::SymmetryBuffer> symmetry;
   // [exhibit] enabled: the archive and the base model the mesh is reset to after
   // each sculpture (the model file loaded again, without spare capacity).
   std::unique_ptr<ExhibitArchive> archive;
   std::unique_ptr<meshio::MeshBuffer> base_model;
-  std::unique_ptr<station::Station> core;    // started: the journal is replayed
-  DisplayLink display;                       // open when a link address is set
+  std::unique_ptr<station::Station> core;  // started: the journal is replayed
+  DisplayLink display;                     // open when a link address is set
 };
 
 // Builds and starts everything. Errors (message for the log): the backends'

@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "twister/link/link_codec.hpp"
+#include "twister/meshio/symmetry_buffer.hpp"
 
 namespace twister::station_app {
 namespace {
@@ -35,9 +36,7 @@ MemoryBudget memory_budget(std::size_t vertex_capacity, std::size_t triangle_cap
                session::kDefaultUndoTriangleChanges * sizeof(session::TriangleChange) +
                3 * sizeof(float) * vertex_capacity;  // a clutch chain's start
   }
-  b.symmetry = 3 * sizeof(float) * vertex_capacity + sizeof(math::PlanSymmetry) +
-               sizeof(std::uint64_t) * math::SymmetricFloat::words_for(vertex_capacity) +
-               sizeof(float) * math::SymmetricFloat::weights_for(vertex_capacity);
+  b.symmetry = meshio::SymmetryBuffer::bytes_for(vertex_capacity);
   if (link) {
     b.link = 3 * sizeof(float) * vertex_capacity + 3 * sizeof(std::uint32_t) * triangle_capacity +
              512 * link::kMaxFrameBytes;
@@ -73,23 +72,6 @@ WorkMemory::WorkMemory(std::size_t vertex_capacity, std::size_t undo_changes,
 }
 
 session::SculptStorage WorkMemory::storage() { return storage_; }
-
-SymmetryMemory::SymmetryMemory(std::size_t vertex_capacity)
-    : x_(vertex_capacity),
-      y_(vertex_capacity),
-      z_(vertex_capacity),
-      balls_(math::SymmetricFloat::words_for(vertex_capacity)),
-      weights_(math::SymmetricFloat::weights_for(vertex_capacity)),
-      symmetry_(std::make_unique<math::PlanSymmetry>()) {
-  symmetry_->start = math::VertexColumns{x_, y_, z_};
-  symmetry_->balls = balls_;
-  symmetry_->weights = weights_;
-}
-
-session::SculptStorage SymmetryMemory::attach(session::SculptStorage storage) {
-  storage.plan.symmetry = symmetry_.get();
-  return storage;
-}
 
 RefineMemory::RefineMemory(std::size_t vertex_capacity, std::size_t triangle_capacity)
     : refiner_(vertex_capacity, triangle_capacity),

@@ -7,7 +7,8 @@
 // of refined triangles (262144 x 28 B) and 12 B per vertex of a clutch chain's start; with --link
 // the display link adds 12 B per vertex + 12 B per triangle (its copy of the mesh) + its frame
 // buffer (512 frames, as DisplayLink::open sizes it); symmetric strokes ([sculpt] symmetry, and any
-// journal that holds them) 12 B per vertex of chain-start positions + the symmetric warp.
+// journal that holds them) 36 B per vertex: 12 B of chain-start positions, the float path's
+// 8 B of sort words and 16 B of kept weights (meshio::SymmetryBuffer::bytes_for).
 // WorkMemory is the core's working memory as ONE arena of exactly
 // budget.live + budget.plan + budget.undo + budget.normals bytes, carved into the spans
 // SculptStorage needs; nothing else is allocated for the core after start-up.
@@ -62,20 +63,6 @@ class WorkMemory {
 // Refinement's working memory (only when [sculpt] refine is on): the refiner for the
 // mesh's capacities, the undo pool of refined commits' triangles and a clutch chain's
 // start positions (one per vertex: the plan's capacity).
-// The plan's storage for symmetric strokes (math::PlanSymmetry): always there, so a
-// journal with symmetric strokes replays whatever [sculpt] symmetry says now.
-class SymmetryMemory {
- public:
-  explicit SymmetryMemory(std::size_t vertex_capacity);
-  session::SculptStorage attach(session::SculptStorage storage);
-
- private:
-  std::vector<float> x_, y_, z_;
-  std::vector<std::uint64_t> balls_;
-  std::vector<float> weights_;
-  std::unique_ptr<math::PlanSymmetry> symmetry_;
-};
-
 class RefineMemory {
  public:
   RefineMemory(std::size_t vertex_capacity, std::size_t triangle_capacity);

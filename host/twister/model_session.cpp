@@ -28,27 +28,23 @@ hal::Expected<std::unique_ptr<ModelSession>> ModelSession::open(const std::strin
 ModelSession::ModelSession(meshio::ObjMesh model, std::size_t undo_changes,
                            std::size_t undo_entries)
     : model_(std::move(model)),
+      symmetry_(mesh().vertex_capacity()),
       refiner_(mesh().vertex_capacity(), mesh().triangle_capacity()),
       triangles_(session::kDefaultUndoTriangleChanges) {
   const std::size_t n = mesh().vertex_capacity();
-  for (auto* v : {&lx_, &ly_, &lz_, &w1_, &w2_, &cx_, &cy_, &cz_, &sx_, &sy_, &sz_}) v->resize(n);
-  symmetry_ = std::make_unique<math::PlanSymmetry>();
-  symmetry_->start = math::VertexColumns{sx_, sy_, sz_};
-  balls_.resize(math::SymmetricFloat::words_for(n));
-  ball_weights_.resize(math::SymmetricFloat::weights_for(n));
-  symmetry_->balls = balls_;
-  symmetry_->weights = ball_weights_;
+  for (auto* v : {&lx_, &ly_, &lz_, &w1_, &w2_, &cx_, &cy_, &cz_}) v->resize(n);
   plan_indices_.resize(n);
   changes_.resize(undo_changes);
   entries_.resize(std::max<std::size_t>(undo_entries, 1));
-  session::SculptStorage work{lx_,
-                              ly_,
-                              lz_,
-                              math::WarpPlanStorage{plan_indices_, w1_, w2_, symmetry_.get()},
-                              changes_,
-                              entries_,
-                              refiner_.storage(),
-                              triangles_};
+  session::SculptStorage work{
+      lx_,
+      ly_,
+      lz_,
+      math::WarpPlanStorage{plan_indices_, w1_, w2_, symmetry_.plan_symmetry()},
+      changes_,
+      entries_,
+      refiner_.storage(),
+      triangles_};
   work.chain_start = math::VertexColumns{cx_, cy_, cz_};  // refined clutch chains replay
   session_ = std::make_unique<session::SculptSession>(session::SculptSessionConfig{}, mesh(), work,
                                                       nullptr);

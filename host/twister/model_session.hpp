@@ -14,6 +14,7 @@
 #include "twister/hal/expected.hpp"
 #include "twister/meshio/obj_file.hpp"
 #include "twister/meshio/refiner_buffer.hpp"
+#include "twister/meshio/symmetry_buffer.hpp"
 #include "twister/session/sculpt_session.hpp"
 
 namespace twister::cli {
@@ -36,12 +37,7 @@ class ModelSession {
   meshio::ObjMesh model_;
   std::vector<float> lx_, ly_, lz_, w1_, w2_;
   std::vector<float> cx_, cy_, cz_;  // a clutch chain's start (ClutchChain)
-  std::vector<float> sx_, sy_, sz_;  // symmetric strokes' chain-start positions
-  // The float symmetric path's storage, as the station holds it (SymmetryMemory): a
-  // replay computes symmetric strokes exactly as the station did.
-  std::vector<std::uint64_t> balls_;
-  std::vector<float> ball_weights_;
-  std::unique_ptr<math::PlanSymmetry> symmetry_;
+  meshio::SymmetryBuffer symmetry_;  // as the station's: replays compute as it did
   std::vector<std::uint32_t> plan_indices_;
   std::vector<session::VertexChange> changes_;
   std::vector<session::UndoEntry> entries_;

@@ -51,15 +51,10 @@ bool SceneReplica::ensure_plan() {
     ++counters_.plan_errors;  // a group the station would not have built
     return false;
   }
-  if (!group.trivial()) {
-    plan_->sx.resize(n);
-    plan_->sy.resize(n);
-    plan_->sz.resize(n);
-    plan_->symmetry = std::make_unique<math::PlanSymmetry>();
-    plan_->symmetry->start = math::VertexColumns{plan_->sx, plan_->sy, plan_->sz};
-  }
+  plan_->symmetry = group.trivial() ? nullptr : std::make_unique<meshio::SymmetryBuffer>(n);
   auto plan = std::make_unique<math::WarpPlan>(
-      math::WarpPlanStorage{plan_->indices, plan_->w1, plan_->w2, plan_->symmetry.get()});
+      math::WarpPlanStorage{plan_->indices, plan_->w1, plan_->w2,
+                            plan_->symmetry ? plan_->symmetry->plan_symmetry() : nullptr});
   std::array<math::Frame, 2> start{};
   std::size_t hands = 0;
   for (std::size_t h = 0; h < link::kLinkHands; ++h) {
@@ -181,9 +176,9 @@ MeshData SceneReplica::cpu_warp() const {
   const math::WarpPlan& plan = *plan_->plan;
   const math::ConstVertexColumns rest{mesh_.x, mesh_.y, mesh_.z};
   if (plan.symmetric()) {
-    // Every image of every hand (math::SymmetricWarp, per vertex in double): the
-    // station's own update and apply, with its turn sense per hand, so the preview is
-    // what the commit writes.
+    // Every image of every hand: the station's own update and apply (the float path,
+    // on the same storage), with its turn sense per hand, so the preview is what the
+    // commit writes.
     math::PlanFrames end;
     std::uint8_t long_turns = 0;
     for (std::size_t i = 0; i < live_.hands.size(); ++i) {
