@@ -116,8 +116,10 @@ std::string symmetry_name(const math::SymmetrySpec& spec) {
 }
 
 std::string symmetry_hud_line(const SceneReplica& replica) {
-  if (!replica.live().active && !replica.has_status()) return {};
-  return "symmetry: " + symmetry_name(shown_symmetry(replica)) +
+  // Nothing on a station without symmetry: a change to "none" shows as a notice.
+  const math::SymmetrySpec spec = shown_symmetry(replica);
+  if (spec.kind == math::SymmetryKind::none) return {};
+  return "symmetry: " + symmetry_name(spec) +
          (replica.live().active ? " (this stroke)" : " (next strokes)");
 }
 

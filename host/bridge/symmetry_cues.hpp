@@ -45,7 +45,7 @@ void add_symmetry_cues(const SceneReplica& replica, const glm::mat4& model, floa
 std::string symmetry_name(const math::SymmetrySpec& spec);
 
 // The HUD's line naming the group: "symmetry: rot6 z (this stroke)" or "(next strokes)";
-// empty before the station's first status (and no stroke).
+// empty without a group (none, or before the station's first status and no stroke).
 std::string symmetry_hud_line(const SceneReplica& replica);
 
 }  // namespace twister::bridge

@@ -258,13 +258,11 @@ void SymmetricFloat::weigh(const SymmetricWarp& warp, std::size_t k, const float
                      radius_);
 }
 
-void SymmetricFloat::apply(const SymmetricWarp& warp, std::span<const std::uint32_t> indices,
-                           ConstVertexColumns start, ConstVertexColumns rest,
-                           VertexColumns out) const {
+void SymmetricFloat::apply(const SymmetricWarp& warp, ConstVertexColumns start,
+                           ConstVertexColumns rest, VertexColumns out) const {
   std::array<PreparedHand, kMaxImages> hands;
   std::array<float, kMaxImages> share;
   fill_images(warp, hands, share);
-  (void)indices;  // the sorted words hold the vertex indices
   const std::uint64_t* __restrict order = words_.data();
   const float* __restrict rx = rest.x.data();
   const float* __restrict ry = rest.y.data();

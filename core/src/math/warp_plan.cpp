@@ -269,7 +269,7 @@ Status WarpPlan::apply(ConstVertexColumns rest, VertexColumns out) const {
   if (symmetric()) {
     const PlanSymmetry& sym = *symmetry_;
     if (kernel_ == KernelKind::simd && sym.fast.ready()) {
-      sym.fast.apply(sym.warp, indices(), sym.start, rest, out);
+      sym.fast.apply(sym.warp, sym.start, rest, out);
     } else {
       apply_symmetric(rest, out);
     }

@@ -225,15 +225,15 @@ TEST(RefineStation, AClutchChainIsRefinedAtItsEndAndReplaysTheSame) {
   ASSERT_EQ(made.exit_code, 0) << made.output;
   const auto config = [&](const char* scenario) {
     const std::string path = temp_path(std::string("chain_") + scenario + ".toml");
-    std::ofstream(path) << "[station]\njournal = \"" << journal << "\"\nmesh = \"" << box
-                        << "\"\nspare_vertices = 20000\n[tracker]\nbackend = \"sim\"\n"
-                        << "left_station = 1\nright_station = 2\n[tracker.sim]\n"
-                        << (std::string(scenario) == "idle"
-                                ? std::string("scenario = \"idle\"\n")
-                                : std::string("scenario_file = \"" TWISTER_SIM_SCENARIO_DIR
-                                              "/freeze_360.scn\"\n"))
-                        << "time = \"virtual\"\n[buttons]\nbackend = \"sim\"\n"
-                        << "[sculpt]\nradius_m = 0.45\nrefine = true\nrefine_threshold_m = 0.0005\n";
+    std::ofstream(path)
+        << "[station]\njournal = \"" << journal << "\"\nmesh = \"" << box
+        << "\"\nspare_vertices = 20000\n[tracker]\nbackend = \"sim\"\n"
+        << "left_station = 1\nright_station = 2\n[tracker.sim]\n"
+        << (std::string(scenario) == "idle"
+                ? std::string("scenario = \"idle\"\n")
+                : std::string("scenario_file = \"" TWISTER_SIM_SCENARIO_DIR "/freeze_360.scn\"\n"))
+        << "time = \"virtual\"\n[buttons]\nbackend = \"sim\"\n"
+        << "[sculpt]\nradius_m = 0.45\nrefine = true\nrefine_threshold_m = 0.0005\n";
     return path;
   };
   const ProcessRun live =
@@ -249,8 +249,7 @@ TEST(RefineStation, AClutchChainIsRefinedAtItsEndAndReplaysTheSame) {
   }
   EXPECT_THAT(live.output, HasSubstr("refine: journal record " +
                                      std::to_string(records.size() - 1) + " refined: "));
-  const ProcessRun again =
-      run(std::string(TWISTER_STATION_BIN) + " --config " + config("idle"));
+  const ProcessRun again = run(std::string(TWISTER_STATION_BIN) + " --config " + config("idle"));
   ASSERT_EQ(again.exit_code, 0) << again.output;
   EXPECT_EQ(final_checksum(again.output), checksum);
   const ProcessRun replay = run(std::string(TWISTER_CLI_BIN) + " replay " + journal + " --mesh " +

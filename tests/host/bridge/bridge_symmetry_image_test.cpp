@@ -75,6 +75,7 @@ TEST_F(SymmetryCues, GhostCursorsAtTheSixFoldImagesOfTheHand) {
   const Image plain = frame();
   expect_live_frame(plain);
   EXPECT_EQ(ghosts_seen(plain, rot6).first, 0) << "ghost colour without a group";
+  EXPECT_EQ(symmetry_hud_line(app_->replica()), "") << "no symmetry line without a group";
   send_status({2, 0, 2, 6});
   const Image ghosts = frame();
   expect_live_frame(ghosts);

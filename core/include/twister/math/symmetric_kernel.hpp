@@ -74,8 +74,8 @@ class SymmetricFloat {
   // The plan's warp (WarpPlan::apply under a group): out[v] = F(p_i, q_v) for every
   // sorted position i, v = vertex(i), p_i = start[i] (chain start: the weights),
   // q_v = rest[v] (p_i itself until rebased()).
-  void apply(const SymmetricWarp& warp, std::span<const std::uint32_t> indices,
-             ConstVertexColumns start, ConstVertexColumns rest, VertexColumns out) const;
+  void apply(const SymmetricWarp& warp, ConstVertexColumns start, ConstVertexColumns rest,
+             VertexColumns out) const;
   // F(p) for n <= kImageChunk points (weights and motion from p): the refiner's batch
   // (the weights in double, the images' motion in the float kernel).
   void warp_points(const SymmetricWarp& warp, const float* x, const float* y, const float* z,

@@ -57,7 +57,7 @@ std::size_t symmetry_label(const SymmetrySpec& spec, std::span<char> out);
 
 class SymmetryGroup {
  public:
-  static constexpr std::size_t kMaxOrder = 2 * kMaxRotationOrder;
+  static constexpr std::size_t kMaxOrder = std::size_t{2} * kMaxRotationOrder;
 
   // The trivial group {I}.
   SymmetryGroup();
