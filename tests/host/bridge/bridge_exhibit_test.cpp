@@ -13,6 +13,7 @@
 
 #include "exhibit_model.hpp"
 #include "scene_replica.hpp"
+#include "twister/input/interaction_machine.hpp"
 #include "window_input.hpp"
 
 namespace twister::bridge {
@@ -179,6 +180,29 @@ TEST(ExhibitWords, EachNoticeShowsOnceForItsTimeWithItsReason) {
     for (std::uint8_t d = 1; d < c; ++d)
       EXPECT_NE(notice_sentence(code), notice_sentence(static_cast<link::NoticeCode>(d)));
   }
+}
+
+// The station's detail (the session's reason) says why: a stroke open, an untracked
+// handle, hands together; with exhibit mode off too (no visitor state).
+TEST(ExhibitWords, ARefusalsReasonChoosesItsWords) {
+  SceneReplica r;
+  ExhibitModel m;
+  const auto reason = [](twister::input::Reason x) { return static_cast<std::uint8_t>(x); };
+  (void)r.apply(link::Notice{link::NoticeCode::undo_refused, reason(twister::input::Reason::busy)});
+  (void)r.apply(link::Notice{link::NoticeCode::nothing_to_act_on,
+                             reason(twister::input::Reason::no_tracking)});
+  (void)r.apply(link::Notice{link::NoticeCode::redo_refused,
+                             reason(twister::input::Reason::nothing_to_redo)});
+  const ExhibitText t = m.update(r, connected(5.0), Audience::visitor);
+  EXPECT_EQ(t.notices,
+            (std::vector<std::string>{"Undo waits until the stroke ends",
+                                      "That handle is not tracked: bring it back in view",
+                                      "Nothing to redo"}));
+  EXPECT_EQ(notice_sentence(link::NoticeCode::nothing_to_act_on,
+                            reason(twister::input::Reason::hands_too_close)),
+            "Hands too close together to set the size");
+  EXPECT_EQ(notice_sentence(link::NoticeCode::symmetry_changed, 1),
+            notice_sentence(link::NoticeCode::symmetry_changed));
 }
 
 TEST(ExhibitWords, ANoticeSayingWhatThePromptSaysIsNotShownTwice) {
