@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <glm/vec3.hpp>
 #include <vector>
@@ -64,6 +65,23 @@ std::uint32_t read_index(const unsigned char* p, std::size_t bytes) {
   std::uint32_t v;
   std::memcpy(&v, p, 4);
   return v;
+}
+
+// Nothing outside the .glb is read: no external buffer or image file, no image decoded
+// (the display needs the triangles alone).
+bool no_file(const std::string&, void*) { return false; }
+std::string same_path(const std::string& p, void*) { return p; }
+bool no_read(std::vector<unsigned char>*, std::string* err, const std::string& p, void*) {
+  if (err != nullptr) *err += "refused to read " + p + " (only the .glb itself is read)";
+  return false;
+}
+bool no_write(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err != nullptr) *err += "writing refused";
+  return false;
+}
+bool no_image(tinygltf::Image*, const int, std::string*, std::string*, int, int,
+              const unsigned char*, int, void*) {
+  return true;  // images are skipped, not decoded
 }
 
 struct Triangles {
@@ -136,11 +154,34 @@ hal::Expected<std::unique_ptr<MeshBuffer>> read_glb(const std::string& path,
                  std::to_string(st.st_size) + " bytes, more than the limit of " +
                      std::to_string(limits.max_file_bytes));
   }
+  std::vector<unsigned char> bytes(static_cast<std::size_t>(st.st_size));
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (f == nullptr) {
+    return error(StatusCode::io_error, path, std::string("cannot read: ") + std::strerror(errno));
+  }
+  const std::size_t got = std::fread(bytes.data(), 1, bytes.size(), f);
+  std::fclose(f);
+  if (got != bytes.size()) return error(StatusCode::io_error, path, "short read");
+  return parse_glb(bytes, path, limits);
+}
+
+hal::Expected<std::unique_ptr<MeshBuffer>> parse_glb(std::span<const unsigned char> bytes,
+                                                     const std::string& path,
+                                                     const GlbReadLimits& limits) {
+  if (bytes.size() > limits.max_file_bytes) {
+    return error(StatusCode::resource_exhausted, path,
+                 std::to_string(bytes.size()) + " bytes, more than the limit of " +
+                     std::to_string(limits.max_file_bytes));
+  }
   tinygltf::TinyGLTF loader;
+  loader.SetFsCallbacks(tinygltf::FsCallbacks{no_file, same_path, no_read, no_write, nullptr});
+  loader.SetImageLoader(no_image, nullptr);
   tinygltf::Model model;
   std::string err;
   std::string warn;
-  if (!loader.LoadBinaryFromFile(&model, &err, &warn, path)) {
+  if (bytes.size() < 20 || bytes.size() > 0xFFFFFFFFu ||
+      !loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
+                                   static_cast<unsigned int>(bytes.size()))) {
     return error(StatusCode::invalid_argument, path,
                  "not a binary glTF tinygltf reads: " + (err.empty() ? warn : err));
   }

@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <span>
 #include <string>
 
 #include "twister/hal/expected.hpp"
@@ -27,5 +28,9 @@ struct GlbReadLimits {
 // the limits. The message names the file and the problem.
 hal::Expected<std::unique_ptr<MeshBuffer>> read_glb(const std::string& path,
                                                     const GlbReadLimits& limits = {});
+// The same over a file's bytes; `name` names it in the messages (the fuzz target).
+hal::Expected<std::unique_ptr<MeshBuffer>> parse_glb(std::span<const unsigned char> bytes,
+                                                     const std::string& name,
+                                                     const GlbReadLimits& limits = {});
 
 }  // namespace twister::meshio
