@@ -79,7 +79,8 @@ void visitor_words(const SceneReplica& r, const HudInput& in, ExhibitText& out) 
   if (exhibit && v.phase == link::VisitorPhase::attract && !any_grab(r)) {
     out.attract = true;
     out.prompt = "Pick up the handles and squeeze to grab";
-    out.detail = "shape the model with both hands";
+    out.detail = in.showcase.empty() ? std::string("shape the model with both hands")
+                                     : in.showcase + ", by an earlier visitor";
     return;
   }
   if (exhibit && v.idle_left_s > 0.0F && v.idle_left_s <= ExhibitModel::kCountdownS) {
