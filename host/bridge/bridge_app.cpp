@@ -188,11 +188,15 @@ bool BridgeApp::show_archive() {
   renderer_->set_object_pose(replica_.object_pose());
   if (model->serial != showing_serial_) {
     // Upright (its +Y along the world's up, seen in the object frame) and where the
-    // station's model is, at its size: the camera's framing holds it as it is.
+    // station's model is, within its bounding sphere: the camera's framing holds it.
     const glm::vec3 up = glm::normalize(glm::vec3(glm::inverse(renderer_->model_matrix()) *
                                                   glm::vec4(renderer_->camera().up(), 0.0F)));
-    renderer_->set_mesh(
-        place_upright(model->mesh, up, renderer_->model_centre(), renderer_->model_radius()), true);
+    // Three quarters of the framed sphere: a slender sculpture (whose half diagonal is
+    // nearly its half height) stays clear of the screen's edge and the invitation.
+    constexpr float kFill = 0.75F;
+    renderer_->set_mesh(place_upright(model->mesh, up, renderer_->model_centre(),
+                                      kFill * renderer_->model_radius()),
+                        true);
     if (showing_serial_ == 0)
       log_.write(LogLevel::info, "attract", "showing the archive's %s", {model->name.c_str()});
     showing_serial_ = model->serial;

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -45,6 +46,32 @@ struct ShowcaseArchive {
     std::ofstream(dir / name / "record.json")
         << "{\n  \"format\": \"twister-sculpture-1\",\n  \"visitor\": " << visitor
         << ",\n  \"strokes\": " << strokes << ",\n  \"undos\": 0\n}\n";
+    return name;
+  }
+  // A sculpted-looking one: a tall box twisted a quarter turn about its up axis and
+  // bulging in its middle (the paper's Figure 6 gesture).
+  std::string add_twisted(const char* when, unsigned visitor, unsigned strokes) {
+    const std::string name = directory(when, visitor);
+    std::filesystem::create_directories(dir / name);
+    meshio::MeshBuffer b(meshio::box_vertices(24), meshio::box_triangles(24));
+    EXPECT_TRUE(meshio::make_box(b.mesh(), 24, 0.05F).ok());
+    mesh::Mesh& m = b.mesh();
+    for (std::uint32_t i = 0; i < m.vertex_count(); ++i) {
+      glm::vec3 p = m.position(i);
+      const float t = p.z / 0.05F;  // -1 .. 1
+      const float z = 0.15F * t;
+      const float a = 0.8F * t;                       // radians of twist
+      const float k = 1.0F + 0.35F * (1.0F - t * t);  // bulge
+      const float x = k * (p.x * std::cos(a) - p.y * std::sin(a));
+      const float y = k * (p.x * std::sin(a) + p.y * std::cos(a));
+      m.set_position(i, glm::vec3(x, y, z));
+    }
+    meshio::ExportOptions o;
+    o.up = glm::vec3(0.0F, 0.0F, 1.0F);
+    const auto written = meshio::write_glb((dir / name / "model.glb").string(), m, o);
+    EXPECT_TRUE(written) << written.error().message;
+    std::ofstream(dir / name / "record.json")
+        << "{\n  \"visitor\": " << visitor << ",\n  \"strokes\": " << strokes << "\n}\n";
     return name;
   }
   // An archive whose model.glb is not one.
