@@ -10,7 +10,7 @@
 //   fixed = true             # mouse and camera keys leave it alone (default true)
 //
 //   [attract]                # optional: attract mode's turntable of recent sculptures
-//   archive = "/var/lib/twister-station/archive"  # the station's [exhibit] archive_dir
+//   archive = "/var/lib/twister/archive"  # the station's [exhibit] archive_dir
 //   models = 6               # the newest archives shown, 1 .. 32
 //   seconds = 8.0            # each shown this long, 1 .. 600
 //
