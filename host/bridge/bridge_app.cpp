@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <span>
 
+#include "attract_showcase.hpp"
 #include "cue_geometry.hpp"
+#include "exhibit_model.hpp"
 #include "scene_view.hpp"
 
 namespace twister::bridge {
@@ -168,13 +170,53 @@ void BridgeApp::flush() {
   }
 }
 
+bool BridgeApp::show_archive() {
+  const bool attract = showcase_ != nullptr && attract_mode(replica_);
+  const double now_s = 1e-6 * static_cast<double>(clock_.now_us());
+  if (attract && !in_attract_) showcase_->begin(now_s);
+  in_attract_ = attract;
+  const ShowcaseModel* model = attract ? showcase_->at(now_s) : nullptr;
+  if (model == nullptr) {
+    if (showing_serial_ != 0) {  // the first grab: the station's model at once
+      showing_serial_ = 0;
+      showing_name_.clear();
+      showing_caption_.clear();
+      live_mesh_stale_ = true;
+    }
+    return false;
+  }
+  renderer_->set_object_pose(replica_.object_pose());
+  if (model->serial != showing_serial_) {
+    // Upright (its +Y along the world's up, seen in the object frame) and where the
+    // station's model is, within its bounding sphere: the camera's framing holds it.
+    const glm::vec3 up = glm::normalize(glm::vec3(glm::inverse(renderer_->model_matrix()) *
+                                                  glm::vec4(renderer_->camera().up(), 0.0F)));
+    // Three quarters of the framed sphere: a slender sculpture (whose half diagonal is
+    // nearly its half height) stays clear of the screen's edge and the invitation.
+    constexpr float kFill = 0.75F;
+    renderer_->set_mesh(place_upright(model->mesh, up, renderer_->model_centre(),
+                                      kFill * renderer_->model_radius()),
+                        true);
+    if (showing_serial_ == 0)
+      log_.write(LogLevel::info, "attract", "showing the archive's %s", {model->name.c_str()});
+    showing_serial_ = model->serial;
+    showing_name_ = model->name;
+    showing_caption_ = model->caption;
+  }
+  renderer_->set_show_weights(false);
+  renderer_->set_live(nullptr);
+  return true;
+}
+
 void BridgeApp::refresh_display() {
   if (renderer_ == nullptr || !replica_.has_mesh()) return;
+  if (shown_version_ != 0 && show_archive()) return;
   LiveState& live = replica_.live();
   const bool cpu_live = live.active && live.cpu_path();
   renderer_->set_object_pose(replica_.object_pose());
   bool uploaded = false;
-  if (replica_.mesh_changed() || (display_mesh_live_ && !cpu_live)) {
+  if (replica_.mesh_changed() || (display_mesh_live_ && !cpu_live) || live_mesh_stale_) {
+    live_mesh_stale_ = false;
     const bool first = shown_version_ == 0;
     renderer_->set_mesh(replica_.mesh(), replica_.shading(), !first);
     replica_.clear_mesh_changed();
@@ -313,6 +355,7 @@ HudInput BridgeApp::hud_input() const {
   in.link = link_view();
   in.ready = ready();
   const std::int64_t now_s = now_ms() / 1000;
+  in.showcase = showing_caption_;
   in.hands_rate_hz = static_cast<double>(now_s == hands_second_       ? hands_last_second_
                                          : now_s == hands_second_ + 1 ? hands_in_second_
                                                                       : 0);

@@ -93,6 +93,11 @@ class BridgeApp {
   bool send_command(const link::Command& command);
   // Draws through `view` (mesh, cues, HUD) from now on; null: the mesh alone.
   void set_view(class SceneView* view) { view_ = view; }
+  // Attract mode shows the showcase's recent sculptures instead of the station's model
+  // (null: the station's model turns, as before). Must outlive the app.
+  void set_showcase(class AttractShowcase* showcase) { showcase_ = showcase; }
+  // The archive's sculpture on screen now (its directory name; "": the station's model).
+  const std::string& showing_archive() const { return showing_name_; }
   // Draws the current scene (window mode each frame; offscreen for snapshots).
   void draw();
   // The link as the HUD shows it.
@@ -149,12 +154,16 @@ class BridgeApp {
   void follow_cursors();
   void refresh_display();
   void refresh_weights(bool mesh_uploaded);
+  // Attract mode with a showcase: its model of the moment on the renderer (true), or
+  // the station's model back at once (false; the caller uploads it).
+  bool show_archive();
   std::int64_t now_ms() const { return clock_.now_us() / 1000; }
 
   ports::LinkPort& port_;
   ports::Clock& clock_;
   MeshRenderer* renderer_;
   class SceneView* view_ = nullptr;
+  class AttractShowcase* showcase_ = nullptr;
   ports::LogSink& log_;
   BridgeOptions options_;
   SceneReplica replica_;
@@ -191,6 +200,13 @@ class BridgeApp {
   WeightPreview preview_;                // weights before a grab
   WorkspaceFraming framing_;             // Framing::workspace: what the camera holds
   std::uint64_t over_capacity_logged_ = 0;
+  // Attract's showcase: in attract mode since the last step, the archive model the
+  // renderer holds (its serial; 0: the station's) and its name and caption.
+  bool in_attract_ = false;
+  std::uint64_t showing_serial_ = 0;
+  std::string showing_name_;
+  std::string showing_caption_;
+  bool live_mesh_stale_ = false;  // the renderer held an archive model: upload again
   BridgeCounters counters_{};
   std::vector<std::string> pictures_;
 };

@@ -71,6 +71,34 @@ hal::Expected<void> read_camera(const toml::table& t, const std::string& file, C
   return ok;
 }
 
+hal::Expected<void> read_attract(const toml::table& t, const std::string& file, AttractConfig& a) {
+  const auto wrong = [&](const std::string& key, const std::string& what) {
+    return hal::make_error(StatusCode::invalid_argument, file + ": attract." + key + ": " + what);
+  };
+  for (const auto& [key, node] : t) {
+    const std::string k(key.str());
+    if (k != "archive" && k != "models" && k != "seconds") return wrong(k, "unknown key");
+  }
+  if (const toml::node* n = t.get("archive")) {
+    const std::optional<std::string> v = n->value<std::string>();
+    if (!v || v->empty()) return wrong("archive", "expected the archive directory's path");
+    a.archive = *v;
+  }
+  if (const toml::node* n = t.get("models")) {
+    const std::optional<std::int64_t> v = n->value<std::int64_t>();
+    if (!v || *v < 1 || *v > 32 || !n->is_integer())
+      return wrong("models", "expected a whole number from 1 to 32");
+    a.models = static_cast<int>(*v);
+  }
+  if (const toml::node* n = t.get("seconds")) {
+    const std::optional<double> v = n->value<double>();
+    if (!v || !std::isfinite(*v) || *v < 1.0 || *v > 600.0)
+      return wrong("seconds", "expected a number from 1 to 600");
+    a.seconds = *v;
+  }
+  return {};
+}
+
 }  // namespace
 
 hal::Expected<CameraConfig> parse_camera_config(const std::string& text,
@@ -85,11 +113,15 @@ hal::Expected<CameraConfig> parse_camera_config(const std::string& text,
   const toml::table& root = parsed.table();
   CameraConfig config;
   for (const auto& [key, node] : root) {
-    if (key.str() != "camera" || !node.is_table()) {
+    if ((key.str() != "camera" && key.str() != "attract") || !node.is_table()) {
       return hal::make_error(StatusCode::invalid_argument,
                              file_name + ": " + std::string(key.str()) +
-                                 ": unknown (the file holds a [camera] table)");
+                                 ": unknown (the file holds a [camera] and an [attract] table)");
     }
+  }
+  if (const toml::table* attract = root["attract"].as_table()) {
+    if (hal::Expected<void> ok = read_attract(*attract, file_name, config.attract); !ok)
+      return ok.error();
   }
   if (const toml::table* camera = root["camera"].as_table()) {
     if (hal::Expected<void> ok = read_camera(*camera, file_name, config); !ok) return ok.error();

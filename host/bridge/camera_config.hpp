@@ -9,6 +9,11 @@
 //   target = [0.55, 0.0, 0.1]  # optional: look here (metres) instead of the model's centre
 //   fixed = true             # mouse and camera keys leave it alone (default true)
 //
+//   [attract]                # optional: attract mode's turntable of recent sculptures
+//   archive = "/var/lib/twister/archive"  # the station's [exhibit] archive_dir
+//   models = 6               # the newest archives shown, 1 .. 32
+//   seconds = 8.0            # each shown this long, 1 .. 600
+//
 // Every key is optional; an unknown key, a wrong type or a value out of range is an
 // error naming the file, the key and the expected form.
 #pragma once
@@ -20,9 +25,18 @@
 
 namespace twister::bridge {
 
+// Attract mode's showcase (twister-bridge --attract-archive and the kiosk file's
+// [attract]; AttractShowcase).
+struct AttractConfig {
+  std::string archive;  // "": none (the station's model turns)
+  int models = 6;
+  double seconds = 8.0;
+};
+
 struct CameraConfig {
   ViewConfig view{};
   bool fixed = true;
+  AttractConfig attract{};
 };
 
 // Error invalid_argument (syntax, key, type, range) or io_error (cannot read).

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <utility>
 
+#include "twister/input/interaction_machine.hpp"
+
 namespace twister::bridge {
 namespace {
 
@@ -77,7 +79,8 @@ void visitor_words(const SceneReplica& r, const HudInput& in, ExhibitText& out) 
   if (exhibit && v.phase == link::VisitorPhase::attract && !any_grab(r)) {
     out.attract = true;
     out.prompt = "Pick up the handles and squeeze to grab";
-    out.detail = "shape the model with both hands";
+    out.detail = in.showcase.empty() ? std::string("shape the model with both hands")
+                                     : in.showcase + ", by an earlier visitor";
     return;
   }
   if (exhibit && v.idle_left_s > 0.0F && v.idle_left_s <= ExhibitModel::kCountdownS) {
@@ -121,6 +124,42 @@ std::string notice_sentence(link::NoticeCode code) {
       return "Mirroring changed for the next stroke";
   }
   return "The station says something this display does not know";
+}
+
+std::string notice_sentence(link::NoticeCode code, std::uint8_t detail) {
+  // The station's detail for a refusal is the session's reason (input::Reason).
+  const auto reason = static_cast<input::Reason>(detail);
+  switch (code) {
+    case link::NoticeCode::undo_refused:
+      if (reason == input::Reason::busy) return "Undo waits until the stroke ends";
+      break;
+    case link::NoticeCode::redo_refused:
+      if (reason == input::Reason::busy) return "Redo waits until the stroke ends";
+      break;
+    case link::NoticeCode::nothing_to_act_on:
+      switch (reason) {
+        case input::Reason::no_tracking:
+          return "That handle is not tracked: bring it back in view";
+        case input::Reason::same_point:
+          return "Both hands on one spot: grab a little further away";
+        case input::Reason::hand_busy:
+          return "That hand is busy already";
+        case input::Reason::object_busy:
+          return "The other hand is moving the model";
+        case input::Reason::hands_too_close:
+          return "Hands too close together to set the size";
+        case input::Reason::busy:
+          return "Finish the stroke first";
+        case input::Reason::not_available:
+          return "That does nothing on this station";
+        default:
+          break;
+      }
+      break;
+    default:
+      break;
+  }
+  return notice_sentence(code);
 }
 
 std::string notice_name(link::NoticeCode code) {
@@ -181,9 +220,9 @@ ExhibitText ExhibitModel::update(const SceneReplica& r, const HudInput& in, Audi
   if (r.notices_received() != notices_seen_) {
     for (const ReceivedNotice& n : r.notices()) {
       if (n.number <= notices_seen_) continue;
-      local_notice(audience == Audience::operator_hud
-                       ? notice_name(n.notice.code) + ": " + notice_sentence(n.notice.code)
-                       : notice_sentence(n.notice.code),
+      const std::string sentence = notice_sentence(n.notice.code, n.notice.detail);
+      local_notice(audience == Audience::operator_hud ? notice_name(n.notice.code) + ": " + sentence
+                                                      : sentence,
                    in.now_s);
     }
     notices_seen_ = r.notices_received();

@@ -56,6 +56,9 @@ class ExhibitModel {
 // The sentence a visitor reads for a station notice (operator: the same, prefixed
 // with the code's name).
 std::string notice_sentence(link::NoticeCode code);
+// The same, told more precisely by the notice's detail where the station gives one (a
+// refused undo / redo / command / press: the session's input::Reason).
+std::string notice_sentence(link::NoticeCode code, std::uint8_t detail);
 std::string notice_name(link::NoticeCode code);
 // The operator HUD's visitor line ("" without a visitor state).
 std::string visitor_line(const SceneReplica& replica);

@@ -16,6 +16,7 @@
 #include <memory>
 #include <string>
 
+#include "attract_showcase.hpp"
 #include "bridge_app.hpp"
 #include "camera_config.hpp"
 #include "gl_context.hpp"
@@ -67,6 +68,11 @@ struct Options {
   std::string frame;              // --frame model|workspace|auto ("": auto unless a free camera)
   std::string hud;         // --hud visitor|operator ("": visitor in kiosk mode, else operator)
   bool spectator = false;  // --spectator: a read-only display
+  // --attract-archive / --attract-models / --attract-seconds (or the kiosk file's
+  // [attract]): attract mode's turntable of recent sculptures.
+  twister::bridge::AttractConfig attract;
+  bool attract_models_given = false;  // on the command line (it wins over the file)
+  bool attract_seconds_given = false;
 };
 
 twister::hal::Logger& logger() { return twister::hal::process_log(); }
@@ -249,6 +255,10 @@ int run(const Options& opt) {
     }
     options.view = camera->view;
     options.fixed_camera = camera->fixed;
+    // The command line wins over the file.
+    if (opt.attract.archive.empty()) options.attract.archive = camera->attract.archive;
+    if (!opt.attract_models_given) options.attract.models = camera->attract.models;
+    if (!opt.attract_seconds_given) options.attract.seconds = camera->attract.seconds;
   }
   // The one clock of the display: link timing, frame times, the HUD, the timeout.
   twister::hal::MonotonicClock clock;
@@ -291,6 +301,15 @@ int run(const Options& opt) {
           : Framing::model;
   BridgeApp app(*transport.port, clock, &display.renderer, bridge_options, logger());
   app.set_view(&display.view);
+  std::unique_ptr<twister::bridge::AttractShowcase> showcase;
+  if (!options.attract.archive.empty()) {
+    twister::bridge::ShowcaseOptions shown;
+    shown.dir = options.attract.archive;
+    shown.models = static_cast<std::size_t>(options.attract.models);
+    shown.seconds_each = options.attract.seconds;
+    showcase = std::make_unique<twister::bridge::AttractShowcase>(shown, logger());
+    app.set_showcase(showcase.get());
+  }
   app.replica().set_crease_angle(opt.crease_angle_deg);
   display.renderer.allow_live_refinement(!opt.no_live_refine);
   twister::bridge::WindowInput input(app, display.view, options.fixed_camera);
@@ -374,6 +393,16 @@ void add_options(CLI::App& cli, Options& opt) {
                  "the default in --kiosk) or operator (the technical HUD; the default otherwise); "
                  "key Tab switches")
       ->check(CLI::IsMember({"visitor", "operator"}));
+  cli.add_option("--attract-archive", opt.attract.archive,
+                 "attract mode turns recent sculptures from this directory (the station's "
+                 "[exhibit] archive_dir: each archive's model.glb, captioned from its record.json) "
+                 "instead of the station's model; the first grab shows the station's at once");
+  cli.add_option("--attract-models", opt.attract.models,
+                 "with --attract-archive: the newest archives shown (default 6)")
+      ->check(CLI::Range(1, 32));
+  cli.add_option("--attract-seconds", opt.attract.seconds,
+                 "with --attract-archive: seconds each is shown (default 8)")
+      ->check(CLI::Range(1.0, 600.0));
   cli.add_flag("--spectator", opt.spectator,
                "a read-only display (a projector, a screen facing the queue): it watches the "
                "station and sends no commands");
@@ -403,6 +432,8 @@ int main(int argc, char** argv) try {
   LogLevel level = LogLevel::notice;
   (void)twister::hal::parse_log_level(opt.log_level, level);  // checked by CLI11
   if (opt.quiet && cli.count("--log-level") == 0) level = LogLevel::warning;
+  opt.attract_models_given = cli.count("--attract-models") > 0;
+  opt.attract_seconds_given = cli.count("--attract-seconds") > 0;
   logger().set_threshold(level);
   try {
     return run(opt);

@@ -2,7 +2,10 @@
 
 namespace twister::station {
 
-bool EventQueue::push(const session::SessionEvent& event) { return items_.push(event).ok(); }
+bool EventQueue::push(const session::SessionEvent& event) {
+  notices_.see(event);
+  return items_.push(event).ok();
+}
 
 Result<session::SessionEvent> EventQueue::pop() {
   if (items_.empty()) return StatusCode::unavailable;

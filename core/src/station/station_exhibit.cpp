@@ -35,9 +35,6 @@ void Station::note(session::VisitorNote what, ports::TimestampUs now_us, Status 
   v.sculpture = writer_.format().id;
   v.records = journal_records();
   emit(session::make_event(session::SessionEventKind::visitor, 0, v, status), now_us);
-  if (what != session::VisitorNote::began && what != session::VisitorNote::ended) {
-    exhibit_.tell(what);
-  }
 }
 
 Status Station::submit(const session::SessionCommand& command) {
@@ -144,7 +141,6 @@ void Station::end_sculpture(ports::TimestampUs now_us) {
   v.sculpture = summary.sculpture;
   v.records = summary.records;
   emit(session::make_event(session::SessionEventKind::visitor, 0, v, ok_status()), now_us);
-  exhibit_.tell(session::VisitorNote::archived);
 }
 
 Status Station::rotate_journal(ports::TimestampUs now_us) {

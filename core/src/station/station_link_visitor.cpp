@@ -1,9 +1,9 @@
 // StationLink's exhibit messages (issue 25, link protocol 7): the VisitorState when its
 // phase, flags, visitor, sculpture or strokes change and otherwise about once a second
-// (the time left then goes with it), and the lifecycle's newest note as a Notice
-// (sculpture_archived with the visitor number as detail, archive_failed, disk_full,
-// new_sculpture_undone, nothing_to_act_on). Urgent queue; a message that does not fit
-// is tried again next poll. Nothing is sent with exhibit mode off.
+// (the time left then goes with it; exhibit mode only), and each Notice the station
+// posted since the last poll (NoticeBoard: refused undo / redo / commands / presses,
+// the symmetry changed, the lifecycle's notes; exhibit mode on or off). Urgent queue;
+// a message that does not fit is tried again next poll.
 #include <algorithm>
 
 #include "twister/station/station.hpp"
@@ -27,57 +27,40 @@ link::VisitorState to_link(const VisitorView& v) {
   return s;
 }
 
-bool notice_of(session::VisitorNote note, link::NoticeCode& code) {
-  using N = session::VisitorNote;
-  switch (note) {
-    case N::archived:
-      code = link::NoticeCode::sculpture_archived;
-      return true;
-    case N::archive_failed:
-    case N::rotate_failed:
-      code = link::NoticeCode::archive_failed;
-      return true;
-    case N::disk_full:
-      code = link::NoticeCode::disk_full;
-      return true;
-    case N::undone:
-      code = link::NoticeCode::new_sculpture_undone;
-      return true;
-    case N::refused:
-      code = link::NoticeCode::nothing_to_act_on;
-      return true;
-    case N::began:
-    case N::ended:
-      return false;
-  }
-  return false;
-}
-
 }  // namespace
 
 void StationLink::send_visitor(const Station& station, ports::TimestampUs now_us) {
-  if (!admitted() || !station.visitor_view_enabled()) return;
-  const link::VisitorState s = to_link(station.visitor_view());
-  const link::VisitorState& last = visitor_.last;
-  const bool changed = s.phase != last.phase || s.flags != last.flags ||
-                       s.visitor != last.visitor || s.sculpture != last.sculpture ||
-                       s.strokes != last.strokes;
-  if (!visitor_.sent) visitor_.told_seq = station.visitor_told().seq;  // nothing old
-  if (!visitor_.sent || changed || now_us - visitor_.last_us >= 1'000'000) {
-    if (queues_.urgent(s)) {
-      visitor_.sent = true;
-      visitor_.last = s;
-      visitor_.last_us = now_us;
+  if (!admitted()) return;
+  if (station.visitor_view_enabled()) {
+    const link::VisitorState s = to_link(station.visitor_view());
+    const link::VisitorState& last = visitor_.last;
+    const bool changed = s.phase != last.phase || s.flags != last.flags ||
+                         s.visitor != last.visitor || s.sculpture != last.sculpture ||
+                         s.strokes != last.strokes;
+    if (!visitor_.sent || changed || now_us - visitor_.last_us >= 1'000'000) {
+      if (queues_.urgent(s)) {
+        visitor_.sent = true;
+        visitor_.last = s;
+        visitor_.last_us = now_us;
+      }
     }
   }
-  const StationExhibit::Told& told = station.visitor_told();
-  if (told.seq == visitor_.told_seq) return;
-  link::Notice n;
-  if (notice_of(told.note, n.code)) {
-    n.detail = static_cast<std::uint8_t>(std::min<std::uint32_t>(told.visitor, 255));
-    if (!queues_.urgent(n)) return;  // next poll
+  send_notices(station);
+}
+
+void StationLink::send_notices(const Station& station) {
+  const NoticeBoard& board = station.notices();
+  if (!visitor_.notices_synced) {  // a newly admitted display: nothing old
+    visitor_.notices_synced = true;
+    visitor_.notices_sent = board.posted();
   }
-  visitor_.told_seq = told.seq;
+  // Those the ring no longer holds (more than kCapacity in one poll) are skipped.
+  std::uint32_t next = std::max(visitor_.notices_sent + 1, board.oldest());
+  for (; next <= board.posted(); ++next) {
+    if (!queues_.urgent(board.at(next))) break;  // the rest next poll
+  }
+  if (next - 1 == visitor_.notices_sent) return;
+  visitor_.notices_sent = next - 1;
   queues_.flush();
 }
 

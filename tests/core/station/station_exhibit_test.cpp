@@ -54,8 +54,9 @@ StationConfig exhibit_config(bool on) {
 
 class ExhibitStation : public ::testing::Test {
  protected:
-  explicit ExhibitStation(bool on = true)
-      : config_(exhibit_config(on)),
+  explicit ExhibitStation(bool on = true) : ExhibitStation(exhibit_config(on)) {}
+  explicit ExhibitStation(const StationConfig& config)
+      : config_(config),
         responder_(stream_, config_.session.protocol),
         mesh_(grid()),
         base_(grid()),
@@ -396,6 +397,196 @@ TEST_F(ExhibitOff, NothingEndsNothingIsArchivedNoEventIsAdded) {
   EXPECT_TRUE(archive_.entries.empty());
   EXPECT_EQ(station_.journal_records(), 1u);
   EXPECT_EQ(station_.new_sculpture().code(), StatusCode::failed_precondition);
+}
+
+// Notices (issue 25 "feedback for every refusal"), exhibit mode on or off: the paper's
+// buttons but line 2 (hand 0) is undo and the chord hold line 1, press line 2 is redo,
+// and a symmetry cycle of none and the x mirror (the paper's chord: hold line 4, press
+// line 5).
+StationConfig notice_config(bool exhibit) {
+  StationConfig c = exhibit_config(exhibit);
+  EXPECT_TRUE(c.sculpt.buttons.bind(2, 0, input::ButtonRole::undo).ok());
+  const std::uint8_t redo_chord[] = {1, 2};
+  EXPECT_TRUE(c.sculpt.buttons.bind_chord(redo_chord, 0, input::ButtonRole::redo).ok());
+  EXPECT_TRUE(c.sculpt.symmetry_cycle.push(math::SymmetrySpec{}).ok());
+  math::SymmetrySpec x;
+  x.kind = math::SymmetryKind::mirrors;
+  x.mirrors = math::kMirrorX;
+  EXPECT_TRUE(c.sculpt.symmetry_cycle.push(x).ok());
+  return c;
+}
+
+// A display on a memory wire: says hello, sends commands, reads what comes.
+struct MemoryDisplay {
+  explicit MemoryDisplay(const mesh::Mesh& mesh)
+      : station_end(wire, true),
+        bridge_end(wire, false),
+        x(mesh.vertex_capacity()),
+        y(mesh.vertex_capacity()),
+        z(mesh.vertex_capacity()),
+        idx(3 * mesh.triangle_capacity()),
+        out(64 * link::kMaxFrameBytes),
+        link(station_end, StationLinkStorage{x, y, z, idx, out}, StationLinkConfig{}) {}
+  template <class M>
+  void send(const M& m) {
+    std::vector<std::byte> f(link::kMaxFrameBytes);
+    const auto k = link::encode_frame(m, f);
+    ASSERT_TRUE(k.ok());
+    f.resize(*k);
+    ASSERT_EQ(*bridge_end.send(f), f.size());
+  }
+  // The notices received since the last call, as (code, detail).
+  std::vector<std::pair<link::NoticeCode, int>> notices() {
+    std::vector<std::pair<link::NoticeCode, int>> got;
+    std::vector<std::byte> buf(1 << 16);
+    for (;;) {
+      const auto k = bridge_end.receive(buf);
+      if (!k.ok() || *k == 0) break;
+      for (std::size_t i = 0; i < *k; ++i) {
+        const auto m = decoder.process(buf[i]);
+        if (!m.ok() || !*m) continue;
+        if (const auto* n = std::get_if<link::Notice>(&**m)) got.emplace_back(n->code, n->detail);
+      }
+    }
+    return got;
+  }
+
+  test::MemoryWire wire;
+  test::MemoryLinkEnd station_end;
+  test::MemoryLinkEnd bridge_end;
+  std::vector<float> x, y, z;
+  std::vector<std::uint32_t> idx;
+  std::vector<std::byte> out;
+  StationLink link;
+  link::LinkDecoder decoder;
+};
+
+class NoticeStation : public ExhibitStation, public ::testing::WithParamInterface<bool> {
+ protected:
+  NoticeStation() : ExhibitStation(notice_config(GetParam())), display_(*mesh_) {}
+  void run(double seconds) {
+    for (int i = 0; i < static_cast<int>(seconds * 120); ++i) {
+      run_ticks(1);
+      display_.link.poll(station_, clock_.now_us());
+    }
+  }
+  void click(std::uint8_t line) {
+    buttons_.press(line, true, clock_.now_us());
+    run(0.05);
+    buttons_.press(line, false, clock_.now_us());
+    run(0.2);
+  }
+  void chord_click(std::uint8_t held, std::uint8_t trigger) {
+    buttons_.press(held, true, clock_.now_us());
+    run(0.05);
+    click(trigger);
+    buttons_.press(held, false, clock_.now_us());
+    run(0.2);
+  }
+  void undo_button() { click(2); }
+  void redo_button() { chord_click(1, 2); }
+  MemoryDisplay display_;
+};
+
+using N = link::NoticeCode;
+using R = input::Reason;
+using Notices = std::vector<std::pair<link::NoticeCode, int>>;
+int d(R r) { return static_cast<int>(r); }
+
+// Each refusal and each change of the next stroke's group: exactly one notice with its
+// code (the buttons' path and the display's commands alike); strokes, undo and redo
+// that act, and a quiet run: none.
+TEST_P(NoticeStation, EachRefusalAndSymmetryChangeIsOneNoticeAndAQuietRunNone) {
+  using namespace link;  // NOLINT
+  start();
+  ASSERT_TRUE(display_.link.start(station_.sculpt()).ok());
+  display_.send(Hello{Role::bridge, 0, 0, 0, {}});
+  run(0.5);
+  ASSERT_TRUE(display_.link.admitted());
+  run(5.0);  // a stroke-free run
+  EXPECT_EQ(display_.notices(), Notices{});
+
+  undo_button();  // nothing to undo
+  EXPECT_EQ(display_.notices(), (Notices{{N::undo_refused, d(R::nothing_to_undo)}}));
+  display_.send(Command{CommandKind::undo, 0});
+  run(0.2);
+  EXPECT_EQ(display_.notices(), (Notices{{N::undo_refused, d(R::nothing_to_undo)}}));
+  redo_button();
+  EXPECT_EQ(display_.notices(), (Notices{{N::redo_refused, d(R::nothing_to_redo)}}));
+  display_.send(Command{CommandKind::redo, 0});
+  run(0.2);
+  EXPECT_EQ(display_.notices(), (Notices{{N::redo_refused, d(R::nothing_to_redo)}}));
+
+  // The chord (hold line 4, press line 5) and the display's key S.
+  chord_click(4, 5);
+  EXPECT_EQ(display_.notices(), (Notices{{N::symmetry_changed, int(math::SymmetryKind::mirrors)}}));
+  display_.send(Command{CommandKind::cycle_symmetry, 0});
+  run(0.2);
+  EXPECT_EQ(display_.notices(), (Notices{{N::symmetry_changed, int(math::SymmetryKind::none)}}));
+
+  // A stroke, its undo and redo act: no notice.
+  right_stroke(2.0f);
+  display_.send(Command{CommandKind::undo, 0});
+  run(0.2);
+  display_.send(Command{CommandKind::redo, 0});
+  run(0.2);
+  undo_button();
+  redo_button();
+  EXPECT_EQ(display_.notices(), Notices{});
+  EXPECT_EQ(station_.journal_records(), 5u);  // the stroke, two undos, two redos
+
+  // While a stroke is open: undo, redo and the next method are refused (busy).
+  right_in_ = {10.0f, 0.0f, 5.0f};
+  buttons_.press(3, true, clock_.now_us());
+  run(0.1);
+  display_.send(Command{CommandKind::undo, 0});
+  run(0.1);
+  display_.send(Command{CommandKind::redo, 0});
+  run(0.1);
+  display_.send(Command{CommandKind::next_method, 0});
+  run(0.1);
+  buttons_.press(3, false, clock_.now_us());
+  run(0.2);
+  EXPECT_EQ(display_.notices(), (Notices{{N::undo_refused, d(R::busy)},
+                                         {N::redo_refused, d(R::busy)},
+                                         {N::nothing_to_act_on, d(R::busy)}}));
+  run(3.0);
+  EXPECT_EQ(display_.notices(), Notices{});
+}
+
+INSTANTIATE_TEST_SUITE_P(ExhibitOnAndOff, NoticeStation, ::testing::Bool(),
+                         [](const ::testing::TestParamInfo<bool>& i) {
+                           return i.param ? std::string("exhibit_on") : std::string("exhibit_off");
+                         });
+
+// More notices in one poll than the board holds: the newest kCapacity reach the
+// display, in order, each once.
+TEST(NoticeBoard, KeepsTheNewestNumberedAndMapsEventsToCodes) {
+  NoticeBoard board;
+  EXPECT_EQ(board.posted(), 0u);
+  EXPECT_EQ(board.oldest(), 1u);
+  for (std::uint8_t i = 1; i <= 10; ++i) board.post({link::NoticeCode::undo_refused, i});
+  EXPECT_EQ(board.posted(), 10u);
+  EXPECT_EQ(board.oldest(), 3u);
+  for (std::uint32_t k = 3; k <= 10; ++k) EXPECT_EQ(board.at(k).detail, k);
+  link::Notice n;
+  using session::SessionEventKind;
+  EXPECT_FALSE(notice_for(session::make_event(SessionEventKind::grab_begin, 0), n));
+  EXPECT_FALSE(notice_for(
+      session::make_event(SessionEventKind::undone, 0, session::payload::RecordRef{1}), n));
+  ASSERT_TRUE(notice_for(
+      session::make_event(SessionEventKind::refused, 1, session::payload::Reasoned{R::no_tracking}),
+      n));
+  EXPECT_EQ(n.code, link::NoticeCode::nothing_to_act_on);
+  EXPECT_EQ(n.detail, d(R::no_tracking));
+  session::payload::Visitor v;
+  v.note = VisitorNote::archived;
+  v.visitor = 300;
+  ASSERT_TRUE(notice_for(session::make_event(SessionEventKind::visitor, 0, v), n));
+  EXPECT_EQ(n.code, link::NoticeCode::sculpture_archived);
+  EXPECT_EQ(n.detail, 255);
+  v.note = VisitorNote::began;
+  EXPECT_FALSE(notice_for(session::make_event(SessionEventKind::visitor, 0, v), n));
 }
 
 }  // namespace

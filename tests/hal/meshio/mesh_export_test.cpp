@@ -14,6 +14,7 @@
 #include <iterator>
 #include <vector>
 
+#include "twister/meshio/glb_reader.hpp"
 #include "twister/meshio/mesh_buffer.hpp"
 #include "twister/meshio/mesh_generator.hpp"
 #include "twister/meshio/thumbnail.hpp"
@@ -146,6 +147,49 @@ TEST(MeshExport, GlbReloadsWithTinygltfUprightWithAMaterial) {
       top_radius = std::max(top_radius, std::hypot(double(xyz[3 * i]), double(xyz[3 * i + 2])));
   }
   EXPECT_NEAR(top_radius, 0.015, 1e-4);
+}
+
+// read_glb (the display's attract showcase) gives back what write_glb wrote: the same
+// triangles, upright (+Y) and centred; bad files are refused with the file named,
+// never a crash.
+TEST(GlbReader, ReadsBackWhatTheWriterWroteAndRefusesBadFiles) {
+  const Sculpture s(glm::vec3(0, 0, -1), glm::vec3(0.3F, -0.2F, 0.5F));
+  const fs::path path = scratch("readback.glb");
+  ASSERT_TRUE(write_glb(path, s.buffer.mesh(), with_up(glm::vec3(0, 0, -1))));
+  const auto read = read_glb(path.string());
+  ASSERT_TRUE(read) << read.error().message;
+  const mesh::Mesh& m = (*read)->mesh();
+  EXPECT_EQ(m.triangle_count(), s.buffer.mesh().triangle_count());
+  EXPECT_GE(m.vertex_count(), s.buffer.mesh().vertex_count());
+  glm::vec3 lo(1e9F), hi(-1e9F);
+  for (std::uint32_t i = 0; i < m.vertex_count(); ++i) {
+    lo = glm::min(lo, m.position(i));
+    hi = glm::max(hi, m.position(i));
+  }
+  EXPECT_NEAR(lo.y, -0.2F, 1e-5F);  // the cylinder's axis is +Y now
+  EXPECT_NEAR(hi.y, 0.2F, 1e-5F);
+  EXPECT_NEAR(lo.x + hi.x, 0.0F, 1e-5F);
+  // Bounded: counts over the limits are refused before anything is copied.
+  GlbReadLimits small;
+  small.max_triangles = 10;
+  const auto too_many = read_glb(path.string(), small);
+  ASSERT_FALSE(too_many);
+  EXPECT_EQ(too_many.error().status.code(), StatusCode::resource_exhausted);
+  small = {};
+  small.max_file_bytes = 100;
+  EXPECT_EQ(read_glb(path.string(), small).error().status.code(), StatusCode::resource_exhausted);
+  // Cut short, garbage, missing: refused, named.
+  const std::vector<char> bytes = slurp(path);
+  const fs::path cut = scratch("cut.glb");
+  std::ofstream(cut, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size() / 2));
+  const auto torn = read_glb(cut.string());
+  ASSERT_FALSE(torn);
+  EXPECT_EQ(torn.error().status.code(), StatusCode::invalid_argument);
+  EXPECT_NE(torn.error().message.find(cut.string()), std::string::npos);
+  const fs::path junk = scratch("junk.glb");
+  std::ofstream(junk, std::ios::binary) << "glTF this is not";
+  EXPECT_EQ(read_glb(junk.string()).error().status.code(), StatusCode::invalid_argument);
+  EXPECT_EQ(read_glb(scratch("none.glb").string()).error().status.code(), StatusCode::io_error);
 }
 
 TEST(MeshExport, NeverReplacesAFileItDidNotWrite) {

@@ -20,6 +20,7 @@
 #include <string>
 
 #include "prometheus_text.hpp"
+#include "twister/meshio/glb_reader.hpp"
 
 namespace {
 
@@ -119,6 +120,11 @@ TEST(ExhibitProgram, AnIdleVisitorIsArchivedWithAnStlAdmeshPassesAndAGlbThatRelo
   ASSERT_GE(indices, 0);
   EXPECT_EQ(static_cast<int>(model.accessors.at(static_cast<std::size_t>(indices)).count),
             3 * facets);
+
+  // The display's attract showcase reads the same model back (meshio::read_glb).
+  const auto shown = twister::meshio::read_glb((a / "model.glb").string());
+  ASSERT_TRUE(shown) << shown.error().message;
+  EXPECT_EQ(static_cast<int>((*shown)->mesh().triangle_count()), facets);
 
   EXPECT_LT(fs::file_size(dir / "journal.twj"), fs::file_size(a / "journal.twj"));
   // The metrics: one visitor's sculpture ended today.

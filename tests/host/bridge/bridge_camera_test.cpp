@@ -83,6 +83,20 @@ TEST(CameraConfig, MistakesNameTheKey) {
   EXPECT_NE(error("[view]\n").find("view: unknown"), std::string::npos);
   EXPECT_NE(error("[camera\n").find("k.toml:1: TOML syntax error"), std::string::npos);
   EXPECT_FALSE(load_camera_config("/nonexistent/k.toml"));
+  // Attract mode's showcase (issue 25).
+  EXPECT_NE(error("[attract]\nmodels = 0\n").find("attract.models"), std::string::npos);
+  EXPECT_NE(error("[attract]\nmodels = 2.5\n").find("attract.models"), std::string::npos);
+  EXPECT_NE(error("[attract]\nseconds = 0.2\n").find("attract.seconds"), std::string::npos);
+  EXPECT_NE(error("[attract]\narchive = \"\"\n").find("attract.archive"), std::string::npos);
+  EXPECT_NE(error("[attract]\narchiv = \"x\"\n").find("attract.archiv: unknown key"),
+            std::string::npos);
+  const auto a = parse_camera_config(
+      "[attract]\narchive = \"/srv/archive\"\nmodels = 3\nseconds = 12.5\n", "k.toml");
+  ASSERT_TRUE(a) << a.error().message;
+  EXPECT_EQ(a->attract.archive, "/srv/archive");
+  EXPECT_EQ(a->attract.models, 3);
+  EXPECT_EQ(a->attract.seconds, 12.5);
+  EXPECT_TRUE(a->fixed);  // no [camera]: its defaults
 }
 
 TEST(WindowInput, CameraKeysMoveAFreeCameraOnlyAndCommandKeysReachTheStation) {

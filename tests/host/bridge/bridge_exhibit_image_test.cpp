@@ -10,7 +10,9 @@
 
 #include <cmath>
 
+#include "attract_showcase.hpp"
 #include "bridge_image_rig.hpp"
+#include "showcase_archive.hpp"
 #include "twister/link/math_conversion.hpp"
 #include "window_input.hpp"
 
@@ -62,7 +64,7 @@ class ExhibitPictures : public DisplayRig {
   Image shot(Audience audience) {
     view_->options().audience = audience;
     app_->step();
-    HudInput in;
+    HudInput in = app_->hud_input();  // the showcase's caption among it
     in.link = LinkView::connected;
     in.ready = true;
     view_->draw(app_->replica(), in);
@@ -227,6 +229,125 @@ TEST_F(ExhibitPictures, ACommandKeyThatDoesNothingSaysWhy) {
   EXPECT_EQ(view_->exhibit_text().notices[1],
             "This screen only watches: commands come from the sculpting station");
   EXPECT_EQ(watcher.counters().commands_sent, 0u);
+}
+
+// The model's silhouette above `below_y`: its bounding box (x0, y0, x1, y1) and mask.
+struct Silhouette {
+  float box[4] = {1e9F, 1e9F, -1e9F, -1e9F};
+  std::vector<bool> mask;
+  float width() const { return box[2] - box[0]; }
+  float height() const { return box[3] - box[1]; }
+};
+
+Silhouette silhouette(const Image& img, float below_y) {
+  Silhouette s;
+  s.mask.assign(static_cast<std::size_t>(img.width * img.height), false);
+  for (int y = 0; y < int(below_y); ++y) {
+    for (int x = 0; x < img.width; ++x) {
+      if (is_background(img.at(x, y))) continue;
+      s.mask[static_cast<std::size_t>(y * img.width + x)] = true;
+      s.box[0] = std::min(s.box[0], float(x));
+      s.box[1] = std::min(s.box[1], float(y));
+      s.box[2] = std::max(s.box[2], float(x));
+      s.box[3] = std::max(s.box[3], float(y));
+    }
+  }
+  return s;
+}
+
+// Pixels in one silhouette and not the other, over those in either.
+double mismatch(const Silhouette& a, const Silhouette& b) {
+  double either = 0.0, one = 0.0;
+  for (std::size_t i = 0; i < a.mask.size(); ++i) {
+    either += (a.mask[i] || b.mask[i]) ? 1.0 : 0.0;
+    one += (a.mask[i] != b.mask[i]) ? 1.0 : 0.0;
+  }
+  return either > 0.0 ? one / either : 0.0;
+}
+
+// Attract mode from the station's archive (twister-bridge --attract-archive): between
+// visitors the turntable shows the newest archived sculptures in turn, upright and
+// where the station's model is, captioned; the first grab shows the station's model
+// at once. The archive holds (newest first) a twisted block, a tall column and a wide
+// disc. The first picture is the README's exhibit-attract.png.
+TEST_F(ExhibitPictures, AttractShowsRecentSculpturesFromTheArchiveUntilTheFirstGrab) {
+  test::ShowcaseArchive archive("twister_showcase_image_test");
+  const std::string disc = archive.add("20261127T094500", 6, 0.2F, 0.03F, 1);
+  const std::string column = archive.add("20261127T101500", 7, 0.03F, 0.2F, 3);
+  const std::string twisted = archive.add_twisted("20261127T113000", 8, 4);
+  ShowcaseOptions o;
+  o.dir = archive.dir.string();
+  o.seconds_each = 4.0;
+  AttractShowcase showcase(o, log_);
+  app_->set_showcase(&showcase);
+  view_->options().cues = CueOptions{false, false, false, false, false};  // the models alone
+  status();
+  phase(link::VisitorPhase::sculpting, 2, 60.0F);
+  const Image live = shot(Audience::visitor);
+  const float below = 0.6F * kH;  // above the prompt
+  const Silhouette live_shape = silhouette(live, below);
+  EXPECT_EQ(app_->showing_archive(), "");
+
+  phase(link::VisitorPhase::attract);
+  const Image first = shot(Audience::visitor);
+  expect_live_frame(first);
+  EXPECT_EQ(app_->showing_archive(), twisted);
+  EXPECT_EQ(view_->exhibit_text().prompt, "Pick up the handles and squeeze to grab");
+  EXPECT_EQ(view_->exhibit_text().detail, "Sculpture 8 \u00b7 4 strokes, by an earlier visitor");
+  const float* prompt = view_->hud().prompt();
+  EXPECT_GT(prompt[1], below);
+  EXPECT_GT(text_pixels(first, prompt), int(prompt[2] * prompt[3]) / 100);
+  const Silhouette twisted_shape = silhouette(first, below);
+  EXPECT_GT(mismatch(twisted_shape, live_shape), 0.2) << "the archived block, not the live model";
+  EXPECT_GT(twisted_shape.height(), 1.2F * twisted_shape.width()) << "it stands upright";
+  const glm::vec2 c = model_centre(first, below);
+  EXPECT_NEAR(c.x, 0.5F * kW, 0.08F * kW) << "framed where the station's model is";
+
+  // After its seconds the next one, turning: the column, standing up; then the disc.
+  const auto wait = [&](double seconds) {
+    for (int i = 0; i < int(seconds * 4.0); ++i) {
+      clock_.advance_us(250'000);
+      (void)shot(Audience::visitor);
+    }
+    return shot(Audience::visitor);
+  };
+  const Image second = wait(4.0);
+  EXPECT_EQ(app_->showing_archive(), column);
+  EXPECT_EQ(view_->exhibit_text().detail, "Sculpture 7 \u00b7 3 strokes, by an earlier visitor");
+  const Silhouette column_shape = silhouette(second, below);
+  EXPECT_GT(column_shape.height(), 3.0F * column_shape.width()) << "the column stands upright";
+  EXPECT_GT(mismatch(column_shape, live_shape), 0.3);
+  EXPECT_GT(view_->turntable_deg(), 40.0F);
+  const Image third = wait(4.0);
+  EXPECT_EQ(app_->showing_archive(), disc);
+  const Silhouette disc_shape = silhouette(third, below);
+  EXPECT_GT(disc_shape.width(), 1.4F * disc_shape.height()) << "the disc lies flat";
+  EXPECT_GT(mismatch(disc_shape, column_shape), 0.5);
+
+  // The first grab: the station's model at once, the camera given back.
+  hands(true);
+  const Image grabbed = shot(Audience::visitor);
+  EXPECT_EQ(app_->showing_archive(), "");
+  EXPECT_FALSE(view_->exhibit_text().attract);
+  EXPECT_EQ(view_->turntable_deg(), 0.0F);
+  EXPECT_LT(mismatch(silhouette(grabbed, below), live_shape), 0.03) << "the live model is back";
+}
+
+// No archive (or nothing readable in it): attract turns the station's model as before.
+TEST_F(ExhibitPictures, AttractWithoutAnArchiveTurnsTheStationsModel) {
+  ShowcaseOptions o;
+  o.dir = "/nonexistent/twister/archive";
+  AttractShowcase showcase(o, log_);
+  app_->set_showcase(&showcase);
+  status();
+  phase(link::VisitorPhase::sculpting, 2, 60.0F);
+  const Image live = shot(Audience::visitor);
+  phase(link::VisitorPhase::attract);
+  const Image attract = shot(Audience::visitor);
+  EXPECT_EQ(app_->showing_archive(), "");
+  EXPECT_TRUE(view_->exhibit_text().attract);
+  EXPECT_EQ(view_->exhibit_text().detail, "shape the model with both hands");
+  EXPECT_LT(mismatch(silhouette(attract, 0.6F * kH), silhouette(live, 0.6F * kH)), 0.03);
 }
 
 }  // namespace

@@ -8,11 +8,18 @@
 #include <rapidcheck.h>
 #include <rapidcheck/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "attract_showcase.hpp"
 #include "exhibit_model.hpp"
 #include "scene_replica.hpp"
+#include "showcase_archive.hpp"
+#include "twister/input/interaction_machine.hpp"
 #include "window_input.hpp"
 
 namespace twister::bridge {
@@ -179,6 +186,148 @@ TEST(ExhibitWords, EachNoticeShowsOnceForItsTimeWithItsReason) {
     for (std::uint8_t d = 1; d < c; ++d)
       EXPECT_NE(notice_sentence(code), notice_sentence(static_cast<link::NoticeCode>(d)));
   }
+}
+
+// The station's detail (the session's reason) says why: a stroke open, an untracked
+// handle, hands together; with exhibit mode off too (no visitor state).
+TEST(ExhibitWords, ARefusalsReasonChoosesItsWords) {
+  SceneReplica r;
+  ExhibitModel m;
+  const auto reason = [](twister::input::Reason x) { return static_cast<std::uint8_t>(x); };
+  (void)r.apply(link::Notice{link::NoticeCode::undo_refused, reason(twister::input::Reason::busy)});
+  (void)r.apply(link::Notice{link::NoticeCode::nothing_to_act_on,
+                             reason(twister::input::Reason::no_tracking)});
+  (void)r.apply(link::Notice{link::NoticeCode::redo_refused,
+                             reason(twister::input::Reason::nothing_to_redo)});
+  const ExhibitText t = m.update(r, connected(5.0), Audience::visitor);
+  EXPECT_EQ(t.notices,
+            (std::vector<std::string>{"Undo waits until the stroke ends",
+                                      "That handle is not tracked: bring it back in view",
+                                      "Nothing to redo"}));
+  EXPECT_EQ(notice_sentence(link::NoticeCode::nothing_to_act_on,
+                            reason(twister::input::Reason::hands_too_close)),
+            "Hands too close together to set the size");
+  EXPECT_EQ(notice_sentence(link::NoticeCode::symmetry_changed, 1),
+            notice_sentence(link::NoticeCode::symmetry_changed));
+}
+
+// The messages a showcase logs (level, the format with its text arguments appended).
+class CapturedLog final : public ports::LogSink {
+ public:
+  std::vector<std::pair<ports::LogLevel, std::string>> lines;
+
+ private:
+  bool do_enabled(ports::LogLevel) const override { return true; }
+  void do_write(ports::LogLevel level, const char*, const char* format,
+                std::span<const ports::LogArg> args) override {
+    std::string line = format;
+    for (const ports::LogArg& a : args) {
+      if (a.kind == ports::LogArg::Kind::text) line += std::string(" | ") + a.s;
+    }
+    lines.emplace_back(level, line);
+  }
+};
+
+// Attract mode's showcase over a station's archive (issue 25): the newest complete
+// archives first, each for its time with its caption; a bad model skipped, logged and
+// counted once; at most `models` held; new archives appear at the next listing.
+TEST(AttractShowcase, ShowsTheNewestArchivesInTurnSkipsBadOnesAndRescans) {
+  test::ShowcaseArchive archive("twister_showcase_test");
+  const std::string a = archive.add("20261127T101500", 7, 0.03F, 0.2F, 3);
+  const std::string b = archive.add("20261127T113000", 8, 0.2F, 0.03F, 1);
+  const std::string bad = archive.add_bad("20261127T120000", 9);
+  std::filesystem::create_directories(archive.dir / ".tmp-5c000010-123");  // being written
+  std::ofstream(archive.dir / "notes.txt") << "not an archive";
+  CapturedLog log;
+  ShowcaseOptions o;
+  o.dir = archive.dir.string();
+  o.models = 2;
+  o.seconds_each = 5.0;
+  o.rescan_s = 20.0;
+  AttractShowcase showcase(o, log);
+  showcase.begin(100.0);
+  const ShowcaseModel* first = showcase.at(100.0);
+  ASSERT_NE(first, nullptr);
+  EXPECT_EQ(first->name, b);  // the newest readable one
+  EXPECT_EQ(first->caption, "Sculpture 8 \u00b7 1 stroke");
+  EXPECT_GT(first->mesh.triangle_count(), 100u);
+  ASSERT_NE(showcase.at(105.0), nullptr);
+  EXPECT_EQ(showcase.at(105.0)->name, a);
+  EXPECT_EQ(showcase.at(105.0)->caption, "Sculpture 7 \u00b7 3 strokes");
+  EXPECT_EQ(showcase.at(110.0)->name, b);
+  EXPECT_EQ(showcase.counters().skipped, 1u);
+  EXPECT_EQ(showcase.counters().loaded, 2u);
+  ASSERT_EQ(log.lines.size(), 2u);
+  EXPECT_EQ(log.lines[0].first, ports::LogLevel::warning);
+  EXPECT_NE(log.lines[0].second.find(bad), std::string::npos);
+  EXPECT_NE(log.lines[0].second.find("model.glb"), std::string::npos);
+  EXPECT_NE(log.lines[1].second.find("showing"), std::string::npos);
+  // A new visitor's sculpture: it appears at the next listing, the oldest goes (two held),
+  // the bad one is not read again.
+  const std::string c = archive.add("20261127T130000", 10, 0.1F, 0.1F, 5);
+  EXPECT_EQ(showcase.at(115.0)->name, a);  // not listed yet
+  showcase.begin(121.0);
+  EXPECT_EQ(showcase.at(121.0)->name, c);
+  EXPECT_EQ(showcase.models().size(), 2u);
+  EXPECT_EQ(showcase.models()[1].name, b);
+  EXPECT_EQ(showcase.counters().skipped, 1u);
+  EXPECT_EQ(showcase.counters().loaded, 3u);
+  EXPECT_EQ(showcase.counters().scans, 2u);
+  EXPECT_EQ(log.lines.size(), 2u);
+}
+
+TEST(AttractShowcase, NoArchiveFallsBackToTheStationsModelAndSaysSoOnce) {
+  CapturedLog log;
+  ShowcaseOptions o;
+  o.dir = "/nonexistent/twister/archive";
+  o.rescan_s = 1.0;
+  AttractShowcase showcase(o, log);
+  showcase.begin(0.0);
+  EXPECT_EQ(showcase.at(0.0), nullptr);
+  EXPECT_EQ(showcase.at(5.0), nullptr);  // listed again: still nothing, not said again
+  EXPECT_EQ(showcase.counters().scans, 2u);
+  ASSERT_EQ(log.lines.size(), 1u);
+  EXPECT_NE(log.lines[0].second.find("/nonexistent/twister/archive"), std::string::npos);
+  EXPECT_NE(log.lines[0].second.find("station's model"), std::string::npos);
+  // Only bad files: the same.
+  test::ShowcaseArchive archive("twister_showcase_bad_test");
+  archive.add_bad("20261127T120000", 1);
+  CapturedLog log2;
+  o.dir = archive.dir.string();
+  AttractShowcase bad(o, log2);
+  bad.begin(0.0);
+  EXPECT_EQ(bad.at(0.0), nullptr);
+  EXPECT_EQ(bad.counters().skipped, 1u);
+  EXPECT_EQ(log2.lines.size(), 2u);  // the bad file, then the fall-back
+}
+
+TEST(AttractShowcase, NamesCaptionsAndTheUprightPlacement) {
+  EXPECT_TRUE(archive_name("20261127T101500Z-v0007-5c0000a7"));
+  EXPECT_FALSE(archive_name(".tmp-5c0000a7-123"));
+  EXPECT_FALSE(archive_name("20261127T101500Z-v0007-5c0000a"));
+  EXPECT_FALSE(archive_name("20261127X101500Z-v0007-5c0000a7"));
+  EXPECT_EQ(showcase_caption("20261127T101500Z-v0012-5c0000a7", 4),
+            "Sculpture 12 \u00b7 4 strokes");
+  EXPECT_EQ(showcase_caption("20261127T101500Z-v0012-5c0000a7", -1), "Sculpture 12");
+  // A column along +Y (glTF's up), placed with up -Z at (1, 2, 3) with radius 0.5.
+  MeshData m;
+  m.x = {-0.1F, 0.1F, 0.0F, 0.0F};
+  m.y = {-1.0F, -1.0F, 1.0F, 1.0F};
+  m.z = {0.0F, 0.0F, 0.1F, -0.1F};
+  m.indices = {0, 1, 2, 0, 2, 3};
+  const MeshData p = place_upright(m, glm::vec3(0.0F, 0.0F, -1.0F), glm::vec3(1, 2, 3), 0.5F);
+  glm::vec3 lo(1e9F), hi(-1e9F);
+  for (std::size_t i = 0; i < p.vertex_count(); ++i) {
+    lo = glm::min(lo, glm::vec3(p.x[i], p.y[i], p.z[i]));
+    hi = glm::max(hi, glm::vec3(p.x[i], p.y[i], p.z[i]));
+  }
+  EXPECT_NEAR(0.5F * (lo.x + hi.x), 1.0F, 1e-5F);
+  EXPECT_NEAR(0.5F * (lo.y + hi.y), 2.0F, 1e-5F);
+  EXPECT_NEAR(0.5F * (lo.z + hi.z), 3.0F, 1e-5F);
+  EXPECT_NEAR(0.5F * glm::length(hi - lo), 0.5F, 1e-5F);
+  EXPECT_GT(hi.z - lo.z, 4.0F * (hi.x - lo.x));  // the column's length is along the up axis
+  EXPECT_LT(p.z[2], p.z[0]);                     // its top (+Y) toward -Z, the world's up
+  EXPECT_EQ(p.indices, m.indices);
 }
 
 TEST(ExhibitWords, ANoticeSayingWhatThePromptSaysIsNotShownTwice) {

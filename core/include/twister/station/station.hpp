@@ -193,8 +193,10 @@ class Station {
   VisitorView visitor_view() const;
   bool visitor_view_enabled() const { return exhibit_.enabled(); }
   const ExhibitCounters& exhibit_counters() const { return exhibit_.counters(); }
-  // The newest lifecycle note for the display (StationLink sends it as a Notice).
-  const StationExhibit::Told& visitor_told() const { return exhibit_.told(); }
+  // What the display shows briefly: the notices of the events emitted so far (refused
+  // undo / redo / commands / presses, the symmetry changed, the lifecycle's notes),
+  // exhibit mode on or off; StationLink sends the ones its display has not had.
+  const NoticeBoard& notices() const { return events_.notices(); }
 
  private:
   // start()'s steps (station_start.cpp).

@@ -83,15 +83,6 @@ class StationExhibit {
   // The time of the last poll (what visitor_view() counts the time left from).
   ports::TimestampUs& now_us() { return now_us_; }
   ports::TimestampUs now_us() const { return now_us_; }
-  // The newest lifecycle note a display is told about (a link Notice): archived,
-  // archive_failed, disk_full, undone, refused. `seq` counts them (0: none yet).
-  struct Told {
-    std::uint32_t seq = 0;
-    session::VisitorNote note = session::VisitorNote::archived;
-    std::uint32_t visitor = 0;
-  };
-  void tell(session::VisitorNote note) { told_ = {told_.seq + 1, note, visitor_}; }
-  const Told& told() const { return told_; }
 
  private:
   session::VisitorLifecycle life_;
@@ -103,7 +94,6 @@ class StationExhibit {
   ports::TimestampUs journal_retry_us_ = 0;  // next try to begin a new journal
   ports::TimestampUs now_us_ = 0;
   std::uint8_t trouble_ = 0;
-  Told told_{};
   ExhibitCounters counters_{};
 };
 

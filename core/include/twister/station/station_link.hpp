@@ -126,14 +126,16 @@ class StationLink final : private AdmissionListener {
   template <class Submit>
   void route_commands(Submit submit);
   void refresh_counters();
-  // Exhibit mode (station_link_visitor.cpp): the VisitorState when it changes and about
-  // once a second, and the lifecycle's newest note as a Notice.
+  // station_link_visitor.cpp: exhibit mode's VisitorState when it changes and about
+  // once a second, then the station's new notices (NoticeBoard; exhibit mode or not).
   void send_visitor(const Station& station, ports::TimestampUs now_us);
+  void send_notices(const Station& station);
   struct VisitorSent {
     bool sent = false;
     link::VisitorState last{};
     ports::TimestampUs last_us = 0;
-    std::uint32_t told_seq = 0;
+    bool notices_synced = false;     // notices_sent set at this display's admission
+    std::uint32_t notices_sent = 0;  // the NoticeBoard's number of the last one sent
   };
 
   FrameQueues queues_;
