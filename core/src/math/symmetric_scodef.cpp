@@ -212,6 +212,29 @@ Status SymmetricScodef::build(const SymmetricWarp& warp) {
   return ok_status();
 }
 
+// Where hand h's motion M(P) = O' + R (P - O) takes O + x, averaged over the conjugates
+// s M s^-1 by the stabiliser S of its grab point O (§11.4's projection; M itself when S
+// is trivial): (1/|S|) sum_s (s O' + s R s^T x), R x = U' (U.x) + V' (V.x) + W' (W.x).
+glm::dvec3 SymmetricScodef::hand_target(const SymmetricWarp& warp, std::size_t h, glm::dvec3 x) {
+  const Frame& a = warp.start_frame(h);
+  const Frame& b = warp.end_frame(h);
+  const auto turn = [&](glm::dvec3 v) {
+    return glm::dot(a.u, v) * b.u + glm::dot(a.v, v) * b.v + glm::dot(a.w, v) * b.w;
+  };
+  if (warp.stabiliser_size(h) < 2) return b.origin + turn(x);
+  const SymmetryGroup& group = warp.group();
+  const double same = kCoincidentGrabFraction * warp.radius();
+  glm::dvec3 sum(0.0);
+  int n = 0;
+  for (std::size_t g = 0; g < group.order(); ++g) {
+    const glm::dmat3& s = group.element(g);
+    if (glm::length(s * a.origin - a.origin) > same) continue;
+    sum += s * (b.origin + turn(glm::transpose(s) * x));
+    ++n;
+  }
+  return sum / static_cast<double>(n);
+}
+
 Status SymmetricScodef::solve(const SymmetricWarp& warp) {
   if (!built_) return StatusCode::failed_precondition;
   const SymmetryGroup& group = warp.group();
@@ -221,10 +244,9 @@ Status SymmetricScodef::solve(const SymmetricWarp& warp) {
   std::array<glm::dvec3, kMaxReps> sum{};
   std::array<int, kMaxReps> count{};
   for (std::size_t h = 0; h < warp.hand_count(); ++h) {
-    const Frame& f = warp.end_frame(h);
     for (std::size_t j = 0; j < kScodefConstraintsPerHand; ++j) {
       const std::size_t m = h * kScodefConstraintsPerHand + j;
-      const glm::dvec3 target = f.origin + epsilon * axis_of(f, j);
+      const glm::dvec3 target = hand_target(warp, h, epsilon * axis_of(warp.start_frame(h), j));
       sum[member_rep_[m]] += glm::transpose(group.element(member_element_[m])) * target;
       ++count[member_rep_[m]];
     }

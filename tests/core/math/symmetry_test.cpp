@@ -130,7 +130,9 @@ glm::dvec3 expected_target(const SymmetryGroup& group, const Stroke& s, std::siz
 
 // scodef (§11.8): every constraint point O + e U, O + e V, O + e W of every hand (O
 // snapped as in §11.4) and every image of one, with its target g.(O' + e U') ...; where
-// several coincide, the average of their targets. Computed from the group alone.
+// several coincide, the average of their targets. A hand whose grab point has a
+// stabiliser S moves O + x to the average (1/|S|) sum_s s.(O' + R s^T x) of its
+// conjugated motions. Computed from the group alone.
 struct Constraint {
   glm::dvec3 at, target;
   std::size_t hand = 0;
@@ -142,21 +144,27 @@ std::vector<Constraint> scodef_constraints(const SymmetryGroup& group, const Str
   for (std::size_t h = 0; h < s.start.size(); ++h) {
     const glm::dvec3 o = s.start[h].origin;
     glm::dvec3 snapped(0.0);
-    int stab = 0;
+    std::vector<glm::dmat3> stab;
     for (std::size_t g = 0; g < group.order(); ++g) {
       if (distance(group.element(g) * o, o) <= kCoincidentGrabFraction * s.radius) {
         snapped += group.element(g) * o;
-        ++stab;
+        stab.push_back(group.element(g));
       }
     }
-    snapped /= static_cast<double>(stab);
+    snapped /= static_cast<double>(stab.size());
     const Frame& a = s.start[h];
     const Frame& b = s.end[h];
     const glm::dvec3 end = b.origin + (snapped - o);
-    for (const auto& [from, to] : {std::pair{a.u, b.u}, std::pair{a.v, b.v}, std::pair{a.w, b.w}}) {
+    // R as a matrix (columns: the images of the basis vectors).
+    const glm::dmat3 turn = glm::dmat3(b.u, b.v, b.w) * glm::transpose(glm::dmat3(a.u, a.v, a.w));
+    for (const glm::dvec3& from : {a.u, a.v, a.w}) {
+      glm::dvec3 target(0.0);
+      for (const glm::dmat3& m : stab)
+        target += m * (end + turn * (glm::transpose(m) * (e * from)));
+      target /= static_cast<double>(stab.size());
       for (std::size_t g = 0; g < group.order(); ++g) {
         const glm::dmat3& m = group.element(g);
-        all.push_back({m * (snapped + e * from), m * (end + e * to), h});
+        all.push_back({m * (snapped + e * from), m * target, h});
       }
     }
   }

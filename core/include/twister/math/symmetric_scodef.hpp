@@ -53,6 +53,7 @@ class SymmetricScodef {
   void add_owners(const SymmetricWarp& warp, std::size_t r, std::size_t hand, std::size_t a);
   void assemble(const SymmetricWarp& warp);
   Status factorise();
+  static glm::dvec3 hand_target(const SymmetricWarp& warp, std::size_t h, glm::dvec3 x);
   // x with M x = rhs (the factorised M).
   std::array<double, kUnknowns> substitute(const std::array<double, kUnknowns>& rhs) const;
   double condition(double norm) const;
