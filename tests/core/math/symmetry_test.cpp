@@ -374,6 +374,44 @@ RC_GTEST_PROP(SymmetricScodef, TrivialGroupIsPlainScodef, ()) {
   }
 }
 
+// A clutch step of a symmetric scodef stroke (WarpPlan::rebase): the system is built
+// anew at the new start poses; a hand on a plane stays on it. The rebased warp is
+// symmetric and the new constraint points reach their new targets.
+TEST(SymmetricScodef, RebaseBuildsTheSystemAtTheNewPoses) {
+  SymmetryGroup g;
+  ASSERT_TRUE(g.set_mirrors(kMirrorX | kMirrorY).ok());
+  const std::array<Frame, 2> start{
+      identity_frame({0.0, 0.3, 0.1}),
+      test::rotated(identity_frame({0.4, -0.2, 0.0}), {0.6, 0.8, 0}, 0.3, {0.4, -0.2, 0.0})};
+  const std::array<Frame, 2> mid{test::rotated(start[0], {0, 0, 1}, 0.2, {0.05, 0.35, 0.15}),
+                                 test::rotated(start[1], {0, 1, 0}, 0.4, {0.45, -0.25, 0.05})};
+  const std::array<Frame, 2> end{test::rotated(mid[0], {0, 1, 0}, 0.3, {0.1, 0.4, 0.1}),
+                                 test::rotated(mid[1], {1, 0, 0}, 0.2, {0.5, -0.2, 0.1})};
+  SymmetricWarp warp;
+  ASSERT_TRUE(warp.build(g, start, 0.5, WarpMethod::scodef).ok());
+  ASSERT_TRUE(warp.update(mid).ok());
+  ASSERT_TRUE(warp.rebase(mid).ok());
+  ASSERT_TRUE(warp.update(end).ok());
+  EXPECT_EQ(warp.stabiliser_size(0), 2u);  // still on the plane x = 0
+  EXPECT_EQ(warp.start_frame(0).origin.x, 0.0);
+  const double e = kScodefEpsilonFraction * 0.5;
+  for (const auto& [a, b] : {std::pair{mid[1].u, end[1].u}, std::pair{mid[1].v, end[1].v},
+                             std::pair{mid[1].w, end[1].w}}) {
+    for (std::size_t k = 0; k < g.order(); ++k) {
+      const glm::dmat3& m = g.element(k);
+      EXPECT_LE(distance(warp.warp_point(m * (mid[1].origin + e * a)), m * (end[1].origin + e * b)),
+                1e-9);
+    }
+  }
+  for (int i = 0; i < 50; ++i) {
+    const glm::dvec3 p(0.02 * i - 0.5, 0.3 - 0.011 * i, 0.1 + 0.003 * i);
+    for (std::size_t k = 1; k < g.order(); ++k) {
+      const glm::dmat3& m = g.element(k);
+      EXPECT_LE(distance(warp.warp_point(m * p), m * warp.warp_point(p)), 1e-12);
+    }
+  }
+}
+
 // §11.3: at every grab point exactly one weight is 1 and the others 0; with one other
 // grab point in the ball the weight is the paper's squash (§5).
 TEST(SymmetricWarp, WeightsInterpolateWithSeveralGrabPointsInABall) {
