@@ -485,6 +485,14 @@ TEST(SymmetricWarp, NoHeapAllocation) {
     out = warp.warp_point({0.2, 0.1, 0.1});
   });
   EXPECT_TRUE(std::isfinite(out.x));
+  // scodef (§11.8): its system, its solve, a clutch step.
+  EXPECT_NO_ALLOCATIONS({
+    EXPECT_TRUE(warp.build(g, start, 0.4, WarpMethod::scodef).ok());
+    EXPECT_TRUE(warp.update(end).ok());
+    out = warp.warp_point({0.2, 0.1, 0.1});
+    EXPECT_TRUE(warp.rebase(end).ok());
+  });
+  EXPECT_TRUE(std::isfinite(out.x));
 }
 
 // The float path (docs/math.md §11.7): WarpPlan::apply under a group with the simd
