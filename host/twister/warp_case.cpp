@@ -165,9 +165,6 @@ std::variant<WarpCase, WarpCaseError> parse_warp_case(std::string_view text) {
     return WarpCaseError{c.hand_lines[1],
                          "both hands grab the same point: the squash is undefined"};
   }
-  if (!c.symmetry.trivial() && c.method == math::WarpMethod::scodef) {
-    return WarpCaseError{symmetry_line, "scodef is not available under a symmetry"};
-  }
   if (c.start.size() == 2) {
     for (std::size_t g = 1; g < c.symmetry.order(); ++g) {
       if (glm::length(c.start[1].origin - c.symmetry.element(g) * c.start[0].origin) <=

@@ -31,8 +31,7 @@ struct WarpCaseError {
 
 // Parses and validates a whole case: keywords radius/method/symmetry/hand/point, comments
 // after '#', finite numbers, orthonormal frames (1e-6), one or two hands, R > 0,
-// two hands not grabbing the same point (or, under a symmetry, an image of it), no
-// scodef under a symmetry.
+// two hands not grabbing the same point (or, under a symmetry, an image of it).
 std::variant<WarpCase, WarpCaseError> parse_warp_case(std::string_view text);
 
 }  // namespace twister::cli

@@ -28,7 +28,13 @@ namespace {
 // math::SymmetricWarp (there is no float kernel per image yet).
 int run_symmetric_warp(const std::string& source, const WarpCase& c) {
   static math::SymmetricWarp warp;  // about 5 KiB: not on the stack
-  if (const Status s = warp.build(c.symmetry, c.start, c.radius, c.method); !s.ok()) {
+  const Status built = warp.build(c.symmetry, c.start, c.radius, c.method);
+  if (built.code() == StatusCode::failed_precondition) {
+    return bad_input(source, c.hand_lines.back(),
+                     "the scodef constraint system is singular (constraint points of the hands "
+                     "or of their images coincide or crowd together)");
+  }
+  if (const Status s = built; !s.ok()) {
     return bad_input(source, c.hand_lines.back(),
                      std::string("cannot build the symmetric warp: ") + s.name());
   }

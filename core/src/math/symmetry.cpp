@@ -115,13 +115,13 @@ Status SymmetryGroup::set_rotation(int axis, int n, bool with_mirror) {
 void SymmetricWarp::reset() {
   hands_ = 0;
   points_ = 0;
+  scodef_.reset();
 }
 
 Status SymmetricWarp::build(const SymmetryGroup& group, std::span<const Frame> start, double radius,
                             WarpMethod method) {
   reset();
-  if (start.empty() || start.size() > kMaxHands || !std::isfinite(radius) || !(radius > 0.0) ||
-      method == WarpMethod::scodef) {
+  if (start.empty() || start.size() > kMaxHands || !std::isfinite(radius) || !(radius > 0.0)) {
     return StatusCode::invalid_argument;
   }
   for (const Frame& f : start) {
@@ -176,6 +176,14 @@ Status SymmetricWarp::build(const SymmetryGroup& group, std::span<const Frame> s
     end_[h] = start_[h];
     screws_[h] = compute_screw(start_[h], end_[h]);
   }
+  if (method == WarpMethod::scodef) {
+    const Status s = scodef_.build(*this);
+    if (!s.ok()) {
+      reset();
+      return s;
+    }
+    return scodef_.solve(*this);
+  }
   return ok_status();
 }
 
@@ -200,7 +208,7 @@ Status SymmetricWarp::set_end(std::span<const Frame> end, bool keep_sense,
     screws_[h] = compute_screw(start_[h], end_[h], previous);
     if ((long_turns & (1u << h)) != 0) screws_[h] = long_way_round(screws_[h]);
   }
-  return ok_status();
+  return method_ == WarpMethod::scodef ? scodef_.solve(*this) : ok_status();
 }
 
 Status SymmetricWarp::rebase(std::span<const Frame> start) {
@@ -209,6 +217,7 @@ Status SymmetricWarp::rebase(std::span<const Frame> start) {
   for (const Frame& f : start) {
     if (!is_orthonormal(f)) return StatusCode::invalid_argument;
   }
+  if (method_ == WarpMethod::scodef) return rebase_scodef(start);
   for (std::size_t h = 0; h < hands_; ++h) {
     start_[h] = start[h];
     if (stab_[h] > 1) start_[h].origin += shift_[h];
@@ -216,6 +225,54 @@ Status SymmetricWarp::rebase(std::span<const Frame> start) {
     screws_[h] = compute_screw(start_[h], end_[h]);
   }
   return ok_status();
+}
+
+// scodef's system at the new poses. A hand whose grab point was on a fixed set stays
+// on it: its material there moved by the projection of the hand's motion (§11.4), to
+// Pi (o + shift); the hand's frame is carried there by the new shift.
+Status SymmetricWarp::rebase_scodef(std::span<const Frame> start) {
+  std::array<Frame, kMaxHands> frames{};
+  const double same = kCoincidentGrabFraction * radius_;
+  for (std::size_t h = 0; h < hands_; ++h) {
+    frames[h] = start[h];
+    if (stab_[h] < 2) continue;
+    const glm::dvec3 o = start[h].origin + shift_[h];
+    glm::dvec3 sum(0.0);
+    for (std::size_t g = 0; g < group_.order(); ++g) {
+      const glm::dmat3& m = group_.element(g);
+      if (glm::length(m * start_[h].origin - start_[h].origin) <= same) sum += m * o;
+    }
+    frames[h].origin = sum / static_cast<double>(stab_[h]);
+  }
+  SymmetricWarp next;
+  TWISTER_TRY(next.build(group_, {frames.data(), hands_}, radius_, method_));
+  for (std::size_t h = 0; h < hands_; ++h) {
+    if (next.stab_[h] > 1) next.shift_[h] = next.start_[h].origin - start[h].origin;
+  }
+  *this = next;
+  return ok_status();
+}
+
+double SymmetricWarp::squashed_decay(std::size_t k, glm::dvec3 centre, glm::dvec3 p) const {
+  const glm::dvec3 grab = point_[k];
+  std::uint64_t others = neighbours_[k];
+  if (others == 0) return decay(glm::length(p - centre), radius_);
+  double w = 1.0;
+  while (others != 0 && w > 0.0) {
+    const auto j = static_cast<std::size_t>(std::countr_zero(others));
+    others &= others - 1;
+    w = std::min(w,
+                 decay(glm::length(squash_point(grab, point_[j], radius_, p) - centre), radius_));
+  }
+  return w;
+}
+
+bool SymmetricWarp::influences(glm::dvec3 p) const {
+  if (method_ == WarpMethod::scodef) return scodef_.influences(*this, p);
+  for (std::size_t k = 0; k < points_; ++k) {
+    if (glm::length(p - point_[k]) < radius_) return true;
+  }
+  return false;
 }
 
 double SymmetricWarp::weight(std::size_t k, glm::dvec3 p) const {
@@ -241,6 +298,8 @@ glm::dvec3 SymmetricWarp::hand_move(std::size_t hand, double t, glm::dvec3 p) co
 
 glm::dvec3 SymmetricWarp::warp_point(glm::dvec3 weights_at, glm::dvec3 p) const {
   if (!built()) return p;
+  // scodef has no weights to keep: its system (rebuilt at each clutch step) at p.
+  if (method_ == WarpMethod::scodef) return p + scodef_.displacement(*this, p);
   std::array<double, kMaxGrabPoints> w;
   for (std::size_t k = 0; k < points_; ++k) w[k] = weight(k, weights_at);
   glm::dvec3 moved = p;

@@ -166,19 +166,19 @@ Status WarpPlan::build_symmetric(ConstVertexColumns rest, std::span<const Frame>
   std::copy(start.begin(), start.end(), end_.begin());
   const VertexColumns& keep = symmetry_->start;
   const std::size_t room = std::min({capacity(), keep.x.size(), keep.y.size(), keep.z.size()});
+  // scodef has no float path (§11.8): apply() runs it per vertex in double.
+  const bool scodef = method == WarpMethod::scodef;
   SymmetricFloat& fast = symmetry_->fast;
-  fast.begin(sym, symmetry_->balls, symmetry_->weights, room);
+  if (!scodef) fast.begin(sym, symmetry_->balls, symmetry_->weights, room);
   for (std::size_t i = 0; i < rest.size(); ++i) {
     const glm::dvec3 p(rest.x[i], rest.y[i], rest.z[i]);
     // Weights vanish beyond the radius of every grab point (the squash only lowers them);
     // the vertex joins the float path's ball of each grab point that reaches it.
     if (count_ == room) {
-      for (std::size_t k = 0; k < sym.grab_point_count(); ++k) {
-        if (glm::length(p - sym.grab_point(k)) < radius) return StatusCode::resource_exhausted;
-      }
+      if (sym.influences(p)) return StatusCode::resource_exhausted;
       continue;
     }
-    if (!fast.reaches(sym, p)) continue;
+    if (scodef ? !sym.influences(p) : !fast.reaches(sym, p)) continue;
     // The display's weights: each hand's own grab point (the identity image).
     const double w1 = sym.weight(sym.grab_point_of(0, 0), p);
     const double w2 = hands_ == 2 ? sym.weight(sym.grab_point_of(1, 0), p) : 0.0;
@@ -187,7 +187,7 @@ Status WarpPlan::build_symmetric(ConstVertexColumns rest, std::span<const Frame>
     keep.z[count_] = rest.z[i];
     take(i, w1, w2);
   }
-  fast.finish(sym, keep, {indices_.data(), count_});
+  if (!scodef) fast.finish(sym, keep, {indices_.data(), count_});
   finish_build(rest.size());
   set_kernel_hands();
   return ok_status();
@@ -202,7 +202,7 @@ Status WarpPlan::update_turns(std::span<const Frame> end, std::uint8_t long_turn
 Status WarpPlan::set_end(std::span<const Frame> end, bool keep_sense, std::uint8_t long_turns) {
   if (!built()) return StatusCode::failed_precondition;
   TWISTER_TRY(check_frames(end));
-  if (method_ == WarpMethod::scodef) TWISTER_TRY(scodef_.solve(end));
+  if (method_ == WarpMethod::scodef && !symmetric()) TWISTER_TRY(scodef_.solve(end));
   if (symmetric()) {
     TWISTER_TRY(keep_sense ? symmetry_->warp.update(end)
                            : symmetry_->warp.update_turns(end, long_turns));
@@ -223,7 +223,7 @@ Status WarpPlan::rebase(std::span<const Frame> start) {
   if (!built()) return StatusCode::failed_precondition;
   TWISTER_TRY(check_frames(start));
   if (coincident_grabs(start, radius_)) return StatusCode::invalid_argument;
-  if (method_ == WarpMethod::scodef) {
+  if (method_ == WarpMethod::scodef && !symmetric()) {
     ScodefSystem fresh;
     TWISTER_TRY(fresh.build(start, radius_));
     TWISTER_TRY(fresh.solve(start));

@@ -225,10 +225,6 @@ void read_symmetry_cycle(ConfigReader& s, SculptConfig& sc) {
               "\"rot\"");
       return;
     }
-    if (group.mode != SymmetryMode::none && sc.method == SculptMethod::scodef) {
-      s.error(&item, "symmetry_cycle", "scodef strokes are not symmetrised: only \"none\"");
-      return;
-    }
     sc.symmetry_cycle.push_back(group);
   }
 }
@@ -257,11 +253,6 @@ void read_symmetry(ConfigReader& s, SculptConfig& sc) {
               "only with sculpt.symmetry = \"rot\" (an n-fold rotation) or \"rot\" in "
               "symmetry_cycle");
     }
-  }
-  if (sym.mode != SymmetryMode::none && sc.method == SculptMethod::scodef) {
-    s.error(s.node("symmetry"), "symmetry",
-            "scodef strokes are not symmetrised: use method = \"twister\" or \"rottran\", or "
-            "symmetry = \"none\"");
   }
 }
 

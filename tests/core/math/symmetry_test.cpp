@@ -30,6 +30,9 @@ using test::gen_real;
 // Worst errors seen, relative to the scene size, printed at the end.
 double g_worst_equivariance = 0.0;
 double g_worst_grab = 0.0;
+// scodef may refuse a stroke whose closest two constraint points (of all images, not
+// merged) are this close, relative to the radius (a pivot below 1e-9, §11.8).
+constexpr double kScodefRefusedGap = 0.1;
 
 struct GroupSpec {
   int kind = 0;  // 0 mirrors, 1 rotation, 2 rotation with mirror
@@ -80,14 +83,19 @@ struct Stroke {
   double scale = 1.0;
 };
 
-rc::Gen<Stroke> gen_stroke(const GroupSpec& spec) {
-  return rc::gen::exec([spec] {
+// Strokes of twister or rottran, or (scodef true) of scodef.
+rc::Gen<Stroke> gen_stroke(const GroupSpec& spec, bool scodef = false) {
+  return rc::gen::exec([spec, scodef] {
     Stroke s;
     const int hands = *rc::gen::inRange(1, 3);
     s.radius = *gen_real(0.2, 1.5);
-    s.method = *rc::gen::element(WarpMethod::twister, WarpMethod::rottran);
+    s.method =
+        scodef ? WarpMethod::scodef : *rc::gen::element(WarpMethod::twister, WarpMethod::rottran);
     for (int h = 0; h < hands; ++h) {
       Frame f = *gen_frame(1.0);
+      // Sometimes axis-aligned: with the grab point on a plane or the axis, constraint
+      // points of scodef then lie on it too (a stabiliser of their own, §11.8).
+      if (scodef && *rc::gen::inRange(0, 4) == 0) f = identity_frame(f.origin);
       const int placement = *rc::gen::inRange(0, 3);
       const double offset = s.radius * *rc::gen::element(1e-4, 1e-3, 0.01, 0.1, 0.3);
       f.origin = place(spec, f.origin, placement, offset, *rc::gen::inRange(0, 8));
@@ -120,10 +128,101 @@ glm::dvec3 expected_target(const SymmetryGroup& group, const Stroke& s, std::siz
   return group.element(g) * ((snapped + projected) / static_cast<double>(stab));
 }
 
+// scodef (§11.8): every constraint point O + e U, O + e V, O + e W of every hand (O
+// snapped as in §11.4) and every image of one, with its target g.(O' + e U') ...; where
+// several coincide, the average of their targets. A hand whose grab point has a
+// stabiliser S moves O + x to the average (1/|S|) sum_s s.(O' + R s^T x) of its
+// conjugated motions. Computed from the group alone.
+struct Constraint {
+  glm::dvec3 at, target;
+  std::size_t hand = 0;
+};
+
+std::vector<Constraint> scodef_constraints(const SymmetryGroup& group, const Stroke& s) {
+  const double e = kScodefEpsilonFraction * s.radius;
+  std::vector<Constraint> all;
+  for (std::size_t h = 0; h < s.start.size(); ++h) {
+    const glm::dvec3 o = s.start[h].origin;
+    glm::dvec3 snapped(0.0);
+    std::vector<glm::dmat3> stab;
+    for (std::size_t g = 0; g < group.order(); ++g) {
+      if (distance(group.element(g) * o, o) <= kCoincidentGrabFraction * s.radius) {
+        snapped += group.element(g) * o;
+        stab.push_back(group.element(g));
+      }
+    }
+    snapped /= static_cast<double>(stab.size());
+    const Frame& a = s.start[h];
+    const Frame& b = s.end[h];
+    const glm::dvec3 end = b.origin + (snapped - o);
+    // R as a matrix (columns: the images of the basis vectors).
+    const glm::dmat3 turn = glm::dmat3(b.u, b.v, b.w) * glm::transpose(glm::dmat3(a.u, a.v, a.w));
+    for (const glm::dvec3& from : {a.u, a.v, a.w}) {
+      glm::dvec3 target(0.0);
+      for (const glm::dmat3& m : stab)
+        target += m * (end + turn * (glm::transpose(m) * (e * from)));
+      target /= static_cast<double>(stab.size());
+      for (std::size_t g = 0; g < group.order(); ++g) {
+        const glm::dmat3& m = group.element(g);
+        all.push_back({m * (snapped + e * from), m * target, h});
+      }
+    }
+  }
+  std::vector<Constraint> merged;
+  for (const Constraint& c : all) {
+    glm::dvec3 sum(0.0);
+    int n = 0;
+    for (const Constraint& d : all) {
+      if (distance(c.at, d.at) <= 3e-9 * s.radius) {
+        sum += d.target;
+        ++n;
+      }
+    }
+    merged.push_back({c.at, sum / static_cast<double>(n), c.hand});
+  }
+  return merged;
+}
+
+double g_worst_scodef_target = 0.0;
+int g_scodef_refused = 0;
+int g_scodef_built = 0;
+double g_scodef_refused_gap = 0.0;  // the largest closest-pair gap of a refused stroke
+
+void check_scodef_stroke(const SymmetryGroup& group, const Stroke& s, SymmetricWarp& warp,
+                         const Status& built) {
+  const std::vector<Constraint> cs = scodef_constraints(group, s);
+  // The closest two constraint points that are not merged (relative to the radius);
+  // constraint points of different hands merged count as 0.
+  double gap = 1e9;
+  for (const Constraint& a : cs) {
+    for (const Constraint& b : cs) {
+      const double d = distance(a.at, b.at) / s.radius;
+      if (d > 3e-9 || a.hand != b.hand) gap = std::min(gap, d);
+    }
+  }
+  if (built.code() == StatusCode::failed_precondition) {
+    ++g_scodef_refused;
+    g_scodef_refused_gap = std::max(g_scodef_refused_gap, gap);
+    RC_ASSERT(gap <= kScodefRefusedGap);
+    return;
+  }
+  RC_ASSERT(built.ok());
+  ++g_scodef_built;
+  RC_ASSERT(warp.update(s.end).ok());
+  for (const Constraint& c : cs) {
+    const double err = distance(warp.warp_point(c.at), c.target) / s.scale;
+    g_worst_scodef_target = std::max(g_worst_scodef_target, err);
+    RC_ASSERT(err <= 1e-6);
+  }
+}
+
 void check_stroke(const SymmetryGroup& group, const Stroke& s) {
   SymmetricWarp warp;
   const Status built = warp.build(group, s.start, s.radius, s.method);
-  if (!built.ok()) {
+  if (s.method == WarpMethod::scodef && built.code() != StatusCode::invalid_argument) {
+    check_scodef_stroke(group, s, warp, built);
+    if (!built.ok()) return;
+  } else if (!built.ok()) {
     // Only two hands whose images coincide are refused.
     RC_ASSERT(built.code() == StatusCode::invalid_argument);
     RC_ASSERT(s.start.size() == 2u);
@@ -137,7 +236,7 @@ void check_stroke(const SymmetryGroup& group, const Stroke& s) {
   }
   RC_ASSERT(warp.update(s.end).ok());
   // Every grab point and image at its target.
-  for (std::size_t h = 0; h < s.start.size(); ++h) {
+  for (std::size_t h = 0; h < s.start.size() && s.method != WarpMethod::scodef; ++h) {
     for (std::size_t g = 0; g < group.order(); ++g) {
       const glm::dvec3 p = group.element(g) * warp.start_frame(h).origin;
       const double err = distance(warp.warp_point(p), expected_target(group, s, h, g)) / s.scale;
@@ -218,6 +317,21 @@ RC_GTEST_PROP(SymmetricWarp, RotationsWithMirrorAreSymmetricAndExact, ()) {
   check_stroke(make_group(spec), *gen_stroke(spec));
 }
 
+RC_GTEST_PROP(SymmetricScodef, MirrorsAreSymmetricAndExact, ()) {
+  const GroupSpec spec = *gen_group_of_kind(0);
+  check_stroke(make_group(spec), *gen_stroke(spec, true));
+}
+
+RC_GTEST_PROP(SymmetricScodef, RotationsAreSymmetricAndExact, ()) {
+  const GroupSpec spec = *gen_group_of_kind(1);
+  check_stroke(make_group(spec), *gen_stroke(spec, true));
+}
+
+RC_GTEST_PROP(SymmetricScodef, RotationsWithMirrorAreSymmetricAndExact, ()) {
+  const GroupSpec spec = *gen_group_of_kind(2);
+  check_stroke(make_group(spec), *gen_stroke(spec, true));
+}
+
 // The trivial group: every bit as WarpPlan::warp_point (both methods, 1 and 2 hands,
 // apart, overlapping and squashed balls).
 RC_GTEST_PROP(SymmetricWarp, TrivialGroupIsBitIdenticalToWarpPlan, ()) {
@@ -238,6 +352,63 @@ RC_GTEST_PROP(SymmetricWarp, TrivialGroupIsBitIdenticalToWarpPlan, ()) {
     const glm::dvec3 a = plan.warp_point(p);
     const glm::dvec3 b = warp.warp_point(p);
     RC_ASSERT(std::memcmp(&a, &b, sizeof a) == 0);
+  }
+}
+
+// scodef under the trivial group is the plain ScodefSystem (another factorisation of
+// the same system: equal to rounding).
+RC_GTEST_PROP(SymmetricScodef, TrivialGroupIsPlainScodef, ()) {
+  const Stroke s = *gen_stroke(GroupSpec{}, true);
+  WarpPlanWithStorage<4> plan;
+  const Status plan_built = plan.build(ConstVertexColumns{}, s.start, s.radius, s.method);
+  SymmetricWarp warp;
+  const Status built = warp.build(SymmetryGroup{}, s.start, s.radius, s.method);
+  RC_PRE(plan_built.ok() && built.ok());
+  RC_ASSERT(plan.update(s.end).ok());
+  RC_ASSERT(warp.update(s.end).ok());
+  for (int i = 0; i < 20; ++i) {
+    const glm::dvec3 p = i < 10 ? *gen_point(2.0)
+                                : s.start[static_cast<std::size_t>(i) % s.start.size()].origin +
+                                      *gen_point(s.radius);
+    RC_ASSERT(distance(plan.warp_point(p), warp.warp_point(p)) <= 1e-9 * s.scale);
+  }
+}
+
+// A clutch step of a symmetric scodef stroke (WarpPlan::rebase): the system is built
+// anew at the new start poses; a hand on a plane stays on it. The rebased warp is
+// symmetric and the new constraint points reach their new targets.
+TEST(SymmetricScodef, RebaseBuildsTheSystemAtTheNewPoses) {
+  SymmetryGroup g;
+  ASSERT_TRUE(g.set_mirrors(kMirrorX | kMirrorY).ok());
+  const std::array<Frame, 2> start{
+      identity_frame({0.0, 0.3, 0.1}),
+      test::rotated(identity_frame({0.4, -0.2, 0.0}), {0.6, 0.8, 0}, 0.3, {0.4, -0.2, 0.0})};
+  const std::array<Frame, 2> mid{test::rotated(start[0], {0, 0, 1}, 0.2, {0.05, 0.35, 0.15}),
+                                 test::rotated(start[1], {0, 1, 0}, 0.4, {0.45, -0.25, 0.05})};
+  const std::array<Frame, 2> end{test::rotated(mid[0], {0, 1, 0}, 0.3, {0.1, 0.4, 0.1}),
+                                 test::rotated(mid[1], {1, 0, 0}, 0.2, {0.5, -0.2, 0.1})};
+  SymmetricWarp warp;
+  ASSERT_TRUE(warp.build(g, start, 0.5, WarpMethod::scodef).ok());
+  ASSERT_TRUE(warp.update(mid).ok());
+  ASSERT_TRUE(warp.rebase(mid).ok());
+  ASSERT_TRUE(warp.update(end).ok());
+  EXPECT_EQ(warp.stabiliser_size(0), 2u);  // still on the plane x = 0
+  EXPECT_EQ(warp.start_frame(0).origin.x, 0.0);
+  const double e = kScodefEpsilonFraction * 0.5;
+  for (const auto& [a, b] : {std::pair{mid[1].u, end[1].u}, std::pair{mid[1].v, end[1].v},
+                             std::pair{mid[1].w, end[1].w}}) {
+    for (std::size_t k = 0; k < g.order(); ++k) {
+      const glm::dmat3& m = g.element(k);
+      EXPECT_LE(distance(warp.warp_point(m * (mid[1].origin + e * a)), m * (end[1].origin + e * b)),
+                1e-9);
+    }
+  }
+  for (int i = 0; i < 50; ++i) {
+    const glm::dvec3 p(0.02 * i - 0.5, 0.3 - 0.011 * i, 0.1 + 0.003 * i);
+    for (std::size_t k = 1; k < g.order(); ++k) {
+      const glm::dmat3& m = g.element(k);
+      EXPECT_LE(distance(warp.warp_point(m * p), m * warp.warp_point(p)), 1e-12);
+    }
   }
 }
 
@@ -312,6 +483,14 @@ TEST(SymmetricWarp, NoHeapAllocation) {
     (void)warp.build(g, start, 0.4, WarpMethod::twister);
     (void)warp.update(end);
     out = warp.warp_point({0.2, 0.1, 0.1});
+  });
+  EXPECT_TRUE(std::isfinite(out.x));
+  // scodef (§11.8): its system, its solve, a clutch step.
+  EXPECT_NO_ALLOCATIONS({
+    EXPECT_TRUE(warp.build(g, start, 0.4, WarpMethod::scodef).ok());
+    EXPECT_TRUE(warp.update(end).ok());
+    out = warp.warp_point({0.2, 0.1, 0.1});
+    EXPECT_TRUE(warp.rebase(end).ok());
   });
   EXPECT_TRUE(std::isfinite(out.x));
 }
@@ -521,6 +700,10 @@ TEST(SymmetryReport, WorstErrors) {
       "symmetry float path: worst |float - double| %.3g, worst asymmetry beyond the input's "
       "%.3g, worst grab point beyond double %.3g (x scene size)\n",
       g_worst_float_vs_double, g_worst_float_symmetry, g_worst_float_grab);
+  std::printf(
+      "symmetric scodef: %d strokes built, %d refused (singular; largest closest-pair gap "
+      "refused %.3g r), worst constraint point error %.3g (x scene size)\n",
+      g_scodef_built, g_scodef_refused, g_scodef_refused_gap, g_worst_scodef_target);
 }
 
 }  // namespace

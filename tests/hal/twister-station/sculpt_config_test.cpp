@@ -332,10 +332,6 @@ TEST(SculptConfig, SymmetryErrors) {
       at(2) +
           "sculpt.symmetry_mirror: only with sculpt.symmetry = \"rot\" (an n-fold rotation) or "
           "\"rot\" in symmetry_cycle");
-  EXPECT_EQ(one_error("[sculpt]\nmethod = \"scodef\"\nsymmetry = \"xy\"\n"),
-            at(3) +
-                "sculpt.symmetry: scodef strokes are not symmetrised: use method = \"twister\" or "
-                "\"rottran\", or symmetry = \"none\"");
 }
 
 session::SymmetryCycle cycle_of(const std::string& sculpt) {
@@ -365,8 +361,17 @@ TEST(SculptConfig, SymmetryCycleErrors) {
                 "\"yz\", \"xyz\" or \"rot\"");
   EXPECT_EQ(one_error("[sculpt]\nsymmetry_cycle = []\n"),
             at(2) + "sculpt.symmetry_cycle: expected 1 to 8 groups");
-  EXPECT_EQ(one_error("[sculpt]\nmethod = \"scodef\"\nsymmetry_cycle = [\"none\", \"x\"]\n"),
-            at(3) + "sculpt.symmetry_cycle: scodef strokes are not symmetrised: only \"none\"");
+}
+
+// scodef is symmetrised too (docs/math.md §11.8): no longer refused with a group.
+TEST(SculptConfig, ScodefTakesASymmetry) {
+  const auto r = parse("[sculpt]\nmethod = \"scodef\"\nsymmetry = \"xy\"\n");
+  ASSERT_TRUE(r.ok()) << messages(r);
+  EXPECT_EQ(r.config.sculpt.method, SculptMethod::scodef);
+  EXPECT_EQ(r.config.sculpt.symmetry.mode, SymmetryMode::mirrors);
+  EXPECT_EQ(r.config.sculpt.symmetry.mirrors, 3u);
+  EXPECT_EQ(cycle_of("[sculpt]\nmethod = \"scodef\"\nsymmetry_cycle = [\"none\", \"x\"]\n").count,
+            2u);
 }
 
 }  // namespace

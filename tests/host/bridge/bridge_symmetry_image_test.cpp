@@ -10,6 +10,7 @@
 #include "bridge_image_rig.hpp"
 #include "symmetry_cues.hpp"
 #include "twister/link/math_conversion.hpp"
+#include "twister/math/symmetry.hpp"
 
 namespace twister::bridge::test {
 namespace {
@@ -94,6 +95,45 @@ TEST_F(SymmetryCues, GhostCursorsOfBothHandsInTwoMirrors) {
   EXPECT_EQ(total, 6);  // 3 images of each hand
   EXPECT_EQ(seen, total);
   EXPECT_EQ(symmetry_hud_line(app_->replica()), "symmetry: xy (next strokes)");
+}
+
+// A scodef stroke under C6 (docs/math.md §11.8) pulling one point of the sphere out and
+// up: the preview (the replica's CPU warp, drawn) carries the pull to all six images
+// of the grab, each vertex nearest an image moved by the image of the motion.
+TEST_F(SymmetryCues, ScodefStrokeUnderSixFoldIsDrawnAtEveryImage) {
+  const glm::dvec3 grab{0.0866, 0.05, 0.0};
+  const glm::dvec3 pulled = grab + glm::dvec3{0.026, 0.015, 0.02};
+  const std::array<math::Frame, 2> start{math::identity_frame(grab), math::Frame{}};
+  const std::array<math::Frame, 2> end{math::identity_frame(pulled), math::Frame{}};
+  LiveMessages live = make_live_messages(1, 1, math::WarpMethod::scodef, 0.08, 1, start, end);
+  live.stroke.symmetry = {2, 0, 2, 6};
+  send_status({2, 0, 2, 6});
+  (void)app_->replica().apply(live.stroke);
+  (void)app_->replica().apply(live.hands);
+  const Image img = frame();
+  expect_live_frame(img);
+  ASSERT_TRUE(app_->replica().live().cpu_path());
+  const MeshData warped = app_->replica().cpu_warp();
+  const MeshData& rest = app_->replica().mesh();
+  ASSERT_EQ(warped.vertex_count(), rest.vertex_count());
+  math::SymmetryGroup g;
+  ASSERT_TRUE(g.set_rotation(2, 6, false).ok());
+  for (std::size_t k = 0; k < g.order(); ++k) {
+    const glm::dvec3 image = g.element(k) * grab;
+    std::size_t near = 0;
+    double best = 1e9;
+    for (std::size_t i = 0; i < rest.vertex_count(); ++i) {
+      const double d = glm::length(glm::dvec3(rest.x[i], rest.y[i], rest.z[i]) - image);
+      if (d < best) {
+        best = d;
+        near = i;
+      }
+    }
+    const glm::dvec3 moved = glm::dvec3(warped.x[near], warped.y[near], warped.z[near]) -
+                             glm::dvec3(rest.x[near], rest.y[near], rest.z[near]);
+    const glm::dvec3 want = g.element(k) * (pulled - grab);
+    EXPECT_GT(glm::dot(moved, want), 0.5 * glm::dot(want, want)) << "image " << k;
+  }
 }
 
 }  // namespace

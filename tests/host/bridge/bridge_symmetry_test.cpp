@@ -14,8 +14,9 @@ namespace {
 using math::SymmetryKind;
 using math::SymmetrySpec;
 
-session::SculptSessionConfig symmetric_config(const SymmetrySpec& group) {
+session::SculptSessionConfig symmetric_config(const SymmetrySpec& group, math::WarpMethod method) {
   session::SculptSessionConfig c = session::test_support::test_config();
+  c.method = method;
   c.interaction.initial_radius_m = 0.45f;
   c.symmetry = group;
   return c;
@@ -23,9 +24,10 @@ session::SculptSessionConfig symmetric_config(const SymmetrySpec& group) {
 
 // One stroke of hand 0 from (0.35, 0.15, 0) lifting and turning; returns the largest
 // |preview - commit| over the vertices, and checks the stroke was symmetric on both ends.
-double preview_error(const SymmetrySpec& group) {
+double preview_error(const SymmetrySpec& group,
+                     math::WarpMethod method = math::WarpMethod::twister) {
   ports::NullLogSink log;
-  BridgeLinkRig rig(log, symmetric_config(group));
+  BridgeLinkRig rig(log, symmetric_config(group, method));
   rig.run();
   const glm::dvec3 grab{0.35, 0.15, 0.0};
   rig.station.hand(0, math::identity_frame(grab));
@@ -66,6 +68,17 @@ TEST(BridgeSymmetry, LivePreviewOfASixFoldStrokeIsTheCommit) {
 
 TEST(BridgeSymmetry, LivePreviewOfAMirroredStrokeIsTheCommit) {
   EXPECT_LT(preview_error({SymmetryKind::mirrors, math::kMirrorX, 0, 0}), 1e-5);
+}
+
+// scodef under a group (docs/math.md §11.8): the replica's plan is the station's, per
+// vertex in double, so the preview is the commit.
+TEST(BridgeSymmetry, LivePreviewOfASixFoldScodefStrokeIsTheCommit) {
+  EXPECT_LT(preview_error({SymmetryKind::rotation, 0, 2, 6}, math::WarpMethod::scodef), 1e-5);
+}
+
+TEST(BridgeSymmetry, LivePreviewOfAMirroredScodefStrokeIsTheCommit) {
+  EXPECT_LT(preview_error({SymmetryKind::mirrors, math::kMirrorX, 0, 0}, math::WarpMethod::scodef),
+            1e-5);
 }
 
 TEST(BridgeSymmetry, PlainStrokesStayOnTheShader) {

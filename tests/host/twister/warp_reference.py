@@ -266,3 +266,110 @@ def symmetric_warp_points(group, hands, r, method, points, flips=None):
                 q = add(q, mul(1.0 / stab[i], mat_vec(g, sub(moved, x))))
         out.append(q)
     return out
+
+
+def symmetric_scodef(group, hands, r):
+    """scodef under a group (docs/math.md §11.8), as the FULL system: every image of every
+    constraint point (coincident ones merged, their targets averaged, their bases the
+    average over the (element, constraint) pairs that land there), solved as one
+    N x N system by Gauss-Jordan (the C++ solves one representative per orbit).
+    Returns P -> displacement, or raises Singular."""
+    same = 1e-9 * r
+    e = 0.1 * r
+    snapped, stabs = [], []
+    for h in hands:
+        stab = [g for g in group if norm(sub(mat_vec(g, h.o), h.o)) <= same]
+        o = mul(1.0 / len(stab), functools.reduce(add, [mat_vec(g, h.o) for g in stab]))
+        shift = sub(o, h.o)
+        snapped.append(Hand(o, h.u, h.v, add(h.o2, shift), h.u2, h.v2))
+        stabs.append(stab)
+
+    def target_of(i, x):
+        """Hand i's motion of O + x, averaged over its stabiliser's conjugates (§11.4)."""
+        h = snapped[i]
+        out = (0.0, 0.0, 0.0)
+        for s in stabs[i]:
+            y = mat_vec(transpose(s), x)
+            turned = add(add(mul(dot(h.u, y), h.u2), mul(dot(h.v, y), h.v2)), mul(dot(h.w, y), h.w2))
+            out = add(out, mat_vec(s, add(h.o2, turned)))
+        return mul(1.0 / len(stabs[i]), out)
+    grab = []
+    for h in snapped:
+        for g in group:
+            p = mat_vec(g, h.o)
+            if not any(norm(sub(q, p)) <= same for q in grab):
+                grab.append(p)
+    pairs = []  # (point, target, owner grab point, hand)
+    for i, h in enumerate(snapped):
+        for a in (h.u, h.v, h.w):
+            c, t = add(h.o, mul(e, a)), target_of(i, mul(e, a))
+            for g in group:
+                pairs.append((mat_vec(g, c), mat_vec(g, t), mat_vec(g, h.o), i))
+    points = []  # [position, [pairs]]
+    for pr in pairs:
+        hit = next((pt for pt in points if norm(sub(pt[0], pr[0])) <= 3 * same), None)
+        if hit is None:
+            points.append([pr[0], [pr]])
+        else:
+            hit[1].append(pr)
+    for pt in points:
+        if len(set(pr[3] for pr in pt[1])) > 1:
+            raise Singular()  # constraint points of the two hands coincide (§6)
+        pt[0] = mul(1.0 / len(pt[1]), functools.reduce(add, [pr[0] for pr in pt[1]]))
+
+    def beta(owner, q, p):
+        near = [x for x in grab if same < norm(sub(x, owner)) < r]  # not its own
+        if not near:
+            return decay(norm(sub(p, q)), r)
+        return min(decay(norm(sub(squash(owner, x, r, p), q)), r) for x in near)
+
+    def basis(j, p):
+        q, prs = points[j]
+        if norm(sub(p, q)) >= 1.2 * r:
+            return 0.0
+        return sum(beta(pr[2], q, p) for pr in prs) / len(prs)
+
+    n = len(points)
+    rows = []
+    for i in range(n):
+        q, prs = points[i]
+        target = mul(1.0 / len(prs), functools.reduce(add, [pr[1] for pr in prs]))
+        rows.append([basis(j, q) for j in range(n)] + list(sub(target, q)) +
+                    [1.0 if k == i else 0.0 for k in range(n)])
+    norm_b = max(sum(abs(rows[i][j]) for i in range(n)) for j in range(n))
+    system = [row[:n + 3] for row in rows]
+    for c in range(n):
+        piv = max(range(c, n), key=lambda i: abs(rows[i][c]))
+        if abs(rows[piv][c]) <= 1e-12:
+            raise Singular()
+        rows[c], rows[piv] = rows[piv], rows[c]
+        pivot_row = rows[c]
+        for i in range(n):
+            if i != c and rows[i][c] != 0.0:
+                f = rows[i][c] / pivot_row[c]
+                rows[i] = [x - f * y for x, y in zip(rows[i], pivot_row)]
+    inv = [[rows[i][n + 3 + k] / rows[i][i] for k in range(n)] for i in range(n)]
+    # Ill-conditioned (points crowding together): the full system does not determine the
+    # solution in double; the C++ solves the better-conditioned orbit system.
+    norm_inv = max(sum(abs(inv[i][k]) for i in range(n)) for k in range(n))
+    if norm_b * norm_inv > 1e10:
+        raise Singular()
+    # x = B^-1 rhs, then iterative refinement with exactly summed residuals.
+    coef = []
+    for m in range(3):
+        rhs = [system[i][n + m] for i in range(n)]
+        x = [math.fsum(inv[i][k] * rhs[k] for k in range(n)) for i in range(n)]
+        for _ in range(3):
+            res = [math.fsum([rhs[i]] + [-system[i][j] * x[j] for j in range(n)]) for i in range(n)]
+            x = [x[i] + math.fsum(inv[i][k] * res[k] for k in range(n)) for i in range(n)]
+        coef.append(x)
+    coef = [(coef[0][i], coef[1][i], coef[2][i]) for i in range(n)]
+
+    def disp(p):
+        out = (0.0, 0.0, 0.0)
+        for j in range(n):
+            b = basis(j, p)
+            if b != 0.0:
+                out = add(out, mul(b, coef[j]))
+        return out
+    return disp

@@ -15,6 +15,7 @@
 #include "twister/base/status.hpp"
 #include "twister/math/frame.hpp"
 #include "twister/math/screw.hpp"
+#include "twister/math/symmetric_scodef.hpp"
 #include "twister/math/warp_method.hpp"
 
 namespace twister::math {
@@ -91,11 +92,13 @@ class SymmetricWarp {
   static constexpr std::size_t kMaxHands = 2;
   static constexpr std::size_t kMaxGrabPoints = SymmetryGroup::kMaxOrder * kMaxHands;
 
-  // Starts a grab under `group`: 1 or 2 orthonormal start frames, radius > 0, method
-  // twister or rottran. Grab points within 1e-9 r of their own image are snapped onto
-  // the fixed set (§11.4); start and end origins move by the same vector.
-  // invalid_argument: wrong frame count, a frame not orthonormal, bad radius, scodef,
-  //   or an image of one hand's grab point within 1e-9 r of the other's (§11.4).
+  // Starts a grab under `group`: 1 or 2 orthonormal start frames, radius > 0, any
+  // method (scodef: SymmetricScodef, §11.8). Grab points within 1e-9 r of their own
+  // image are snapped onto the fixed set (§11.4); start and end origins move by the
+  // same vector.
+  // invalid_argument: wrong frame count, a frame not orthonormal, bad radius, or an
+  //   image of one hand's grab point within 1e-9 r of the other's (§11.4).
+  // failed_precondition: scodef's constraint system is singular (§11.8).
   // On error the warp is empty (identity).
   Status build(const SymmetryGroup& group, std::span<const Frame> start, double radius,
                WarpMethod method);
@@ -108,7 +111,10 @@ class SymmetricWarp {
   // bit h of `long_turns` is set.
   Status update_turns(std::span<const Frame> end, std::uint8_t long_turns);
   // A clutch step (WarpPlan::rebase): new start poses (each moved by its hand's snap),
-  // identity screws, and the SAME grab points and weights (those of build).
+  // identity screws, and the SAME grab points and weights (those of build). scodef
+  // builds its system anew at the new poses (as WarpPlan does without a group), a hand
+  // on a fixed set kept on it (§11.8); failed_precondition if that system is singular
+  // (the warp is then unchanged).
   // invalid_argument: wrong count or a frame not orthonormal; failed_precondition: not built.
   Status rebase(std::span<const Frame> start);
   void reset();
@@ -121,6 +127,12 @@ class SymmetricWarp {
   glm::dvec3 warp_point(glm::dvec3 weights_at, glm::dvec3 q) const;
   // The weight w_k(p) of grab point k (§11.3).
   double weight(std::size_t k, glm::dvec3 p) const;
+  // The same squash about grab point k, with the decay measured from `centre` instead
+  // of the grab point: scodef's basis (§11.8). weight(k, p) = squashed_decay(k, P_k, p).
+  double squashed_decay(std::size_t k, glm::dvec3 centre, glm::dvec3 p) const;
+  // Whether the warp can move p: within the radius of a grab point, or (scodef) where
+  // some basis is non-zero.
+  bool influences(glm::dvec3 p) const;
 
   bool built() const { return hands_ > 0; }
   std::size_t hand_count() const { return hands_; }
@@ -141,10 +153,13 @@ class SymmetricWarp {
   WarpMethod method() const { return method_; }
   const Screw& screw(std::size_t hand) const { return screws_[hand]; }
   const SymmetryGroup& group() const { return group_; }
+  // The scodef system (built when method() is scodef).
+  const SymmetricScodef& scodef() const { return scodef_; }
 
  private:
   glm::dvec3 hand_move(std::size_t hand, double t, glm::dvec3 p) const;
   Status set_end(std::span<const Frame> end, bool keep_sense, std::uint8_t long_turns);
+  Status rebase_scodef(std::span<const Frame> start);
 
   SymmetryGroup group_{};
   std::array<glm::dvec3, kMaxGrabPoints> point_{};
@@ -159,6 +174,7 @@ class SymmetricWarp {
   std::size_t hands_ = 0;
   double radius_ = 1.0;
   WarpMethod method_ = WarpMethod::twister;
+  SymmetricScodef scodef_{};
 };
 
 }  // namespace twister::math

@@ -94,9 +94,10 @@ class WarpPlan {
   // (identity image) weight, for the display; apply() evaluates the symmetrised warp
   // in float, one kernel hand per image (SymmetricFloat, §11.7) with the simd kernel and
   // PlanSymmetry::balls, else per vertex in double (math::SymmetricWarp, the scalar
-  // reference); warp_point() in double.
-  // failed_precondition: no PlanSymmetry storage; invalid_argument also for scodef (not
-  // symmetrised) and for a hand on another hand's image; errors as build otherwise.
+  // reference); warp_point() in double. scodef (§11.8): the vertices some basis of some
+  // image reaches, warped per vertex in double (no float path, as without a group).
+  // failed_precondition: no PlanSymmetry storage, or a singular scodef system;
+  // invalid_argument also for a hand on another hand's image; errors as build otherwise.
   Status build(ConstVertexColumns rest, std::span<const Frame> start, double radius,
                WarpMethod method, const SymmetryGroup& group);
 
