@@ -36,6 +36,7 @@ struct LiveCounters {
 struct LinkFacts {
   std::uint32_t mesh_version = 0;     // the display's mesh version
   std::uint64_t frames_rejected = 0;  // bad frames from the display
+  std::uint32_t spectators = 0;       // read-only displays connected (issue 25)
 };
 
 class LiveStream {
