@@ -142,10 +142,12 @@ void StationSpectators::on_message(Spectator& s, const link::LinkMessage& m) {
   } else if (std::holds_alternative<link::Command>(m)) {
     ++s.counters_.commands_refused;
     (void)s.queues_.urgent(link::Notice{link::NoticeCode::command_refused_spectator, 0});
-  } else if (std::holds_alternative<link::Bye>(m)) {
+  } else if (std::holds_alternative<link::Bye>(m) || std::holds_alternative<link::Hello>(m)) {
+    // It leaves, or starts a new session (a silent station): it connects anew as a
+    // newcomer and is authenticated again.
     close(s, &SpectatorCounters::left);
   }
-  // Anything else (a second hello, station-only types) is ignored: it is read-only.
+  // Anything else (station-only types) is ignored: it is read-only.
 }
 
 void StationSpectators::read(Spectator& s) {
