@@ -191,24 +191,31 @@ void DisplayLink::settle(station::Station& core, ports::TimestampUs now_us, doub
   }
 }
 
-// Waits while the display takes what is queued: up to `seconds` without progress (a
-// refined commit's change set can need longer than that on a slow serial line, but
-// it keeps moving), and never more than a minute in all.
+// Waits while the display (and every spectator) takes what is queued: up to `seconds`
+// without progress (a refined commit's change set can need longer than that on a slow
+// serial line, but it keeps moving), and never more than a minute in all.
 void DisplayLink::drain(station::Station& core, ports::TimestampUs now_us, double seconds) {
   if (!link_) return;
   const auto patience =
       std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
   const auto last = Clock::now() + std::chrono::minutes(1);
   auto until = std::min(Clock::now() + patience, last);
-  std::size_t pending = link_->pending_bytes();
-  while (link_->connected() && !link_->idle() && Clock::now() < until) {
+  // The spectators too (issue 25): each gets what was queued for it, the same patience.
+  const auto busy = [this] {
+    return (link_->connected() && !link_->idle()) || !link_->spectators_idle();
+  };
+  const auto pending_now = [this] {
+    return link_->pending_bytes() + link_->spectator_pending_bytes();
+  };
+  std::size_t pending = pending_now();
+  while (busy() && Clock::now() < until) {
     poll(core, now_us);
     // Progress: the queue changed (bytes left, or a full mesh's next chunk came in).
-    if (link_->pending_bytes() != pending) {
-      pending = link_->pending_bytes();
+    if (pending_now() != pending) {
+      pending = pending_now();
       until = std::min(Clock::now() + patience, last);
     }
-    if (!link_->idle()) wait_ready(ms_left(until));
+    if (busy()) wait_ready(ms_left(until));
   }
   link_->say_goodbye();
 }

@@ -56,8 +56,8 @@ class DisplayLink {
   // has gone to a connected display, so a display slower than the simulated clock
   // is never dropped a hands update: the same run sends the same frames.
   void settle(station::Station& core, ports::TimestampUs now_us, double seconds);
-  // Hands everything queued to the display (giving up after `seconds` without
-  // progress, or a minute), then says goodbye.
+  // Hands everything queued to the display and the spectators (giving up after
+  // `seconds` without progress, or a minute), then says goodbye to all.
   void drain(station::Station& core, ports::TimestampUs now_us, double seconds);
   const station::StationLinkCounters* counters() const {
     return link_ ? &link_->counters() : nullptr;

@@ -225,4 +225,12 @@ std::size_t StationSpectators::pending_bytes() const {
   return n;
 }
 
+bool StationSpectators::idle() const {
+  for (std::size_t i = 0; i < slots_used_; ++i) {
+    const Spectator& s = slots_[i];
+    if (s.open_ && (s.queues_.pending_bytes() > 0 || !s.mesh_.idle())) return false;
+  }
+  return true;
+}
+
 }  // namespace twister::station

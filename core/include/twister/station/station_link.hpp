@@ -109,6 +109,8 @@ class StationLink final : private AdmissionListener {
   std::size_t spectator_slots() const { return spectators_.slots(); }
   SpectatorView spectator(std::size_t slot) const { return spectators_.view(slot); }
   std::size_t spectator_pending_bytes() const { return spectators_.pending_bytes(); }
+  // Every spectator holds everything queued for it (its mesh sent, its queues empty).
+  bool spectators_idle() const { return spectators_.idle(); }
   // A display was admitted and everything it needs has been handed to the port.
   bool peer_synced() const { return admitted() && idle(); }
   // As of the end of the last poll().

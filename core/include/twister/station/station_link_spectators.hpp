@@ -130,6 +130,8 @@ class StationSpectators {
   SpectatorCounters totals() const;
   SpectatorView view(std::size_t slot) const;
   std::size_t pending_bytes() const;
+  // No spectator has bytes waiting or a full send due or in progress.
+  bool idle() const;
 
  private:
   void read(Spectator& s);
