@@ -262,6 +262,47 @@ TEST(Spectators, DisplaceNobodyAndAreToldBusyWhenEverySlotIsTaken) {
   EXPECT_EQ(r.link->counters().spectators_now, 2u);
 }
 
+// A serial line has one fixed far end and no slots: a --spectator display there is
+// admitted as a read-only main display (its commands refused with the notice).
+TEST(Spectators, OnAPlainPortASpectatorIsAReadOnlyMainDisplay) {
+  session::test_support::Station station(9);
+  test::MemoryWire wire;
+  test::MemoryLinkEnd station_end(wire, true);
+  std::vector<float> x(station.mesh.vertex_capacity()), y(x.size()), z(x.size());
+  std::vector<std::uint32_t> idx(3 * station.mesh.triangle_capacity());
+  std::vector<std::byte> out(8 * link::kMaxFrameBytes);
+  station::StationLink link(station_end, station::StationLinkStorage{x, y, z, idx, out},
+                            station::StationLinkConfig{});
+  ASSERT_TRUE(link.start(*station.session).ok());
+  ports::NullLogSink log;
+  test::FakeClock clock;
+  test::MemoryLinkEnd bridge_end(wire, false);
+  BridgeApp app(bridge_end, clock, nullptr, Display::options(true), log);
+  for (int i = 0; i < 20; ++i) {
+    app.step();
+    link.poll(*station.session, station.now_us);
+  }
+  ASSERT_TRUE(app.ready());
+  EXPECT_TRUE(link.admitted());
+  EXPECT_EQ(app.replica().checksum(), station.mesh.checksum());
+  test::MemoryLinkEnd raw(wire, false);
+  std::vector<std::byte> f(link::kMaxFrameBytes);
+  const auto n = link::encode_frame(link::Command{link::CommandKind::undo, 0}, f);
+  ASSERT_TRUE(n.ok());
+  ASSERT_EQ(*raw.send(std::span<const std::byte>(f).first(*n)), *n);
+  for (int i = 0; i < 5; ++i) {
+    link.poll(*station.session, station.now_us);
+    app.step();
+  }
+  EXPECT_EQ(link.counters().commands, 0u);
+  EXPECT_EQ(link.counters().spectators.commands_refused, 1u);
+  bool shown = false;
+  for (const auto& k : app.replica().notices()) {
+    shown = shown || k.notice.code == link::NoticeCode::command_refused_spectator;
+  }
+  EXPECT_TRUE(shown);
+}
+
 TEST(Spectators, PollDoesNotAllocate) {
   Rig r(2);
   Display& main = r.add(false);
