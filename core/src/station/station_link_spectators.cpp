@@ -87,6 +87,7 @@ bool StationSpectators::admit(MeshMirror& mirror, const MeshIdentity& holds,
     if (s.open_) continue;
     if (!port_->admit_spectator(i).ok()) return false;
     s.open_ = true;
+    s.catching_up_ = false;
     s.decoder_.clear();
     s.queues_.clear();
     s.mesh_ = MeshSendState{};
@@ -173,6 +174,7 @@ void StationSpectators::poll(const session::SculptSession& session, const Statio
     if (!s.open_) continue;
     read(s);
     if (!s.open_) continue;
+    s.catching_up_ = s.catching_up_ || !s.mesh_.idle();
     mirror.send(s.mesh_, s.queues_);
     const link::DecoderCounters d = s.decoder_.counters();
     s.live_.poll(session, status,
@@ -182,6 +184,12 @@ void StationSpectators::poll(const session::SculptSession& session, const Statio
     s.queues_.flush();
     const std::size_t after = s.queues_.pending_bytes();
     if (after == 0 || after < before) s.progress_us_ = now_us;
+    if (s.catching_up_ && s.mesh_.idle() && s.queues_.bulk_pending() == 0) {
+      // Its mesh has gone: the next hands update (sent even if unchanged) finds it
+      // there, so an open stroke shows at once (joining mid-stroke).
+      s.catching_up_ = false;
+      s.live_.resend_hands();
+    }
     if (now_us - s.progress_us_ > config_.stall_timeout_us) close(s, &SpectatorCounters::dropped);
   }
 }

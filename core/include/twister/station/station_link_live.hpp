@@ -48,6 +48,9 @@ class LiveStream {
             const LinkFacts& facts, ports::TimestampUs now_us);
   // A display was (re)admitted: everything goes again at the next poll.
   void restart();
+  // The hands go again at the next poll even if unchanged (a display that just got
+  // the mesh an open stroke refers to shows the stroke at once).
+  void resend_hands() { hands_.sent = false; }
   const LiveCounters& counters() const { return counters_; }
 
  private:

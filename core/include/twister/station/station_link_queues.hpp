@@ -60,6 +60,7 @@ class FrameQueues {
   void interrupt_with(const link::Bye& bye);
 
   std::size_t pending_bytes() const { return bulk_size_ + urgent_size_; }
+  std::size_t bulk_pending() const { return bulk_size_; }
   std::uint64_t send_errors() const { return send_errors_; }
 
  private:

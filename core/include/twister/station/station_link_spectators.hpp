@@ -89,6 +89,7 @@ class Spectator {
   MeshSendState mesh_{};
   link::LinkDecoder decoder_;
   bool open_ = false;
+  bool catching_up_ = false;            // its mesh is on its way (a full send)
   ports::TimestampUs progress_us_ = 0;  // when it last took bytes (or had none waiting)
   LiveCounters live_base_{};            // live_'s counters at admission
   SpectatorCounters counters_{};        // this occupant's (live_* from live_)
