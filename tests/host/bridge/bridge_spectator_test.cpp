@@ -12,6 +12,7 @@
 //   - polling with spectators does not allocate.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <memory>
 #include <vector>
 
@@ -176,6 +177,15 @@ TEST(Spectators, AStalledSpectatorIsDroppedWhileTheMainDisplayMissesNothing) {
     dropped_hands = dropped_hands || r.link->spectator(0).counters.live_dropped > 0;
   }
   const station::StationLinkCounters& c = r.link->counters();
+  std::printf(
+      "stalled spectator: %llu hands updates dropped, %llu commits resent as full sends, "
+      "dropped: %llu; main display: %llu hands updates sent, %llu received, %llu dropped\n",
+      static_cast<unsigned long long>(c.spectators.live_dropped),
+      static_cast<unsigned long long>(c.spectators.commits_resent),
+      static_cast<unsigned long long>(c.spectators.dropped),
+      static_cast<unsigned long long>(c.live_sent - live_before),
+      static_cast<unsigned long long>(main.app.replica().counters().live_frames - frames_before),
+      static_cast<unsigned long long>(c.live_dropped));
   EXPECT_TRUE(dropped_hands) << "the slow spectator's hands updates were dropped and counted";
   EXPECT_GT(c.spectators.live_dropped, 0u);
   EXPECT_GT(c.spectators.commits_resent, 0u);  // commits that found no room: a full send due
