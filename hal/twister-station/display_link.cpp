@@ -5,6 +5,7 @@
 #include <chrono>
 
 #include "config/link_config.hpp"
+#include "station_memory.hpp"
 #include "twister/hal/startup_signals.hpp"
 
 namespace twister::station_app {
@@ -27,6 +28,7 @@ hal::Expected<void> DisplayLink::open(const LinkSection& settings,
                                       const session::SculptSession& session,
                                       const link::Workspace& workspace, hal::Logger& log) {
   log_ = &log;
+  stall_seconds_ = settings.spectator_stall_seconds;
   const std::string& address = settings.address;
   if (const std::string why = internal::unauthenticated_tcp_problem(settings); !why.empty()) {
     return hal::make_error(StatusCode::invalid_argument, "link: " + why);
@@ -65,6 +67,20 @@ hal::Expected<void> DisplayLink::open(const LinkSection& settings,
     port_ = socket_.get();
     poll_ = socket_.get();
     options.newcomers = socket_.get();
+    // Spectators (issue 25): read-only displays in their own slots, each with a bounded
+    // queue; a serial line has one display (a --spectator bridge there is admitted as
+    // a read-only main display).
+    options.spectators = socket_.get();
+    options.max_spectators = settings.max_spectators;
+    if (settings.max_spectators > 0) {
+      spectator_queues_.resize(settings.max_spectators * kSpectatorQueueFrames *
+                               link::kMaxFrameBytes);
+      spectator_staging_.resize(kSpectatorQueueFrames * link::kMaxFrameBytes);
+    }
+    options.spectator_queues = spectator_queues_;
+    options.spectator_staging = spectator_staging_;
+    options.spectator_stall_us =
+        static_cast<ports::TimestampUs>(settings.spectator_stall_seconds * 1e6);
   }
   const std::size_t n = session.mesh().vertex_capacity();
   x_.resize(n);
@@ -92,6 +108,7 @@ void DisplayLink::poll(station::Station& core, ports::TimestampUs now_us) {
 void DisplayLink::log_changes() {
   const station::StationLinkCounters& c = link_->counters();
   if (c.connects != logged_.connects) log_->notice("link", "display admitted");
+  log_spectators(c);
   if (c.displaced != logged_.displaced) {
     log_->notice("link", "a newly admitted display took over; the previous one was told so");
   }
@@ -119,6 +136,29 @@ void DisplayLink::log_changes() {
     last_refusal_log_ = now;
   }
   logged_ = c;
+}
+
+void DisplayLink::log_spectators(const station::StationLinkCounters& c) {
+  const station::SpectatorCounters& now = c.spectators;
+  const station::SpectatorCounters& was = logged_.spectators;
+  const auto n = static_cast<unsigned>(c.spectators_now);
+  if (now.admitted != was.admitted) {
+    log_->notice("link", "spectator display admitted (read-only; %u connected)", n);
+  }
+  if (now.left != was.left) log_->notice("link", "spectator display left (%u connected)", n);
+  if (now.dropped != was.dropped) {
+    log_->warning("link",
+                  "spectator display dropped: it took nothing for %.1f s (%u connected; %llu "
+                  "of its hands updates dropped in all)",
+                  stall_seconds_, n, static_cast<unsigned long long>(now.live_dropped));
+  }
+  if (c.refused.full != logged_.refused.full) {
+    log_->info("link", "spectator refused: all %zu spectator slots are taken",
+               link_->spectator_slots());
+  }
+  if (now.commands_refused != was.commands_refused) {
+    log_->info("link", "a spectator display sent a command: refused (read-only)");
+  }
 }
 
 void DisplayLink::wait_ready(int timeout_ms) const {
@@ -151,24 +191,31 @@ void DisplayLink::settle(station::Station& core, ports::TimestampUs now_us, doub
   }
 }
 
-// Waits while the display takes what is queued: up to `seconds` without progress (a
-// refined commit's change set can need longer than that on a slow serial line, but
-// it keeps moving), and never more than a minute in all.
+// Waits while the display (and every spectator) takes what is queued: up to `seconds`
+// without progress (a refined commit's change set can need longer than that on a slow
+// serial line, but it keeps moving), and never more than a minute in all.
 void DisplayLink::drain(station::Station& core, ports::TimestampUs now_us, double seconds) {
   if (!link_) return;
   const auto patience =
       std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
   const auto last = Clock::now() + std::chrono::minutes(1);
   auto until = std::min(Clock::now() + patience, last);
-  std::size_t pending = link_->pending_bytes();
-  while (link_->connected() && !link_->idle() && Clock::now() < until) {
+  // The spectators too (issue 25): each gets what was queued for it, the same patience.
+  const auto busy = [this] {
+    return (link_->connected() && !link_->idle()) || !link_->spectators_idle();
+  };
+  const auto pending_now = [this] {
+    return link_->pending_bytes() + link_->spectator_pending_bytes();
+  };
+  std::size_t pending = pending_now();
+  while (busy() && Clock::now() < until) {
     poll(core, now_us);
     // Progress: the queue changed (bytes left, or a full mesh's next chunk came in).
-    if (link_->pending_bytes() != pending) {
-      pending = link_->pending_bytes();
+    if (pending_now() != pending) {
+      pending = pending_now();
       until = std::min(Clock::now() + patience, last);
     }
-    if (!link_->idle()) wait_ready(ms_left(until));
+    if (busy()) wait_ready(ms_left(until));
   }
   link_->say_goodbye();
 }

@@ -56,8 +56,8 @@ class DisplayLink {
   // has gone to a connected display, so a display slower than the simulated clock
   // is never dropped a hands update: the same run sends the same frames.
   void settle(station::Station& core, ports::TimestampUs now_us, double seconds);
-  // Hands everything queued to the display (giving up after `seconds` without
-  // progress, or a minute), then says goodbye.
+  // Hands everything queued to the display and the spectators (giving up after
+  // `seconds` without progress, or a minute), then says goodbye to all.
   void drain(station::Station& core, ports::TimestampUs now_us, double seconds);
   const station::StationLinkCounters* counters() const {
     return link_ ? &link_->counters() : nullptr;
@@ -67,6 +67,7 @@ class DisplayLink {
   // Waits up to timeout_ms for the transport: input, a peer, or room for pending bytes.
   void wait_ready(int timeout_ms) const;
   void log_changes();
+  void log_spectators(const station::StationLinkCounters& c);
 
   std::unique_ptr<hal::SocketLink> socket_;
   std::unique_ptr<hal::SerialLink> serial_;
@@ -76,6 +77,8 @@ class DisplayLink {
   std::vector<float> x_, y_, z_;
   std::vector<std::uint32_t> indices_;
   std::vector<std::byte> out_;
+  std::vector<std::byte> spectator_queues_, spectator_staging_;
+  double stall_seconds_ = 5.0;
   std::unique_ptr<station::StationLink> link_;
   hal::Logger* log_ = nullptr;
   station::StationLinkCounters logged_{};

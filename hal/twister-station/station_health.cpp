@@ -38,7 +38,9 @@ void StationHealth::sample(const station::Station& core, const Backends& backend
   // Exhibit mode: today's sculptures that ended and were archived (the current
   // visitor's counts once it is archived).
   if (core.visitor_view_enabled()) m.visitors_today = core.exhibit_counters().ended_today;
-  // spectators: filled by its owner through metrics().
+  // Read-only displays connected now (issue 25).
+  const station::StationLinkCounters* link = display.counters();
+  m.spectators = link != nullptr ? link->spectators_now : 0;
 }
 
 void StationHealth::report(const station::Station& core, const Backends& backends,

@@ -3,8 +3,8 @@
 // rate, strokes committed and not saved, the display link, the button device, the
 // archive's free space, uptime) into a hal::HealthMetrics, writes the metrics file
 // (hal::MetricsFile: Prometheus text, atomic replace) and sends systemd STATUS=.
-// visitors_today and spectators are fields the visitor lifecycle and the spectator
-// link fill through metrics() (0 until they do). No allocation after construction:
+// visitors_today comes from the visitor lifecycle, spectators from the display
+// link's read-only displays connected now. No allocation after construction:
 // the loop calls poll() every pass. A failed write is logged once per change of
 // reason (the station sculpts on).
 #pragma once

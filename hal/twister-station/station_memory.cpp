@@ -6,6 +6,7 @@
 
 #include "twister/link/link_codec.hpp"
 #include "twister/meshio/symmetry_buffer.hpp"
+#include "twister/station/station_link_spectators.hpp"
 
 namespace twister::station_app {
 namespace {
@@ -23,7 +24,7 @@ std::span<T> carve(std::byte*& rest, std::size_t n) {
 
 MemoryBudget memory_budget(std::size_t vertex_capacity, std::size_t triangle_capacity,
                            std::size_t undo_changes, std::size_t undo_entries, bool link,
-                           bool refine) {
+                           bool refine, std::size_t max_spectators) {
   MemoryBudget b;
   b.mesh = 3 * sizeof(float) * vertex_capacity + 3 * sizeof(std::uint32_t) * triangle_capacity;
   b.live = 3 * sizeof(float) * vertex_capacity;
@@ -39,9 +40,15 @@ MemoryBudget memory_budget(std::size_t vertex_capacity, std::size_t triangle_cap
   b.symmetry = meshio::SymmetryBuffer::bytes_for(vertex_capacity);
   if (link) {
     b.link = 3 * sizeof(float) * vertex_capacity + 3 * sizeof(std::uint32_t) * triangle_capacity +
-             512 * link::kMaxFrameBytes;
+             512 * link::kMaxFrameBytes + spectator_link_bytes(max_spectators);
   }
   return b;
+}
+
+std::size_t spectator_link_bytes(std::size_t max_spectators) {
+  const std::size_t queues =
+      max_spectators == 0 ? 0 : (max_spectators + 1) * kSpectatorQueueFrames * link::kMaxFrameBytes;
+  return queues + sizeof(station::StationSpectators);
 }
 
 WorkMemory::WorkMemory(std::size_t vertex_capacity, std::size_t undo_changes,

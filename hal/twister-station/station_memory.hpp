@@ -6,7 +6,11 @@
 // ([sculpt] refine) the refiner's 48 B per vertex + 32 B per triangle, the undo pool
 // of refined triangles (262144 x 28 B) and 12 B per vertex of a clutch chain's start; with --link
 // the display link adds 12 B per vertex + 12 B per triangle (its copy of the mesh) + its frame
-// buffer (512 frames, as DisplayLink::open sizes it); symmetric strokes ([sculpt] symmetry, and any
+// buffer (512 frames, as DisplayLink::open sizes it) and, per spectator slot ([link]
+// max_spectators, default 4), a queue of kSpectatorQueueFrames frames, plus one such
+// staging buffer for a commit's change set and the slots' fixed part (sizeof
+// StationSpectators: 8 slots of an 8 KiB urgent queue, a decoder and a live stream);
+// symmetric strokes ([sculpt] symmetry, and any
 // journal that holds them) 36 B per vertex: 12 B of chain-start positions, the float path's
 // 8 B of sort words and 16 B of kept weights (meshio::SymmetryBuffer::bytes_for).
 // WorkMemory is the core's working memory as ONE arena of exactly
@@ -23,6 +27,10 @@
 #include "twister/session/sculpt_session.hpp"
 
 namespace twister::station_app {
+
+// Frames in each spectator's bulk queue and in the spectators' staging buffer
+// (DisplayLink::open sizes them so).
+inline constexpr std::size_t kSpectatorQueueFrames = 64;
 
 struct MemoryBudget {
   std::size_t mesh = 0;      // positions and triangle indices (the model)
@@ -42,7 +50,10 @@ struct MemoryBudget {
 MemoryBudget memory_budget(std::size_t vertex_capacity, std::size_t triangle_capacity,
                            std::size_t undo_changes = session::kDefaultUndoChanges,
                            std::size_t undo_entries = session::kDefaultUndoEntries,
-                           bool link = false, bool refine = false);
+                           bool link = false, bool refine = false, std::size_t max_spectators = 4);
+
+// The spectators' part of the link: their queues, the staging buffer, the slots.
+std::size_t spectator_link_bytes(std::size_t max_spectators);
 
 // The SculptSession's working memory for a mesh of `vertex_capacity` vertices: one
 // arena of memory_budget(...).live + plan + undo + normals bytes.

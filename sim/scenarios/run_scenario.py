@@ -22,6 +22,8 @@ twister-bridge --offscreen, which writes PNG snapshots and exports the final mes
 Then `twister replay` rebuilds the model from the journal.
 
     run_scenario.py SCENARIO --bin BUILD/bin --out DIR [--bridge] [--time real]
+With --spectators N, N more twister-bridge --spectator displays connect beside the
+main one (issue 25) and each prints `spectator-K CHECKSUM`.
 Prints `station CHECKSUM`, `display CHECKSUM` (with --bridge), `replay CHECKSUM`
 and the station's counters line; exit 0 when the programs succeeded and all
 printed checksums agree (the caller compares them with other runs).
@@ -187,13 +189,26 @@ def run_programs(args, h, out, exe):
                         open(os.path.join(out, "pictures.txt"), "w") as pics:
                     procs.append(subprocess.Popen(bridge_cmd, env=env, stdout=pics,
                                                   stderr=blog))
+            for k in range(args.spectators if args.bridge else 0):
+                procs.append(start_spectator(out, k, bridge_cmd, env))
             follow(out, procs, args.progress)
     finally:
         for p in procs:
             if p.poll() is None:
                 p.kill()
                 p.wait()
-    return procs[0].returncode, (procs[1].returncode if len(procs) > 1 else None)
+    return procs[0].returncode, [p.returncode for p in procs[1:]] or None
+
+
+def start_spectator(out, k, bridge_cmd, env):
+    """A read-only display (twister-bridge --spectator, issue 25) with its own export and
+    log (spectator-K.log); no pictures (the main display's are the run's)."""
+    cmd = list(bridge_cmd) + ["--spectator"]
+    i = cmd.index("--snapshots")
+    del cmd[i:i + 2]
+    cmd[cmd.index("--export") + 1] = os.path.join(out, "final-spectator-%d.glb" % k)
+    with open(os.path.join(out, "spectator-%d.log" % k), "w") as log:
+        return subprocess.Popen(cmd, env=env, stdout=subprocess.DEVNULL, stderr=log)
 
 
 def run(args):
@@ -205,14 +220,18 @@ def run(args):
     subprocess.run([exe("twister"), "mesh"] + h["mesh"].split() +
                    ["--out", os.path.join(out, "start.obj")], check=True,
                    stdout=subprocess.DEVNULL)
-    station_rc, bridge_rc = run_programs(args, h, out, exe)
+    station_rc, bridge_rcs = run_programs(args, h, out, exe)
     stext = open(os.path.join(out, "station.log")).read()
     result = {"station": checksum(r"^twister-station: mesh checksum ([0-9a-f]+)$", stext)}
     ok = station_rc == 0
-    if bridge_rc is not None:
+    exported = r"exported mesh version \d+ \(checksum ([0-9a-f]+)\)"
+    if bridge_rcs is not None:
         btext = open(os.path.join(out, "bridge.log")).read()
-        result["display"] = checksum(r"exported mesh version \d+ \(checksum ([0-9a-f]+)\)", btext)
-        ok = ok and bridge_rc == 0
+        result["display"] = checksum(exported, btext)
+        ok = ok and all(rc == 0 for rc in bridge_rcs)
+        for k in range(len(bridge_rcs) - 1):
+            text = open(os.path.join(out, "spectator-%d.log" % k)).read()
+            result["spectator-%d" % k] = checksum(exported, text)
     r = subprocess.run([exe("twister"), "replay", os.path.join(out, "journal.twj"), "--mesh",
                         os.path.join(out, "start.obj"), "--out",
                         os.path.join(out, "replayed.obj")] + h["replay"].split(),
@@ -246,6 +265,8 @@ def main():
                     help="snapshots with the cues but without the heads-up text")
     ap.add_argument("--movie-every", type=int, default=0, metavar="N",
                     help="with --bridge: also frame-<n>.png every N-th hands update")
+    ap.add_argument("--spectators", type=int, default=0, metavar="N",
+                    help="with --bridge: N read-only displays (--spectator) beside the main one")
     ap.add_argument("--cut-link", action="store_true",
                     help="with --bridge: a first display is killed after the first commit")
     args = ap.parse_args()

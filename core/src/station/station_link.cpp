@@ -10,14 +10,20 @@ StationLink::StationLink(ports::LinkPort& port, StationLinkStorage storage,
                          const StationLinkConfig& config, const StationLinkOptions& options)
     : queues_(port, storage.out),
       admission_(port, queues_, *this, options, config.handshake_timeout_us),
-      mirror_(queues_,
-              MeshMirrorStorage{storage.x, storage.y, storage.z, storage.triangle_indices}),
+      mirror_(queues_, MeshMirrorStorage{storage.x, storage.y, storage.z, storage.triangle_indices},
+              options.spectator_staging),
       live_(queues_, LiveStreamConfig{config.live_interval_us, config.status_interval_us,
-                                      config.stroke_repeat_us, config.workspace}) {}
+                                      config.stroke_repeat_us, config.workspace}),
+      spectators_(options.spectators,
+                  SpectatorConfig{options.max_spectators, options.spectator_stall_us},
+                  LiveStreamConfig{config.live_interval_us, config.status_interval_us,
+                                   config.stroke_repeat_us, config.workspace},
+                  options.spectator_queues) {}
 
 Status StationLink::start(const session::SculptSession& session) {
   if (queues_.bulk_capacity() < 4 * link::kMaxFrameBytes) return StatusCode::resource_exhausted;
   TWISTER_TRY(mirror_.start(session.mesh()));
+  TWISTER_TRY(spectators_.start());
   last_sequence_ = session.next_sequence();
   started_ = true;
   return ok_status();
@@ -25,18 +31,23 @@ Status StationLink::start(const session::SculptSession& session) {
 
 void StationLink::step(const session::SculptSession& session, const StationStatus& status,
                        ports::TimestampUs now_us) {
+  now_us_ = now_us;
   admission_.poll(now_us);
   if (session.next_sequence() != last_sequence_) {
     last_sequence_ = session.next_sequence();
-    mirror_.track(session.mesh(), admitted());
+    mirror_.track(session.mesh(), admitted(), spectators_.any_current());
+    spectators_.on_commit(mirror_.staged());  // before the main queue's flush moves it
   }
   if (admitted()) {
     mirror_.send();
     const link::DecoderCounters d = admission_.decoder_counters();
     live_.poll(session, status,
-               LinkFacts{mirror_.version(), d.bad_crc + d.bad_cobs + d.bad_payload}, now_us);
+               LinkFacts{mirror_.version(), d.bad_crc + d.bad_cobs + d.bad_payload,
+                         static_cast<std::uint32_t>(spectators_.count())},
+               now_us);
   }
-  queues_.flush();
+  queues_.flush();  // the main display first: spectators never delay it
+  spectators_.poll(session, status, mirror_, now_us);
 }
 
 template <class Submit>
@@ -73,6 +84,10 @@ void StationLink::on_admitted(const MeshIdentity& holds) {
   visitor_ = {};  // the new display gets the visitor state at once, no old notice
 }
 
+bool StationLink::on_spectator(const MeshIdentity& holds) {
+  return spectators_.admit(mirror_, holds, now_us_);
+}
+
 void StationLink::on_display_lost() {
   queues_.clear();
   mirror_.cancel();
@@ -85,6 +100,7 @@ void StationLink::on_command(const link::Command& command) {
 }
 
 void StationLink::say_goodbye() {
+  spectators_.say_goodbye();
   if (!connected()) return;
   (void)queues_.urgent(link::Bye{link::ByeReason::shutdown});
   queues_.flush();
@@ -94,10 +110,20 @@ void StationLink::refresh_counters() {
   const AdmissionCounters& a = admission_.counters();
   const MirrorCounters& m = mirror_.counters();
   const LiveCounters& l = live_.counters();
-  counters_ = StationLinkCounters{
-      a.connects,  a.disconnects,  m.full_sends,      m.commits_sent,
-      l.live_sent, l.live_dropped, a.resend_requests, a.newcomers,
-      a.displaced, a.refused,      commands_routed_,  a.commands_refused + commands_refused_};
+  counters_ = StationLinkCounters{a.connects,
+                                  a.disconnects,
+                                  m.full_sends,
+                                  m.commits_sent,
+                                  l.live_sent,
+                                  l.live_dropped,
+                                  a.resend_requests,
+                                  a.newcomers,
+                                  a.displaced,
+                                  a.refused,
+                                  commands_routed_,
+                                  a.commands_refused + commands_refused_,
+                                  static_cast<std::uint32_t>(spectators_.count()),
+                                  spectators_.totals()};
 }
 
 session::SessionCommand session_command(const link::Command& c) {

@@ -56,6 +56,7 @@ void LinkAdmission::refuse_version(link::LinkDecoder& decoder) {
 link::Hello LinkAdmission::begin_handshake(Handshake& hs, const link::Hello& hello) {
   hs.hello = true;
   hs.yield = (hello.flags & link::kHelloYield) != 0;
+  hs.spectator = (hello.flags & link::kHelloSpectator) != 0;
   hs.bridge_nonce = hello.nonce;
   hs.holds = MeshIdentity{hello.mesh_version, hello.mesh_checksum};
   hs.station_nonce =
@@ -120,6 +121,10 @@ void LinkAdmission::on_display_message(const link::LinkMessage& m) {
       ++counters_.commands_refused;
       return;
     }
+    if (display_.spectator) {
+      listener_.on_spectator_command();  // a read-only display on the main channel
+      return;
+    }
     listener_.on_command(*command);
   } else {
     ++counters_.refused.protocol;  // only the station sends the other types
@@ -168,9 +173,14 @@ void LinkAdmission::on_newcomer_message(const link::LinkMessage& m) {
   const auto* hello = std::get_if<link::Hello>(&m);
   if (hello != nullptr && hello->role == link::Role::bridge && !hs.hello) {
     const link::Hello reply = begin_handshake(hs, *hello);
-    if (refuse_if_busy()) return;
+    if (hs.spectator && !listener_.spectator_room()) {
+      refuse_newcomer(link::ByeReason::busy, &counters_.refused.full);
+      return;
+    }
+    if (!hs.spectator && refuse_if_busy()) return;
     send_newcomer(reply);
-    if (!auth) admit_newcomer();
+    if (!auth && hs.spectator) admit_spectator();
+    if (!auth && !hs.spectator) admit_newcomer();
     return;
   }
   const auto* tag = std::get_if<link::Auth>(&m);
@@ -180,7 +190,11 @@ void LinkAdmission::on_newcomer_message(const link::LinkMessage& m) {
       return;
     }
     send_newcomer(station_auth(hs));
-    admit_newcomer();
+    if (hs.spectator) {
+      admit_spectator();
+    } else {
+      admit_newcomer();
+    }
     return;
   }
   if (std::holds_alternative<link::Bye>(m)) {
@@ -215,6 +229,16 @@ bool LinkAdmission::refuse_if_busy() {
   if (!newcomer_.handshake.yield || !admitted()) return false;
   refuse_newcomer(link::ByeReason::busy, &counters_.refused.busy);
   return true;
+}
+
+void LinkAdmission::admit_spectator() {
+  // Checked again after the challenge-response: a slot may have been taken meanwhile.
+  if (!listener_.on_spectator(newcomer_.handshake.holds)) {
+    refuse_newcomer(link::ByeReason::busy, &counters_.refused.full);
+    return;
+  }
+  newcomer_.open = false;  // the transport moved it into a spectator slot
+  ++counters_.spectators;
 }
 
 void LinkAdmission::admit_newcomer() {

@@ -1,6 +1,8 @@
 // LiveStream: hands, stroke, object and status on the urgent queue.
 #include "twister/station/station_link_live.hpp"
 
+#include <algorithm>
+
 #include "twister/link/math_conversion.hpp"
 
 namespace twister::station {
@@ -150,14 +152,17 @@ void LiveStream::send_status(const session::SculptSession& session, const Statio
   s.strokes.capacity_stops = status.capacity_stops;
   s.buttons_state = static_cast<std::uint8_t>(status.buttons_missing ? link::ButtonsState::missing
                                                                      : link::ButtonsState::present);
+  s.spectators = static_cast<std::uint8_t>(std::min<std::uint32_t>(facts.spectators, 255));
   const math::SymmetrySpec next = session.symmetry();
   s.symmetry = {static_cast<std::uint8_t>(next.kind), next.mirrors, next.axis, next.order};
   const link::StatusReport& last = status_.last;
-  const bool changed =
-      s.tracker_state != last.tracker_state || s.strokes.not_saved != last.strokes.not_saved ||
-      s.strokes.capacity_stops != last.strokes.capacity_stops || s.turn_limit_rad != last.turn_limit_rad ||
-      s.method != last.method || s.clutch != last.clutch || s.mesh_version != last.mesh_version ||
-      s.buttons_state != last.buttons_state || s.symmetry != last.symmetry;
+  const bool changed = s.tracker_state != last.tracker_state ||
+                       s.strokes.not_saved != last.strokes.not_saved ||
+                       s.strokes.capacity_stops != last.strokes.capacity_stops ||
+                       s.turn_limit_rad != last.turn_limit_rad || s.method != last.method ||
+                       s.clutch != last.clutch || s.mesh_version != last.mesh_version ||
+                       s.buttons_state != last.buttons_state || s.symmetry != last.symmetry ||
+                       s.spectators != last.spectators;
   if (status_.sent && !changed && now_us - status_.last_us < config_.status_interval_us) return;
   s.traffic.live_sent = counters_.live_sent;
   s.traffic.live_dropped = counters_.live_dropped;

@@ -31,51 +31,62 @@ MeshIdentity MeshMirror::offered() {
   return MeshIdentity{version_, checksum_};
 }
 
-void MeshMirror::resync(const MeshIdentity& holds) {
+void MeshMirror::resync(const MeshIdentity& holds) { resync(main_, holds); }
+
+void MeshMirror::resync(MeshSendState& state, const MeshIdentity& holds) {
   // Resync by version: a display that holds exactly our mesh gets nothing again.
-  if (holds != offered()) full_wanted_ = true;
+  if (holds != offered()) state.wanted = true;
 }
 
-void MeshMirror::track(const mesh::Mesh& mesh, bool send) {
+void MeshMirror::track(const mesh::Mesh& mesh, bool send, bool stage) {
   const auto old_vertices = static_cast<std::uint32_t>(shadow_.vertex_count());
   const auto old_triangles = static_cast<std::uint32_t>(shadow_.triangle_count());
   ++version_;
   checksum_stale_ = true;  // a commit queued for the display computes it now
-  const bool sent =
-      send && !full_active_ && !full_wanted_ && queue_commit(mesh, old_vertices, old_triangles);
+  staged_ = {};
+  const std::size_t mark = out_.bulk_mark();
+  const bool sent = send && main_.idle() && queue_commit(out_, mesh, old_vertices, old_triangles);
+  if (sent) ++commits_sent_;
+  if (stage && sent) {
+    staged_ = out_.bulk_since(mark);  // the spectators copy the main display's bytes
+  } else if (stage) {
+    staging_.clear();
+    if (queue_commit(staging_, mesh, old_vertices, old_triangles)) staged_ = staging_.bytes();
+  }
   if (!shadow_.copy_from(mesh).ok()) {
     // Larger than the shadow (cannot happen when sized from the mesh capacity).
     shadow_.clear();
     checksum_stale_ = true;
   }
-  if (full_active_) {
-    full_phase_ = FullPhase::begin;  // restart from the fresh shadow
-    full_next_ = 0;
+  if (main_.active) {
+    main_.restart();
   } else if (!sent && send) {
-    full_wanted_ = true;
+    main_.wanted = true;
   }
 }
 
-bool MeshMirror::queue_commit(const mesh::Mesh& mesh, std::uint32_t old_vertices,
+template <class Out>
+bool MeshMirror::queue_commit(Out& out, const mesh::Mesh& mesh, std::uint32_t old_vertices,
                               std::uint32_t old_triangles) {
-  const std::size_t mark = out_.bulk_mark();
-  bool ok = out_.bulk(link::MeshBegin{false, version_ - 1, version_,
-                                      static_cast<std::uint32_t>(mesh.vertex_count()),
-                                      static_cast<std::uint32_t>(mesh.triangle_count())}) &&
-            queue_changed_vertices(mesh, old_vertices) &&
-            queue_changed_triangles(mesh, old_triangles);
+  const std::size_t mark = out.bulk_mark();
+  bool ok = out.bulk(link::MeshBegin{false, version_ - 1, version_,
+                                     static_cast<std::uint32_t>(mesh.vertex_count()),
+                                     static_cast<std::uint32_t>(mesh.triangle_count())}) &&
+            queue_changed_vertices(out, mesh, old_vertices) &&
+            queue_changed_triangles(out, mesh, old_triangles);
   checksum_ = mesh.checksum();  // the shadow's once it is copied from `mesh`
   checksum_stale_ = false;
-  ok = ok && out_.bulk(link::MeshEnd{version_, checksum_});
+  ok = ok && out.bulk(link::MeshEnd{version_, checksum_});
   if (!ok) {
-    out_.bulk_rewind(mark);  // all or nothing: never a half commit in the buffer
+    out.bulk_rewind(mark);  // all or nothing: never a half commit in the buffer
     return false;
   }
-  ++counters_.commits_sent;
   return true;
 }
 
-bool MeshMirror::queue_changed_vertices(const mesh::Mesh& mesh, std::uint32_t old_vertices) {
+template <class Out>
+bool MeshMirror::queue_changed_vertices(Out& out, const mesh::Mesh& mesh,
+                                        std::uint32_t old_vertices) {
   vertices_.count = 0;
   const auto sx = shadow_.x();
   const auto sy = shadow_.y();
@@ -90,14 +101,16 @@ bool MeshMirror::queue_changed_vertices(const mesh::Mesh& mesh, std::uint32_t ol
     vertices_.items[vertices_.count++] =
         link::VertexEntry{static_cast<std::uint32_t>(i), mx[i], my[i], mz[i]};
     if (vertices_.count == link::kMaxVerticesPerChunk) {
-      if (!out_.bulk(vertices_)) return false;
+      if (!out.bulk(vertices_)) return false;
       vertices_.count = 0;
     }
   }
-  return vertices_.count == 0 || out_.bulk(vertices_);
+  return vertices_.count == 0 || out.bulk(vertices_);
 }
 
-bool MeshMirror::queue_changed_triangles(const mesh::Mesh& mesh, std::uint32_t old_triangles) {
+template <class Out>
+bool MeshMirror::queue_changed_triangles(Out& out, const mesh::Mesh& mesh,
+                                         std::uint32_t old_triangles) {
   // Runs of triangles whose indices changed (edge splits rewrite triangles in place)
   // or that are new; a shorter mesh is cut by the count in mesh_begin.
   const auto old_idx = shadow_.triangle_indices();
@@ -119,71 +132,71 @@ bool MeshMirror::queue_changed_triangles(const mesh::Mesh& mesh, std::uint32_t o
     triangles_.count = static_cast<std::uint16_t>(run);
     std::copy_n(new_idx.begin() + static_cast<std::ptrdiff_t>(3 * t), 3 * run,
                 triangles_.indices.begin());
-    if (!out_.bulk(triangles_)) return false;
+    if (!out.bulk(triangles_)) return false;
     t += run;
   }
   return true;
 }
 
-void MeshMirror::send() {
-  if (full_wanted_ && !full_active_) {
-    full_wanted_ = false;
-    full_active_ = true;
-    full_phase_ = FullPhase::begin;
-    full_next_ = 0;
-    ++counters_.full_sends;
+void MeshMirror::send(MeshSendState& state, FrameQueues& out) {
+  if (state.wanted && !state.active) {
+    state.wanted = false;
+    state.active = true;
+    state.restart();
+    ++state.full_sends;
   }
-  if (full_active_) continue_full();
+  if (state.active) continue_full(state, out);
 }
 
-void MeshMirror::full_vertices() {
-  const std::size_t n = std::min(link::kMaxVerticesPerChunk, shadow_.vertex_count() - full_next_);
+void MeshMirror::full_vertices(MeshSendState& state, FrameQueues& out) {
+  const std::size_t n = std::min(link::kMaxVerticesPerChunk, shadow_.vertex_count() - state.next);
   vertices_.count = static_cast<std::uint16_t>(n);
   for (std::size_t k = 0; k < n; ++k) {
-    const auto i = static_cast<std::uint32_t>(full_next_ + k);
+    const auto i = static_cast<std::uint32_t>(state.next + k);
     const glm::vec3 p = shadow_.position(i);
     vertices_.items[k] = link::VertexEntry{i, p.x, p.y, p.z};
   }
-  if (n > 0) (void)out_.bulk(vertices_);
-  full_next_ += n;
-  if (full_next_ >= shadow_.vertex_count()) {
-    full_phase_ = FullPhase::triangles;
-    full_next_ = 0;
+  if (n > 0) (void)out.bulk(vertices_);
+  state.next += n;
+  if (state.next >= shadow_.vertex_count()) {
+    state.phase = MeshSendState::Phase::triangles;
+    state.next = 0;
   }
 }
 
-void MeshMirror::full_triangles() {
+void MeshMirror::full_triangles(MeshSendState& state, FrameQueues& out) {
   const std::size_t n =
-      std::min(link::kMaxTrianglesPerChunk, shadow_.triangle_count() - full_next_);
-  triangles_.first = static_cast<std::uint32_t>(full_next_);
+      std::min(link::kMaxTrianglesPerChunk, shadow_.triangle_count() - state.next);
+  triangles_.first = static_cast<std::uint32_t>(state.next);
   triangles_.count = static_cast<std::uint16_t>(n);
-  std::copy_n(shadow_.triangle_indices().begin() + static_cast<std::ptrdiff_t>(3 * full_next_),
+  std::copy_n(shadow_.triangle_indices().begin() + static_cast<std::ptrdiff_t>(3 * state.next),
               3 * n, triangles_.indices.begin());
-  if (n > 0) (void)out_.bulk(triangles_);
-  full_next_ += n;
-  if (full_next_ >= shadow_.triangle_count()) full_phase_ = FullPhase::end;
+  if (n > 0) (void)out.bulk(triangles_);
+  state.next += n;
+  if (state.next >= shadow_.triangle_count()) state.phase = MeshSendState::Phase::end;
 }
 
-void MeshMirror::continue_full() {
+void MeshMirror::continue_full(MeshSendState& state, FrameQueues& out) {
   // A few frames per poll keep the loop responsive; the rest follows next poll.
-  while (full_active_ && out_.bulk_room() >= link::kMaxFrameBytes) {
-    switch (full_phase_) {
-      case FullPhase::begin:
-        (void)out_.bulk(link::MeshBegin{true, 0, version_,
-                                        static_cast<std::uint32_t>(shadow_.vertex_count()),
-                                        static_cast<std::uint32_t>(shadow_.triangle_count())});
-        full_phase_ = FullPhase::vertices;
-        full_next_ = 0;
+  using Phase = MeshSendState::Phase;
+  while (state.active && out.bulk_room() >= link::kMaxFrameBytes) {
+    switch (state.phase) {
+      case Phase::begin:
+        (void)out.bulk(link::MeshBegin{true, 0, version_,
+                                       static_cast<std::uint32_t>(shadow_.vertex_count()),
+                                       static_cast<std::uint32_t>(shadow_.triangle_count())});
+        state.phase = Phase::vertices;
+        state.next = 0;
         break;
-      case FullPhase::vertices:
-        full_vertices();
+      case Phase::vertices:
+        full_vertices(state, out);
         break;
-      case FullPhase::triangles:
-        full_triangles();
+      case Phase::triangles:
+        full_triangles(state, out);
         break;
-      case FullPhase::end:
-        (void)out_.bulk(link::MeshEnd{version_, offered().checksum});
-        full_active_ = false;
+      case Phase::end:
+        (void)out.bulk(link::MeshEnd{version_, offered().checksum});
+        state.active = false;
         break;
     }
   }

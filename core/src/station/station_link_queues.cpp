@@ -26,6 +26,13 @@ void FrameQueues::bulk_rewind(std::size_t mark) {
   if (mark < bulk_size_) bulk_size_ = mark;
 }
 
+bool FrameQueues::bulk_bytes(std::span<const std::byte> frames) {
+  if (frames.size() > bulk_room()) return false;
+  std::memcpy(bulk_.data() + bulk_size_, frames.data(), frames.size());
+  bulk_size_ += frames.size();
+  return true;
+}
+
 void FrameQueues::clear() {
   bulk_size_ = 0;
   urgent_size_ = 0;

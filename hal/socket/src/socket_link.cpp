@@ -101,6 +101,7 @@ void SocketLink::close_fd(int& fd) {
 void SocketLink::close() {
   close_fd(peer_fd_);
   close_fd(newcomer_fd_);
+  for (int& fd : spectator_fds_) close_fd(fd);
   while (!pending_.empty()) drop_pending(pending_.size() - 1);
   close_fd(listen_fd_);
   if (made_file_) {
@@ -225,6 +226,9 @@ std::size_t SocketLink::do_poll_fds(std::span<pollfd> out) const {
   for (const int fd : {peer_fd_, newcomer_fd_, listen_fd_}) {
     if (fd >= 0 && n < out.size()) out[n++] = {fd, POLLIN, 0};
   }
+  for (const int fd : spectator_fds_) {
+    if (fd >= 0 && n < out.size()) out[n++] = {fd, POLLIN, 0};
+  }
   for (const Pending& p : pending_) {
     if (n < out.size()) out[n++] = {p.fd, POLLIN, 0};
   }
@@ -267,6 +271,34 @@ void SocketLink::do_admit_newcomer() {
 }
 
 void SocketLink::do_refuse_newcomer() { close_fd(newcomer_fd_); }
+
+std::size_t SocketLink::do_spectator_capacity() const {
+  return config_.server ? kSpectatorSlots : 0;
+}
+
+Status SocketLink::do_admit_spectator(std::size_t slot) {
+  if (slot >= kSpectatorSlots) return StatusCode::out_of_range;
+  if (newcomer_fd_ < 0) return StatusCode::unavailable;
+  close_fd(spectator_fds_[slot]);  // free by contract; never leak one
+  spectator_fds_[slot] = newcomer_fd_;
+  newcomer_fd_ = -1;
+  return ok_status();
+}
+
+Result<std::size_t> SocketLink::do_send_spectator(std::size_t slot,
+                                                  std::span<const std::byte> src) {
+  if (slot >= kSpectatorSlots) return StatusCode::unavailable;
+  return send_on(spectator_fds_[slot], src);
+}
+
+Result<std::size_t> SocketLink::do_receive_spectator(std::size_t slot, std::span<std::byte> dest) {
+  if (slot >= kSpectatorSlots) return StatusCode::unavailable;
+  return receive_on(spectator_fds_[slot], dest);
+}
+
+void SocketLink::do_close_spectator(std::size_t slot) {
+  if (slot < kSpectatorSlots) close_fd(spectator_fds_[slot]);
+}
 
 bool SocketLink::connect_within(int fd, int timeout_ms) {
   if (::connect(fd, reinterpret_cast<const sockaddr*>(&address_), address_length_) == 0) {

@@ -1,5 +1,5 @@
 // [link]: address, socket_mode, socket_group, listen, psk_file,
-// allow_unauthenticated_tcp, baud.
+// allow_unauthenticated_tcp, baud, max_spectators, spectator_stall_seconds.
 #include "link_config.hpp"
 
 #include <algorithm>
@@ -102,6 +102,11 @@ void read_link(ConfigReader& root, StationFileConfig& cfg) {
       lc.baud = static_cast<std::uint32_t>(baud);
     }
   }
+  std::int64_t spectators = 0;
+  if (l.integer("max_spectators", false, 0, 8, spectators)) {
+    lc.max_spectators = static_cast<std::uint32_t>(spectators);
+  }
+  l.real("spectator_stall_seconds", false, 0.1, 600.0, lc.spectator_stall_seconds);
   if (lc.listen == LinkListen::network && lc.psk_file.empty()) {
     l.error(l.node("listen"), "listen",
             "expected psk_file with listen = \"network\" (a link beyond loopback needs a key)");

@@ -232,6 +232,11 @@ struct LinkSection {
   // start unless this is set (Unix sockets with a group are the keyless default).
   bool allow_unauthenticated_tcp = false;
   std::uint32_t baud = 230400;  // serial: addresses
+  // Spectators (issue 25): read-only displays beside the main one, each authenticated
+  // like it (unix:/tcp: only; 0 = none). One that takes no byte for
+  // spectator_stall_seconds is dropped.
+  std::uint32_t max_spectators = 4;
+  double spectator_stall_seconds = 5.0;
 };
 
 struct SystemdConfig {
@@ -242,14 +247,14 @@ struct SystemdConfig {
 // [exhibit] (issue 25; docs/hardware.md): exhibit mode, off by default.
 struct ExhibitSection {
   bool enabled = false;
-  std::string archive_dir;             // REQUIRED when enabled; created when missing
-  double idle_seconds = 90.0;          // no grab, no hand motion: the sculpture ends
-  double grace_seconds = 6.0;          // the end can be undone (model kept) this long
+  std::string archive_dir;                        // REQUIRED when enabled; created when missing
+  double idle_seconds = 90.0;                     // no grab, no hand motion: the sculpture ends
+  double grace_seconds = 6.0;                     // the end can be undone (model kept) this long
   std::vector<std::uint8_t> new_sculpture_chord;  // lines held together; empty: none
   double chord_hold_seconds = 1.5;
-  double motion_threshold_m = 0.02;    // a hand moving less is idle
-  double retry_seconds = 5.0;          // a failed archive is tried again after
-  std::uint32_t keep_archives = 500;   // retention: archives kept (count) ...
+  double motion_threshold_m = 0.02;      // a hand moving less is idle
+  double retry_seconds = 5.0;            // a failed archive is tried again after
+  std::uint32_t keep_archives = 500;     // retention: archives kept (count) ...
   std::uint64_t keep_archive_mb = 2048;  // ... and MiB
 };
 

@@ -13,6 +13,7 @@
 #include <memory>
 #include <vector>
 
+#include "fakes/fake_link_listener.hpp"
 #include "fakes/memory_wire.hpp"
 #include "session_harness.hpp"
 #include "twister/base/checksum.hpp"
@@ -24,49 +25,7 @@ namespace {
 
 using session::test_support::Station;
 
-// A listening transport: the admitted peer's wire and a newcomer's wire.
-class FakeListener final : public ports::LinkPort, public ports::LinkNewcomers {
- public:
-  void connect(test::MemoryWire& wire) {
-    newcomer_ = &wire;
-    ++id_;
-  }
-  test::MemoryWire* peer() const { return peer_; }
-
- private:
-  static Result<std::size_t> put(test::MemoryWire* w, std::span<const std::byte> src) {
-    if (w == nullptr || !w->up) return StatusCode::unavailable;
-    std::size_t n = 0;
-    while (n < src.size() && w->a_to_b.push(src[n])) ++n;
-    return n;
-  }
-  static Result<std::size_t> get(test::MemoryWire* w, std::span<std::byte> dest) {
-    if (w == nullptr || !w->up) return StatusCode::unavailable;
-    std::size_t n = 0;
-    while (n < dest.size() && !w->b_to_a.empty()) dest[n++] = w->b_to_a.pop();
-    return n;
-  }
-  Result<std::size_t> do_send(std::span<const std::byte> src) override { return put(peer_, src); }
-  Result<std::size_t> do_receive(std::span<std::byte> dest) override { return get(peer_, dest); }
-  std::uint64_t do_newcomer_id() override { return id_; }
-  Result<std::size_t> do_send_newcomer(std::span<const std::byte> src) override {
-    return put(newcomer_, src);
-  }
-  Result<std::size_t> do_receive_newcomer(std::span<std::byte> dest) override {
-    return get(newcomer_, dest);
-  }
-  void do_admit_newcomer() override {
-    peer_ = newcomer_;  // the old peer's wire keeps what was sent before (its bye)
-    newcomer_ = nullptr;
-  }
-  void do_refuse_newcomer() override {
-    if (newcomer_ != nullptr) newcomer_->up = false;
-    newcomer_ = nullptr;
-  }
-  test::MemoryWire* peer_ = nullptr;
-  test::MemoryWire* newcomer_ = nullptr;
-  std::uint64_t id_ = 0;
-};
+using test::FakeListener;
 
 template <LinkBody M>
 std::vector<std::byte> frame(const M& m) {

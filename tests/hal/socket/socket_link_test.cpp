@@ -132,6 +132,60 @@ TEST(BridgeSocketLink, PollFdsNameListenerAndPeerAndReopenRebinds) {
   EXPECT_EQ(receive_all(server, 5, true), "again");
 }
 
+// Issue 25: the newcomer moves into a spectator slot beside the peer (never replacing
+// it); each slot is its own channel, polled with the others, and closing it hangs up
+// that spectator only. A client has no slots.
+TEST(BridgeSocketLink, SpectatorSlotsSitBesideThePeer) {
+  const std::string address =
+      "unix:/tmp/twister-bridge-spect-" + std::to_string(::getpid()) + ".sock";
+  SocketLink server({address, true, 0});
+  ASSERT_TRUE(server.open());
+  EXPECT_EQ(server.spectator_capacity(), SocketLink::kSpectatorSlots);
+  EXPECT_EQ(SocketLink({address, false, 0}).spectator_capacity(), 0u);
+  EXPECT_EQ(server.admit_spectator(0).code(), StatusCode::unavailable);  // no newcomer
+  SocketLink main({address, false, 0});
+  ASSERT_TRUE(main.open());
+  ASSERT_EQ(*main.send(bytes("m")), 1u);
+  ASSERT_TRUE(newcomer_arrives(server, 0));
+  EXPECT_EQ(receive_all(server, 1, true), "m");
+  server.admit_newcomer();
+  SocketLink watcher({address, false, 0});
+  ASSERT_TRUE(watcher.open());
+  ASSERT_EQ(*watcher.send(bytes("s")), 1u);
+  ASSERT_TRUE(newcomer_arrives(server, 1));
+  EXPECT_EQ(receive_all(server, 1, true), "s");
+  EXPECT_EQ(server.admit_spectator(SocketLink::kSpectatorSlots).code(), StatusCode::out_of_range);
+  ASSERT_TRUE(server.admit_spectator(3).ok());
+  EXPECT_EQ(server.connects(), 1u);  // the peer is still the first client
+  std::array<pollfd, 8> fds{};
+  EXPECT_EQ(server.poll_fds(fds), 3u);  // peer, listener, spectator
+  ASSERT_EQ(*server.send_spectator(3, bytes("mesh")), 4u);
+  EXPECT_EQ(receive_all(watcher, 4), "mesh");
+  ASSERT_EQ(*server.send(bytes("live")), 4u);
+  EXPECT_EQ(receive_all(main, 4), "live");
+  ASSERT_EQ(*watcher.send(bytes("cmd")), 3u);
+  std::vector<std::byte> buf(8);
+  std::size_t got = 0;
+  for (int i = 0; i < 100 && got < 3; ++i) {
+    const auto n = server.receive_spectator(3, buf);
+    ASSERT_TRUE(n.ok());
+    got += *n;
+    if (got < 3) wait_ready(server);
+  }
+  EXPECT_EQ(got, 3u);
+  EXPECT_EQ(server.send_spectator(2, bytes("x")).status().code(), StatusCode::unavailable);
+  server.close_spectator(3);
+  EXPECT_EQ(server.send_spectator(3, bytes("x")).status().code(), StatusCode::unavailable);
+  Result<std::size_t> r = std::size_t{0};
+  for (int i = 0; i < 100 && r.ok(); ++i) {
+    r = watcher.receive(buf);  // the spectator sees its connection go
+    if (r.ok()) wait_ready(watcher);
+  }
+  EXPECT_EQ(r.status().code(), StatusCode::unavailable);
+  ASSERT_EQ(*server.send(bytes("ok")), 2u);  // the peer is untouched
+  EXPECT_EQ(receive_all(main, 2), "ok");
+}
+
 TEST(BridgeSocketLink, BadAddressesAreRefused) {
   for (const char* a :
        {"", "unix:", "tcp:127.0.0.1", "tcp:localhost:80", "tcp:127.0.0.1:0", "serial:/dev/ttyS0"}) {

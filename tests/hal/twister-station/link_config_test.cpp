@@ -118,3 +118,30 @@ TEST(LinkConfig, BeyondLoopbackNeedsNetworkListenAndNetworkNeedsAKey) {
 
 }  // namespace
 }  // namespace twister::station_app
+
+namespace twister::station_app {
+namespace {
+
+// Issue 25 (spectators): [link] max_spectators 0..8 (default 4) and
+// spectator_stall_seconds 0.1..600 (default 5); anything else names key and range.
+TEST(LinkConfig, SpectatorSlotsAndStallTime) {
+  const auto none = parse_station_config(kBase, "t.toml");
+  ASSERT_TRUE(none.ok()) << messages(none);
+  EXPECT_EQ(none.config.link.max_spectators, 4u);
+  EXPECT_EQ(none.config.link.spectator_stall_seconds, 5.0);
+  const auto r = parse_link("max_spectators = 0\nspectator_stall_seconds = 2.5\n");
+  ASSERT_TRUE(r.ok()) << messages(r);
+  EXPECT_EQ(r.config.link.max_spectators, 0u);
+  EXPECT_EQ(r.config.link.spectator_stall_seconds, 2.5);
+  const auto many = parse_link("max_spectators = 9\n");
+  EXPECT_NE(messages(many).find("link.max_spectators: expected an integer from 0 to 8, got 9"),
+            std::string::npos)
+      << messages(many);
+  const auto stall = parse_link("spectator_stall_seconds = 0\n");
+  EXPECT_NE(messages(stall).find("link.spectator_stall_seconds: expected a number from 0.1 to 600"),
+            std::string::npos)
+      << messages(stall);
+}
+
+}  // namespace
+}  // namespace twister::station_app

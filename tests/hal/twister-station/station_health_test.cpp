@@ -21,6 +21,8 @@
 #include "station_assembly.hpp"
 #include "station_loop.hpp"
 #include "twister/hal/logger.hpp"
+#include "twister/hal/socket_link.hpp"
+#include "twister/link/link_codec.hpp"
 
 namespace twister::station_app {
 namespace {
@@ -152,6 +154,60 @@ TEST(StationHealthLoop, MetricsFileFollowsTheRunWithoutAllocating) {
   ::unlink(metrics.c_str());
   ::unlink(journal.c_str());
   ::unlink((journal + ".ckpt").c_str());  // its checkpoint
+}
+
+// Issue 25: a spectator display connected to the station's link shows in the metrics
+// (twister_spectators) and the display link's gauges; its hello is answered in the loop.
+TEST(StationHealthLoop, ASpectatorOnTheLinkIsCountedInTheMetrics) {
+  const std::string journal = temp_path("spect_journal.bin");
+  const std::string metrics = temp_path("spect.prom");
+  const std::string sock = temp_path("spect.sock");
+  for (const std::string& f : {journal, journal + ".ckpt", metrics}) ::unlink(f.c_str());
+  const std::string text =
+      "[station]\njournal = \"" + journal +
+      "\"\nmesh = \"" TWISTER_DEPLOY_DIR
+      "/sim_sphere.obj\"\n[tracker]\nbackend = \"sim\"\n[tracker.sim]\nscenario_file = \"" +
+      TWISTER_SCENARIO_DIR
+      "/loop_strokes.scn\"\ntime = \"virtual\"\n[buttons]\nbackend = \"sim\"\n"
+      "[sculpt]\nrefine = false\n[systemd]\nnotify = false\nwatchdog = false\n"
+      "[link]\naddress = \"unix:" +
+      sock + "\"\nmax_spectators = 2\n[health]\nmetrics_file = \"" + metrics + "\"\nperiod_s = 1\n";
+  const ConfigParseResult parsed = parse_station_config(text, "spect.toml");
+  ASSERT_TRUE(parsed.ok()) << parsed.errors[0].to_string();
+  auto health_config = make_health_config(parsed.config, TWISTER_DEPLOY_DIR);
+  ASSERT_TRUE(health_config) << health_config.error().message;
+  StationHealth health(std::move(*health_config));
+  auto assembled = assemble_station(parsed.config, {TWISTER_DEPLOY_DIR, ""});
+  ASSERT_TRUE(assembled) << assembled.error().message;
+  StationParts& parts = **assembled;
+  hal::Logger log({"twister-station", hal::LogLevel::warning, false, 2});
+  StationLoop loop(*parts.core, parts.backends, parts.display, log,
+                   make_loop_config(parsed.config, 0.0, parts.backends));
+  loop.report_health(&health);
+  ASSERT_TRUE(loop.start());
+  ASSERT_TRUE(parts.display.is_open());
+  hal::SocketLink spectator({"unix:" + sock, false, 0});
+  ASSERT_TRUE(spectator.open());
+  std::array<std::byte, 128> hello{};
+  const auto n =
+      link::encode_frame(link::Hello{link::Role::bridge, link::kHelloSpectator, 0, 0, {}}, hello);
+  ASSERT_TRUE(n.ok());
+  ASSERT_EQ(*spectator.send(std::span<const std::byte>(hello).first(*n)), *n);
+  ports::Clock& clock = *parts.backends.clock;
+  const ports::TimestampUs t0 = clock.now_us();
+  std::vector<std::byte> sink(1 << 16);
+  while (clock.now_us() - t0 < 2'500'000) {
+    ASSERT_TRUE(loop.step());
+    (void)spectator.receive(sink);  // it reads what it is sent
+  }
+  ASSERT_NE(parts.display.counters(), nullptr);
+  EXPECT_EQ(parts.display.counters()->spectators_now, 1U);
+  EXPECT_FALSE(parts.display.connected());  // no main display: the spectator took none
+  const std::string prom = slurp(metrics);
+  EXPECT_EQ(test::prometheus_sample(prom, "twister_spectators"), 1.0) << prom;
+  EXPECT_EQ(test::prometheus_sample(prom, "twister_link_open"), 1.0);
+  ASSERT_TRUE(loop.finish().ok());
+  for (const std::string& f : {journal, journal + ".ckpt", metrics}) ::unlink(f.c_str());
 }
 
 }  // namespace

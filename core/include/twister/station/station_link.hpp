@@ -7,7 +7,9 @@
 //   MeshMirror     the committed mesh: a full mesh when the display holds another
 //                  version, then one change set per commit (station_link_mirror.hpp);
 //   LiveStream     hands, live stroke, object pose and status (station_link_live.hpp);
-//   FrameQueues    the urgent and bulk queues and their flush (station_link_queues.hpp).
+//   FrameQueues    the urgent and bulk queues and their flush (station_link_queues.hpp);
+//   StationSpectators  read-only displays beside the main one, each on its own
+//                  bounded queues, served after it (station_link_spectators.hpp).
 // The admitted display's commands (its undo / redo / method keys) go into the
 // session's command path here, in core (SculptSession::submit / Station::submit,
 // the hands' buttons' path): they run at the next step and report as its events.
@@ -30,6 +32,7 @@
 #include "twister/station/station_link_live.hpp"
 #include "twister/station/station_link_mirror.hpp"
 #include "twister/station/station_link_queues.hpp"
+#include "twister/station/station_link_spectators.hpp"
 #include "twister/station/station_status.hpp"
 
 namespace twister::station {
@@ -68,6 +71,8 @@ struct StationLinkCounters {
   LinkRefusals refused{};              // by why
   std::uint64_t commands = 0;          // display commands the session queued
   std::uint64_t commands_refused = 0;  // from a display not admitted, or queue full
+  std::uint32_t spectators_now = 0;    // read-only displays connected
+  SpectatorCounters spectators{};      // all spectators so far (issue 25)
 };
 
 // The session command of a display's command (link message `command`).
@@ -100,6 +105,12 @@ class StationLink final : private AdmissionListener {
   // Bytes waiting for the port (0 = everything handed to the peer).
   std::size_t pending_bytes() const { return queues_.pending_bytes(); }
   bool idle() const { return pending_bytes() == 0 && mirror_.idle(); }
+  // Spectators (issue 25): how many slots, and one slot as of the last poll.
+  std::size_t spectator_slots() const { return spectators_.slots(); }
+  SpectatorView spectator(std::size_t slot) const { return spectators_.view(slot); }
+  std::size_t spectator_pending_bytes() const { return spectators_.pending_bytes(); }
+  // Every spectator holds everything queued for it (its mesh sent, its queues empty).
+  bool spectators_idle() const { return spectators_.idle(); }
   // A display was admitted and everything it needs has been handed to the port.
   bool peer_synced() const { return admitted() && idle(); }
   // As of the end of the last poll().
@@ -120,6 +131,9 @@ class StationLink final : private AdmissionListener {
   void on_resend_request() override;
   void on_command(const link::Command& command) override;
   MeshIdentity offered() override { return mirror_.offered(); }
+  bool spectator_room() override { return spectators_.has_room(); }
+  bool on_spectator(const MeshIdentity& holds) override;
+  void on_spectator_command() override { spectators_.refuse_command(queues_); }
 
   void step(const session::SculptSession& session, const StationStatus& status,
             ports::TimestampUs now_us);
@@ -142,7 +156,9 @@ class StationLink final : private AdmissionListener {
   LinkAdmission admission_;
   MeshMirror mirror_;
   LiveStream live_;
+  StationSpectators spectators_;
   bool started_ = false;
+  ports::TimestampUs now_us_ = 0;  // of the poll in progress (a spectator's admission)
   std::uint32_t last_sequence_ = 0;
   // The admitted display's commands since the last poll, oldest first.
   InlineVector<link::Command, kMaxCommands> commands_;

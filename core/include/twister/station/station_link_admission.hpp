@@ -3,19 +3,25 @@
 // handshake (hello, and the pre-shared-key challenge-response when an
 // authenticator is given); admits, displaces (bye: displaced) and refuses
 // (unauthorised, protocol, another version, timeout; busy: a displaced display's
-// yielding hello while another display holds the link); a fresh decoder per
+// yielding hello while another display holds the link, or a spectator while every
+// spectator slot is taken); a newcomer whose hello carries kHelloSpectator is
+// authenticated the same way and then handed to the listener as a spectator: it
+// displaces nobody (issue 25). A fresh decoder per
 // connection. An admitted display's other requests (resend, commands) go to the
 // listener, and so do admission and loss. Replies to the display go on the urgent
 // queue; the newcomer's are sent straight to it. No heap. Not thread-safe.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <span>
 
 #include "twister/link/link_authenticator.hpp"
 #include "twister/link/link_codec.hpp"
 #include "twister/ports/clock.hpp"
 #include "twister/ports/link_newcomers.hpp"
 #include "twister/ports/link_port.hpp"
+#include "twister/ports/link_spectators.hpp"
 #include "twister/station/station_link_queues.hpp"
 
 namespace twister::station {
@@ -25,6 +31,17 @@ namespace twister::station {
 struct StationLinkOptions {
   ports::LinkNewcomers* newcomers = nullptr;
   link::LinkAuthenticator* authenticator = nullptr;
+  // Spectators (issue 25): read-only displays in up to max_spectators slots of a
+  // transport that offers them (with newcomers). spectator_queues: every slot's bulk
+  // queue (split evenly, at least 4 * link::kMaxFrameBytes each); spectator_staging:
+  // where a commit's change set is encoded for them when the main display was not
+  // sent it (empty: a full send instead). A spectator that takes no byte for
+  // spectator_stall_us is dropped.
+  ports::LinkSpectators* spectators = nullptr;
+  std::size_t max_spectators = 0;
+  std::span<std::byte> spectator_queues{};
+  std::span<std::byte> spectator_staging{};
+  ports::TimestampUs spectator_stall_us = 5'000'000;
 };
 
 // The mesh a peer holds (or the station offers): version and checksum.
@@ -42,7 +59,8 @@ struct LinkRefusals {
   std::uint64_t version = 0;       // another protocol version
   std::uint64_t timeout = 0;       // handshake not finished in time
   std::uint64_t busy = 0;          // a yielding display while another holds the link
-  // The refusals that are errors (all but busy).
+  std::uint64_t full = 0;          // a spectator while every spectator slot is taken
+  // The refusals that are errors (all but busy and full).
   std::uint64_t errors() const { return unauthorised + protocol + version + timeout; }
 };
 
@@ -52,6 +70,7 @@ struct AdmissionCounters {
   std::uint64_t resend_requests = 0;  // from the admitted display
   std::uint64_t newcomers = 0;        // peers that arrived on the newcomer channel
   std::uint64_t displaced = 0;        // displays told "displaced" by an admitted newcomer
+  std::uint64_t spectators = 0;       // newcomers admitted as spectators
   LinkRefusals refused{};
   std::uint64_t commands_refused = 0;  // a command from a peer not admitted
   std::uint64_t send_errors = 0;       // newcomer replies the port did not take
@@ -68,6 +87,15 @@ class AdmissionListener {
   virtual void on_command(const link::Command& command) = 0;
   // The mesh the station offers, for its hello (asked only when a hello arrives).
   virtual MeshIdentity offered() = 0;
+  // Spectators (issue 25): is a slot free; the authenticated newcomer holding
+  // `holds` becomes a spectator (false: it could not, it is refused); the display on
+  // the main channel said kHelloSpectator and sent a command (refused).
+  virtual bool spectator_room() { return false; }
+  virtual bool on_spectator(const MeshIdentity& holds) {
+    (void)holds;
+    return false;
+  }
+  virtual void on_spectator_command() {}
 
  protected:
   ~AdmissionListener() = default;
@@ -96,9 +124,10 @@ class LinkAdmission {
  private:
   // One connection's handshake (display channel or newcomer channel).
   struct Handshake {
-    bool hello = false;     // the bridge's hello arrived
-    bool admitted = false;  // hello (and auth) done: it is the display
-    bool yield = false;     // its hello said kHelloYield
+    bool hello = false;      // the bridge's hello arrived
+    bool admitted = false;   // hello (and auth) done: it is the display
+    bool yield = false;      // its hello said kHelloYield
+    bool spectator = false;  // its hello said kHelloSpectator: read-only
     link::Nonce station_nonce{};
     link::Nonce bridge_nonce{};
     MeshIdentity holds{};
@@ -121,6 +150,8 @@ class LinkAdmission {
   // Tells the newcomer why (bye) and closes it; `counter` (may be null) counts it.
   void refuse_newcomer(link::ByeReason reason, std::uint64_t* counter);
   void admit_newcomer();
+  // The authenticated newcomer becomes a spectator (or is refused: no slot).
+  void admit_spectator();
   // A yielding newcomer while an admitted display holds the link: bye: busy.
   bool refuse_if_busy();
   // Starts a handshake on `hello`; returns the station's hello to send back.

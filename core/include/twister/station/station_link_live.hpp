@@ -36,6 +36,7 @@ struct LiveCounters {
 struct LinkFacts {
   std::uint32_t mesh_version = 0;     // the display's mesh version
   std::uint64_t frames_rejected = 0;  // bad frames from the display
+  std::uint32_t spectators = 0;       // read-only displays connected (issue 25)
 };
 
 class LiveStream {
@@ -47,6 +48,9 @@ class LiveStream {
             const LinkFacts& facts, ports::TimestampUs now_us);
   // A display was (re)admitted: everything goes again at the next poll.
   void restart();
+  // The hands go again at the next poll even if unchanged (a display that just got
+  // the mesh an open stroke refers to shows the stroke at once).
+  void resend_hands() { hands_.sent = false; }
   const LiveCounters& counters() const { return counters_; }
 
  private:

@@ -36,6 +36,18 @@ class FrameQueues {
   // The bulk queue's end now, and a return to it (drops what was queued since).
   std::size_t bulk_mark() const { return bulk_size_; }
   void bulk_rewind(std::size_t mark);
+  // The bytes queued since `mark` (valid until the next flush or bulk call).
+  std::span<const std::byte> bulk_since(std::size_t mark) const {
+    return std::span<const std::byte>(bulk_).subspan(mark, bulk_size_ - mark);
+  }
+  // Appends frames already encoded (a staged commit), all or nothing.
+  bool bulk_bytes(std::span<const std::byte> frames);
+  // Gives the bulk queue its storage (a spectator slot's, once at start); drops
+  // everything queued.
+  void set_bulk(std::span<std::byte> bulk) {
+    bulk_ = bulk;
+    clear();
+  }
   std::size_t bulk_room() const { return bulk_.size() - bulk_size_; }
   std::size_t bulk_capacity() const { return bulk_.size(); }
 
@@ -48,6 +60,7 @@ class FrameQueues {
   void interrupt_with(const link::Bye& bye);
 
   std::size_t pending_bytes() const { return bulk_size_ + urgent_size_; }
+  std::size_t bulk_pending() const { return bulk_size_; }
   std::uint64_t send_errors() const { return send_errors_; }
 
  private:

@@ -20,14 +20,19 @@
 // whatever the umask, and the server removes it when it closes (if it is still
 // the file it created). A TCP server listens on a loopback address unless
 // allow_network is set (the station then requires a pre-shared key).
-// PollSource: the peer's, the newcomer's, the listening and (room permitting) the
-// pending descriptors (POLLIN);
+// Spectators (issue 25, ports::LinkSpectators): the station may move its newcomer
+// into one of kSpectatorSlots read-only slots instead of making it the peer; a
+// spectator never replaces the peer, and close() closes them too.
+// PollSource: the peer's, the newcomer's, the listening and (room permitting: at
+// most PollSource::kMaxFds) the spectators' and the pending descriptors (POLLIN);
+// those left out are still served on every pass of the station's loop;
 // reopen() closes everything and opens again (server: binds anew).
 #pragma once
 
 #include <sys/socket.h>
 #include <sys/types.h>
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -38,6 +43,7 @@
 #include "twister/hal/poll_source.hpp"
 #include "twister/ports/link_newcomers.hpp"
 #include "twister/ports/link_port.hpp"
+#include "twister/ports/link_spectators.hpp"
 
 namespace twister::hal {
 
@@ -58,8 +64,13 @@ struct SocketLinkConfig {
   std::uint32_t pending_timeout_ms = 1000;  // a silent accepted connection is closed after
 };
 
-class SocketLink final : public ports::LinkPort, public ports::LinkNewcomers, public PollSource {
+class SocketLink final : public ports::LinkPort,
+                         public ports::LinkNewcomers,
+                         public ports::LinkSpectators,
+                         public PollSource {
  public:
+  static constexpr std::size_t kSpectatorSlots = 8;
+
   explicit SocketLink(SocketLinkConfig config);
   ~SocketLink() override;
   SocketLink(const SocketLink&) = delete;
@@ -90,6 +101,11 @@ class SocketLink final : public ports::LinkPort, public ports::LinkNewcomers, pu
   Result<std::size_t> do_receive_newcomer(std::span<std::byte> dest) override;
   void do_admit_newcomer() override;
   void do_refuse_newcomer() override;
+  std::size_t do_spectator_capacity() const override;
+  Status do_admit_spectator(std::size_t slot) override;
+  Result<std::size_t> do_send_spectator(std::size_t slot, std::span<const std::byte> src) override;
+  Result<std::size_t> do_receive_spectator(std::size_t slot, std::span<std::byte> dest) override;
+  void do_close_spectator(std::size_t slot) override;
   std::size_t do_poll_fds(std::span<pollfd> out) const override;
   Status do_reopen() override;
   Expected<void> prepare_unix_path();
@@ -116,6 +132,7 @@ class SocketLink final : public ports::LinkPort, public ports::LinkNewcomers, pu
   int listen_fd_ = -1;
   int peer_fd_ = -1;
   int newcomer_fd_ = -1;
+  std::array<int, kSpectatorSlots> spectator_fds_{-1, -1, -1, -1, -1, -1, -1, -1};
   struct Pending {
     int fd = -1;
     std::int64_t since_ms = 0;
