@@ -65,7 +65,8 @@ void StationLink::route_commands(Submit submit) {
 void StationLink::poll(Station& station, ports::TimestampUs now_us) {
   if (!started_) return;
   step(station.sculpt(), station.status(), now_us);
-  send_visitor(station, now_us);
+  if (admitted()) visitor_.send(station, queues_, now_us);
+  spectators_.send_visitor(station, now_us);
   route_commands([&station](const session::SessionCommand& c) { return station.submit(c); });
   refresh_counters();
 }
@@ -81,7 +82,7 @@ void StationLink::poll(session::SculptSession& session, const StationStatus& sta
 void StationLink::on_admitted(const MeshIdentity& holds) {
   mirror_.resync(holds);
   live_.restart();
-  visitor_ = {};  // the new display gets the visitor state at once, no old notice
+  visitor_.restart();
 }
 
 bool StationLink::on_spectator(const MeshIdentity& holds) {

@@ -93,6 +93,7 @@ bool StationSpectators::admit(MeshMirror& mirror, const MeshIdentity& holds,
     s.mesh_ = MeshSendState{};
     mirror.resync(s.mesh_, holds);
     s.live_.restart();  // workspace, stroke (mid-stroke: its begin), hands, status at once
+    s.visitor_.restart();
     s.live_base_ = s.live_.counters();
     s.counters_ = SpectatorCounters{};
     s.counters_.admitted = 1;
@@ -100,6 +101,12 @@ bool StationSpectators::admit(MeshMirror& mirror, const MeshIdentity& holds,
     return true;
   }
   return false;
+}
+
+void StationSpectators::send_visitor(const Station& station, ports::TimestampUs now_us) {
+  for (std::size_t i = 0; i < slots_used_; ++i) {
+    if (slots_[i].open_) slots_[i].visitor_.send(station, slots_[i].queues_, now_us);
+  }
 }
 
 bool StationSpectators::any_current() const {

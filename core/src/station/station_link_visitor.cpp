@@ -1,13 +1,9 @@
-// StationLink's exhibit messages (issue 25, link protocol 7): the VisitorState when its
-// phase, flags, visitor, sculpture or strokes change and otherwise about once a second
-// (the time left then goes with it; exhibit mode only), and each Notice the station
-// posted since the last poll (NoticeBoard: refused undo / redo / commands / presses,
-// the symmetry changed, the lifecycle's notes; exhibit mode on or off). Urgent queue;
-// a message that does not fit is tried again next poll.
+// VisitorFeed (station_link_visitor.hpp): one display's visitor state and notices.
+#include "twister/station/station_link_visitor.hpp"
+
 #include <algorithm>
 
 #include "twister/station/station.hpp"
-#include "twister/station/station_link.hpp"
 
 namespace twister::station {
 namespace {
@@ -29,39 +25,35 @@ link::VisitorState to_link(const VisitorView& v) {
 
 }  // namespace
 
-void StationLink::send_visitor(const Station& station, ports::TimestampUs now_us) {
-  if (!admitted()) return;
+void VisitorFeed::send(const Station& station, FrameQueues& queues, ports::TimestampUs now_us) {
   if (station.visitor_view_enabled()) {
     const link::VisitorState s = to_link(station.visitor_view());
-    const link::VisitorState& last = visitor_.last;
-    const bool changed = s.phase != last.phase || s.flags != last.flags ||
-                         s.visitor != last.visitor || s.sculpture != last.sculpture ||
-                         s.strokes != last.strokes;
-    if (!visitor_.sent || changed || now_us - visitor_.last_us >= 1'000'000) {
-      if (queues_.urgent(s)) {
-        visitor_.sent = true;
-        visitor_.last = s;
-        visitor_.last_us = now_us;
-      }
+    const bool changed = s.phase != last_.phase || s.flags != last_.flags ||
+                         s.visitor != last_.visitor || s.sculpture != last_.sculpture ||
+                         s.strokes != last_.strokes;
+    if ((!sent_ || changed || now_us - last_us_ >= 1'000'000) && queues.urgent(s)) {
+      sent_ = true;
+      last_ = s;
+      last_us_ = now_us;
     }
   }
-  send_notices(station);
+  send_notices(station, queues);
 }
 
-void StationLink::send_notices(const Station& station) {
+void VisitorFeed::send_notices(const Station& station, FrameQueues& queues) {
   const NoticeBoard& board = station.notices();
-  if (!visitor_.notices_synced) {  // a newly admitted display: nothing old
-    visitor_.notices_synced = true;
-    visitor_.notices_sent = board.posted();
+  if (!notices_synced_) {  // a newly admitted display: nothing old
+    notices_synced_ = true;
+    notices_sent_ = board.posted();
   }
   // Those the ring no longer holds (more than kCapacity in one poll) are skipped.
-  std::uint32_t next = std::max(visitor_.notices_sent + 1, board.oldest());
+  std::uint32_t next = std::max(notices_sent_ + 1, board.oldest());
   for (; next <= board.posted(); ++next) {
-    if (!queues_.urgent(board.at(next))) break;  // the rest next poll
+    if (!queues.urgent(board.at(next))) break;  // the rest next poll
   }
-  if (next - 1 == visitor_.notices_sent) return;
-  visitor_.notices_sent = next - 1;
-  queues_.flush();
+  if (next - 1 == notices_sent_) return;
+  notices_sent_ = next - 1;
+  queues.flush();
 }
 
 }  // namespace twister::station

@@ -6,6 +6,7 @@
 // no heap in the loop. Label exhibit.
 #include <vector>
 
+#include "fakes/fake_link_listener.hpp"
 #include "fakes/memory_wire.hpp"
 #include "station_fixture.hpp"
 #include "twister/station/station_link.hpp"
@@ -416,49 +417,85 @@ StationConfig notice_config(bool exhibit) {
   return c;
 }
 
-// A display on a memory wire: says hello, sends commands, reads what comes.
+// The main display and a spectator on memory wires behind the fake listener: each
+// says hello, the main one sends commands, both read what comes.
 struct MemoryDisplay {
   explicit MemoryDisplay(const mesh::Mesh& mesh)
-      : station_end(wire, true),
-        bridge_end(wire, false),
+      : main_end(main_wire, false),
+        spectator_end(spectator_wire, false),
         x(mesh.vertex_capacity()),
         y(mesh.vertex_capacity()),
         z(mesh.vertex_capacity()),
         idx(3 * mesh.triangle_capacity()),
         out(64 * link::kMaxFrameBytes),
-        link(station_end, StationLinkStorage{x, y, z, idx, out}, StationLinkConfig{}) {}
+        queues(16 * link::kMaxFrameBytes),
+        link(listener, StationLinkStorage{x, y, z, idx, out}, StationLinkConfig{}, options()) {}
+  StationLinkOptions options() {
+    StationLinkOptions o;
+    o.newcomers = &listener;
+    o.spectators = &listener;
+    o.max_spectators = 1;
+    o.spectator_queues = queues;
+    return o;
+  }
   template <class M>
-  void send(const M& m) {
+  static void send(test::MemoryLinkEnd& end, const M& m) {
     std::vector<std::byte> f(link::kMaxFrameBytes);
     const auto k = link::encode_frame(m, f);
     ASSERT_TRUE(k.ok());
     f.resize(*k);
-    ASSERT_EQ(*bridge_end.send(f), f.size());
+    ASSERT_EQ(*end.send(f), f.size());
   }
-  // The notices received since the last call, as (code, detail).
-  std::vector<std::pair<link::NoticeCode, int>> notices() {
-    std::vector<std::pair<link::NoticeCode, int>> got;
+  template <class M>
+  void send(const M& m) {
+    send(main_end, m);
+  }
+  // What one display received since the last call: its notices as (code, detail),
+  // and how many visitor states.
+  struct Received {
+    std::vector<std::pair<link::NoticeCode, int>> notices;
+    int visitor_states = 0;
+  };
+  static Received receive(test::MemoryLinkEnd& end, link::LinkDecoder& decoder) {
+    Received got;
     std::vector<std::byte> buf(1 << 16);
     for (;;) {
-      const auto k = bridge_end.receive(buf);
+      const auto k = end.receive(buf);
       if (!k.ok() || *k == 0) break;
       for (std::size_t i = 0; i < *k; ++i) {
         const auto m = decoder.process(buf[i]);
         if (!m.ok() || !*m) continue;
-        if (const auto* n = std::get_if<link::Notice>(&**m)) got.emplace_back(n->code, n->detail);
+        if (const auto* n = std::get_if<link::Notice>(&**m)) {
+          got.notices.emplace_back(n->code, n->detail);
+        }
+        if (std::holds_alternative<link::VisitorState>(**m)) ++got.visitor_states;
       }
     }
     return got;
   }
+  // The main display's notices since the last call; the spectator's are kept.
+  std::vector<std::pair<link::NoticeCode, int>> notices() {
+    const Received s = receive(spectator_end, spectator_decoder);
+    spectator.notices.insert(spectator.notices.end(), s.notices.begin(), s.notices.end());
+    spectator.visitor_states += s.visitor_states;
+    const Received m = receive(main_end, main_decoder);
+    main_visitor_states += m.visitor_states;
+    return m.notices;
+  }
 
-  test::MemoryWire wire;
-  test::MemoryLinkEnd station_end;
-  test::MemoryLinkEnd bridge_end;
+  test::FakeListener listener;
+  test::MemoryWire main_wire;
+  test::MemoryWire spectator_wire;
+  test::MemoryLinkEnd main_end;
+  test::MemoryLinkEnd spectator_end;
   std::vector<float> x, y, z;
   std::vector<std::uint32_t> idx;
-  std::vector<std::byte> out;
+  std::vector<std::byte> out, queues;
   StationLink link;
-  link::LinkDecoder decoder;
+  link::LinkDecoder main_decoder;
+  link::LinkDecoder spectator_decoder;
+  Received spectator;  // everything the spectator got
+  int main_visitor_states = 0;
 };
 
 class NoticeStation : public ExhibitStation, public ::testing::WithParamInterface<bool> {
@@ -500,9 +537,14 @@ TEST_P(NoticeStation, EachRefusalAndSymmetryChangeIsOneNoticeAndAQuietRunNone) {
   using namespace link;  // NOLINT
   start();
   ASSERT_TRUE(display_.link.start(station_.sculpt()).ok());
+  display_.listener.connect(display_.main_wire);
   display_.send(Hello{Role::bridge, 0, 0, 0, {}});
   run(0.5);
   ASSERT_TRUE(display_.link.admitted());
+  display_.listener.connect(display_.spectator_wire);
+  MemoryDisplay::send(display_.spectator_end, Hello{Role::bridge, kHelloSpectator, 0, 0, {}});
+  run(0.5);
+  ASSERT_EQ(display_.link.counters().spectators_now, 1u);
   run(5.0);  // a stroke-free run
   EXPECT_EQ(display_.notices(), Notices{});
 
@@ -551,7 +593,21 @@ TEST_P(NoticeStation, EachRefusalAndSymmetryChangeIsOneNoticeAndAQuietRunNone) {
                                          {N::redo_refused, d(R::busy)},
                                          {N::nothing_to_act_on, d(R::busy)}}));
   run(3.0);
+  const Notices all{{N::undo_refused, d(R::nothing_to_undo)},
+                    {N::undo_refused, d(R::nothing_to_undo)},
+                    {N::redo_refused, d(R::nothing_to_redo)},
+                    {N::redo_refused, d(R::nothing_to_redo)},
+                    {N::symmetry_changed, int(math::SymmetryKind::mirrors)},
+                    {N::symmetry_changed, int(math::SymmetryKind::none)},
+                    {N::undo_refused, d(R::busy)},
+                    {N::redo_refused, d(R::busy)},
+                    {N::nothing_to_act_on, d(R::busy)}};
   EXPECT_EQ(display_.notices(), Notices{});
+  // The spectator saw the same notices, and the visitor state as the main display did.
+  EXPECT_EQ(display_.spectator.notices, all);
+  const bool exhibit = GetParam();
+  EXPECT_EQ(display_.main_visitor_states > 0, exhibit);
+  EXPECT_EQ(display_.spectator.visitor_states > 0, exhibit);
 }
 
 INSTANTIATE_TEST_SUITE_P(ExhibitOnAndOff, NoticeStation, ::testing::Bool(),

@@ -33,6 +33,7 @@
 #include "twister/station/station_link_mirror.hpp"
 #include "twister/station/station_link_queues.hpp"
 #include "twister/station/station_link_spectators.hpp"
+#include "twister/station/station_link_visitor.hpp"
 #include "twister/station/station_status.hpp"
 
 namespace twister::station {
@@ -140,17 +141,6 @@ class StationLink final : private AdmissionListener {
   template <class Submit>
   void route_commands(Submit submit);
   void refresh_counters();
-  // station_link_visitor.cpp: exhibit mode's VisitorState when it changes and about
-  // once a second, then the station's new notices (NoticeBoard; exhibit mode or not).
-  void send_visitor(const Station& station, ports::TimestampUs now_us);
-  void send_notices(const Station& station);
-  struct VisitorSent {
-    bool sent = false;
-    link::VisitorState last{};
-    ports::TimestampUs last_us = 0;
-    bool notices_synced = false;     // notices_sent set at this display's admission
-    std::uint32_t notices_sent = 0;  // the NoticeBoard's number of the last one sent
-  };
 
   FrameQueues queues_;
   LinkAdmission admission_;
@@ -165,7 +155,7 @@ class StationLink final : private AdmissionListener {
   std::uint64_t commands_routed_ = 0;
   std::uint64_t commands_refused_ = 0;  // queue full here or in the session
   StationLinkCounters counters_{};
-  VisitorSent visitor_{};
+  VisitorFeed visitor_{};  // the main display's visitor state and notices
 };
 
 }  // namespace twister::station

@@ -4,7 +4,8 @@
 // max_spectators slots of a transport that offers them (ports::LinkSpectators).
 // Per slot: its own queues (the fixed urgent queue and a bounded bulk queue of
 // caller storage), its own LiveStream (hands, stroke, object, status: a spectator
-// admitted mid-stroke gets the stroke's begin at once) and where its mesh stands
+// admitted mid-stroke gets the stroke's begin at once), its visitor state and
+// notices (VisitorFeed) and where its mesh stands
 // (MeshSendState): first the full committed mesh from MeshMirror's shadow, then each
 // commit's change set copied from MeshMirror::staged() (one encoding for everyone).
 // A slow spectator never slows the station or the main display: StationLink serves
@@ -28,9 +29,12 @@
 #include "twister/station/station_link_live.hpp"
 #include "twister/station/station_link_mirror.hpp"
 #include "twister/station/station_link_queues.hpp"
+#include "twister/station/station_link_visitor.hpp"
 #include "twister/station/station_status.hpp"
 
 namespace twister::station {
+
+class Station;
 
 // Slots a station can have ([link] max_spectators is at most this).
 inline constexpr std::size_t kMaxSpectators = 8;
@@ -86,6 +90,7 @@ class Spectator {
   SpectatorChannel channel_;
   FrameQueues queues_;
   LiveStream live_;
+  VisitorFeed visitor_{};
   MeshSendState mesh_{};
   link::LinkDecoder decoder_;
   bool open_ = false;
@@ -121,6 +126,8 @@ class StationSpectators {
   // Reads every spectator, queues what is due, flushes, drops the stalled.
   void poll(const session::SculptSession& session, const StationStatus& status, MeshMirror& mirror,
             ports::TimestampUs now_us);
+  // Each open spectator's visitor state and notices (VisitorFeed), as the main display's.
+  void send_visitor(const Station& station, ports::TimestampUs now_us);
   // A read-only display on the main channel (serial) sent a command: refused on `out`.
   void refuse_command(FrameQueues& out);
   // Tells every spectator the station stops (bye: shutdown), best effort.
