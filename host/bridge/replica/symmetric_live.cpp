@@ -1,0 +1,130 @@
+// The replica's symmetric stroke for the display's shader (symmetric_live.hpp): the
+// plan's own weights and images, rearranged per vertex.
+#include <algorithm>
+
+#include "replica_plan.hpp"
+#include "scene_replica.hpp"
+#include "twister/math/warp_plan.hpp"
+
+namespace twister::bridge {
+namespace {
+
+using math::SymmetricFloat;
+
+// One non-zero weight of ball `ball` at plan vertex `vertex`, with its gradient.
+struct Found {
+  std::uint32_t vertex;
+  std::uint32_t ball;
+  float w[4];  // weight, gradient x y z
+};
+
+// Ball k's weight gradients at the n points of a chunk (central differences of the
+// plan's own weights, step `h`): g[a][i].
+void gradients(const SymmetricFloat& fast, const math::SymmetricWarp& warp, std::size_t k,
+               const float* x, const float* y, const float* z, std::size_t n, float h,
+               float (&g)[3][SymmetricFloat::kSortChunk]) {
+  float p[3][SymmetricFloat::kSortChunk];
+  float up[SymmetricFloat::kSortChunk];
+  float down[SymmetricFloat::kSortChunk];
+  const float* c[3] = {x, y, z};
+  for (std::size_t a = 0; a < 3; ++a) {
+    for (std::size_t b = 0; b < 3; ++b) std::copy_n(c[b], n, p[b]);
+    for (std::size_t i = 0; i < n; ++i) p[a][i] = c[a][i] + h;
+    fast.weights_at(warp, k, p[0], p[1], p[2], up, n);
+    for (std::size_t i = 0; i < n; ++i) p[a][i] = c[a][i] - h;
+    fast.weights_at(warp, k, p[0], p[1], p[2], down, n);
+    for (std::size_t i = 0; i < n; ++i) g[a][i] = (up[i] - down[i]) / (2.0F * h);
+  }
+}
+
+void copy3(float (&to)[3], const double (&from)[3]) {
+  for (std::size_t i = 0; i < 3; ++i) to[i] = static_cast<float>(from[i]);
+}
+
+}  // namespace
+
+void SceneReplica::build_symmetric_gpu() {
+  SymmetricLive& gpu = live_.symmetric_gpu;
+  gpu.ready = false;
+  gpu.image_count = 0;
+  ++gpu.version;
+  gpu.entries.clear();
+  gpu.entry_image.clear();
+  const std::size_t n = mesh_.vertex_count();
+  gpu.spans.assign(2 * n, 0.0F);
+  if (!plan_ || !plan_->plan || !plan_->plan->symmetric() || !plan_->symmetry ||
+      plan_->plan->kernel() != math::KernelKind::simd) {
+    return;
+  }
+  const math::PlanSymmetry& sym = *plan_->symmetry->plan_symmetry();
+  const SymmetricFloat& fast = sym.fast;
+  if (!fast.ready()) return;  // the plan runs the double path: so does the display
+  const math::SymmetricWarp& warp = sym.warp;
+  const math::ConstVertexColumns start{sym.start.x, sym.start.y, sym.start.z};
+  const auto h = static_cast<float>(1e-3 * warp.radius());
+  std::vector<Found> found;
+  std::size_t total = 0;
+  fast.visit_weights(warp, start,
+                     [&](std::size_t base, std::size_t k, const float* w, std::size_t count) {
+                       if (std::none_of(w, w + count, [](float v) { return v > 0.0F; })) return;
+                       float g[3][SymmetricFloat::kSortChunk];
+                       gradients(fast, warp, k, start.x.data() + base, start.y.data() + base,
+                                 start.z.data() + base, count, h, g);
+                       for (std::size_t i = 0; i < count; ++i) {
+                         if (!(w[i] > 0.0F)) continue;
+                         found.push_back({fast.vertex(base + i),
+                                          static_cast<std::uint32_t>(k),
+                                          {w[i], g[0][i], g[1][i], g[2][i]}});
+                         total += fast.ball_image_count(k);
+                       }
+                     });
+  if (total > kMaxSymmetricEntries) return;
+  // Per vertex its entries in the order the plan sums them (balls in increasing order,
+  // each ball's images in order): a vertex lies in one chunk, visited ball by ball.
+  std::vector<std::uint32_t> next(n, 0);
+  for (const Found& f : found)
+    next[f.vertex] += static_cast<std::uint32_t>(fast.ball_image_count(f.ball));
+  std::uint32_t sum = 0;
+  for (std::size_t v = 0; v < n; ++v) {
+    gpu.spans[2 * v] = static_cast<float>(sum);
+    gpu.spans[2 * v + 1] = static_cast<float>(next[v]);
+    const std::uint32_t count = next[v];
+    next[v] = sum;
+    sum += count;
+  }
+  gpu.entries.resize(4 * total);
+  gpu.entry_image.resize(total);
+  for (const Found& f : found) {
+    const std::size_t first = fast.ball_first_image(f.ball);
+    for (std::size_t i = 0; i < fast.ball_image_count(f.ball); ++i) {
+      const std::uint32_t e = next[f.vertex]++;
+      std::copy_n(f.w, 4, &gpu.entries[4 * e]);
+      gpu.entry_image[e] = static_cast<std::uint8_t>(first + i);
+    }
+  }
+  gpu.ready = true;
+}
+
+void SceneReplica::update_symmetric_images() {
+  SymmetricLive& gpu = live_.symmetric_gpu;
+  gpu.image_count = 0;
+  if (!gpu.ready || !plan_ || !plan_->plan || !follow_hands()) return;
+  const math::PlanSymmetry& sym = *plan_->symmetry->plan_symmetry();
+  for (std::size_t i = 0; i < sym.fast.image_count(); ++i) {
+    math::KernelHand k;
+    SymmetricImageGpu& out = gpu.images[i];
+    sym.fast.image_hand(sym.warp, i, k, out.share);
+    copy3(out.axis, k.axis);
+    copy3(out.mid, k.mid);
+    copy3(out.chord, k.chord);
+    copy3(out.axc, k.axis_x_chord);
+    copy3(out.shift, k.shift);
+    out.half = static_cast<float>(k.half_angle);
+    out.cot = static_cast<float>(k.cot_half);
+    out.pad0 = 0.0F;
+    out.pad1 = 0.0F;
+  }
+  gpu.image_count = sym.fast.image_count();
+}
+
+}  // namespace twister::bridge
