@@ -18,22 +18,19 @@ struct Found {
   float w[4];  // weight, gradient x y z
 };
 
-// Ball k's weight gradients at the n points of a chunk (central differences of the
-// plan's own weights, step `h`): g[a][i].
+// Ball k's weight gradients at the n points (x, y, z) of weights w (the plan's own
+// weights, one-sided differences of step `h`): g[a][i]. Once per grab, the
+// gradients cost three more weight evaluations a point (the shader's normals).
 void gradients(const SymmetricFloat& fast, const math::SymmetricWarp& warp, std::size_t k,
-               const float* x, const float* y, const float* z, std::size_t n, float h,
-               float (&g)[3][SymmetricFloat::kSortChunk]) {
+               const float (&x)[3][SymmetricFloat::kSortChunk], const float* w, std::size_t n,
+               float h, float (&g)[3][SymmetricFloat::kSortChunk]) {
   float p[3][SymmetricFloat::kSortChunk];
   float up[SymmetricFloat::kSortChunk];
-  float down[SymmetricFloat::kSortChunk];
-  const float* c[3] = {x, y, z};
   for (std::size_t a = 0; a < 3; ++a) {
-    for (std::size_t b = 0; b < 3; ++b) std::copy_n(c[b], n, p[b]);
-    for (std::size_t i = 0; i < n; ++i) p[a][i] = c[a][i] + h;
+    for (std::size_t b = 0; b < 3; ++b) std::copy_n(x[b], n, p[b]);
+    for (std::size_t i = 0; i < n; ++i) p[a][i] = x[a][i] + h;
     fast.weights_at(warp, k, p[0], p[1], p[2], up, n);
-    for (std::size_t i = 0; i < n; ++i) p[a][i] = c[a][i] - h;
-    fast.weights_at(warp, k, p[0], p[1], p[2], down, n);
-    for (std::size_t i = 0; i < n; ++i) g[a][i] = (up[i] - down[i]) / (2.0F * h);
+    for (std::size_t i = 0; i < n; ++i) g[a][i] = (up[i] - w[i]) / h;
   }
 }
 
@@ -66,15 +63,26 @@ void SceneReplica::build_symmetric_gpu() {
   std::size_t total = 0;
   fast.visit_weights(warp, start,
                      [&](std::size_t base, std::size_t k, const float* w, std::size_t count) {
-                       if (std::none_of(w, w + count, [](float v) { return v > 0.0F; })) return;
-                       float g[3][SymmetricFloat::kSortChunk];
-                       gradients(fast, warp, k, start.x.data() + base, start.y.data() + base,
-                                 start.z.data() + base, count, h, g);
+                       // The points this ball moves (weight > 0), gathered.
+                       std::uint32_t slot[SymmetricFloat::kSortChunk];
+                       float at[3][SymmetricFloat::kSortChunk];
+                       float wk[SymmetricFloat::kSortChunk];
+                       std::size_t m = 0;
                        for (std::size_t i = 0; i < count; ++i) {
                          if (!(w[i] > 0.0F)) continue;
-                         found.push_back({fast.vertex(base + i),
+                         slot[m] = static_cast<std::uint32_t>(base + i);
+                         at[0][m] = start.x[base + i];
+                         at[1][m] = start.y[base + i];
+                         at[2][m] = start.z[base + i];
+                         wk[m++] = w[i];
+                       }
+                       if (m == 0) return;
+                       float g[3][SymmetricFloat::kSortChunk];
+                       gradients(fast, warp, k, at, wk, m, h, g);
+                       for (std::size_t i = 0; i < m; ++i) {
+                         found.push_back({fast.vertex(slot[i]),
                                           static_cast<std::uint32_t>(k),
-                                          {w[i], g[0][i], g[1][i], g[2][i]}});
+                                          {wk[i], g[0][i], g[1][i], g[2][i]}});
                          total += fast.ball_image_count(k);
                        }
                      });
