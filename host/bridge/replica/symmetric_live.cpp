@@ -38,6 +38,43 @@ void copy3(float (&to)[3], const double (&from)[3]) {
   for (std::size_t i = 0; i < 3; ++i) to[i] = static_cast<float>(from[i]);
 }
 
+// Collects the non-zero weights of each (chunk, ball) the plan visits, with their
+// gradients; stops keeping them past kMaxSymmetricEntries (the CPU path draws those).
+struct Collector {
+  const SymmetricFloat& fast;
+  const math::SymmetricWarp& warp;
+  math::ConstVertexColumns start;
+  float step;
+  std::vector<Found> found;
+  std::size_t total = 0;  // entries: found weights times their balls' images
+
+  void operator()(std::size_t base, std::size_t k, const float* w, std::size_t count) {
+    if (total > kMaxSymmetricEntries) return;
+    // The points this ball moves (weight > 0), gathered.
+    std::uint32_t slot[SymmetricFloat::kSortChunk];
+    float at[3][SymmetricFloat::kSortChunk];
+    float wk[SymmetricFloat::kSortChunk];
+    std::size_t m = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+      if (!(w[i] > 0.0F)) continue;
+      slot[m] = static_cast<std::uint32_t>(base + i);
+      at[0][m] = start.x[base + i];
+      at[1][m] = start.y[base + i];
+      at[2][m] = start.z[base + i];
+      wk[m++] = w[i];
+    }
+    if (m == 0) return;
+    float g[3][SymmetricFloat::kSortChunk];
+    gradients(fast, warp, k, at, wk, m, step, g);
+    for (std::size_t i = 0; i < m; ++i) {
+      found.push_back({fast.vertex(slot[i]),
+                       static_cast<std::uint32_t>(k),
+                       {wk[i], g[0][i], g[1][i], g[2][i]}});
+      total += fast.ball_image_count(k);
+    }
+  }
+};
+
 }  // namespace
 
 void SceneReplica::build_symmetric_gpu() {
@@ -58,40 +95,17 @@ void SceneReplica::build_symmetric_gpu() {
   if (!fast.ready()) return;  // the plan runs the double path: so does the display
   const math::SymmetricWarp& warp = sym.warp;
   const math::ConstVertexColumns start{sym.start.x, sym.start.y, sym.start.z};
-  const auto h = static_cast<float>(1e-3 * warp.radius());
-  std::vector<Found> found;
-  std::size_t total = 0;
-  fast.visit_weights(warp, start,
-                     [&](std::size_t base, std::size_t k, const float* w, std::size_t count) {
-                       // The points this ball moves (weight > 0), gathered.
-                       std::uint32_t slot[SymmetricFloat::kSortChunk];
-                       float at[3][SymmetricFloat::kSortChunk];
-                       float wk[SymmetricFloat::kSortChunk];
-                       std::size_t m = 0;
-                       for (std::size_t i = 0; i < count; ++i) {
-                         if (!(w[i] > 0.0F)) continue;
-                         slot[m] = static_cast<std::uint32_t>(base + i);
-                         at[0][m] = start.x[base + i];
-                         at[1][m] = start.y[base + i];
-                         at[2][m] = start.z[base + i];
-                         wk[m++] = w[i];
-                       }
-                       if (m == 0) return;
-                       float g[3][SymmetricFloat::kSortChunk];
-                       gradients(fast, warp, k, at, wk, m, h, g);
-                       for (std::size_t i = 0; i < m; ++i) {
-                         found.push_back({fast.vertex(slot[i]),
-                                          static_cast<std::uint32_t>(k),
-                                          {wk[i], g[0][i], g[1][i], g[2][i]}});
-                         total += fast.ball_image_count(k);
-                       }
-                     });
+  Collector c{fast, warp, start, static_cast<float>(1e-3 * warp.radius()), {}, 0};
+  fast.visit_weights(warp, start, c);
+  const std::vector<Found>& found = c.found;
+  const std::size_t total = c.total;
   if (total > kMaxSymmetricEntries) return;
   // Per vertex its entries in the order the plan sums them (balls in increasing order,
   // each ball's images in order): a vertex lies in one chunk, visited ball by ball.
   std::vector<std::uint32_t> next(n, 0);
-  for (const Found& f : found)
+  for (const Found& f : found) {
     next[f.vertex] += static_cast<std::uint32_t>(fast.ball_image_count(f.ball));
+  }
   std::uint32_t sum = 0;
   for (std::size_t v = 0; v < n; ++v) {
     gpu.spans[2 * v] = static_cast<float>(sum);
