@@ -1,6 +1,7 @@
 // The replica's symmetric stroke for the display's shader (symmetric_live.hpp): the
 // plan's own weights and images, rearranged per vertex.
 #include <algorithm>
+#include <atomic>
 
 #include "replica_plan.hpp"
 #include "scene_replica.hpp"
@@ -81,7 +82,10 @@ void SceneReplica::build_symmetric_gpu() {
   SymmetricLive& gpu = live_.symmetric_gpu;
   gpu.ready = false;
   gpu.image_count = 0;
-  ++gpu.version;
+  // Unique across replicas, so a renderer never mistakes another replica's entries
+  // for the ones it holds.
+  static std::atomic<std::uint64_t> builds{0};
+  gpu.version = ++builds;
   gpu.entries.clear();
   gpu.entry_image.clear();
   const std::size_t n = mesh_.vertex_count();

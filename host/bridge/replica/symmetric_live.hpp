@@ -48,7 +48,8 @@ struct SymmetricLive {
   std::vector<float> entries;
   // Per entry: its image (index into images).
   std::vector<std::uint8_t> entry_image;
-  // Bumped whenever spans/entries are rebuilt (the renderer uploads them once).
+  // New (unique in the process) whenever spans/entries are rebuilt: the renderer uploads
+  // them once.
   std::uint64_t version = 0;
   // The images' kernel constants for the current hands, in the plan's image order.
   std::array<SymmetricImageGpu, math::SymmetricFloat::kMaxImages> images{};

@@ -85,9 +85,11 @@ class BridgeSymmetryShader : public ::testing::Test {
   }
   // The shader's warp against cpu_warp at every vertex (by rest position): the largest
   // distance over the scene size; how far the stroke moved anything, likewise.
-  std::pair<double, double> compare() {
+  // `new_mesh` false: the renderer keeps the mesh of the last stroke (a stroke cancelled,
+  // the next one on the same mesh: only the entries change).
+  std::pair<double, double> compare(bool new_mesh = true) {
     renderer_.allow_symmetric_shader(true);
-    renderer_.set_mesh(replica_.mesh(), false);
+    if (new_mesh) renderer_.set_mesh(replica_.mesh(), false);
     renderer_.set_weights(replica_.live().weight1, replica_.live().weight2);
     EXPECT_TRUE(renderer_.warps_on_gpu(replica_.live()));
     renderer_.set_live(&replica_.live());
@@ -195,6 +197,19 @@ TEST_F(BridgeSymmetryShader, SixFoldWithMirrorTwoHandsBothMethods) {
     EXPECT_LT(worst, kTolerance) << "method " << int(m);
     EXPECT_GT(moved, 0.05);
   }
+}
+
+// A second stroke on the same mesh, the renderer keeping it: the new stroke's entries
+// replace the old ones.
+TEST_F(BridgeSymmetryShader, NextStrokeOnTheSameMeshUploadsItsEntries) {
+  begin({{SymmetryKind::rotation, 0, 2, 6}, math::WarpMethod::twister, 1});
+  EXPECT_LT(compare().first, kTolerance);
+  Stroke other{{SymmetryKind::mirrors, math::kMirrorY, 0, 0}};
+  other.grab0 = {-0.2, 0.1, -0.2};
+  begin(other);
+  const auto [worst, moved] = compare(false);
+  EXPECT_LT(worst, kTolerance);
+  EXPECT_GT(moved, 0.05);
 }
 
 // Rot6 + mirror about z with a grab on the axis: the stabiliser is the whole group (12).
