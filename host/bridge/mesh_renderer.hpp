@@ -5,7 +5,9 @@
 // hands summed. On a GL 4 context with a refinement threshold from the station the
 // live preview is refined per frame by tessellation with the commit's criterion, so
 // it is as smooth as the commit will be (mesh_shaders.hpp); otherwise the mesh's own
-// vertices are warped (refining_live() says which). Crease-aware shading
+// vertices are warped (refining_live() says which). A stroke under a symmetry group is
+// warped by a third program, every image of every hand with the plan's weights per image
+// (mesh_renderer_symmetric.cpp; unrefined, both faces drawn). Crease-aware shading
 // (crease_shading.hpp): sharp edges keep a normal per side; while warping, the
 // shaders turn the normals with the warp. Weights tint the surface with each hand's
 // colour (red hand 1, green hand 2). The model is drawn at the object pose; the
