@@ -212,7 +212,7 @@ void BridgeApp::refresh_display() {
   if (renderer_ == nullptr || !replica_.has_mesh()) return;
   if (shown_version_ != 0 && show_archive()) return;
   LiveState& live = replica_.live();
-  const bool cpu_live = live.active && live.cpu_path();
+  const bool cpu_live = live.active && !renderer_->warps_on_gpu(live);
   renderer_->set_object_pose(replica_.object_pose());
   bool uploaded = false;
   if (replica_.mesh_changed() || (display_mesh_live_ && !cpu_live) || live_mesh_stale_) {

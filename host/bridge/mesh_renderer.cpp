@@ -37,6 +37,7 @@ const std::vector<const char*> kFeedback{"v_rest", "v_object"};
 MeshRenderer::~MeshRenderer() {
   if (plain_.id != 0) glDeleteProgram(plain_.id);
   if (refined_.id != 0) glDeleteProgram(refined_.id);
+  delete_symmetric();
   if (vao_ != 0) {
     glDeleteBuffers(static_cast<GLsizei>(vbo_.size()), vbo_.data());
     glDeleteBuffers(1, &ebo_);
@@ -126,13 +127,18 @@ hal::Expected<void> MeshRenderer::init(int width, int height, bool offscreen,
   glGenBuffers(1, &ebo_);
   glGenBuffers(1, &live_ebo_);
   glBindVertexArray(vao_);
-  const GLint sizes[] = {3, 2, 3, 3, 3};
+  const GLint sizes[] = {3, 2, 3, 3, 3, 2};
   for (GLuint a = 0; a < vbo_.size(); ++a) {
     glBindBuffer(GL_ARRAY_BUFFER, vbo_[a]);
     glVertexAttribPointer(a, sizes[a], GL_FLOAT, GL_FALSE, 0, nullptr);
     glEnableVertexAttribArray(a);
   }
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);
+  ShaderSources symmetric;
+  symmetric.vertex = std::string(kGlsl330) + shaders::kSurfaceStage + shaders::kSymmetricVertex;
+  symmetric.fragment = plain.fragment;
+  symmetric.feedback = kFeedback;
+  init_symmetric(symmetric);
   if (offscreen) {
     create_fbo(width, height);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
@@ -190,6 +196,8 @@ void MeshRenderer::set_mesh(const MeshData& mesh, const ShadedMesh& shaded, bool
   upload(vbo_[2], shaded_.normals, 3);
   upload(vbo_[3], {}, 3);
   upload(vbo_[4], {}, 3);
+  upload(vbo_[5], {}, 2);
+  sym_version_ = 0;  // the spans are per vertex of the mesh: upload them again
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);
   glBufferData(GL_ELEMENT_ARRAY_BUFFER,
                static_cast<GLsizeiptr>(shaded_.indices.size() * sizeof(std::uint32_t)),
@@ -236,9 +244,15 @@ void MeshRenderer::set_object_pose(const math::Frame& pose) {
 void MeshRenderer::set_live(const LiveState* live) {
   hand_mask_ = 0;
   cpu_live_ = false;
+  sym_live_ = false;
   if (live == nullptr || !live->active) return;
-  if (live->cpu_path()) {  // scodef or a symmetry group: CPU path (positions uploaded)
-    cpu_live_ = true;
+  if (live->cpu_path()) {
+    if (symmetric_fits(*live)) {  // a group: every image in the symmetric program
+      set_symmetric(*live);
+      sym_live_ = true;
+      return;
+    }
+    cpu_live_ = true;  // scodef, or a group the GPU layout cannot take: positions uploaded
     return;
   }
   // Plan hands: hand k uses the k-th weight column.
@@ -292,6 +306,7 @@ void MeshRenderer::use(const Program& program) {
   glUniform3fv(u.light1, 1, glm::value_ptr(l1));
   glUniform1i(u.show_weights, show_weights_ ? 1 : 0);
   glUniform1i(u.hand_mask, hand_mask_);
+  if (&program == &symmetric_) bind_symmetric();
   glUniform1f(u.eps, 1e-3F * radius_);
   glUniform1f(u.radius, stroke_radius_);
   glUniform1f(u.threshold, threshold_);
@@ -350,7 +365,8 @@ void MeshRenderer::draw_range(const Program& program, bool patches, std::size_t 
 }
 
 bool MeshRenderer::culling_faces() const {
-  if (!allow_culling_ || shaded_.facing == Facing::both_sides || cpu_live_ || positions_warped_) {
+  if (!allow_culling_ || shaded_.facing == Facing::both_sides || cpu_live_ || sym_live_ ||
+      positions_warped_) {
     return false;
   }
   // The eye outside the model and the near plane clear of it: a closed surface's
@@ -378,7 +394,7 @@ void MeshRenderer::draw_mesh() {
   if (!refining_live() && (hand_mask_ == 0 || rest == Facing::both_sides)) {
     cull(rest);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);
-    draw_range(plain_, false, 0, index_count_);
+    draw_range(live_program(), false, 0, index_count_);
     cull(Facing::both_sides);
     return;
   }
@@ -434,7 +450,7 @@ MeshRenderer::Surface MeshRenderer::capture_live_surface() {
   glBindVertexArray(vao_);
   if (!refining_live()) {
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);
-    capture(plain_, false, 0, index_count_);
+    capture(live_program(), false, 0, index_count_);
     return out;
   }
   split_live_triangles();

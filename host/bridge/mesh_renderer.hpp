@@ -5,7 +5,9 @@
 // hands summed. On a GL 4 context with a refinement threshold from the station the
 // live preview is refined per frame by tessellation with the commit's criterion, so
 // it is as smooth as the commit will be (mesh_shaders.hpp); otherwise the mesh's own
-// vertices are warped (refining_live() says which). Crease-aware shading
+// vertices are warped (refining_live() says which). A stroke under a symmetry group is
+// warped by a third program, every image of every hand with the plan's weights per image
+// (mesh_renderer_symmetric.cpp; unrefined, both faces drawn). Crease-aware shading
 // (crease_shading.hpp): sharp edges keep a normal per side; while warping, the
 // shaders turn the normals with the warp. Weights tint the surface with each hand's
 // colour (red hand 1, green hand 2). The model is drawn at the object pose; the
@@ -18,6 +20,7 @@
 #include <vector>
 
 #include "camera.hpp"
+#include "gl_program.hpp"
 #include "png_writer.hpp"
 #include "scene_replica.hpp"
 #include "twister/hal/expected.hpp"
@@ -53,7 +56,19 @@ class MeshRenderer {
   // the warped normals); empty: zero.
   void set_gradients(const std::vector<float>& g1, const std::vector<float>& g2);
   // Hand uniforms from the replica's live stroke (scodef: no shader warp, see set_mesh).
+  // A stroke under a symmetry group whose entries are ready (LiveState::symmetric_gpu)
+  // is warped by the symmetric program: its entries are uploaded once per grab (when
+  // their version changes), the images' constants every call.
   void set_live(const LiveState* live);
+  // Whether this renderer warps `live` in a shader (the plain or the symmetric program);
+  // false: the display draws cpu_warp() (scodef, a group without the symmetric program
+  // or whose entries do not fit: LiveState::symmetric_gpu not ready, or more entries
+  // than the GL's texture buffers hold).
+  bool warps_on_gpu(const LiveState& live) const;
+  // The symmetric program compiled (GL 3.3 texture buffers and uniform blocks); `allow`
+  // false keeps symmetric strokes on the CPU path (tests, benches: the reference).
+  bool has_symmetric_shader() const { return symmetric_.id != 0; }
+  void allow_symmetric_shader(bool allow) { allow_symmetric_ = allow; }
   // The context runs the refined live preview (GL 4 tessellation); `allow` false
   // keeps the GL 3.3 path (tests, --no-live-refine).
   bool can_refine_live() const { return refined_.id != 0; }
@@ -136,17 +151,37 @@ class MeshRenderer {
   // Draws (and with `feedback`, captures) indices [first, first + count) of the
   // bound element buffer with `program`.
   void draw_range(const Program& program, bool patches, std::size_t first, std::size_t count);
+  // The symmetric program, its texture buffers and uniform block (mesh_renderer_symmetric.cpp).
+  void init_symmetric(const ShaderSources& sources);
+  void delete_symmetric();
+  bool symmetric_fits(const LiveState& live) const;
+  void set_symmetric(const LiveState& live);
+  void bind_symmetric() const;
+  // The program drawing the live stroke's unrefined triangles.
+  const Program& live_program() const { return sym_live_ ? symmetric_ : plain_; }
 
   Program plain_;
-  Program refined_;  // 0 without GL 4 tessellation
+  Program refined_;    // 0 without GL 4 tessellation
+  Program symmetric_;  // 0 without texture buffers / uniform blocks
+  bool allow_symmetric_ = true;
+  bool sym_live_ = false;  // the live stroke is drawn by symmetric_
+  // Entries (RGBA32F), their images (R8UI): buffers and their texture views; the
+  // images' uniform block.
+  std::array<unsigned, 2> sym_buffers_{};
+  std::array<unsigned, 2> sym_textures_{};
+  unsigned sym_block_ = 0;
+  int sym_entries_loc_ = -1;
+  int sym_images_loc_ = -1;
+  std::size_t max_texels_ = 0;     // GL_MAX_TEXTURE_BUFFER_SIZE
+  std::uint64_t sym_version_ = 0;  // SymmetricLive::version uploaded (0: none)
   bool allow_refinement_ = true;
   bool allow_culling_ = true;
-  bool cpu_live_ = false;           // a live stroke warped on the CPU (scodef)
-  bool positions_warped_ = false;   // set_positions since the last set_mesh
+  bool cpu_live_ = false;          // a live stroke warped on the CPU (scodef)
+  bool positions_warped_ = false;  // set_positions since the last set_mesh
   float max_level_ = 1.0F;
   unsigned vao_ = 0;
-  // Positions, weights, normals, gradient 1, gradient 2 (attributes 0..4).
-  std::array<unsigned, 5> vbo_{};
+  // Positions, weights, normals, gradient 1, gradient 2, symmetric spans (attributes 0..5).
+  std::array<unsigned, 6> vbo_{};
   unsigned ebo_ = 0;
   unsigned fbo_ = 0;
   unsigned color_rb_ = 0;

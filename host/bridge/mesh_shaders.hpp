@@ -17,7 +17,8 @@
 //    no attribute is interpolated. A shared edge gets the same n from both patches
 //    (the error is symmetric in A and B) and the same points (snapped to k/n and
 //    taken from the edge's lexicographically first end): no cracks.
-// Both write the object-frame rest and warped positions for transform feedback
+// A third program warps a stroke under a symmetry group (kSymmetricVertex).
+// All write the object-frame rest and warped positions for transform feedback
 // (MeshRenderer::capture_live_surface).
 #pragma once
 
@@ -127,6 +128,69 @@ void main() {
     tangents(n, t1, t2);
     vec3 q1 = warp(p + u_eps * t1, a_weight + u_eps * vec2(dot(a_grad0, t1), dot(a_grad1, t1)));
     vec3 q2 = warp(p + u_eps * t2, a_weight + u_eps * vec2(dot(a_grad0, t2), dot(a_grad1, t2)));
+    vec3 m = cross(q1 - q, q2 - q);
+    if (dot(m, m) > 0.0) n = normalize(m);
+  }
+  emit(p, q, n, a_weight);
+}
+)";
+
+// Symmetric program (GLSL 3.30; docs/math.md §11.2, §11.7): a stroke under a symmetry
+// group. Per vertex its entries (a_span: first, count) in two texture buffers: the
+// weight and its gradient (u_entries), the image (u_entry_image); per image its kernel
+// constants in a uniform block (symmetric_live.hpp SymmetricImageGpu: g S_h g^-1, the
+// axis turned over by a reflection, and the share 1/|G_h|). The vertex moves by the sum
+// of share * displacement(image, p, weight) over its entries, as the float path sums
+// it; the normal as the plain program's, every entry's weight moved along its gradient.
+inline constexpr const char* kSymmetricVertex = R"(
+layout(location = 0) in vec3 a_pos;
+layout(location = 1) in vec2 a_weight;
+layout(location = 2) in vec3 a_normal;
+layout(location = 5) in vec2 a_span;
+uniform samplerBuffer u_entries;
+uniform usamplerBuffer u_entry_image;
+layout(std140) uniform Images {
+  vec4 u_image[5 * 48];
+};
+vec3 image_displacement(int i, vec3 p, float t) {
+  if (!(t > 0.0)) return vec3(0.0);
+  vec4 axis_half = u_image[5 * i];
+  vec4 mid_cot = u_image[5 * i + 1];
+  vec4 chord_share = u_image[5 * i + 2];
+  vec3 d = axis_half.xyz;
+  vec3 v = p - mid_cot.xyz;
+  float hl = t * axis_half.w;
+  float sh = sin(hl);
+  float ch = cos(hl);
+  float a = sh * ch;
+  float b = sh * sh;
+  float k = mid_cot.w;
+  float dv = dot(d, v);
+  vec3 c = cross(d, v);
+  return chord_share.w * (a * (2.0 * c + k * chord_share.xyz) +
+                          b * (2.0 * (d * dv - v) + k * u_image[5 * i + 3].xyz) +
+                          t * u_image[5 * i + 4].xyz);
+}
+void main() {
+  vec3 p = a_pos;
+  vec3 q = p;
+  vec3 n = a_normal;
+  int first = int(a_span.x);
+  int count = int(a_span.y);
+  if (count > 0) {
+    vec3 t1, t2;
+    tangents(n, t1, t2);
+    vec3 p1 = p + u_eps * t1;
+    vec3 p2 = p + u_eps * t2;
+    vec3 q1 = p1;
+    vec3 q2 = p2;
+    for (int e = first; e < first + count; ++e) {
+      vec4 wg = texelFetch(u_entries, e);
+      int i = int(texelFetch(u_entry_image, e).r);
+      q += image_displacement(i, p, wg.x);
+      q1 += image_displacement(i, p1, wg.x + u_eps * dot(wg.yzw, t1));
+      q2 += image_displacement(i, p2, wg.x + u_eps * dot(wg.yzw, t2));
+    }
     vec3 m = cross(q1 - q, q2 - q);
     if (dot(m, m) > 0.0) n = normalize(m);
   }

@@ -8,7 +8,8 @@
 // Properties: never crashes or allocates what a peer announces beyond the limits
 // (the replica's limits are small here: a violation shows as an ASan OOM); a held
 // mesh always matches its checksum and stays within the limits; poses of present
-// hands are finite; the CPU warp of a live stroke has the mesh's size.
+// hands are finite; the CPU warp of a live stroke has the mesh's size; a symmetric
+// stroke's shader entries stay inside their arrays.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -64,6 +65,24 @@ void check(const bridge::SceneReplica& r) {
   }
   for (const bridge::HandView& h : r.hands()) {
     if (h.present && !(std::isfinite(h.pose.origin.x) && std::isfinite(h.pose.u.y))) std::abort();
+  }
+  // A symmetric stroke's shader entries (symmetric_live.hpp) stay within their arrays:
+  // every vertex's span inside the entries, every entry's image one of the plan's.
+  const bridge::SymmetricLive& gpu = r.live().symmetric_gpu;
+  if (gpu.ready) {
+    if (gpu.spans.size() != 2 * r.mesh().vertex_count() ||
+        gpu.entries.size() != 4 * gpu.entry_count()) {
+      std::abort();
+    }
+    for (std::size_t v = 0; 2 * v < gpu.spans.size(); ++v) {
+      if (gpu.spans[2 * v] + gpu.spans[2 * v + 1] > static_cast<float>(gpu.entry_count())) {
+        std::abort();
+      }
+    }
+    for (std::size_t e = 0; e < gpu.entry_count(); ++e) {
+      if (!(gpu.entries[4 * e] > 0.0F && gpu.entries[4 * e] <= 1.0F)) std::abort();
+      if (gpu.image_count != 0 && gpu.entry_image[e] >= gpu.image_count) std::abort();
+    }
   }
   if (r.live().active) {
     const bridge::MeshData warped = r.cpu_warp();

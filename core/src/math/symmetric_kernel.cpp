@@ -203,20 +203,22 @@ void SymmetricFloat::finish(const SymmetricWarp& warp, VertexColumns start,
   ready_ = true;
 }
 
+void SymmetricFloat::image_hand(const SymmetricWarp& warp, std::size_t i, KernelHand& out,
+                                float& share) const {
+  const std::size_t h = images_[i] / SymmetryGroup::kMaxOrder;
+  const std::size_t e = images_[i] % SymmetryGroup::kMaxOrder;
+  fill_kernel_hand(out, warp.screw(h), warp.start_frame(h), warp.end_frame(h), warp.method());
+  if (e != 0) conjugate_kernel_hand(out, warp.group().element(e));
+  share = 1.0f / static_cast<float>(warp.stabiliser_size(h));
+}
+
 void SymmetricFloat::fill_images(const SymmetricWarp& warp,
                                  std::array<PreparedHand, kMaxImages>& out,
                                  std::array<float, kMaxImages>& share) const {
-  const std::size_t count =
-      points_ == 0 ? 0
-                   : std::size_t{grabs_[points_ - 1].first_image} + grabs_[points_ - 1].image_count;
-  for (std::size_t i = 0; i < count; ++i) {
-    const std::size_t h = images_[i] / SymmetryGroup::kMaxOrder;
-    const std::size_t e = images_[i] % SymmetryGroup::kMaxOrder;
+  for (std::size_t i = 0; i < image_count(); ++i) {
     KernelHand hand;
-    fill_kernel_hand(hand, warp.screw(h), warp.start_frame(h), warp.end_frame(h), warp.method());
-    if (e != 0) conjugate_kernel_hand(hand, warp.group().element(e));
+    image_hand(warp, i, hand, share[i]);
     prepare_hand(hand, out[i]);
-    share[i] = 1.0f / static_cast<float>(warp.stabiliser_size(h));
   }
 }
 

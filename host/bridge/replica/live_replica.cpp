@@ -41,6 +41,7 @@ bool SceneReplica::ensure_plan() {
   if (plan_ && plan_->stroke == stroke_.stroke) return plan_->plan != nullptr;
   plan_ = std::make_unique<Plan>();
   plan_->stroke = stroke_.stroke;
+  live_.symmetric_gpu.ready = false;
   const std::size_t n = mesh_.vertex_count();
   plan_->indices.resize(n);
   plan_->w1.resize(n);
@@ -81,6 +82,7 @@ bool SceneReplica::ensure_plan() {
   }
   plan_->plan = std::move(plan);
   fill_gradients(start, hands);
+  build_symmetric_gpu();
   return true;
 }
 
@@ -168,6 +170,20 @@ void SceneReplica::update_live(const link::Hands& h) {
   if (!was_active || live_.stroke != stroke_.stroke) live_.weights_changed = true;
   live_.stroke = stroke_.stroke;
   live_.active = true;
+  update_symmetric_images();
+}
+
+bool SceneReplica::follow_hands() const {
+  math::PlanFrames end;
+  std::uint8_t long_turns = 0;
+  for (std::size_t i = 0; i < live_.hands.size(); ++i) {
+    end.push_back(live_.hands[i].end).ignore();  // as many as the plan's hands: fits
+    if (live_.hands[i].screw.angle > 3.141592653589793) {
+      long_turns = static_cast<std::uint8_t>(long_turns | (1u << i));
+    }
+  }
+  math::WarpPlan& live_plan = *plan_->plan;  // the cached plan follows the hands
+  return live_plan.update_turns(end, long_turns).ok();
 }
 
 MeshData SceneReplica::cpu_warp() const {
@@ -179,17 +195,8 @@ MeshData SceneReplica::cpu_warp() const {
     // Every image of every hand: the station's own update and apply (the float path,
     // on the same storage), with its turn sense per hand, so the preview is what the
     // commit writes.
-    math::PlanFrames end;
-    std::uint8_t long_turns = 0;
-    for (std::size_t i = 0; i < live_.hands.size(); ++i) {
-      end.push_back(live_.hands[i].end).ignore();  // as many as the plan's hands: fits
-      if (live_.hands[i].screw.angle > 3.141592653589793) {
-        long_turns = static_cast<std::uint8_t>(long_turns | (1u << i));
-      }
-    }
-    math::WarpPlan& live_plan = *plan_->plan;  // the cached plan follows the hands
-    if (!live_plan.update_turns(end, long_turns).ok()) return {};
-    (void)live_plan.apply(rest, math::VertexColumns{out.x, out.y, out.z});
+    if (!follow_hands()) return {};
+    (void)plan.apply(rest, math::VertexColumns{out.x, out.y, out.z});
     return out;
   }
   if (live_.method == math::WarpMethod::scodef) {

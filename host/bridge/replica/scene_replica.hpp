@@ -27,6 +27,7 @@
 
 #include "crease_shading.hpp"
 #include "mesh_data.hpp"
+#include "symmetric_live.hpp"
 #include "twister/base/inline_vector.hpp"
 #include "twister/link/link_message.hpp"
 #include "twister/math/frame.hpp"
@@ -104,8 +105,11 @@ struct LiveState {
   // The stroke's symmetry group (docs/math.md §11; kind none: plain). Under a group the
   // display draws cpu_warp() (every image of every hand), as for scodef.
   math::SymmetrySpec symmetry{};
-  // Whether the display draws this stroke from cpu_warp() (scodef or a group) rather
-  // than warping it in the vertex shader.
+  // A symmetric stroke in the form the display's shader draws (symmetric_live.hpp;
+  // ready false: the display keeps cpu_warp()).
+  SymmetricLive symmetric_gpu;
+  // Whether this stroke needs more than the plain vertex shader's warp (scodef or a
+  // group): cpu_warp(), or for a group the symmetric shader when symmetric_gpu is ready.
   bool cpu_path() const {
     return method == math::WarpMethod::scodef || symmetry.kind != math::SymmetryKind::none;
   }
@@ -175,6 +179,11 @@ class SceneReplica {
   void update_live(const link::Hands& h);
   bool ensure_plan();
   void fill_gradients(const std::array<math::Frame, 2>& start, std::size_t hands);
+  // The cached symmetric plan follows the live hands (the station's turn sense).
+  bool follow_hands() const;
+  // symmetric_gpu's entries (per grab) and images (per hands update).
+  void build_symmetric_gpu();
+  void update_symmetric_images();
 
   ReplicaLimits limits_;
   MeshData mesh_;

@@ -146,6 +146,23 @@ void write_replica_seeds(const fs::path& dir) {
   append_payload(commit, fan);
   append_payload(commit, MeshEnd{2, 0x0123456789abcdefULL});
   write_file(dir / "commit_appends", commit);
+  // A live stroke under rot6 about z on the grid (the replica's symmetric plan and the
+  // display shader's entries, issue 26).
+  std::vector<std::byte> symmetric{std::byte{2}};
+  StrokeBegin stroke;
+  stroke.stroke = 5;
+  stroke.mesh_version = 1;
+  stroke.hand_mask = 1;
+  stroke.radius_m = 0.15;
+  stroke.start[0].origin = {0.2, 0.1, 0.0};
+  stroke.symmetry = {2, 0, 2, 6};
+  append_payload(symmetric, stroke);
+  Hands hands;
+  hands.stroke = 5;
+  hands.flags = kHandSample0 | kHandTracked0 | kStrokeActive;
+  hands.radius_m = 0.15F;
+  append_payload(symmetric, hands);
+  write_file(dir / "symmetric_stroke_on_grid", symmetric);
   std::vector<std::byte> huge{std::byte{1}};
   append_payload(huge, MeshBegin{true, 0, 1, 0xffffffffU, 0xffffffffU});
   write_file(dir / "huge_counts", huge);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
+#include <map>
 #include <optional>
 
 #include "bridge_image_rig.hpp"
@@ -134,6 +135,43 @@ TEST_F(SymmetryCues, ScodefStrokeUnderSixFoldIsDrawnAtEveryImage) {
     const glm::dvec3 want = g.element(k) * (pulled - grab);
     EXPECT_GT(glm::dot(moved, want), 0.5 * glm::dot(want, want)) << "image " << k;
   }
+}
+
+// The live stroke under a group through BridgeApp: drawn by the symmetric program from
+// the rest positions (no CPU positions uploaded under it), equal to the CPU warp.
+TEST_F(SymmetryCues, LiveSymmetricStrokeIsWarpedInTheShader) {
+  const std::array<math::Frame, 2> start{math::identity_frame({0.06, 0.05, 0.06}), math::Frame{}};
+  const std::array<math::Frame, 2> end{
+      math::frame_from_uv({0.08, 0.07, 0.09}, {1.0, 0.0, 0.0}, {0.0, 0.8, 0.6}), math::Frame{}};
+  LiveMessages m = make_live_messages(1, 1, math::WarpMethod::twister, 0.05, 1, start, end);
+  m.stroke.symmetry = {2, 0, 2, 6};
+  (void)app_->replica().apply(m.stroke);
+  (void)app_->replica().apply(m.hands);
+  const Image img = frame();
+  expect_live_frame(img);
+  ASSERT_TRUE(app_->replica().live().active);
+  EXPECT_TRUE(renderer_.warps_on_gpu(app_->replica().live()));
+  const MeshRenderer::Surface s = renderer_.capture_live_surface();
+  const MeshData cpu = app_->replica().cpu_warp();
+  const MeshData& rest = app_->replica().mesh();
+  std::map<std::array<float, 3>, std::uint32_t> at;
+  for (std::uint32_t i = 0; i < rest.vertex_count(); ++i) at[{rest.x[i], rest.y[i], rest.z[i]}] = i;
+  double worst = 0.0;
+  double moved = 0.0;
+  std::size_t unmatched = 0;
+  for (std::size_t c = 0; c < s.rest.size(); ++c) {
+    const auto it = at.find({s.rest[c].x, s.rest[c].y, s.rest[c].z});
+    if (it == at.end()) {
+      ++unmatched;
+      continue;
+    }
+    const glm::dvec3 want(cpu.x[it->second], cpu.y[it->second], cpu.z[it->second]);
+    worst = std::max(worst, glm::length(glm::dvec3(s.warped[c]) - want));
+    moved = std::max(moved, glm::length(want - glm::dvec3(s.rest[c])));
+  }
+  EXPECT_EQ(unmatched, 0u) << "the drawn rest positions are not the mesh's";
+  EXPECT_LT(worst, 1e-5 * 2.0 * kSphereM);
+  EXPECT_GT(moved, 0.01);
 }
 
 }  // namespace

@@ -83,6 +83,49 @@ class SymmetricFloat {
   // A bound on |warp_points(p) - warp.warp_point(p)| for |p| <= extent_m per coordinate.
   double error_bound(const SymmetricWarp& warp, double extent_m) const;
 
+  // For a display that sums the images on the GPU (twister-bridge's vertex shader,
+  // docs/math.md §11.7): the images in apply()'s order, image i's kernel hand for the
+  // current screws (g S_h g^-1) and its share 1/|G_h|, and ball k's images
+  // [ball_first_image(k), ball_first_image(k) + ball_image_count(k)).
+  std::size_t image_count() const {
+    return points_ == 0
+               ? 0
+               : std::size_t{grabs_[points_ - 1].first_image} + grabs_[points_ - 1].image_count;
+  }
+  void image_hand(const SymmetricWarp& warp, std::size_t i, KernelHand& out, float& share) const;
+  std::size_t ball_first_image(std::size_t k) const { return grabs_[k].first_image; }
+  std::size_t ball_image_count(std::size_t k) const { return grabs_[k].image_count; }
+  // Every weight apply() uses (ready()): for each sorted chunk (positions base .. base +
+  // n - 1, vertex(base + i)) and each ball k reaching it, visit(base, k, w, n) with w its
+  // n weights, kept or computed exactly as apply() computes them. No heap.
+  template <class Visit>
+  void visit_weights(const SymmetricWarp& warp, ConstVertexColumns start, Visit&& visit) const {
+    float computed[kSortChunk];
+    std::size_t at = 0;
+    for (std::size_t base = 0, chunk = 0; base < slots_; base += kSortChunk, ++chunk) {
+      const std::size_t n = slots_ - base < kSortChunk ? slots_ - base : kSortChunk;
+      std::uint64_t balls = words_[slots_ + chunk];
+      for (std::size_t k = 0; balls != 0; ++k, balls >>= 1) {
+        if ((balls & 1u) == 0) continue;
+        const float* w = weights_.data() + at;
+        if (stored_) {
+          at += kSortChunk;
+        } else {
+          weigh(warp, k, start.x.data() + base, start.y.data() + base, start.z.data() + base,
+                computed, n, false);
+          w = computed;
+        }
+        visit(base, k, w, n);
+      }
+    }
+  }
+  // Ball k's weights at n <= kSortChunk points as apply() computes them when they are
+  // not kept (float, or double where the ball is steep).
+  void weights_at(const SymmetricWarp& warp, std::size_t k, const float* x, const float* y,
+                  const float* z, float* w, std::size_t n) const {
+    weigh(warp, k, x, y, z, w, n, false);
+  }
+
  private:
   struct Grab {
     float hi[3];
