@@ -32,7 +32,7 @@ struct HudInput {
   double hands_rate_hz = 0.0;  // hands updates received per second (< 0: not shown)
   // Attract mode shows a sculpture from the station's archive: its caption ("": the
   // station's model is shown).
-  std::string showcase;
+  std::string showcase{};
   // The live stroke (one the commit refines) is drawn refined, or not (no GL 4).
   enum class Preview : std::uint8_t { none, refined, unrefined } preview = Preview::none;
 };
