@@ -25,6 +25,10 @@
 #include <string>
 #include <vector>
 
+#if defined(__SANITIZE_ADDRESS__)
+#include <sanitizer/lsan_interface.h>
+#endif
+
 #include "fakes/fake_storage.hpp"
 #include "hal/libusb/polhemus_usb_rig.hpp"
 #include "station_assembly.hpp"
@@ -37,6 +41,14 @@ extern "C" const char* __asan_default_options() { return "verify_asan_link_order
 
 namespace twister::station_app {
 namespace {
+
+#if defined(__SANITIZE_ADDRESS__)
+void lsan_disable() { __lsan_disable(); }
+void lsan_enable() { __lsan_enable(); }
+#else
+void lsan_disable() {}
+void lsan_enable() {}
+#endif
 
 using namespace usbtest;  // NOLINT(google-build-using-namespace): the rig's names
 
@@ -156,6 +168,33 @@ TEST_P(PolhemusUsbModels, UnplugAndReplugRecoverWithinTwoSeconds) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Usb, PolhemusUsbModels, ::testing::ValuesIn(kModels), case_name);
+
+// The IN transfer's cancellation never comes back (the unit loses discarded URBs): the
+// backend's close() gives up after its wait and the next reopen() still streams, with a
+// fresh transfer (libusb keeps the lost one flagged in flight: submitting it again would
+// fail with LIBUSB_ERROR_BUSY at every reopen).
+TEST_F(PolhemusUsbTest, ReopenAfterACancellationThatNeverCameBack) {
+  plug(hal::kPolhemusVendorId, 0xff12, 3);
+  start_station("");
+  fake_.set_script(script_for(kModels[2], 100000));
+  // libusb never frees the URB array (56 bytes) of a transfer whose handle closed while it
+  // was in flight; it is allocated at the transfer's last submission, in this window.
+  lsan_disable();
+  ASSERT_TRUE(run_until(10.0, [&] { return poses_.size() >= 50; }));
+  fake_.set_discard_lost(true);
+  const Status reopened = backends_.tracker->reopen();
+  lsan_enable();
+  ASSERT_TRUE(reopened.ok()) << backends_.tracker_report->text();
+  fake_.set_discard_lost(false);
+  std::vector<std::byte> buf(64);
+  bool got = false;
+  for (const auto start = Clock::now(); !got && seconds_since(start) < 5.0;) {
+    const auto n = backends_.tracker->read(buf);
+    ASSERT_TRUE(n.ok()) << backends_.tracker_report->text();
+    got = *n > 0;
+  }
+  EXPECT_TRUE(got) << "no bytes after the reopen";
+}
 
 // A Liberty still waiting for its firmware (0f44:ff11): one error, however often the
 // session searches again, naming fxload, the firmware file and the udev rule; nothing
