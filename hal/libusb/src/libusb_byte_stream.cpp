@@ -154,6 +154,7 @@ Status LibusbByteStream::gone(int error) {
 void LibusbByteStream::close() {
   if (handle_ == nullptr) return;
   closing_ = true;
+  bool stuck = false;
   if (in_flight_) {
     libusb_cancel_transfer(in_transfer_);
     // The cancellation completes through the event loop; wait for it so the buffer
@@ -162,11 +163,19 @@ void LibusbByteStream::close() {
       timeval tv{0, 10'000};
       libusb_handle_events_timeout_completed(ctx_, &tv, nullptr);
     }
+    stuck = in_flight_;
     in_flight_ = false;
   }
   libusb_release_interface(handle_, config_.interface_number);
   libusb_close(handle_);
   handle_ = nullptr;
+  if (stuck) {
+    // The cancelled transfer never came back: libusb_close took it off libusb's list
+    // (closing the descriptor ends the URB) but leaves it flagged in flight, so it could
+    // never be submitted again (LIBUSB_ERROR_BUSY at every reopen). A fresh one instead.
+    libusb_free_transfer(in_transfer_);
+    in_transfer_ = libusb_alloc_transfer(0);
+  }
   removed_ = false;
   closing_ = false;
 }
@@ -370,6 +379,13 @@ Status LibusbByteStream::open_device(libusb_device* device) {
     report(Level::error, "USB: found %s, but cannot claim interface %u (%s)", where,
            static_cast<unsigned>(config_.interface_number), libusb_error_name(rc));
     return StatusCode::io_error;
+  }
+  if (in_transfer_ == nullptr) {  // close() could not replace a stuck transfer
+    libusb_release_interface(handle_, config_.interface_number);
+    libusb_close(handle_);
+    handle_ = nullptr;
+    report(Level::error, "USB: found %s, but out of memory for its transfer", where);
+    return StatusCode::resource_exhausted;
   }
   libusb_fill_bulk_transfer(in_transfer_, handle_, found_.endpoint_in, in_buffer_.data(),
                             static_cast<int>(in_buffer_.size()), &LibusbCallbacks::on_in_transfer,

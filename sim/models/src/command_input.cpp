@@ -55,6 +55,9 @@ CommandInput::Heard CommandInput::take_buffered() {
 }
 
 CommandInput::Heard CommandInput::frame(char byte, ports::TimestampUs now) {
+  // The Liberty dialect takes either case (polhemus_ros_driver sends `f1`, `c`, `h*`,
+  // `p`; docs/liberty-protocol.md §9); found by liberty_command_fuzz.
+  if (liberty_ && byte >= 'a' && byte <= 'z') byte = static_cast<char>(byte - 'a' + 'A');
   if (!in_parameter_) return take_first(byte, now);
   if (byte == tracker::kCr && liberty_) {
     in_parameter_ = false;

@@ -64,6 +64,12 @@ class FakePolhemus {
     std::lock_guard lock(mutex_);
     return device_.get();
   }
+  // A unit whose URBs never come back when discarded (DISCARDURB succeeds, REAPURB never
+  // returns them): a wedged device, or a host controller that loses the cancellation.
+  void set_discard_lost(bool lost) {
+    std::lock_guard lock(mutex_);
+    discard_lost_ = lost;
+  }
   // Unplugged: every ioctl fails with ENODEV; URBs in flight are given back as shut down.
   void set_gone(bool gone) {
     std::lock_guard lock(mutex_);
@@ -137,7 +143,11 @@ class FakePolhemus {
         const auto addr = reinterpret_cast<gulong>(*reinterpret_cast<void**>(arg->data));
         for (auto it = in_flight_.begin(); it != in_flight_.end(); ++it) {
           if ((*it)->client_addr == addr) {
-            discarded_.push_back(*it);
+            if (discard_lost_) {
+              umockdev_ioctl_data_unref(*it);
+            } else {
+              discarded_.push_back(*it);
+            }
             in_flight_.erase(it);
             umockdev_ioctl_client_complete(client, 0, 0);
             return TRUE;
@@ -377,6 +387,7 @@ class FakePolhemus {
   Clock::time_point device_epoch_{};
   Script script_;
   bool gone_ = false;
+  bool discard_lost_ = false;
   bool streaming_ = false;
   bool binary_ = false;
   bool centimetres_ = false;

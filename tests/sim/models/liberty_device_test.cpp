@@ -4,6 +4,7 @@
 // FastrakParser and the Liberty bytes through LibertyParser; ASCII output is unchanged.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <string>
 #include <vector>
 
@@ -155,6 +156,29 @@ TEST(LibertyDevice, AsciiOutputIsTheFastraksForEveryModel) {
   const ModelRun liberty = run(DeviceModel::liberty, false);
   EXPECT_EQ(fastrak.bytes, liberty.bytes);
   EXPECT_GT(fastrak.bytes.size(), 10'000u);
+}
+
+// The Liberty dialect in lower case, as polhemus_ros_driver sends it (`f1`, `c`, `h*`,
+// `p`; docs/liberty-protocol.md §9), is heard as the upper case: each line a command,
+// `p` a poll, none an error (liberty_command_fuzz found lower case refused with -99).
+TEST(LibertyDevice, CommandLinesInLowerCaseAreTheUpperCase) {
+  CommandTimes times = instant_commands();
+  for (const char* line : {"f1\r", "c\r", "u1\r", "h1,0,0,1\r", "x0,1,0,0\r", "o1,2,7,1\r"}) {
+    CommandInput lower(times, kInputBufferBytes, true);
+    CommandInput upper(times, kInputBufferBytes, true);
+    CommandInput::Heard heard_lower = CommandInput::Heard::nothing;
+    CommandInput::Heard heard_upper = CommandInput::Heard::nothing;
+    for (const char* c = line; *c != '\0'; ++c) {
+      heard_lower = lower.take(*c, 0);
+      heard_upper = upper.take(static_cast<char>(std::toupper(static_cast<unsigned char>(*c))), 0);
+    }
+    ASSERT_EQ(heard_lower, CommandInput::Heard::command) << line;
+    ASSERT_EQ(heard_upper, CommandInput::Heard::command) << line;
+    EXPECT_EQ(tracker::letter(lower.command()), tracker::letter(upper.command())) << line;
+  }
+  CommandInput poll(times, kInputBufferBytes, true);
+  ASSERT_EQ(poll.take('p', 0), CommandInput::Heard::command);
+  EXPECT_EQ(tracker::letter(poll.command()), 'P');
 }
 
 }  // namespace

@@ -10,7 +10,8 @@
 // every command up to CR but `P` (the Liberty dialect, tracker/liberty_startup.hpp,
 // docs/liberty-protocol.md §9): `F0`/`F1`, `U0`/`U1`, `C`, ^Y and `X`/`Y` read as the
 // Fastrak's `F`/`f`, `U`/`u`, `C`, ^Y and `x`/`v`, ^V is WhoAmI, `@B0` is taken without
-// effect, `O` and `H` as the Fastrak's. Not thread-safe.
+// effect, `O` and `H` as the Fastrak's; letters in either case (read as upper case).
+// Not thread-safe.
 #pragma once
 
 #include <array>
