@@ -103,8 +103,7 @@ Status SessionHistory::apply_history_step(journal::RecordType type) {
 }
 
 Status SessionHistory::apply_plan(const math::WarpPlan& plan, double refine_threshold_m,
-                                  bool refine_local, std::uint16_t chain_step,
-                                  SessionEvents* out) {
+                                  bool refine_local, std::uint16_t chain_step, SessionEvents* out) {
   if (refine_threshold_m > 0.0 && (refinement_ == nullptr || !refinement_->available())) {
     return StatusCode::failed_precondition;
   }
@@ -138,11 +137,10 @@ void SessionHistory::commit_live(const math::WarpPlan& plan, const CommitShape& 
         const glm::vec3 after{live.x[i], live.y[i], live.z[i]};
         if (!history_.record(i, mesh.position(i), after).ok()) undoable = false;
       }
-      refined = refinement_->refine_chain(plan, shape.refine_threshold_m, history_,
-                                          shape.refine_local);
-    } else {
       refined =
-          refinement_->refine(plan, shape.refine_threshold_m, history_, shape.refine_local);
+          refinement_->refine_chain(plan, shape.refine_threshold_m, history_, shape.refine_local);
+    } else {
+      refined = refinement_->refine(plan, shape.refine_threshold_m, history_, shape.refine_local);
     }
   }
   undoable = undoable && refined.undoable;

@@ -49,9 +49,9 @@ void read_tracker(ConfigReader& root, StationFileConfig& cfg) {
   }
   std::string format;
   if (t.string("format", false, format, {"binary", "ascii", "binary16"})) {
-    tc.format = format == "binary"   ? RecordFormat::binary
-                : format == "ascii"  ? RecordFormat::ascii
-                                     : RecordFormat::binary16;
+    tc.format = format == "binary"  ? RecordFormat::binary
+                : format == "ascii" ? RecordFormat::ascii
+                                    : RecordFormat::binary16;
   }
   std::string model;
   if (t.string("model", false, model, {"fastrak", "liberty", "patriot", "latus"})) {
@@ -70,8 +70,10 @@ void read_tracker(ConfigReader& root, StationFileConfig& cfg) {
   // A Liberty's or Patriot's records are parsed as binary frames only.
   if (tc.model != TrackerModel::fastrak && tc.format != RecordFormat::binary) {
     t.error(t.node("format"), "format",
-            "expected \"binary\" with tracker.model = \"" + model + "\" (its frames are "
-            "read in binary only), got \"" + format + "\"");
+            "expected \"binary\" with tracker.model = \"" + model +
+                "\" (its frames are "
+                "read in binary only), got \"" +
+                format + "\"");
   }
   read_u(t, "reconnect_interval_ms", false, 100, 60000, tc.reconnect_interval_ms);
   read_u(t, "silence_timeout_ms", false, 50, 10000, tc.silence_timeout_ms);

@@ -297,7 +297,7 @@ void ParameterCommands::envelope(int station, const Fields& f, std::string_view 
 }
 
 void ParameterCommands::station_vector(ParameterCommand which, int station, const Fields& f,
-                                      std::string_view echo, ports::TimestampUs at) {
+                                       std::string_view echo, ports::TimestampUs at) {
   const auto i = static_cast<std::size_t>(station - 1);
   const bool tip = which == ParameterCommand::tip_offset;
   // N: the current units (stored in inches); G: az, el, roll degrees.

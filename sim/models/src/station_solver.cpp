@@ -37,8 +37,9 @@ void StationSolver::solve(int station, const HandSample& h, const UnitSettings& 
   }
   if (settings.boresight_on[i]) {
     const auto& ref = settings.boresight_reference_deg[i];
-    s.attitude = glm::normalize(glm::quat_cast(
-        tracker::rotation_from_euler_deg(ref[0], ref[1], ref[2]) * glm::transpose(boresight_[i]) * r));
+    s.attitude =
+        glm::normalize(glm::quat_cast(tracker::rotation_from_euler_deg(ref[0], ref[1], ref[2]) *
+                                      glm::transpose(boresight_[i]) * r));
   }
   s.button = station == 1 && h.button;  // the stylus works on station 1 only
 }

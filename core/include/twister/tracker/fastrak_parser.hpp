@@ -11,8 +11,8 @@
 
 #include "twister/base/result.hpp"
 #include "twister/tracker/fastrak_event.hpp"
-#include "twister/tracker/frame_scanner.hpp"
 #include "twister/tracker/fastrak_wire.hpp"
+#include "twister/tracker/frame_scanner.hpp"
 
 namespace twister::tracker {
 

@@ -32,8 +32,7 @@ template <std::size_t kMaxFrame>
 class FrameScanner {
  public:
   template <typename Codec, typename Counters>
-  Result<FastrakEvent> next(Codec& codec, Counters& counters,
-                            std::span<const std::byte>& input) {
+  Result<FastrakEvent> next(Codec& codec, Counters& counters, std::span<const std::byte>& input) {
     if (held_) {
       held_ = false;
       return emit(codec, counters, held_event_);

@@ -36,7 +36,7 @@ class StationSolver {
   std::array<std::array<AdaptiveFilter, 2>, 4> filter_{};  // [station][position, attitude]
   std::array<glm::dmat3, 4> boresight_{glm::dmat3(1.0), glm::dmat3(1.0), glm::dmat3(1.0),
                                        glm::dmat3(1.0)};  // the attitude captured by `B`
-  std::array<unsigned, 4> boresight_taken_{};  // the requests already captured
+  std::array<unsigned, 4> boresight_taken_{};             // the requests already captured
 };
 
 }  // namespace twister::sim
