@@ -3,6 +3,7 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <glm/glm.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -30,7 +31,7 @@ std::vector<float> interleaved_positions(const MeshData& mesh, const ShadedMesh&
 constexpr const char* kGlsl330 = "#version 330 core\n";
 constexpr const char* kGlsl400 = "#version 400 core\n";
 // Transform feedback of both programs (capture_live_surface).
-const std::vector<const char*> kFeedback{"v_rest", "v_object"};
+constexpr std::array<const char*, 2> kFeedback{"v_rest", "v_object"};
 
 }  // namespace
 
@@ -101,7 +102,7 @@ hal::Expected<void> MeshRenderer::init(int width, int height, bool offscreen,
   plain.vertex = std::string(kGlsl330) + shaders::kWarpLibrary + shaders::kSurfaceStage +
                  shaders::kPlainVertex;
   plain.fragment = std::string(kGlsl330) + shaders::kMeshFragment;
-  plain.feedback = kFeedback;
+  plain.feedback.assign(kFeedback.begin(), kFeedback.end());
   hal::Expected<unsigned> program = build_gl_program(plain);
   if (!program) return program.error();
   plain_ = {*program, find_uniforms(*program)};
@@ -114,7 +115,7 @@ hal::Expected<void> MeshRenderer::init(int width, int height, bool offscreen,
     refined.tess_evaluation = std::string(kGlsl400) + shaders::kWarpLibrary +
                               shaders::kSurfaceStage + shaders::kRefinedEvaluation;
     refined.fragment = std::string(kGlsl400) + shaders::kMeshFragment;
-    refined.feedback = kFeedback;
+    refined.feedback.assign(kFeedback.begin(), kFeedback.end());
     hal::Expected<unsigned> tess = build_gl_program(refined);
     if (!tess) return tess.error();
     refined_ = {*tess, find_uniforms(*tess)};
@@ -137,7 +138,7 @@ hal::Expected<void> MeshRenderer::init(int width, int height, bool offscreen,
   ShaderSources symmetric;
   symmetric.vertex = std::string(kGlsl330) + shaders::kSurfaceStage + shaders::kSymmetricVertex;
   symmetric.fragment = plain.fragment;
-  symmetric.feedback = kFeedback;
+  symmetric.feedback.assign(kFeedback.begin(), kFeedback.end());
   init_symmetric(symmetric);
   if (offscreen) {
     create_fbo(width, height);
@@ -329,7 +330,8 @@ void MeshRenderer::split_live_triangles() {
   // A hand's weights vanish outside its ball (the squash only shrinks it): a triangle
   // whose bounding sphere meets no ball stays where it is, and its edges too.
   const auto at = [this](std::uint32_t v) {
-    return glm::vec3(positions_[3 * v], positions_[3 * v + 1], positions_[3 * v + 2]);
+    const std::size_t i = std::size_t{3} * v;
+    return glm::vec3(positions_[i], positions_[i + 1], positions_[i + 2]);
   };
   std::vector<std::uint32_t> reached;
   std::vector<std::uint32_t> rest;

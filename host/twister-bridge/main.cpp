@@ -230,6 +230,40 @@ void log_summary(const BridgeApp& app) {
                   d.bad_crc + d.bad_cobs + d.bad_payload);
 }
 
+// The --camera file's view and attract settings into `options` (the command line
+// wins over the file); false after logging why it cannot be read.
+bool with_camera_file(Options& options) {
+  if (options.camera_file.empty()) return true;
+  const Expected<twister::bridge::CameraConfig> camera =
+      twister::bridge::load_camera_config(options.camera_file);
+  if (!camera) {
+    logger().error("options", "--camera: %s", camera.error().message.c_str());
+    return false;
+  }
+  options.view = camera->view;
+  options.fixed_camera = camera->fixed;
+  if (options.attract.archive.empty()) options.attract.archive = camera->attract.archive;
+  if (!options.attract_models_given) options.attract.models = camera->attract.models;
+  if (!options.attract_seconds_given) options.attract.seconds = camera->attract.seconds;
+  return true;
+}
+
+// The pre-shared key's authenticator when --link-key is given; false after logging why not.
+bool load_authenticator(const Options& opt,
+                        std::unique_ptr<twister::hal::SodiumAuthenticator>& auth) {
+  if (opt.link_key.empty()) return true;
+  auto key = twister::hal::SodiumAuthenticator::init()
+                 ? twister::hal::load_link_key(opt.link_key)
+                 : Expected<twister::hal::LinkKey>(
+                       twister::hal::make_error(StatusCode::io_error, "libsodium failed to start"));
+  if (!key) {
+    logger().error("options", "%s", key.error().message.c_str());
+    return false;
+  }
+  auth = std::make_unique<twister::hal::SodiumAuthenticator>(*key);
+  return true;
+}
+
 int run(const Options& opt) {
   const Expected<Size> size = parse_size(opt.size);
   if (!size) {
@@ -246,20 +280,7 @@ int run(const Options& opt) {
   }
   if (!opt.snapshots.empty()) std::filesystem::create_directories(opt.snapshots);
   Options options = opt;
-  if (!opt.camera_file.empty()) {
-    const Expected<twister::bridge::CameraConfig> camera =
-        twister::bridge::load_camera_config(opt.camera_file);
-    if (!camera) {
-      logger().error("options", "--camera: %s", camera.error().message.c_str());
-      return kExitBadOptions;
-    }
-    options.view = camera->view;
-    options.fixed_camera = camera->fixed;
-    // The command line wins over the file.
-    if (opt.attract.archive.empty()) options.attract.archive = camera->attract.archive;
-    if (!opt.attract_models_given) options.attract.models = camera->attract.models;
-    if (!opt.attract_seconds_given) options.attract.seconds = camera->attract.seconds;
-  }
+  if (!with_camera_file(options)) return kExitBadOptions;
   // The one clock of the display: link timing, frame times, the HUD, the timeout.
   twister::hal::MonotonicClock clock;
   Display display(clock);
@@ -273,17 +294,7 @@ int run(const Options& opt) {
     return kExitBadOptions;
   }
   std::unique_ptr<twister::hal::SodiumAuthenticator> auth;
-  if (!opt.link_key.empty()) {
-    auto key = twister::hal::SodiumAuthenticator::init()
-                   ? twister::hal::load_link_key(opt.link_key)
-                   : Expected<twister::hal::LinkKey>(twister::hal::make_error(
-                         StatusCode::io_error, "libsodium failed to start"));
-    if (!key) {
-      logger().error("options", "%s", key.error().message.c_str());
-      return kExitBadOptions;
-    }
-    auth = std::make_unique<twister::hal::SodiumAuthenticator>(*key);
-  }
+  if (!load_authenticator(opt, auth)) return kExitBadOptions;
   twister::bridge::BridgeOptions bridge_options;
   bridge_options.snapshot_dir = opt.snapshots;
   bridge_options.movie_every = opt.movie_every;
@@ -329,7 +340,7 @@ int run(const Options& opt) {
   return rc;
 }
 
-void add_options(CLI::App& cli, Options& opt) {
+void add_link_options(CLI::App& cli, Options& opt) {
   cli.add_option("--connect", opt.connect,
                  "station link: unix:PATH, tcp:HOST:PORT or serial:DEVICE")
       ->required();
@@ -343,6 +354,12 @@ void add_options(CLI::App& cli, Options& opt) {
   cli.add_option("--max-triangles", opt.limits.max_triangles,
                  "largest mesh accepted from the station (default 8388608 triangles)")
       ->check(CLI::Range(1u, 1u << 29));
+  cli.add_flag("--spectator", opt.spectator,
+               "a read-only display (a projector, a screen facing the queue): it watches the "
+               "station and sends no commands");
+}
+
+void add_output_options(CLI::App& cli, Options& opt) {
   cli.add_flag("--offscreen", opt.offscreen,
                "no window: EGL surfaceless rendering (PNG snapshots)");
   cli.add_flag("--kiosk", opt.kiosk, "full screen on the primary monitor");
@@ -367,6 +384,9 @@ void add_options(CLI::App& cli, Options& opt) {
                "exit when the station closes the link (after a mesh was received)");
   cli.add_option("--timeout", opt.timeout_s, "give up after this many seconds (0 = never)")
       ->check(CLI::NonNegativeNumber);
+}
+
+void add_view_options(CLI::App& cli, Options& opt) {
   cli.add_option("--camera", opt.camera_file,
                  "camera file (TOML [camera]: azimuth_deg, elevation_deg, zoom, fov_deg, up, "
                  "target, fixed): a kiosk's fixed view");
@@ -403,9 +423,6 @@ void add_options(CLI::App& cli, Options& opt) {
   cli.add_option("--attract-seconds", opt.attract.seconds,
                  "with --attract-archive: seconds each is shown (default 8)")
       ->check(CLI::Range(1.0, 600.0));
-  cli.add_flag("--spectator", opt.spectator,
-               "a read-only display (a projector, a screen facing the queue): it watches the "
-               "station and sends no commands");
   cli.add_option("--crease-angle", opt.crease_angle_deg,
                  "an edge whose faces' normals differ by more than this keeps a normal per side "
                  "(degrees, default 45; 180: every edge smooth)")
@@ -413,6 +430,12 @@ void add_options(CLI::App& cli, Options& opt) {
   cli.add_flag("--no-live-refine", opt.no_live_refine,
                "draw the live stroke unrefined even on OpenGL 4 (the commit still refines)");
   cli.add_flag("-q,--quiet", opt.quiet, "same as --log-level warning (which wins if given)");
+}
+
+void add_options(CLI::App& cli, Options& opt) {
+  add_link_options(cli, opt);
+  add_output_options(cli, opt);
+  add_view_options(cli, opt);
 }
 
 }  // namespace

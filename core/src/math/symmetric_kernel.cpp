@@ -256,8 +256,8 @@ void SymmetricFloat::weigh(const SymmetricWarp& warp, std::size_t k, const float
     }
     return;
   }
-  image_weights_simd(DecaySpan{x, y, z, w, n}, g.hi, g.lo, &squash_[4 * g.first_squash], g.squashes,
-                     radius_);
+  image_weights_simd(DecaySpan{x, y, z, w, n}, g.hi, g.lo,
+                     &squash_[std::size_t{4} * g.first_squash], g.squashes, radius_);
 }
 
 void SymmetricFloat::apply(const SymmetricWarp& warp, ConstVertexColumns start,

@@ -182,8 +182,12 @@ VisitorView Station::visitor_view() const {
   v.sculpture = writer_.format().id;
   v.records = journal_records();
   // Whole tenths of a second, so the view changes at most ten times a second.
-  v.idle_left_s = static_cast<float>(life.idle_left_us(now_us) / 100'000) / 10.0F;
-  v.grace_left_s = static_cast<float>(life.grace_left_us(now_us) / 100'000) / 10.0F;
+  const auto tenths = [](ports::TimestampUs us) {
+    const ports::TimestampUs whole = us / 100'000;  // truncated on purpose
+    return static_cast<float>(whole) / 10.0F;
+  };
+  v.idle_left_s = tenths(life.idle_left_us(now_us));
+  v.grace_left_s = tenths(life.grace_left_us(now_us));
   return v;
 }
 

@@ -224,6 +224,39 @@ namespace {
 // How a device on the bus relates to what the search wants; the best kind wins.
 enum class Match : std::uint8_t { none, other, needs_firmware, usable };
 
+// The best device of the list for `config`: one it can use, else one that needs its
+// firmware, else another Polhemus unit (reported), else none.
+struct Candidate {
+  Match match = Match::none;
+  libusb_device* device = nullptr;
+  const PolhemusUsbId* id = nullptr;
+  std::uint16_t product = 0;
+};
+
+Candidate best_candidate(const LibusbConfig& config, libusb_device** list, ssize_t count) {
+  Candidate best;
+  for (ssize_t i = 0; i < count; ++i) {
+    libusb_device_descriptor d{};
+    if (libusb_get_device_descriptor(list[i], &d) != 0 || d.idVendor != config.vendor_id) continue;
+    const PolhemusUsbId* id = find_polhemus_usb_id(d.idVendor, d.idProduct);
+    const bool wanted_model =
+        id != nullptr && id->model != PolhemusUsbModel::unsupported &&
+        (config.product_id != 0 ? polhemus_running_id(id->model) == config.product_id
+                                : (config.models & polhemus_model_bit(id->model)) != 0);
+    Match m = Match::none;
+    if (config.product_id != 0 ? d.idProduct == config.product_id
+                               : wanted_model && !id->needs_firmware) {
+      m = Match::usable;
+    } else if (wanted_model && id->needs_firmware) {
+      m = Match::needs_firmware;
+    } else if (id != nullptr) {
+      m = Match::other;
+    }
+    if (m > best.match) best = Candidate{m, list[i], id, d.idProduct};
+  }
+  return best;
+}
+
 }  // namespace
 
 Status LibusbByteStream::probe() { return search(false); }
@@ -244,34 +277,11 @@ Status LibusbByteStream::search(bool open) {
            libusb_error_name(static_cast<int>(count)));
     return StatusCode::io_error;
   }
-  Match best = Match::none;
-  libusb_device* chosen = nullptr;
-  const PolhemusUsbId* chosen_id = nullptr;
-  std::uint16_t chosen_product = 0;
-  for (ssize_t i = 0; i < count; ++i) {
-    libusb_device_descriptor d{};
-    if (libusb_get_device_descriptor(list[i], &d) != 0 || d.idVendor != config_.vendor_id) continue;
-    const PolhemusUsbId* id = find_polhemus_usb_id(d.idVendor, d.idProduct);
-    const bool wanted_model =
-        id != nullptr && id->model != PolhemusUsbModel::unsupported &&
-        (config_.product_id != 0 ? polhemus_running_id(id->model) == config_.product_id
-                                 : (config_.models & polhemus_model_bit(id->model)) != 0);
-    Match m = Match::none;
-    if (config_.product_id != 0 ? d.idProduct == config_.product_id
-                                : wanted_model && !id->needs_firmware) {
-      m = Match::usable;
-    } else if (wanted_model && id->needs_firmware) {
-      m = Match::needs_firmware;
-    } else if (id != nullptr) {
-      m = Match::other;
-    }
-    if (m > best) {
-      best = m;
-      chosen = list[i];
-      chosen_id = id;
-      chosen_product = d.idProduct;
-    }
-  }
+  const Candidate c = best_candidate(config_, list, count);
+  const Match best = c.match;
+  libusb_device* chosen = c.device;
+  const PolhemusUsbId* chosen_id = c.id;
+  const std::uint16_t chosen_product = c.product;
   Status result = StatusCode::unavailable;
   char where[64] = "";
   if (chosen != nullptr) {

@@ -124,7 +124,7 @@ void SceneReplica::build_symmetric_gpu() {
     const std::size_t first = fast.ball_first_image(f.ball);
     for (std::size_t i = 0; i < fast.ball_image_count(f.ball); ++i) {
       const std::uint32_t e = next[f.vertex]++;
-      std::copy_n(f.w, 4, &gpu.entries[4 * e]);
+      std::copy_n(f.w, 4, &gpu.entries[std::size_t{4} * e]);
       gpu.entry_image[e] = static_cast<std::uint8_t>(first + i);
     }
   }
