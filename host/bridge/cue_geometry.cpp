@@ -20,10 +20,6 @@ constexpr float kObjectFrameLength = 0.5F;
 constexpr int kTrajectorySamples = 33;
 constexpr float kSphereAlpha = 0.16F;
 
-glm::vec3 turn(const glm::mat4& model, glm::dvec3 d) {
-  return glm::vec3(model * glm::vec4(glm::vec3(d), 0.0F));
-}
-
 void add_axes(CueMesh& m, glm::vec3 origin, const std::array<glm::vec3, 3>& axes, float length,
               float tube) {
   const std::array<glm::vec4, 3> rgb{glm::vec4(0.95F, 0.15F, 0.12F, 1.0F),

@@ -69,6 +69,11 @@ inline glm::vec3 to_world(const glm::mat4& model, glm::dvec3 p) {
   return glm::vec3(model * glm::vec4(glm::vec3(p), 1.0F));
 }
 
+// A direction of the object frame in the world.
+inline glm::vec3 turn(const glm::mat4& model, glm::dvec3 d) {
+  return glm::vec3(model * glm::vec4(glm::vec3(d), 0.0F));
+}
+
 // Builds every cue of the replica's current state. `model` places the object frame
 // in the world (the renderer's model matrix).
 void build_cues(const SceneReplica& replica, const glm::mat4& model, float scene_radius_m,

@@ -16,10 +16,6 @@ constexpr glm::vec4 kPlaneColour{0.75F, 0.85F, 1.0F, 0.07F};
 constexpr glm::vec4 kAxisColour{0.75F, 0.85F, 1.0F, 1.0F};
 constexpr glm::vec4 kGhostAxisTint{0.85F, 0.85F, 0.85F, 1.0F};
 
-glm::vec3 turn(const glm::mat4& model, glm::dvec3 d) {
-  return glm::vec3(model * glm::vec4(glm::vec3(d), 0.0F));
-}
-
 // A square of half size `h` in the plane through `c` with in-plane directions a, b.
 void add_square(CueMesh& m, glm::vec3 c, glm::vec3 a, glm::vec3 b, float h, glm::vec4 colour) {
   const auto first = static_cast<std::uint32_t>(m.vertex_count());
