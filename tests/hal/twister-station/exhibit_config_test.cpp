@@ -14,19 +14,7 @@ namespace {
 
 using test::messages;
 
-// Six GPIO lines: the paper's three buttons per hand (no [sculpt.buttons]).
-const std::string kBase = R"([station]
-journal = "/tmp/j.bin"
-mesh = "m.obj"
-[tracker]
-backend = "serial"
-[tracker.serial]
-device = "/dev/twister-fastrak"
-[buttons]
-backend = "gpiod"
-[buttons.gpiod]
-lines = [17, 27, 22, 23, 24, 25]
-)";
+const std::string kBase = test::kSixButtonStation;  // no [sculpt.buttons]
 
 ConfigParseResult parse_exhibit(const std::string& exhibit, const std::string& more = "") {
   return parse_station_config(kBase + more + "[exhibit]\n" + exhibit, "t.toml");

@@ -20,18 +20,7 @@ using test::messages;
 using ::testing::HasSubstr;
 
 // Six GPIO lines (lines 0-5); the [sculpt] text under test is appended.
-constexpr const char* kBase = R"([station]
-journal = "/tmp/j.bin"
-mesh = "m.obj"
-[tracker]
-backend = "serial"
-[tracker.serial]
-device = "/dev/twister-fastrak"
-[buttons]
-backend = "gpiod"
-[buttons.gpiod]
-lines = [17, 27, 22, 23, 24, 25]
-)";
+constexpr const char* kBase = test::kSixButtonStation;
 constexpr std::uint32_t kBaseLines = 11;  // the [sculpt] text starts on line 12
 
 ConfigParseResult parse(const std::string& sculpt, const std::string& base = kBase) {

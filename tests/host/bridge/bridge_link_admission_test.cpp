@@ -28,6 +28,7 @@
 
 #include "bridge_app.hpp"
 #include "session_harness.hpp"
+#include "support/station_link_buffers.hpp"
 #include "twister/hal/monotonic_clock.hpp"
 #include "twister/hal/socket_link.hpp"
 #include "twister/hal/sodium_authenticator.hpp"
@@ -49,17 +50,11 @@ struct StationSide {
     EXPECT_TRUE(hal::SodiumAuthenticator::init());
     const auto opened = socket.open();
     EXPECT_TRUE(opened) << (opened ? "" : opened.error().message);
-    const std::size_t n = station.mesh.vertex_capacity();
-    x.resize(n);
-    y.resize(n);
-    z.resize(n);
-    idx.resize(3 * station.mesh.triangle_capacity());
-    out.resize(64 * link::kMaxFrameBytes);
+    buffers.size_for(station.mesh);
     station::StationLinkOptions options;
     options.newcomers = &socket;
     options.authenticator = &auth;
-    link = std::make_unique<station::StationLink>(socket,
-                                                  station::StationLinkStorage{x, y, z, idx, out},
+    link = std::make_unique<station::StationLink>(socket, buffers.storage(),
                                                   station::StationLinkConfig{}, options);
     EXPECT_TRUE(link->start(*station.session).ok());
   }
@@ -71,9 +66,7 @@ struct StationSide {
   Station station;
   hal::SocketLink socket;
   hal::SodiumAuthenticator auth;
-  std::vector<float> x, y, z;
-  std::vector<std::uint32_t> idx;
-  std::vector<std::byte> out;
+  test::StationLinkBuffers buffers;
   std::unique_ptr<station::StationLink> link;
 };
 

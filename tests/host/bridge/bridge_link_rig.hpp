@@ -14,6 +14,7 @@
 #include "fakes/fake_clock.hpp"
 #include "fakes/memory_wire.hpp"
 #include "session_harness.hpp"
+#include "support/station_link_buffers.hpp"
 #include "twister/station/station_link.hpp"
 
 namespace twister::bridge::test_support {
@@ -29,14 +30,9 @@ struct BridgeLinkRig {
         station_end(wire, true),
         bridge_end(wire, false),
         bridge(bridge_end, clock, nullptr, {}, log) {
-    const std::size_t n = station.mesh.vertex_capacity();
-    x.resize(n);
-    y.resize(n);
-    z.resize(n);
-    idx.resize(3 * station.mesh.triangle_capacity());
-    out.resize(64 * link::kMaxFrameBytes);
-    link = std::make_unique<station::StationLink>(
-        station_end, station::StationLinkStorage{x, y, z, idx, out}, station::StationLinkConfig{});
+    buffers.size_for(station.mesh);
+    link = std::make_unique<station::StationLink>(station_end, buffers.storage(),
+                                                  station::StationLinkConfig{});
     EXPECT_TRUE(link->start(*station.session).ok());
   }
   void run(int rounds = 20) {
@@ -64,9 +60,7 @@ struct BridgeLinkRig {
   test::MemoryWire wire;
   test::MemoryLinkEnd station_end;
   test::MemoryLinkEnd bridge_end;
-  std::vector<float> x, y, z;
-  std::vector<std::uint32_t> idx;
-  std::vector<std::byte> out;
+  test::StationLinkBuffers buffers;
   std::unique_ptr<station::StationLink> link;
   twister::test::FakeClock clock;
   BridgeApp bridge;

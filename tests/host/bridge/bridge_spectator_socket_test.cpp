@@ -16,6 +16,7 @@
 
 #include "bridge_app.hpp"
 #include "session_harness.hpp"
+#include "support/station_link_buffers.hpp"
 #include "twister/hal/monotonic_clock.hpp"
 #include "twister/hal/socket_link.hpp"
 #include "twister/hal/sodium_authenticator.hpp"
@@ -39,23 +40,15 @@ struct StationSide {
     EXPECT_TRUE(hal::SodiumAuthenticator::init());
     const auto opened = socket.open();
     EXPECT_TRUE(opened) << (opened ? "" : opened.error().message);
-    const std::size_t n = station.mesh.vertex_capacity();
-    x.resize(n);
-    y.resize(n);
-    z.resize(n);
-    idx.resize(3 * station.mesh.triangle_capacity());
-    out.resize(64 * link::kMaxFrameBytes);
-    queues.resize(2 * 16 * link::kMaxFrameBytes);
-    staging.resize(16 * link::kMaxFrameBytes);
+    buffers.size_for(station.mesh, 2);
     station::StationLinkOptions options;
     options.newcomers = &socket;
     options.authenticator = &auth;
     options.spectators = &socket;
     options.max_spectators = 2;
-    options.spectator_queues = queues;
-    options.spectator_staging = staging;
-    link = std::make_unique<station::StationLink>(socket,
-                                                  station::StationLinkStorage{x, y, z, idx, out},
+    options.spectator_queues = buffers.queues;
+    options.spectator_staging = buffers.staging;
+    link = std::make_unique<station::StationLink>(socket, buffers.storage(),
                                                   station::StationLinkConfig{}, options);
     EXPECT_TRUE(link->start(*station.session).ok());
   }
@@ -67,9 +60,7 @@ struct StationSide {
   Station station;
   hal::SocketLink socket;
   hal::SodiumAuthenticator auth;
-  std::vector<float> x, y, z;
-  std::vector<std::uint32_t> idx;
-  std::vector<std::byte> out, queues, staging;
+  test::StationLinkBuffers buffers;
   std::unique_ptr<station::StationLink> link;
 };
 

@@ -22,6 +22,7 @@
 #include "fakes/memory_wire.hpp"
 #include "session_harness.hpp"
 #include "support/allocation_counter.hpp"
+#include "support/station_link_buffers.hpp"
 #include "twister/ports/log_sink.hpp"
 #include "twister/station/station_link.hpp"
 
@@ -47,23 +48,15 @@ struct Display {
 
 struct Rig {
   explicit Rig(std::size_t slots = 2, ports::TimestampUs stall_us = 5'000'000) : station(33) {
-    const std::size_t n = station.mesh.vertex_capacity();
-    x.resize(n);
-    y.resize(n);
-    z.resize(n);
-    idx.resize(3 * station.mesh.triangle_capacity());
-    out.resize(64 * link::kMaxFrameBytes);
-    queues.resize(slots * 16 * link::kMaxFrameBytes);
-    staging.resize(16 * link::kMaxFrameBytes);
+    buffers.size_for(station.mesh, slots);
     station::StationLinkOptions options;
     options.newcomers = &listener;
     options.spectators = &listener;
     options.max_spectators = slots;
-    options.spectator_queues = queues;
-    options.spectator_staging = staging;
+    options.spectator_queues = buffers.queues;
+    options.spectator_staging = buffers.staging;
     options.spectator_stall_us = stall_us;
-    link = std::make_unique<station::StationLink>(listener,
-                                                  station::StationLinkStorage{x, y, z, idx, out},
+    link = std::make_unique<station::StationLink>(listener, buffers.storage(),
                                                   station::StationLinkConfig{}, options);
     EXPECT_TRUE(link->start(*station.session).ok());
   }
@@ -107,9 +100,7 @@ struct Rig {
   test::FakeClock clock;
   session::test_support::Station station;
   test::FakeListener listener;
-  std::vector<float> x, y, z;
-  std::vector<std::uint32_t> idx;
-  std::vector<std::byte> out, queues, staging;
+  test::StationLinkBuffers buffers;
   std::unique_ptr<station::StationLink> link;
   std::vector<std::unique_ptr<Display>> displays;
   const Display* stopped = nullptr;  // a display that stopped reading
